@@ -1,0 +1,1 @@
+"""Pure NumPy calculation functions (SI units in, SI units out; no pint, no pandas)."""
