@@ -1,0 +1,380 @@
+"""Typed engine description in SI units, built from a workbook or directly in Python.
+
+This is the boundary between the workbook (cells, units, text) and the calculations (SI
+floats). Cross-sheet consistency is checked here; every problem names its cell.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+from .errors import InputError, InputErrors
+from .workbook.loader import WorkbookData
+from .workbook.schema import SHEETS
+
+
+class Params(dict):
+    """Read-only mapping of one parameter sheet (SI values, ``None`` when blank)."""
+
+    def __getattr__(self, name: str) -> Any:
+        try:
+            return self[name]
+        except KeyError as exc:  # pragma: no cover - programming error
+            raise AttributeError(name) from exc
+
+
+@dataclass(frozen=True)
+class Cylinder:
+    number: int
+    throw_angle: float  # [rad]
+    firing_angle: float  # [rad] after cylinder 1 fires, 0..4 pi
+    bank_angle: float = 0.0  # [rad]
+    pin: int = 0  # crank pin (throw) number, 1-based
+
+
+@dataclass(frozen=True)
+class Bearing:
+    name: str
+    type: str  # "main" | "big end"
+    diameter: float  # [m]
+    length: float  # effective length [m]
+    clearance: float  # radial [m]
+    journal_length: float | None = None
+    groove: str = "none"
+    groove_width: float | None = None
+    groove_start: float | None = None
+    groove_end: float | None = None
+    oil_feed: str | None = None
+    oil_holes: int = 0
+    oil_hole_type: str | None = None
+    oil_hole_diameter: float | None = None
+    oil_hole_angle: float | None = None
+    lining: str | None = None
+    index: int = 0  # main number (1..) or big-end number (1..)
+
+
+@dataclass(frozen=True)
+class MassItem:
+    location: str
+    throw: int
+    kind: str
+    mass: float
+    x: float
+    y: float
+    z: float
+    axial: float
+    reference: str  # "main axis" | "pin axis"
+
+
+@dataclass(frozen=True)
+class TVStation:
+    station: str
+    role: str
+    inertia: float
+    cylinder: int | None = None
+    absolute_damping: float = 0.0
+    stiffness: float | None = None
+    relative_damping: float = 0.0
+
+
+@dataclass(frozen=True)
+class Joint:
+    name: str
+    location: str
+    bolts: int
+    diameter: float
+    pitch: float
+    property_class: str
+    tightening: str
+    face_outer: float
+    face_inner: float
+    stress_area_coefficient: float | None = None
+    tightening_torque: float | None = None
+    nut_factor: float | None = None
+    preload_fraction: float | None = None
+    rp02: float | None = None
+    proof_load_stress: float | None = None
+    head_outer: float | None = None
+    head_inner: float | None = None
+    clamped_material: str | None = None
+    friction: float | None = None
+
+
+@dataclass(frozen=True)
+class JointTorque:
+    joint: str
+    point: str  # "tv peak" | "max power" | "overspeed"
+    torque: float  # [N m]
+    speed: float | None = None  # [rad/s]
+
+
+@dataclass(frozen=True)
+class RuleOverride:
+    rule: str
+    limit: str
+    unit: str | None
+    reason: str
+    where: str = ""
+
+
+@dataclass
+class Engine:
+    """The whole engine description (SI). Optional parts are empty when not given."""
+
+    params: Params
+    cylinders: tuple[Cylinder, ...] = ()
+    bearings: tuple[Bearing, ...] = ()
+    crank_mass: tuple[MassItem, ...] = ()
+    tv_model: tuple[TVStation, ...] = ()
+    joints: tuple[Joint, ...] = ()
+    joint_torques: tuple[JointTorque, ...] = ()
+    peak_pressure: tuple[tuple[str, float, float], ...] = ()  # (case, speed rad/s, p Pa)
+    pressure_traces: tuple[tuple[str, float, float, float], ...] = ()  # case, speed, angle, p
+    brake_torque: tuple[tuple[float, float], ...] = ()  # (speed rad/s, torque N m)
+    oil: Params = field(default_factory=Params)
+    damper: Params = field(default_factory=Params)
+    fatigue: Params = field(default_factory=Params)
+    overrides: tuple[RuleOverride, ...] = ()
+    source: str = "<in memory>"
+    sha256: str = ""
+    where: dict[tuple, str] = field(default_factory=dict)
+
+    @property
+    def name(self) -> str:
+        return str(self.params.get("name") or "engine")
+
+    def cell(self, sheet: str, attr: str, row: int | None = None) -> str:
+        """Cell address of an input (for messages), or the sheet name when unknown."""
+        key = (sheet, attr) if row is None else (sheet, row, attr)
+        return self.where.get(key, sheet)
+
+
+def _rows(data: WorkbookData, sheet: str) -> list[dict[str, Any]]:
+    return data.tables.get(sheet, [])
+
+
+def _firing_order(text: str) -> list[int] | None:
+    parts = [p for p in str(text).replace(",", "-").replace(" ", "-").split("-") if p]
+    try:
+        return [int(p) for p in parts]
+    except ValueError:
+        return None
+
+
+def build_engine(data: WorkbookData) -> Engine:
+    """Build and cross-check the typed engine from converted workbook data."""
+    errs: list[InputError] = list(data.errors)
+
+    def err(sheet: str, attr: str, row: int | None, msg: str) -> None:
+        key = (sheet, attr) if row is None else (sheet, row, attr)
+        errs.append(InputError(data.where.get(key, sheet), msg))
+
+    p = Params(data.params["Engine"])
+    n_cyl = p.get("cylinders")
+
+    cyl_rows = _rows(data, "Cylinders")
+    cylinders = []
+    for i, r in enumerate(cyl_rows):
+        if r["cylinder"] is None or r["throw_angle"] is None or r["firing_angle"] is None:
+            continue
+        fa = r["firing_angle"]
+        if not (0 <= fa < 4 * math.pi + 1e-12):
+            err("Cylinders", "firing_angle", i, "firing angle must be in 0..720 deg, found"
+                f" {math.degrees(fa):g} deg")
+        cylinders.append(Cylinder(r["cylinder"], r["throw_angle"], fa % (4 * math.pi),
+                                  r["bank_angle"] or 0.0, r["pin"] or r["cylinder"]))
+    if n_cyl is not None and cyl_rows and len(cyl_rows) != n_cyl:
+        errs.append(InputError("Cylinders", f"{len(cyl_rows)} cylinder rows but Engine says"
+                               f" {n_cyl} cylinders ({data.where.get(('Engine', 'cylinders'))})"))
+    numbers = sorted(c.number for c in cylinders)
+    if n_cyl is not None and cylinders and numbers != list(range(1, len(cylinders) + 1)):
+        errs.append(InputError("Cylinders", f"cylinders must be numbered 1..{len(cylinders)},"
+                               f" found {numbers}"))
+    fo_text = p.get("firing_order")
+    if fo_text is not None:
+        fo = _firing_order(fo_text)
+        if fo is None or (n_cyl is not None and sorted(fo) != list(range(1, n_cyl + 1))):
+            err("Engine", "firing_order", None, f"firing order '{fo_text}' must list each of"
+                f" cylinders 1..{n_cyl} once, e.g. 1-3-4-2")
+        elif cylinders and len(cylinders) == len(fo):
+            by_angle = [c.number for c in sorted(cylinders, key=lambda c: c.firing_angle)]
+            if by_angle != fo:
+                errs.append(InputError(
+                    "Cylinders", f"firing angles give the firing order"
+                    f" {'-'.join(map(str, by_angle))}, but Engine says '{fo_text}'"
+                    f" ({data.where.get(('Engine', 'firing_order'))})"))
+    smin, smax = p.get("speed_min"), p.get("speed_max")
+    if smin is not None and smax is not None and smin >= smax:
+        err("Engine", "speed_max", None, "maximum speed must be above the minimum speed")
+    if p.get("stroke") is not None and p.get("rod_length") is not None:
+        if p["rod_length"] <= p["stroke"] / 2:
+            err("Engine", "rod_length", None, "connecting rod length must exceed half the"
+                " stroke (crank radius)")
+    if p.get("rod_com") is not None and p.get("rod_length") is not None:
+        if p["rod_com"] >= p["rod_length"]:
+            err("Engine", "rod_com", None, "rod centre of mass must lie between big end and"
+                " small end")
+
+    bearings = []
+    counts = {"main": 0, "big end": 0}
+    for i, r in enumerate(_rows(data, "Bearings")):
+        if None in (r["name"], r["type"], r["diameter"], r["length"], r["clearance"]):
+            continue
+        counts[r["type"]] += 1
+        if r["journal_length"] is not None and r["length"] > r["journal_length"]:
+            err("Bearings", "length", i, "effective length exceeds the journal length")
+        if r["clearance"] >= 0.01 * r["diameter"]:
+            err("Bearings", "clearance", i, f"radial clearance {r['clearance'] * 1e3:g} mm is"
+                " 1 % of the diameter or more: check the unit (radial clearance in mm or um)")
+        bearings.append(Bearing(
+            name=r["name"], type=r["type"], diameter=r["diameter"], length=r["length"],
+            clearance=r["clearance"], journal_length=r["journal_length"],
+            groove=r["groove"] or "none", groove_width=r["groove_width"],
+            groove_start=r["groove_start"], groove_end=r["groove_end"], oil_feed=r["oil_feed"],
+            oil_holes=r["oil_holes"] or 0, oil_hole_type=r["oil_hole_type"],
+            oil_hole_diameter=r["oil_hole_diameter"], oil_hole_angle=r["oil_hole_angle"],
+            lining=r["lining"], index=counts[r["type"]]))
+
+    crank_mass = tuple(
+        MassItem(r["location"], r["throw"], r["kind"], r["mass"], r["x"], r["y"], r["z"] or 0.0,
+                 r["axial"], r["reference"])
+        for r in _rows(data, "CrankMass")
+        if None not in (r["location"], r["throw"], r["kind"], r["mass"], r["x"], r["y"],
+                        r["axial"], r["reference"])
+    )
+    n_pins = max((c.pin for c in cylinders), default=0)
+    for i, r in enumerate(_rows(data, "CrankMass")):
+        if r["throw"] is not None and n_pins and r["throw"] > n_pins:
+            err("CrankMass", "throw", i, f"throw {r['throw']} does not exist (the engine has"
+                f" {n_pins} crank pins)")
+        spacing = p.get("main_spacing")
+        if r["axial"] is not None and spacing is not None and r["axial"] > spacing:
+            err("CrankMass", "axial", i, "axial position lies beyond the next main bearing"
+                " (main journal spacing)")
+
+    tv_rows = _rows(data, "TVModel")
+    tv = []
+    for i, r in enumerate(tv_rows):
+        if r["station"] is None or r["inertia"] is None or r["role"] is None:
+            continue
+        last = i == len(tv_rows) - 1
+        if not last and r["stiffness"] is None:
+            err("TVModel", "stiffness", i, "stiffness to the next station is required for"
+                " every station but the last (expected a torsional stiffness, e.g. N m/rad)")
+        if last and r["stiffness"] is not None:
+            err("TVModel", "stiffness", i, "the last station has no next station; leave its"
+                " stiffness blank")
+        if r["role"] == "cylinder" and r["cylinder"] is None:
+            err("TVModel", "cylinder", i, "a cylinder station needs its cylinder number")
+        if r["cylinder"] is not None and n_cyl is not None and r["cylinder"] > n_cyl:
+            err("TVModel", "cylinder", i, f"cylinder {r['cylinder']} does not exist")
+        tv.append(TVStation(r["station"], r["role"], r["inertia"], r["cylinder"],
+                            r["absolute_damping"] or 0.0, r["stiffness"],
+                            r["relative_damping"] or 0.0))
+
+    joints = []
+    for i, r in enumerate(_rows(data, "Joints")):
+        if r["head_outer"] is not None and r["head_inner"] is not None and \
+                r["head_inner"] >= r["head_outer"]:
+            err("Joints", "head_inner", i, "head bearing inner diameter must be smaller than"
+                " the outer diameter")
+        if r["face_outer"] is not None and r["face_inner"] is not None and \
+                r["face_inner"] >= r["face_outer"]:
+            err("Joints", "face_inner", i, "face inner diameter must be smaller than the outer"
+                " diameter")
+        if r["diameter"] is not None and r["pitch"] is not None and r["pitch"] >= 0.5 * r[
+                "diameter"]:
+            err("Joints", "pitch", i, "thread pitch must be well below the nominal diameter")
+        if r["tightening"] == "torque" and r["tightening_torque"] is None and r["name"]:
+            err("Joints", "tightening_torque", i, "tightening 'torque' needs the tightening"
+                " torque (expected a torque, e.g. N m)")
+        if None in (r["name"], r["location"], r["bolts"], r["diameter"], r["pitch"],
+                    r["property_class"], r["tightening"], r["face_outer"], r["face_inner"]):
+            continue
+        joints.append(Joint(**{k: v for k, v in r.items() if not k.startswith("_")}))
+    names = {j.name.lower() for j in joints}
+    jt = []
+    seen = {}
+    for i, r in enumerate(_rows(data, "JointTorques")):
+        if r["joint"] is None or r["point"] is None or r["torque"] is None:
+            continue
+        if r["joint"].lower() not in names:
+            err("JointTorques", "joint", i, f"joint '{r['joint']}' is not in sheet Joints")
+            continue
+        key = (r["joint"].lower(), r["point"])
+        if key in seen:
+            err("JointTorques", "point", i, f"duplicate operating point '{r['point']}' for"
+                f" joint '{r['joint']}'")
+            continue
+        seen[key] = i
+        name = next(j.name for j in joints if j.name.lower() == r["joint"].lower())
+        jt.append(JointTorque(name, r["point"], r["torque"], r["speed"]))
+
+    pk = []
+    seen_pk = set()
+    for i, r in enumerate(_rows(data, "PeakPressure")):
+        if None in (r["case"], r["speed"], r["peak_pressure"]):
+            continue
+        key = (r["case"], round(r["speed"], 6))
+        if key in seen_pk:
+            err("PeakPressure", "speed", i, f"duplicate speed for load case '{r['case']}'")
+        seen_pk.add(key)
+        pk.append((r["case"], r["speed"], r["peak_pressure"]))
+    traces = tuple((r["case"], r["speed"], r["crank_angle"], r["pressure"])
+                   for r in _rows(data, "PressureTraces")
+                   if None not in (r["case"], r["speed"], r["crank_angle"], r["pressure"]))
+    bt = []
+    seen_bt = set()
+    for i, r in enumerate(_rows(data, "BrakeTorque")):
+        if r["speed"] is None or r["brake_torque"] is None:
+            continue
+        if round(r["speed"], 6) in seen_bt:
+            err("BrakeTorque", "speed", i, "duplicate speed")
+        seen_bt.add(round(r["speed"], 6))
+        bt.append((r["speed"], r["brake_torque"]))
+
+    damper = Params(data.params.get("Damper", {}))
+    if damper.get("inner_radius") is not None and damper.get("outer_radius") is not None and \
+            damper["inner_radius"] >= damper["outer_radius"]:
+        err("Damper", "inner_radius", None, "rubber inner radius must be smaller than the outer"
+            " radius")
+
+    overrides = []
+    for i, r in enumerate(_rows(data, "RuleOverrides")):
+        if r["rule"] is None:
+            continue
+        if r["limit"] is None:
+            err("RuleOverrides", "rule", i, "an override needs a limit")
+            continue
+        if r["reason"] is None:
+            err("RuleOverrides", "rule", i, "an override needs a reason (it is listed in the"
+                " report)")
+            continue
+        overrides.append(RuleOverride(r["rule"].strip(), str(r["limit"]).strip(),
+                                      r["unit"], r["reason"],
+                                      data.where.get(("RuleOverrides", i, "limit"), "")))
+
+    if errs:
+        raise InputErrors(errs)
+    return Engine(
+        params=p, cylinders=tuple(sorted(cylinders, key=lambda c: c.number)),
+        bearings=tuple(bearings), crank_mass=crank_mass, tv_model=tuple(tv),
+        joints=tuple(joints), joint_torques=tuple(jt), peak_pressure=tuple(pk),
+        pressure_traces=traces, brake_torque=tuple(sorted(bt)),
+        oil=Params(data.params.get("Oil", {})), damper=damper,
+        fatigue=Params(data.params.get("Fatigue", {})), overrides=tuple(overrides),
+        source=data.path, sha256=data.sha256, where=dict(data.where),
+    )
+
+
+def load_engine(path) -> Engine:
+    """Read, convert and check a workbook (raises :class:`InputErrors` with every problem)."""
+    from .workbook.loader import read_workbook
+
+    return build_engine(read_workbook(path, raise_errors=False))
+
+
+__all__ = ["Engine", "Cylinder", "Bearing", "MassItem", "TVStation", "Joint", "JointTorque",
+           "RuleOverride", "Params", "build_engine", "load_engine", "SHEETS"]

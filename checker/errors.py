@@ -1,0 +1,48 @@
+"""User-facing error types. Each carries what the user needs to fix the input; no traceback."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class InputError:
+    """One problem in the input: where (``Sheet!B4``, a sheet, or a file) and what."""
+
+    where: str
+    message: str
+
+    def __str__(self) -> str:
+        return f"{self.where}: {self.message}"
+
+
+class CheckerError(Exception):
+    """Base class for errors that end a run with exit code 2."""
+
+    exit_code = 2
+
+
+class InputErrors(CheckerError):
+    """All problems found in one workbook."""
+
+    def __init__(self, errors: list[InputError]):
+        self.errors = list(errors)
+        super().__init__("\n".join(str(e) for e in self.errors))
+
+    def __str__(self) -> str:
+        n = len(self.errors)
+        head = f"{n} problem{'s' if n != 1 else ''} in the input:"
+        return head + "\n" + "\n".join(f"  {e}" for e in self.errors)
+
+
+class RuleFileError(CheckerError):
+    """A malformed rule table."""
+
+    def __init__(self, problems: list[str]):
+        self.problems = list(problems)
+        super().__init__("\n".join(problems))
+
+    def __str__(self) -> str:
+        n = len(self.problems)
+        head = f"{n} problem{'s' if n != 1 else ''} in the rule table:"
+        return head + "\n" + "\n".join(f"  {p}" for p in self.problems)

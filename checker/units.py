@@ -1,0 +1,290 @@
+"""The project's single pint registry and the spreadsheet unit-string handling.
+
+Everything the workbook says about units passes through :func:`to_si`. Spreadsheet unit
+strings carry traps that pint alone gets silently wrong (see ``docs/workbook.md``):
+
+* ``Nm`` parses in pint as *number-metre*; ``kNm`` as *kilo-number-metre*. We rewrite
+  ``Nm``/``kNm``/``mNm`` to ``N*m`` before parsing.
+* ``bar(g)`` parses as *bar x gram*, ``barg`` is undefined. Gauge and absolute pressures are
+  handled on purpose: a parameter declares whether it is an absolute or a gauge pressure;
+  ``bar(g)``/``barg``/``psig``/``kPa(g)`` are gauge, ``bar(a)``/``bara``/``psia`` absolute, and a
+  plain ``bar`` is taken in the parameter's own reference.
+* ``rpm`` converts to 2*pi*n/60 rad/s but ``1/min`` to n/60 1/s and ``Hz`` to n 1/s: for a
+  shaft speed we map ``1/min``, ``min^-1``, ``U/min``, ``r/min`` to ``rpm`` and ``Hz``, ``1/s``,
+  ``rps`` to revolutions per second, so 3000 rpm = 3000 1/min = 50 Hz = 314.159 rad/s.
+* ``°C`` is an offset unit: absolute temperatures are built with ``Q_(value, unit)``; a
+  temperature *difference* given in ``°C`` or ``°F`` means ``delta_degC``/``delta_degF``.
+* ``-``, ``1`` or an empty unit cell mean dimensionless; ``%`` is 0.01.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+
+import pint
+
+ureg = pint.UnitRegistry(
+    preprocessors=[
+        # Nm, kNm, mNm, MNm as torque, not number-metre (word boundary so "Nmm" is untouched)
+        lambda s: re.sub(r"(?<![A-Za-z_])([kmM]?)Nm(?![A-Za-z_])", r"\1N*m", s),
+        lambda s: re.sub(r"(?<![A-Za-z_])([kmM]?)Nmm(?![A-Za-z_])", r"\1N*mm", s),
+        lambda s: re.sub(r"(?<![A-Za-z_])Nms(?![A-Za-z_])", "N*m*s", s),
+        lambda s: re.sub(r"(?<![A-Za-z_])kgm(?=\^|\*\*|²|2)", "kg*m", s),
+        lambda s: re.sub(r"(?<![A-Za-z_])kgmm(?=\^|\*\*|²|2)", "kg*mm", s),
+        lambda s: s.replace("·", "*").replace("⋅", "*").replace("²", "**2").replace("³", "**3"),
+        lambda s: s.replace("µ", "u").replace("μ", "u"),
+    ]
+)
+pint.set_application_registry(ureg)
+Q_ = ureg.Quantity
+
+ATMOSPHERE_PA = 101325.0
+"""Standard atmosphere [Pa] used to convert gauge to absolute pressure."""
+
+
+class UnitProblem(ValueError):
+    """A unit string or value that cannot be converted; the message is for the user."""
+
+
+@dataclass(frozen=True)
+class Kind:
+    """What a workbook value is: its SI unit and how to read spreadsheet spellings.
+
+    ``name`` is shown to users ("length", "pressure"...); ``si`` is the SI unit the calculation
+    core receives; ``example`` is a typical unit for messages.
+    """
+
+    name: str
+    si: str
+    example: str
+
+
+KINDS: dict[str, Kind] = {
+    k.name: k
+    for k in [
+        Kind("length", "m", "mm"),
+        Kind("area", "m**2", "mm^2"),
+        Kind("mass", "kg", "kg"),
+        Kind("inertia", "kg*m**2", "kg m^2"),
+        Kind("force", "N", "kN"),
+        Kind("torque", "N*m", "N m"),
+        Kind("pressure", "Pa", "bar"),
+        Kind("pressure_gauge", "Pa", "bar(g)"),
+        Kind("stress", "Pa", "MPa"),
+        Kind("angle", "rad", "deg"),
+        Kind("speed", "rad/s", "rpm"),
+        Kind("temperature", "K", "°C"),
+        Kind("temperature_difference", "K", "K"),
+        Kind("viscosity", "Pa*s", "mPa s"),
+        Kind("kinematic_viscosity", "m**2/s", "mm^2/s"),
+        Kind("density", "kg/m**3", "kg/m^3"),
+        Kind("torsional_stiffness", "N*m/rad", "N m/rad"),
+        Kind("torsional_damping", "N*m*s/rad", "N m s/rad"),
+        Kind("linear_stiffness", "N/m", "N/mm"),
+        Kind("linear_damping", "N*s/m", "N s/m"),
+        Kind("power_density", "W/m**3", "W/cm^3"),
+        Kind("power", "W", "kW"),
+        Kind("dimensionless", "", "-"),
+        Kind("ratio", "", "-"),
+    ]
+}
+
+_DIMENSIONLESS_SPELLINGS = {"", "-", "1", "—", "–", "none", "ratio"}
+_ANGLE_UNITS = {"radian", "degree", "revolution", "arcminute", "arcsecond", "turn", "gradian"}
+
+_GAUGE = re.compile(r"^\s*(.*?)\s*(?:\(g\)|\(gauge\)|g|gauge)\s*$", re.IGNORECASE)
+_ABS = re.compile(r"^\s*(.*?)\s*(?:\(a\)|\(abs\)|a|abs)\s*$", re.IGNORECASE)
+_PRESSURE_BASES = {"bar", "mbar", "psi", "kpa", "mpa", "pa", "atm", "hpa"}
+
+_SPEED_ALIASES = {
+    "rpm": "rpm",
+    "1/min": "rpm",
+    "min^-1": "rpm",
+    "min**-1": "rpm",
+    "min-1": "rpm",
+    "/min": "rpm",
+    "u/min": "rpm",
+    "r/min": "rpm",
+    "rev/min": "rpm",
+    "hz": "revolution/second",
+    "1/s": "revolution/second",
+    "/s": "revolution/second",
+    "s^-1": "revolution/second",
+    "rps": "revolution/second",
+    "rev/s": "revolution/second",
+    "rad/s": "radian/second",
+    "deg/s": "degree/second",
+}
+
+
+def _pressure_reference(unit: str) -> tuple[str, str | None]:
+    """Split a pressure unit string into (base unit, 'gauge'|'absolute'|None)."""
+    u = unit.strip()
+    for pattern, ref in ((_GAUGE, "gauge"), (_ABS, "absolute")):
+        m = pattern.match(u)
+        if m and m.group(1).lower() in _PRESSURE_BASES:
+            return m.group(1), ref
+    return u, None
+
+
+def parse_unit(unit: str) -> pint.Unit:
+    """Parse a unit string with the project's registry (pint errors become UnitProblem)."""
+    try:
+        q = Q_(1.0, unit)
+    except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError) as exc:
+        raise UnitProblem(f"unknown unit '{unit}'") from exc
+    except Exception as exc:  # pint raises AssertionError/TokenError on some strings
+        raise UnitProblem(f"cannot read unit '{unit}'") from exc
+    return q.units
+
+
+def _dimension_words(unit: pint.Unit) -> str:
+    dim = ureg.Quantity(1.0, unit).dimensionality
+    known = {
+        "[length]": "length",
+        "[mass]": "mass",
+        "[length] ** 2": "area",
+        "[mass] / [length] / [time] ** 2": "pressure/stress",
+        "[length] * [mass] / [time] ** 2": "force",
+        "[length] ** 2 * [mass] / [time] ** 2": "torque/energy",
+        "[temperature]": "temperature",
+        "1 / [time]": "frequency/speed",
+        "dimensionless": "dimensionless",
+    }
+    return known.get(str(dim), str(dim))
+
+
+def to_si(value: float, unit: str | None, kind: str, percent_formatted: bool = False) -> float:
+    """Convert a spreadsheet value with its unit cell to the SI magnitude of ``kind``.
+
+    Parameters
+    ----------
+    value : float
+        The number in the value cell (as stored, not as displayed).
+    unit : str or None
+        The unit cell text; ``None``/blank/``-`` mean dimensionless.
+    kind : str
+        A key of :data:`KINDS` (e.g. ``"length"``, ``"pressure"``).
+    percent_formatted : bool
+        The value cell has a percent number format: it stores the fraction the user sees as a
+        percentage (a cell showing 75 % holds 0.75). Such a cell is only valid for a
+        dimensionless kind, with a unit of ``%``, ``-`` or blank; its stored value is used as
+        the fraction.
+
+    Returns
+    -------
+    float
+        Magnitude in the SI unit ``KINDS[kind].si``.
+
+    Raises
+    ------
+    UnitProblem
+        With a message naming what was expected and what was found.
+    """
+    k = KINDS[kind]
+    u = "" if unit is None else str(unit).strip()
+    expected = f"a {k.name.replace('_', ' ')} (e.g. {k.example})"
+    if not math.isfinite(value):
+        raise UnitProblem(f"expected a finite number, found {value!r}")
+
+    if percent_formatted:
+        if kind not in ("dimensionless", "ratio") or u.lower() not in _DIMENSIONLESS_SPELLINGS | {
+            "%",
+            "percent",
+        }:
+            raise UnitProblem(
+                f"percent-formatted cell with unit '{u}': expected {expected}; a cell shown as"
+                " a percentage may only hold a dimensionless value"
+            )
+        return float(value)
+
+    if kind in ("dimensionless", "ratio"):
+        if u.lower() in _DIMENSIONLESS_SPELLINGS:
+            return float(value)
+        units = parse_unit(u)
+        q = Q_(float(value), units)
+        if not q.dimensionless or str(units) in _ANGLE_UNITS:
+            raise UnitProblem(f"expected {expected}, found unit '{u}' ({_dimension_words(units)})")
+        return float(q.to("").magnitude)
+
+    if u.lower() in _DIMENSIONLESS_SPELLINGS:
+        raise UnitProblem(f"expected {expected}, but the unit cell is empty")
+
+    if kind == "angle":
+        units = parse_unit(u.replace("°", "degree"))
+        if str(units) not in _ANGLE_UNITS:
+            raise UnitProblem(f"expected {expected}, found unit '{u}' ({_dimension_words(units)})")
+        return float(Q_(float(value), units).to("radian").magnitude)
+
+    if kind == "speed":
+        key = u.lower().replace(" ", "")
+        target = _SPEED_ALIASES.get(key)
+        if target is None:
+            units = parse_unit(u)
+            raise UnitProblem(
+                f"expected {expected} (accepted: rpm, 1/min, min^-1, Hz or rev/s, rad/s),"
+                f" found unit '{u}' ({_dimension_words(units)})"
+            )
+        return float(Q_(float(value), target).to("radian/second").magnitude)
+
+    if kind in ("temperature", "temperature_difference"):
+        t = u.replace("°", "deg").replace(" ", "")
+        aliases = {"degC": "degC", "C": "degC", "degF": "degF", "F": "degF", "K": "kelvin",
+                   "kelvin": "kelvin", "degR": "degR"}
+        base = aliases.get(t)
+        if base is None:
+            units = parse_unit(u)
+            raise UnitProblem(f"expected {expected} (°C, K or °F), found unit '{u}'"
+                              f" ({_dimension_words(units)})")
+        if kind == "temperature_difference" and base in ("degC", "degF"):
+            base = "delta_" + base
+        return float(Q_(float(value), base).to("kelvin").magnitude)
+
+    if kind in ("pressure", "pressure_gauge"):
+        base, ref = _pressure_reference(u)
+        units = parse_unit(base)
+        try:
+            pa = float(Q_(float(value), units).to("Pa").magnitude)
+        except pint.errors.DimensionalityError as exc:
+            raise UnitProblem(
+                f"expected {expected}, found unit '{u}' ({_dimension_words(units)})"
+            ) from exc
+        if kind == "pressure" and ref == "gauge":
+            pa += ATMOSPHERE_PA
+        elif kind == "pressure_gauge" and ref == "absolute":
+            pa -= ATMOSPHERE_PA
+        return pa
+
+    units = parse_unit(u)
+    q = Q_(float(value), units)
+    si = k.si
+    if kind in ("torsional_stiffness", "torsional_damping"):
+        # rad is dimensionless in pint: accept N m/rad, N m/deg, N m (per radian implied)
+        try:
+            return float(q.to(si).magnitude)
+        except pint.errors.DimensionalityError as exc:
+            raise UnitProblem(
+                f"expected {expected}, found unit '{u}' ({_dimension_words(units)})"
+            ) from exc
+    try:
+        return float(q.to(si).magnitude)
+    except pint.errors.DimensionalityError as exc:
+        raise UnitProblem(
+            f"expected {expected}, found unit '{u}' ({_dimension_words(units)})"
+        ) from exc
+
+
+def from_si(value, si_unit: str, display: str):
+    """Convert an SI magnitude (float or array) to a display unit (report layer only)."""
+    if si_unit == "rad/s" and display == "rpm":
+        return value * 60.0 / (2.0 * math.pi)
+    if si_unit == "K" and display in ("°C", "degC"):
+        return value - 273.15
+    if si_unit == "rad" and display in ("deg", "°"):
+        return value * 180.0 / math.pi
+    if si_unit == display:
+        return value
+    factor = Q_(1.0, si_unit if si_unit else "").to(display.replace("%", "percent")).magnitude
+    return value * factor
