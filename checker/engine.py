@@ -53,6 +53,7 @@ class Bearing:
     oil_hole_angle: float | None = None
     lining: str | None = None
     index: int = 0  # main number (1..) or big-end number (1..)
+    row: int = -1  # data-row index in sheet Bearings
 
 
 @dataclass(frozen=True)
@@ -100,6 +101,7 @@ class Joint:
     head_inner: float | None = None
     clamped_material: str | None = None
     friction: float | None = None
+    row: int = -1  # data-row index in sheet Joints (for cell addresses)
 
 
 @dataclass(frozen=True)
@@ -149,6 +151,17 @@ class Engine:
         """Cell address of an input (for messages), or the sheet name when unknown."""
         key = (sheet, attr) if row is None else (sheet, row, attr)
         return self.where.get(key, sheet)
+
+    def describe_missing(self, sheet: str, attr: str, row: int | None = None,
+                         what: str = "") -> str:
+        """A 'missing input' text naming the cell (or sheet and column) to fill in."""
+        spec = SHEETS[sheet]
+        f = next((x for x in spec.fields if x.attr == attr), None)
+        label = f.label if f else attr
+        where = self.cell(sheet, attr, row)
+        if where == sheet:
+            where = f"{sheet} ({'column' if spec.shape == 'table' else 'parameter'} '{label}')"
+        return f"{where}: {label}{' of ' + what if what else ''}"
 
 
 def _rows(data: WorkbookData, sheet: str) -> list[dict[str, Any]]:
@@ -235,7 +248,7 @@ def build_engine(data: WorkbookData) -> Engine:
             groove_start=r["groove_start"], groove_end=r["groove_end"], oil_feed=r["oil_feed"],
             oil_holes=r["oil_holes"] or 0, oil_hole_type=r["oil_hole_type"],
             oil_hole_diameter=r["oil_hole_diameter"], oil_hole_angle=r["oil_hole_angle"],
-            lining=r["lining"], index=counts[r["type"]]))
+            lining=r["lining"], index=counts[r["type"]], row=i))
 
     crank_mass = tuple(
         MassItem(r["location"], r["throw"], r["kind"], r["mass"], r["x"], r["y"], r["z"] or 0.0,
@@ -293,7 +306,7 @@ def build_engine(data: WorkbookData) -> Engine:
         if None in (r["name"], r["location"], r["bolts"], r["diameter"], r["pitch"],
                     r["property_class"], r["tightening"], r["face_outer"], r["face_inner"]):
             continue
-        joints.append(Joint(**{k: v for k, v in r.items() if not k.startswith("_")}))
+        joints.append(Joint(**{k: v for k, v in r.items() if not k.startswith("_")}, row=i))
     names = {j.name.lower() for j in joints}
     jt = []
     seen = {}

@@ -1,0 +1,203 @@
+"""The calculation graph: named quantities, the calculations that provide them, and a runner
+that computes only what the selected rules need.
+
+* A :class:`QuantitySpec` declares a named quantity (unit, dimensions, the item attributes a
+  rule may filter on) so rule files can be validated before anything runs.
+* A :class:`Calculation` belongs to a module (``joints``, ``loads``, ``bearings``,
+  ``torsion``, ``fatigue``), declares what it provides and, as a function of the engine, what it
+  needs. A quantity the workbook gives directly makes its provider need nothing upstream, so
+  the upstream module is skipped.
+* A calculation that cannot run raises :class:`MissingInputs`; its quantities become
+  *unavailable* with the reasons, and every rule on them reports ``not evaluated``.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from .engine import Engine
+
+
+class MissingInputs(Exception):
+    """A calculation cannot run: ``reasons`` name the missing inputs (sheet/cell where known)."""
+
+    def __init__(self, reasons: Iterable[str]):
+        self.reasons = list(reasons)
+        super().__init__("; ".join(self.reasons))
+
+
+@dataclass(frozen=True)
+class QuantitySpec:
+    """Declaration of a named quantity."""
+
+    name: str
+    unit: str  # SI unit ("" = dimensionless)
+    dims: tuple[str, ...]  # e.g. ("item",), ("item", "point"), ("item", "case", "speed")
+    description: str
+    display_unit: str | None = None  # default display unit in reports
+    filters: tuple[str, ...] = ()  # item attributes a rule may filter on
+    coords: dict[str, tuple[str, ...]] = field(default_factory=dict)  # fixed labels of a dim
+
+
+@dataclass
+class Quantity:
+    """A computed quantity: an array over ``dims`` with coordinate labels.
+
+    ``values`` holds SI magnitudes. Entries that could not be computed are NaN and ``missing``
+    maps their index (a tuple over the leading dims) to the reasons. ``findings`` maps an index
+    to numerical findings (film collapse, resonance...) that the report must show.
+    """
+
+    spec: QuantitySpec
+    values: np.ndarray
+    coords: dict[str, list]
+    item_attrs: dict[str, dict[str, Any]] = field(default_factory=dict)
+    missing: dict[tuple, list[str]] = field(default_factory=dict)
+    findings: dict[tuple, list[str]] = field(default_factory=dict)
+    extra: dict[str, Any] = field(default_factory=dict)  # arrays for plots/report (SI)
+
+    @property
+    def name(self) -> str:
+        return self.spec.name
+
+    def __post_init__(self) -> None:
+        shape = tuple(len(self.coords[d]) for d in self.spec.dims)
+        self.values = np.asarray(self.values, dtype=float)
+        if self.values.shape != shape:
+            raise ValueError(f"{self.spec.name}: values shape {self.values.shape} does not match"
+                             f" coords {shape}")
+
+
+@dataclass(frozen=True)
+class Calculation:
+    """One node of the graph."""
+
+    name: str
+    module: str
+    provides: tuple[str, ...]
+    func: Callable[[Engine, dict[str, Quantity]], dict[str, Quantity]]
+    needs: Callable[[Engine], tuple[str, ...]] = lambda engine: ()
+    description: str = ""
+
+
+QUANTITIES: dict[str, QuantitySpec] = {}
+CALCULATIONS: dict[str, Calculation] = {}
+PROVIDER: dict[str, str] = {}
+MODULES: dict[str, str] = {}  # module name -> title
+
+
+def register_module(name: str, title: str) -> None:
+    MODULES[name] = title
+
+
+def quantity(spec: QuantitySpec) -> QuantitySpec:
+    QUANTITIES[spec.name] = spec
+    return spec
+
+
+def calculation(name: str, module: str, provides: Iterable[str],
+                needs: Callable[[Engine], tuple[str, ...]] | Iterable[str] = (),
+                description: str = ""):
+    """Decorator registering a calculation function ``f(engine, inputs) -> {name: Quantity}``."""
+    provides = tuple(provides)
+    needs_f = needs if callable(needs) else (lambda engine, _n=tuple(needs): _n)
+
+    def deco(func):
+        calc = Calculation(name, module, provides, func, needs_f, description or func.__doc__
+                           or "")
+        CALCULATIONS[name] = calc
+        for q in provides:
+            if q not in QUANTITIES:
+                raise ValueError(f"calculation {name} provides undeclared quantity {q}")
+            PROVIDER[q] = name
+        return func
+
+    return deco
+
+
+def ensure_registered() -> None:
+    """Import the calculation modules so that they register themselves."""
+    from . import modules  # noqa: F401
+
+
+@dataclass
+class RunOutcome:
+    quantities: dict[str, Quantity]
+    unavailable: dict[str, list[str]]
+    timings: dict[str, float]  # module -> seconds
+    ran: list[str]  # calculation names in run order
+    modules_run: list[str]
+    modules_skipped: list[str]
+    errors: dict[str, str] = field(default_factory=dict)  # calculation -> internal error text
+
+
+def plan(engine: Engine, wanted: Iterable[str]) -> list[str]:
+    """Calculation names needed for ``wanted`` quantities, in dependency order."""
+    ensure_registered()
+    order: list[str] = []
+    state: dict[str, int] = {}
+
+    def visit(qname: str, stack: tuple[str, ...]) -> None:
+        cname = PROVIDER.get(qname)
+        if cname is None:
+            raise KeyError(f"no calculation provides quantity '{qname}'")
+        st = state.get(cname)
+        if st == 2:
+            return
+        if st == 1:
+            raise RuntimeError("cycle in calculation graph: " + " -> ".join(stack + (cname,)))
+        state[cname] = 1
+        for dep in CALCULATIONS[cname].needs(engine):
+            visit(dep, stack + (cname,))
+        state[cname] = 2
+        order.append(cname)
+
+    for q in sorted(set(wanted)):
+        visit(q, ())
+    return order
+
+
+def run(engine: Engine, wanted: Iterable[str], progress: Callable[[str], None] | None = None
+        ) -> RunOutcome:
+    """Compute the ``wanted`` quantities and only what they need."""
+    order = plan(engine, wanted)
+    have: dict[str, Quantity] = {}
+    unavailable: dict[str, list[str]] = {}
+    timings: dict[str, float] = {}
+    errors: dict[str, str] = {}
+    for cname in order:
+        calc = CALCULATIONS[cname]
+        deps = calc.needs(engine)
+        blocked = [d for d in deps if d in unavailable]
+        if blocked:
+            reasons = []
+            for d in blocked:
+                for r in unavailable[d]:
+                    if r not in reasons:
+                        reasons.append(r)
+            for q in calc.provides:
+                unavailable[q] = reasons
+            continue
+        if progress is not None:
+            progress(f"{calc.module}: {calc.name}")
+        t0 = time.perf_counter()
+        try:
+            out = calc.func(engine, {d: have[d] for d in deps})
+        except MissingInputs as exc:
+            for q in calc.provides:
+                unavailable[q] = exc.reasons
+            out = {}
+        timings[calc.module] = timings.get(calc.module, 0.0) + time.perf_counter() - t0
+        for q, val in out.items():
+            have[q] = val
+        for q in calc.provides:
+            if q not in have and q not in unavailable:
+                unavailable[q] = [f"{calc.name} did not produce {q}"]
+    ran_modules = [m for m in MODULES if m in timings]
+    skipped = [m for m in MODULES if m not in timings]
+    return RunOutcome(have, unavailable, timings, order, ran_modules, skipped, errors)

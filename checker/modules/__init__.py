@@ -1,0 +1,3 @@
+"""Graph calculations, one module per analysis family. Importing registers them."""
+
+from . import joints  # noqa: F401

@@ -1,0 +1,29 @@
+"""Locate the project's data folders (``rules/`` and ``templates/``).
+
+In a source checkout or an editable install they sit next to the package; a regular (wheel)
+install maps them to the packages ``checker._rules`` and ``checker._templates``.
+"""
+
+from __future__ import annotations
+
+from importlib import resources
+from pathlib import Path
+
+_ROOT = Path(__file__).resolve().parent.parent
+
+
+def _find(folder: str, package: str) -> Path:
+    local = _ROOT / folder
+    if local.is_dir():
+        return local
+    return Path(str(resources.files(package)))
+
+
+def rules_dir() -> Path:
+    """Folder of the default rule table (``*.toml``)."""
+    return _find("rules", "checker._rules")
+
+
+def templates_dir() -> Path:
+    """Folder of the report templates and CSS."""
+    return _find("templates", "checker._templates")

@@ -1,0 +1,449 @@
+"""The rule table: loading and validating rule files (TOML), workbook overrides, evaluation.
+
+A rule names a quantity of the calculation graph, where it applies (item attributes and
+coordinates such as the operating point or load case), a comparison and a limit with its unit,
+a severity, its source and a one-line rationale. See ``docs/rules.md``.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import tomllib
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .engine import Engine
+from .errors import InputError, InputErrors, RuleFileError
+from .graph import QUANTITIES, Quantity, ensure_registered
+from .units import Q_, from_si
+
+ID_PATTERN = re.compile(r"^[A-Z]{2,5}-\d{3}$")
+CHECKS = (">=", "<=", ">", "<", "between")
+SEVERITIES = ("error", "warning")
+REQUIRED = ("id", "name", "quantity", "check", "unit", "severity", "source", "rationale")
+OPTIONAL = ("limit", "limit_by", "limits", "where", "applies_to", "status")
+REL_TOL = 1e-9
+"""Values within this relative distance of a limit count as on the limit (float noise)."""
+
+
+@dataclass(frozen=True)
+class Rule:
+    id: str
+    name: str
+    quantity: str
+    check: str
+    unit: str  # display unit of limit and value ("" dimensionless)
+    severity: str
+    source: str
+    rationale: str
+    limit: tuple[float, ...] | None = None  # display units; 1 value or (low, high)
+    limit_by: str | None = None
+    limits: dict[str, tuple[float, ...]] = field(default_factory=dict)
+    where: dict[str, tuple[str, ...]] = field(default_factory=dict)
+    applies_to: str = ""
+    origin: str = ""
+
+    def limit_text(self, limit: tuple[float, ...] | None = None) -> str:
+        lim = self.limit if limit is None else limit
+        u = f" {self.unit}" if self.unit not in ("", "-") else ""
+        if lim is None:
+            return f"by {self.limit_by}"
+        if self.check == "between":
+            return f"{lim[0]:g}..{lim[1]:g}{u}"
+        sym = {">=": "≥", "<=": "≤", ">": ">", "<": "<"}[self.check]
+        return f"{sym} {lim[0]:g}{u}"
+
+
+@dataclass(frozen=True)
+class Override:
+    rule: str
+    old: str
+    new: str
+    reason: str
+    where: str
+
+
+@dataclass
+class RuleTable:
+    rules: list[Rule]
+    files: list[str]
+    overrides: list[Override] = field(default_factory=list)
+
+    def get(self, rule_id: str) -> Rule:
+        for r in self.rules:
+            if r.id == rule_id:
+                return r
+        raise KeyError(rule_id)
+
+
+def default_rule_dir() -> Path:
+    """The installed default rule table folder (``rules/`` of the project)."""
+    from .resources import rules_dir
+
+    return rules_dir()
+
+
+def _as_tuple(v: Any) -> tuple[float, ...] | None:
+    if isinstance(v, bool):
+        return None
+    if isinstance(v, (int, float)):
+        return (float(v),)
+    if isinstance(v, list) and len(v) == 2 and all(
+            isinstance(x, (int, float)) and not isinstance(x, bool) for x in v):
+        return (float(v[0]), float(v[1]))
+    return None
+
+
+def _parse_rule(raw: dict, origin: str, problems: list[str]) -> Rule | None:
+    rid = raw.get("id", "?")
+    pre = f"{origin}: rule {rid}"
+    bad = False
+    for k in REQUIRED:
+        if k not in raw or (isinstance(raw[k], str) and not raw[k].strip() and k != "unit"):
+            problems.append(f"{pre}: missing '{k}'")
+            bad = True
+    for k in raw:
+        if k not in REQUIRED and k not in OPTIONAL:
+            problems.append(f"{pre}: unknown key '{k}'")
+            bad = True
+    if bad:
+        return None
+    if not isinstance(rid, str) or not ID_PATTERN.match(rid):
+        problems.append(f"{pre}: id must look like 'JNT-001' (family prefix, dash, 3 digits)")
+        return None
+    ensure_registered()
+    spec = QUANTITIES.get(raw["quantity"])
+    if spec is None:
+        problems.append(f"{pre}: unknown quantity '{raw['quantity']}' (known: "
+                        + ", ".join(sorted(QUANTITIES)) + ")")
+        return None
+    check = raw["check"]
+    if check not in CHECKS:
+        problems.append(f"{pre}: check must be one of {', '.join(CHECKS)}, found '{check}'")
+        return None
+    if raw["severity"] not in SEVERITIES:
+        problems.append(f"{pre}: severity must be 'error' or 'warning', found"
+                        f" '{raw['severity']}'")
+        return None
+    unit = str(raw["unit"]).strip()
+    unit = "" if unit in ("-", "1") else unit
+    try:
+        Q_(1.0, unit.replace("%", "percent") or "").to(spec.unit or "")
+    except Exception:
+        problems.append(f"{pre}: unit '{raw['unit']}' does not fit quantity {spec.name}"
+                        f" (SI unit '{spec.unit or '-'}')")
+        return None
+    n_lim = 2 if check == "between" else 1
+    limit = None
+    limits: dict[str, tuple[float, ...]] = {}
+    if "limit" in raw:
+        limit = _as_tuple(raw["limit"])
+        if limit is None or len(limit) != n_lim:
+            problems.append(f"{pre}: limit must be {'[low, high]' if n_lim == 2 else 'a number'}"
+                            f" for check '{check}', found {raw['limit']!r}")
+            return None
+        if n_lim == 2 and limit[0] > limit[1]:
+            problems.append(f"{pre}: range limit low > high")
+            return None
+    if "limit_by" in raw:
+        if raw["limit_by"] not in spec.filters:
+            problems.append(f"{pre}: limit_by '{raw['limit_by']}' is not an attribute of"
+                            f" {spec.name} (one of {', '.join(spec.filters)})")
+            return None
+        if not isinstance(raw.get("limits"), dict) or not raw["limits"]:
+            problems.append(f"{pre}: limit_by needs a 'limits' table")
+            return None
+        for k, v in raw["limits"].items():
+            t = _as_tuple(v)
+            if t is None or len(t) != n_lim:
+                problems.append(f"{pre}: limits.{k} must be a number or [low, high]")
+                return None
+            limits[k.lower()] = t
+    if limit is None and not limits:
+        problems.append(f"{pre}: give 'limit' or 'limit_by' with 'limits'")
+        return None
+    where: dict[str, tuple[str, ...]] = {}
+    for k, v in (raw.get("where") or {}).items():
+        vals = tuple(str(x) for x in (v if isinstance(v, list) else [v]))
+        if k not in spec.filters and k not in spec.dims:
+            problems.append(f"{pre}: where-key '{k}' is not an attribute or dimension of"
+                            f" {spec.name} (attributes: {', '.join(spec.filters) or '-'};"
+                            f" dimensions: {', '.join(spec.dims)})")
+            return None
+        if k in spec.coords:
+            for x in vals:
+                if x not in spec.coords[k]:
+                    problems.append(f"{pre}: where {k} = '{x}' is not one of"
+                                    f" {', '.join(spec.coords[k])}")
+                    return None
+        where[k] = vals
+    return Rule(id=rid, name=raw["name"], quantity=spec.name, check=check, unit=unit,
+                severity=raw["severity"], source=raw["source"], rationale=raw["rationale"],
+                limit=limit, limit_by=raw.get("limit_by"), limits=limits, where=where,
+                applies_to=raw.get("applies_to", ""), origin=origin)
+
+
+def load_rules(path: str | Path | None = None) -> RuleTable:
+    """Load and validate a rule file or a folder of ``*.toml`` rule files.
+
+    Raises :class:`RuleFileError` listing every problem (exit code 2 in the CLI).
+    """
+    p = Path(path) if path is not None else default_rule_dir()
+    if p.is_dir():
+        files = sorted(p.glob("*.toml"))
+        if not files:
+            raise RuleFileError([f"{p}: no *.toml rule files"])
+    elif p.is_file():
+        files = [p]
+    else:
+        raise RuleFileError([f"{p}: rule file not found"])
+    problems: list[str] = []
+    rules: list[Rule] = []
+    for f in files:
+        try:
+            doc = tomllib.loads(f.read_text(encoding="utf-8"))
+        except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+            problems.append(f"{f.name}: not valid TOML: {exc}")
+            continue
+        entries = doc.get("rule")
+        if not isinstance(entries, list) or not entries:
+            problems.append(f"{f.name}: expected one or more [[rule]] tables")
+            continue
+        for raw in entries:
+            if not isinstance(raw, dict):
+                problems.append(f"{f.name}: [[rule]] entries must be tables")
+                continue
+            r = _parse_rule(raw, f.name, problems)
+            if r is not None:
+                rules.append(r)
+    seen: dict[str, str] = {}
+    for r in rules:
+        if r.id in seen:
+            problems.append(f"{r.origin}: duplicate rule id {r.id} (also in {seen[r.id]})")
+        seen[r.id] = r.origin
+    if problems:
+        raise RuleFileError(problems)
+    rules.sort(key=lambda r: r.id)
+    return RuleTable(rules, [str(f) for f in files])
+
+
+def _parse_limit(text: str) -> tuple[float, ...] | None:
+    t = text.strip().replace("–", "..").replace(" ", "")
+    m = re.match(r"^([+-]?[\d.eE+-]+?)(?:\.\.|-(?=\d))([+-]?[\d.eE+-]+)$", t)
+    try:
+        if m:
+            return (float(m.group(1)), float(m.group(2)))
+        return (float(t),)
+    except ValueError:
+        return None
+
+
+def apply_overrides(table: RuleTable, engine: Engine) -> RuleTable:
+    """Replace limits with the workbook's RuleOverrides; every change is recorded."""
+    errs: list[InputError] = []
+    rules = list(table.rules)
+    overrides: list[Override] = []
+    by_id = {r.id: i for i, r in enumerate(rules)}
+    for o in engine.overrides:
+        if o.rule not in by_id:
+            errs.append(InputError(o.where or "RuleOverrides", f"unknown rule '{o.rule}'"))
+            continue
+        r = rules[by_id[o.rule]]
+        lim = _parse_limit(o.limit)
+        n = 2 if r.check == "between" else 1
+        if lim is None or len(lim) != n:
+            errs.append(InputError(o.where or "RuleOverrides", f"limit for {r.id} must be"
+                                   f" {'a range low..high' if n == 2 else 'a number'},"
+                                   f" found '{o.limit}'"))
+            continue
+        unit = (o.unit or r.unit or "").strip()
+        unit = "" if unit in ("-", "1") else unit
+        try:
+            factor = Q_(1.0, (unit or "").replace("%", "percent")).to(
+                (r.unit or "").replace("%", "percent")).magnitude
+        except Exception:
+            errs.append(InputError(o.where or "RuleOverrides", f"unit '{o.unit}' does not fit"
+                                   f" rule {r.id} (limit in '{r.unit or '-'}')"))
+            continue
+        new = tuple(x * factor for x in lim)
+        old_text = r.limit_text()
+        rules[by_id[o.rule]] = replace(r, limit=new, limit_by=None, limits={})
+        overrides.append(Override(r.id, old_text, rules[by_id[o.rule]].limit_text(), o.reason,
+                                  o.where))
+    if errs:
+        raise InputErrors(errs)
+    return RuleTable(rules, table.files, overrides)
+
+
+def select_rules(table: RuleTable, select: list[str] | None, ignore: list[str] | None
+                 ) -> list[Rule]:
+    """Rules whose id starts with a ``select`` prefix and with no ``ignore`` prefix.
+
+    Raises ValueError for a selector that matches no rule (a usage error).
+    """
+    def matches(r: Rule, s: str) -> bool:
+        return r.id == s or r.id.startswith(s)
+
+    for s in (select or []) + (ignore or []):
+        if not any(matches(r, s) for r in table.rules):
+            raise ValueError(f"'{s}' matches no rule id (see 'checker rules')")
+    chosen = [r for r in table.rules if not select or any(matches(r, s) for s in select)]
+    return [r for r in chosen if not any(matches(r, s) for s in (ignore or []))]
+
+
+# ------------------------------------------------------------------ evaluation
+@dataclass
+class RuleResult:
+    rule: str
+    name: str
+    item: str
+    status: str  # "pass" | "fail" | "not_evaluated"
+    severity: str
+    value: float | None
+    unit: str
+    limit: str
+    limit_values: list[float] | None
+    margin: float | None
+    case: str
+    message: str
+    source: str
+    missing: list[str] = field(default_factory=list)
+    findings: list[str] = field(default_factory=list)
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "rule": self.rule, "name": self.name, "item": self.item, "status": self.status,
+            "severity": self.severity,
+            "value": None if self.value is None else float(f"{self.value:.6g}"),
+            "unit": self.unit, "limit": self.limit_values, "limit_text": self.limit,
+            "margin": None if self.margin is None else float(f"{self.margin:.4g}"),
+            "case": self.case, "message": self.message, "source": self.source,
+            "missing": self.missing, "findings": self.findings,
+        }
+
+
+def _coord_text(dim: str, label: Any) -> str:
+    if dim == "speed":
+        return f"{from_si(float(label), 'rad/s', 'rpm'):.0f} rpm"
+    if dim == "case":
+        return {"full": "full load", "part": "part load", "no": "no load"}.get(str(label),
+                                                                            str(label))
+    return str(label)
+
+
+def _margin(check: str, v: np.ndarray, lim: tuple[float, ...]) -> np.ndarray:
+    if check in (">=", ">"):
+        return (v - lim[0]) / abs(lim[0]) if lim[0] else v - lim[0]
+    if check in ("<=", "<"):
+        return (lim[0] - v) / abs(lim[0]) if lim[0] else lim[0] - v
+    lo = (v - lim[0]) / abs(lim[0]) if lim[0] else v - lim[0]
+    hi = (lim[1] - v) / abs(lim[1]) if lim[1] else lim[1] - v
+    return np.minimum(lo, hi)
+
+
+def _passes(check: str, margin: float) -> bool:
+    if check in (">", "<"):
+        return margin > 0
+    return margin >= -REL_TOL
+
+
+def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None
+                  ) -> list[RuleResult]:
+    """Evaluate one rule on its quantity: one result per item it applies to."""
+    spec = QUANTITIES[rule.quantity]
+    base = dict(rule=rule.id, name=rule.name, severity=rule.severity, unit=rule.unit,
+                source=rule.source)
+    if q is None:
+        reasons = unavailable or ["quantity was not computed"]
+        return [RuleResult(**base, item="all", status="not_evaluated", value=None,
+                           limit=rule.limit_text(), limit_values=None, margin=None, case="",
+                           message="not evaluated: missing " + "; ".join(reasons),
+                           missing=list(reasons))]
+    dims = spec.dims
+    results: list[RuleResult] = []
+    items = q.coords["item"] if "item" in dims else ["all"]
+    # coordinate filters
+    sel = [np.arange(len(q.coords[d])) for d in dims]
+    for k, vals in rule.where.items():
+        if k in dims:
+            d = dims.index(k)
+            sel[d] = np.array([i for i, c in enumerate(q.coords[k]) if str(c) in vals], int)
+    factor = Q_(1.0, spec.unit or "").to((rule.unit or "").replace("%", "percent")).magnitude
+    for ii, item in enumerate(items):
+        attrs = q.item_attrs.get(item, {})
+        if any(k not in dims and str(attrs.get(k)) not in vals and
+               str(attrs.get(k)).lower() not in [v.lower() for v in vals]
+               for k, vals in rule.where.items()):
+            continue
+        if "item" in dims:
+            sel_i = list(sel)
+            sel_i[dims.index("item")] = np.array([ii])
+        else:
+            sel_i = sel
+        sub = q.values[np.ix_(*sel_i)]
+        lim = rule.limit
+        if rule.limit_by is not None:
+            key = str(attrs.get(rule.limit_by) or "").lower()
+            lim = rule.limits.get(key)
+            if lim is None:
+                why = (f"no {rule.limit_by.replace('_', ' ')} given for '{item}'" if not key
+                       else f"{rule.limit_by.replace('_', ' ')} '{key}' of '{item}' has no"
+                       f" limit in rule {rule.id} (known: {', '.join(rule.limits)}); add a"
+                       " RuleOverrides row")
+                results.append(RuleResult(**base, item=item, status="not_evaluated",
+                                          value=None, limit=rule.limit_text(),
+                                          limit_values=None, margin=None, case="",
+                                          message="not evaluated: " + why, missing=[why]))
+                continue
+        lim_text = rule.limit_text(lim)
+        # missing entries within the selection
+        idx_all = np.array(np.meshgrid(*sel_i, indexing="ij")).reshape(len(dims), -1).T
+        missing: list[str] = []
+        findings: list[str] = []
+        for idx in idx_all:
+            t = tuple(int(x) for x in idx)
+            for n in range(len(t), 0, -1):
+                for r in q.missing.get(t[:n], []):
+                    if r not in missing:
+                        missing.append(r)
+                for f in q.findings.get(t[:n], []):
+                    if f not in findings:
+                        findings.append(f)
+        if sub.size == 0:
+            continue
+        if np.isnan(sub).any():
+            if not missing:
+                missing = ["some values could not be computed"]
+            results.append(RuleResult(**base, item=item, status="not_evaluated", value=None,
+                                      limit=lim_text, limit_values=list(lim), margin=None,
+                                      case="", message="not evaluated: missing "
+                                      + "; ".join(missing), missing=missing,
+                                      findings=findings))
+            continue
+        disp = sub * factor
+        m = _margin(rule.check, disp, lim)
+        k = int(np.argmin(m))
+        worst = np.unravel_index(k, sub.shape)
+        value = float(disp[worst])
+        margin = float(m[worst])
+        case_parts = [_coord_text(d, q.coords[d][sel_i[j][worst[j]]])
+                      for j, d in enumerate(dims) if d != "item"]
+        ok = _passes(rule.check, margin)
+        status = "pass" if ok else "fail"
+        u = f" {rule.unit}" if rule.unit else ""
+        verb = "meets" if ok else "violates"
+        msg = f"{rule.name}: {value:.4g}{u} {verb} {lim_text}"
+        if case_parts:
+            msg += f" (worst at {', '.join(case_parts)})"
+        results.append(RuleResult(**base, item=item, status=status, value=value,
+                                  limit=lim_text, limit_values=list(lim), margin=margin,
+                                  case=", ".join(case_parts), message=msg, findings=findings))
+    return results
+
+
+def is_finite(x: float | None) -> bool:
+    return x is not None and math.isfinite(x)
