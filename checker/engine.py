@@ -142,6 +142,7 @@ class Engine:
     source: str = "<in memory>"
     sha256: str = ""
     where: dict[tuple, str] = field(default_factory=dict)
+    assumptions: tuple[str, ...] = ()  # workbook values marked as assumptions (with cells)
 
     @property
     def name(self) -> str:
@@ -379,6 +380,7 @@ def build_engine(data: WorkbookData) -> Engine:
         oil=Params(data.params.get("Oil", {})), damper=damper,
         fatigue=Params(data.params.get("Fatigue", {})), overrides=tuple(overrides),
         source=data.path, sha256=data.sha256, where=dict(data.where),
+        assumptions=tuple(data.assumptions),
     )
 
 

@@ -91,9 +91,11 @@ class M53SCF(NamedTuple):
     ``"<ratio>_out_of_range"`` for each entry of :data:`VALIDITY`, ``"s_clipped"`` (s < -0.5
     replaced by -0.5 in f(s,w) and f(r,s)), ``"journal_s_extrapolated"`` (s < -0.5 for the
     journal factors, for which M53 states no extension; evaluated at s = -0.5 as well),
-    ``"recess_clipped"`` (f(recess) < 1 replaced by 1), ``"beta_t_equal_to_alpha_t"``
-    (informational: M53 §3.3(C)(a) applied). ``messages`` lists human-readable texts for the
-    checks that fired (informational flag excluded).
+    ``"recess_clipped"`` (f(recess) < 1 replaced by 1), ``"<factor>_invalid"`` (the formula
+    gave a non-positive fillet factor far outside the validity range; the factor is returned
+    as NaN so that it cannot be used unnoticed: supply FEM or user-given factors) and
+    ``"beta_t_equal_to_alpha_t"`` (informational: M53 §3.3(C)(a) applied). ``messages`` lists
+    human-readable texts for the checks that fired (informational flag excluded).
     """
 
     alpha_b: np.ndarray
@@ -446,11 +448,16 @@ def m53_scf(
         "beta_t": beta_t,
     }
     for key, val in fillet.items():
-        if np.any(val <= 0.0):
-            raise ValueError(
-                f"M53 formula gives non-positive {key} = {np.min(val):.4g} for this geometry "
-                "(far outside the validity range); use FEM or user-given factors"
+        bad = ~(val > 0.0)
+        flags[f"{key}_invalid"] = bad
+        if np.any(bad):
+            messages.append(
+                f"M53 formula gives a non-positive {key} (min {np.min(val):.4g}) for this "
+                "geometry, far outside the validity range: returned as NaN; use FEM or "
+                "user-given factors"
             )
+            fillet[key] = np.where(bad, np.nan, val)
+    alpha_b, alpha_t, beta_b, beta_q, beta_t = (fillet[k] for k in fillet)
     shape = np.broadcast(alpha_b, beta_t, gamma_b).shape
     flags = {k: np.broadcast_to(v, shape).copy() for k, v in flags.items()}
     return M53SCF(

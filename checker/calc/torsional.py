@@ -68,9 +68,9 @@ __all__ = [
 #: have magnifications below ~1e4 (steel loss factor ~1e-4), so only (nearly) undamped modes hit.
 RESONANCE_TOLERANCE = 1e-6
 
-#: Samples per period of the highest order used by :func:`synthesize` by default. With the
-#: parabolic peak refinement of :func:`half_peak_to_peak` the error of a pure highest-order
-#: sinusoid is < 1e-4 (16 samples: 0.05 %, tested).
+#: Samples per period of the highest order used by :func:`synthesize` by default. The sampled
+#: extremes only seed the Newton refinement of :func:`half_peak_to_peak` (exact to round-off), so
+#: the sampling needs only to put the global extreme among the largest sampled lobes.
 SYNTHESIS_SAMPLES_PER_PERIOD = 16
 
 DynamicStiffness = Callable[[np.ndarray], np.ndarray]
@@ -344,9 +344,7 @@ def modal_damping_ratios(
     Returns
     -------
     numpy.ndarray, shape (m,) [-]
-        0 for rigid-body modes (``omega_r = 0``) without absolute damping; ``inf`` is never
-        returned: rigid-body modes return ``nan``-free 0 and a separate ``omega_r = 0`` check is
-        up to the caller.
+        0 is returned for rigid-body modes (``omega_r = 0``), whose damping ratio is undefined.
     """
     w = np.asarray(omega_n, dtype=float)
     phi = np.asarray(modes, dtype=float)
@@ -471,9 +469,8 @@ def forced_response(
     """Steady-state forced response for all speeds and orders in one batched solve.
 
     ``D(n w) Theta_n = F_n`` for every speed ``w`` and order ``n`` (module docstring), solved as
-    one batched ``numpy.linalg.solve`` of shape (n_speed, n_order, n, n) after symmetric diagonal
-    equilibration ``S D S (S^-1 Theta) = S F`` with ``S_ii = (K_ii + Omega^2 J_i + |Im D_ii|)^-1/2``
-    (keeps models mixing very stiff and very soft elements accurate).
+    one batched ``numpy.linalg.solve`` (LU with partial pivoting) of shape
+    (n_speed, n_order, n, n).
 
     Parameters
     ----------
@@ -492,7 +489,10 @@ def forced_response(
     Notes
     -----
     Linear, steady state; the order-0 (mean) torque is not handled (free-free models have no
-    static solution). Undamped (near-)resonances are flagged in ``ForcedResponse.resonance``
+    static solution). Accuracy: LU is backward stable, so the relative error is about machine
+    epsilon times the condition number of ``D`` (rounding of the assembled entries alone gives
+    the same); a chain mixing 1e9 and 1 N m/rad elements stays within 1e-10 (tested against
+    exact rational arithmetic). Undamped (near-)resonances are flagged in ``ForcedResponse.resonance``
     (criterion: :data:`RESONANCE_TOLERANCE`) instead of returning inf/NaN.
     """
     w = np.asarray(speeds, dtype=float).ravel()
@@ -523,13 +523,7 @@ def forced_response(
         reg = np.where(resonance, RESONANCE_TOLERANCE * om**2, 0.0)
         dmat[..., idx, idx] += 1j * reg[..., None] * model.inertia
 
-    # symmetric equilibration (positive scale from magnitudes that cannot cancel)
-    kdiag = np.diagonal(stiffness_matrix(model)).copy()
-    scale = kdiag + om[..., None] ** 2 * model.inertia + np.abs(np.diagonal(dmat, 0, -2, -1).imag)
-    s = 1.0 / np.sqrt(scale)  # (S, O, n)
-    ds = dmat * s[..., :, None] * s[..., None, :]
-    rhs = np.moveaxis(f, -1, -2) * s  # (S, O, n)
-    theta = np.linalg.solve(ds, rhs[..., None])[..., 0] * s  # (S, O, n)
+    theta = np.linalg.solve(dmat, np.moveaxis(f, -1, -2)[..., None])[..., 0]  # (S, O, n)
 
     bmat = model.incidence
     torque = z * np.einsum("ei,...i->...e", bmat, theta)  # (S, O, E)
@@ -620,8 +614,11 @@ def half_peak_to_peak(
 ) -> np.ndarray:
     """Half peak-to-peak ("half range") amplitude of the synthesised signal of all orders.
 
-    ``(max_theta x - min_theta x) / 2`` over 720 deg, where the discrete maximum and minimum are
-    refined by a parabola through the extreme sample and its two neighbours (periodic).
+    ``(max_theta x - min_theta x) / 2`` over 720 deg. The extremes are located on the sampled
+    signal (:func:`synthesize`) and refined by Newton iterations on the trigonometric polynomial
+    itself (its exact first and second derivatives), starting from the ``_N_CANDIDATES`` largest
+    sampled local extremes; the result is exact to round-off unless the true extreme lies in a
+    lobe whose sampled value ranks below those candidates (not met with the default sampling).
 
     Parameters
     ----------
@@ -640,17 +637,36 @@ def half_peak_to_peak(
     synthesis of all harmonic orders"); Drapal & Novotny 2017 (crank-pulley 1/2 peak-to-peak).
     ``sum |X_n|`` is only an upper bound.
     """
-    _, x = synthesize(orders, coeffs, n_points)
-    return 0.5 * (_refined_extreme(x) + _refined_extreme(-x))
+    n_ord = np.asarray(orders, dtype=float).ravel()
+    c = np.asarray(coeffs, dtype=complex)
+    theta, x = synthesize(n_ord, c, n_points)
+    x_max = _refined_max(n_ord, c, theta, x)
+    x_min = -_refined_max(n_ord, -c, theta, -x)
+    return 0.5 * (x_max - x_min)
 
 
-def _refined_extreme(x: np.ndarray) -> np.ndarray:
-    k = np.argmax(x, axis=-1)[..., None]
+_N_CANDIDATES = 4
+_NEWTON_STEPS = 4
+
+
+def _refined_max(orders: np.ndarray, c: np.ndarray, theta: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """Maximum over theta of sum Re{c_n exp(j n theta)}, Newton-refined from sampled maxima."""
     npts = x.shape[-1]
-    y0 = np.take_along_axis(x, k, -1)[..., 0]
-    ym = np.take_along_axis(x, (k - 1) % npts, -1)[..., 0]
-    yp = np.take_along_axis(x, (k + 1) % npts, -1)[..., 0]
-    curv = ym - 2.0 * y0 + yp  # <= 0 at a discrete maximum
-    safe = np.where(curv < 0, curv, -1.0)
-    corr = np.where(curv < 0, -((yp - ym) ** 2) / (8.0 * safe), 0.0)
-    return y0 + corr
+    is_peak = (x >= np.roll(x, 1, axis=-1)) & (x >= np.roll(x, -1, axis=-1))
+    ranked = np.where(is_peak, x, -np.inf)
+    n_cand = min(_N_CANDIDATES, npts)
+    cand = np.argpartition(-ranked, n_cand - 1, axis=-1)[..., :n_cand]  # (..., K)
+    best = np.max(x, axis=-1)
+    th = theta[cand]  # (..., K)
+    dth = theta[1] - theta[0]
+    cc = c[..., None, :]
+    lo, hi = th - dth, th + dth
+    for _ in range(_NEWTON_STEPS):
+        e = cc * np.exp(1j * orders * th[..., None])
+        d1 = np.sum((1j * orders * e).real, axis=-1)
+        d2 = np.sum((-(orders**2) * e).real, axis=-1)
+        step = np.where(d2 < 0, -d1 / np.where(d2 < 0, d2, -1.0), 0.0)
+        th = np.clip(th + step, lo, hi)
+    val = np.sum((cc * np.exp(1j * orders * th[..., None])).real, axis=-1)
+    val = np.where(np.isfinite(ranked.max(axis=-1))[..., None], val, -np.inf)
+    return np.maximum(best, val.max(axis=-1))

@@ -35,6 +35,7 @@ class WorkbookData:
     units: dict[tuple, str] = field(default_factory=dict)
     sheets_present: tuple[str, ...] = ()
     errors: list[InputError] = field(default_factory=list)
+    assumptions: list[str] = field(default_factory=list)
 
     def cell(self, sheet: str, attr: str, row: int | None = None) -> str:
         """The ``Sheet!A1`` address of a parameter (or of a table cell in data row ``row``)."""
@@ -214,6 +215,10 @@ class _Reader:
             if ucell is not None and ucell.value is not None:
                 unit_text = str(ucell.value).strip()
             params[f.attr] = self.value(name, f, vcell, fcell, unit_text, data, (name, f.attr))
+            note = cells[3].value if cells[3] is not None else None
+            if note and "assumption" in str(note).lower():
+                shown = f"{vcell.value}" + (f" {unit_text}" if unit_text not in (None, "-") else "")
+                data.assumptions.append(f"{_addr(name, vcell)} {f.label} = {shown}: {note}")
             if params[f.attr] is None and f.required and (name, f.attr) in data.where and not any(
                 e.where == _addr(name, vcell) for e in self.errors
             ):
@@ -262,6 +267,9 @@ class _Reader:
             u = units_row[j].value if j < len(units_row) else None
             unit_of[attr] = None if u is None else str(u).strip()
         keys_seen: dict[Any, str] = {}
+        note_col = next((j for j, c in enumerate(header)
+                         if c.value is not None and _norm(c.value) in ("note", "notes")), None)
+        notes: dict[str, list[int]] = {}
         for r in range(2, len(rows)):
             row = rows[r]
             if all(c.value is None or (isinstance(c.value, str) and not c.value.strip())
@@ -298,6 +306,12 @@ class _Reader:
                 else:
                     keys_seen[kk] = where
             out.append(rec)
+            if note_col is not None and note_col < len(row) and row[note_col].value and \
+                    "assumption" in str(row[note_col].value).lower():
+                notes.setdefault(str(row[note_col].value), []).append(r + 1)
+        for text, rws in notes.items():
+            rr = f"row {rws[0]}" if len(rws) == 1 else f"rows {', '.join(map(str, rws))}"
+            data.assumptions.append(f"{name} {rr}: {text}")
 
 
 def read_workbook(path: str | Path, raise_errors: bool = True) -> WorkbookData:

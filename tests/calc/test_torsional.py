@@ -110,17 +110,17 @@ def test_synthesis_equals_time_integration_of_the_ode():
     np.testing.assert_allclose(
         resp.element_torque_amplitude()[0, 0], 0.5 * (t_ode.max() - t_ode.min()), rtol=1e-4
     )
-    # and the synthesised signal itself (phase convention): theta(t) at t = 1.2 + t_k
+    # the synthesised signal itself (phase convention): the inverse FFT equals the explicit sum,
+    # and the ODE angles equal the explicit sum up to a constant rigid-body offset (the free
+    # rotation of the chain left by the start transient: an eigenvalue 0 of the ODE)
     theta_grid, sig = tv.synthesize(orders, resp.theta[0], n_points=4000)
-    np.testing.assert_allclose(sig[:, :4000], th[:, :4000] * 0 + sig[:, :4000])  # shape check
-    t_grid = theta_grid / w
-    ref = (resp.theta[0][:, None, :] * np.exp(1j * orders * w * t_grid[:, None])).real.sum(-1)
+    ref = (resp.theta[0][:, None, :] * np.exp(1j * orders * theta_grid[:, None])).real.sum(-1)
     np.testing.assert_allclose(sig, ref, atol=1e-12 * np.abs(ref).max())
-    idx = np.arange(0, 4000, 97)
-    t_check = 1.2 + t_grid[idx]
-    phase = np.exp(1j * orders * w * t_check[:, None])
+    phase = np.exp(1j * orders * w * t_eval[:, None])
     direct = (resp.theta[0][:, None, :] * phase).real.sum(-1)
-    np.testing.assert_allclose(th[:, idx], direct, atol=1e-6 * np.abs(direct).max())
+    offset = th[:, :4000].mean(axis=1, keepdims=True)
+    np.testing.assert_allclose(th - offset, direct, atol=1e-6 * np.abs(direct).max())
+    assert np.ptp(th - direct, axis=1).max() < 1e-6 * np.abs(direct).max()
 
 
 def test_equilibrium_of_element_torques():
@@ -199,8 +199,8 @@ def _exact_solve(j, k, eta, c_rel, d_abs, omega, f):
 
 def test_stiff_model_against_exact_rational_solution():
     # Stiffness spread 1e9 (very stiff) to 1 N m/rad (very soft), inertias 1e-4..10 kg m^2.
-    # Reference: exact rational arithmetic. Tolerance rtol 1e-8 on every component (achieved
-    # ~1e-12 with the equilibrated solve).
+    # Reference: exact rational arithmetic. Tolerance rtol 1e-8 on every component and on the
+    # torque of the 1e9 element (achieved 6e-11 and 3e-11: eps x condition number).
     j = [1e-4, 10.0, 1e-3, 1.0, 2e-4]
     k = [1e9, 1.0, 1e7, 3e8]
     eta = [0.0, 0.1, 0.0, 1e-4]

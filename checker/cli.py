@@ -1,0 +1,218 @@
+"""Command line: ``checker template | check | report | rules``.
+
+Exit codes: 0 no error-severity rule fails; 1 a rule fails; 2 bad input, bad rule file or usage
+error. Problems are printed without a traceback (set ``CHECKER_DEBUG=1`` to see one).
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import tempfile
+from pathlib import Path
+
+import click
+
+from . import __version__
+from .errors import CheckerError
+
+
+def _split(values: tuple[str, ...]) -> list[str] | None:
+    out = [v.strip() for s in values for v in s.split(",") if v.strip()]
+    return out or None
+
+
+class _Progress:
+    """Stage lines on stderr (only when stderr is a terminal, or when asked)."""
+
+    def __init__(self, enabled: bool):
+        self.enabled = enabled
+
+    def __call__(self, text: str) -> None:
+        if self.enabled:
+            click.echo(f"checker: {text}", err=True)
+
+
+def _fail(exc: BaseException) -> None:
+    if os.environ.get("CHECKER_DEBUG"):
+        raise exc
+    if isinstance(exc, CheckerError):
+        click.echo(f"error: {exc}", err=True)
+    else:
+        click.echo(f"internal error: {type(exc).__name__}: {exc}\n(set CHECKER_DEBUG=1 for a"
+                   " traceback and please report it)", err=True)
+    sys.exit(2)
+
+
+def _run_check(workbook, rules, select, ignore, fail_on, progress):
+    from . import api
+
+    try:
+        return api.check(workbook, rules=rules, select=_split(select), ignore=_split(ignore),
+                         fail_on=fail_on, progress=progress)
+    except ValueError as exc:
+        if isinstance(exc, CheckerError):
+            _fail(exc)
+        raise click.UsageError(str(exc)) from None
+    except Exception as exc:  # noqa: BLE001 - reported without traceback
+        _fail(exc)
+
+
+def _atomic_write(path: Path, data: bytes) -> None:
+    """Write via a temporary file in the same folder, so no half-written output remains."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=".checker-", dir=path.parent)
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+_common = [
+    click.option("--rules", "rules", type=click.Path(exists=True),
+                 help="Rule file or folder (default: the built-in rule table)."),
+    click.option("--select", multiple=True, help="Run only rules with these id prefixes"
+                 " (comma-separated or repeated), e.g. JNT or BRG-001."),
+    click.option("--ignore", multiple=True, help="Skip rules with these id prefixes."),
+    click.option("--fail-on", type=click.Choice(["error", "warning"]), default="error",
+                 show_default=True, help="Lowest severity whose failure fails the check."),
+]
+
+
+def common(f):
+    for opt in reversed(_common):
+        f = opt(f)
+    return f
+
+
+WORKBOOK = click.argument("workbook", type=click.Path(exists=True, dir_okay=False))
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, prog_name="checker")
+def main() -> None:
+    """Design-rule checker for engine crank trains."""
+
+
+@main.command()
+@click.argument("path", type=click.Path(dir_okay=False), default="engine.xlsx")
+@click.option("--force", is_flag=True, help="Overwrite an existing file.")
+def template(path: str, force: bool) -> None:
+    """Write the example workbook (the seed's 4-cylinder gasoline engine) to PATH."""
+    from .workbook.example import example_content, write_workbook
+
+    p = Path(path)
+    if p.exists() and not force:
+        raise click.UsageError(f"{p} exists; use --force to overwrite it")
+    with tempfile.TemporaryDirectory() as d:
+        tmp = Path(d) / "engine.xlsx"
+        write_workbook(tmp, example_content())
+        _atomic_write(p, tmp.read_bytes())
+    click.echo(f"wrote {p}", err=True)
+
+
+@main.command()
+@WORKBOOK
+@common
+@click.option("--format", "fmt", type=click.Choice(["text", "json", "junit"]), default="text",
+              show_default=True)
+@click.option("--no-timings", is_flag=True, help="Leave run times out of the JSON output.")
+@click.option("-o", "--output", type=click.Path(dir_okay=False),
+              help="Write the output to a file instead of stdout.")
+@click.option("--progress/--no-progress", default=None, help="Stage lines on stderr.")
+def check(workbook, rules, select, ignore, fail_on, fmt, no_timings, output, progress) -> None:
+    """Run the check as a CI gate: results on stdout, exit code 0/1/2, no PDF."""
+    from . import outputs
+
+    prog = _Progress(sys.stderr.isatty() if progress is None else progress)
+    res = _run_check(workbook, rules, select, ignore, fail_on, prog)
+    if fmt == "json":
+        text = outputs.to_json(res, timings=not no_timings)
+    elif fmt == "junit":
+        text = outputs.to_junit(res)
+    else:
+        text = outputs.to_text(res)
+    if output:
+        if Path(output).resolve() == Path(workbook).resolve():
+            raise click.UsageError("the output file would overwrite the input workbook")
+        _atomic_write(Path(output), text.encode("utf-8"))
+    else:
+        click.echo(text, nl=False)
+    sys.exit(res.exit_code)
+
+
+@main.command()
+@WORKBOOK
+@common
+@click.option("-o", "--output", type=click.Path(dir_okay=False),
+              help="PDF file (default: the workbook name with .pdf).")
+@click.option("--html", "html_out", type=click.Path(dir_okay=False),
+              help="Also write the report as HTML.")
+@click.option("--progress/--no-progress", default=True, help="Stage lines on stderr.")
+def report(workbook, rules, select, ignore, fail_on, output, html_out, progress) -> None:
+    """Render the pass/fail PDF report for the design-review pack."""
+    prog = _Progress(progress)
+    pdf_path = Path(output) if output else Path(workbook).with_suffix(".pdf")
+    for p in [pdf_path] + ([Path(html_out)] if html_out else []):
+        if p.resolve() == Path(workbook).resolve():
+            raise click.UsageError(f"output {p} would overwrite the input workbook")
+    res = _run_check(workbook, rules, select, ignore, fail_on, prog)
+    try:
+        from .report.render import render_html, render_pdf
+
+        prog("rendering report")
+        html = render_html(res)
+        pdf = render_pdf(html, res)
+    except Exception as exc:  # noqa: BLE001
+        _fail(exc)
+    _atomic_write(pdf_path, pdf)
+    if html_out:
+        _atomic_write(Path(html_out), html.encode("utf-8"))
+    c = res.counts()
+    click.echo(f"{pdf_path}: {res.verdict.upper()} ({c['pass']} passed, {c['fail']} failed,"
+               f" {c['warning']} warnings, {c['not_evaluated']} not evaluated)", err=True)
+    sys.exit(res.exit_code)
+
+
+@main.command("rules")
+@click.option("--rules", "rules", type=click.Path(exists=True), help="Rule file or folder.")
+@click.option("--explain", metavar="ID", help="Show one rule in full.")
+def rules_cmd(rules, explain) -> None:
+    """List the rule table, or explain one rule."""
+    from .ruletable import load_rules
+
+    try:
+        table = load_rules(rules)
+    except CheckerError as exc:
+        _fail(exc)
+    if explain:
+        try:
+            r = table.get(explain.strip())
+        except KeyError:
+            raise click.UsageError(f"no rule '{explain}' (see 'checker rules')") from None
+        where = ", ".join(f"{k} = {'/'.join(v)}" for k, v in r.where.items()) or "-"
+        lines = [f"{r.id}  {r.name}", f"  quantity:   {r.quantity}",
+                 f"  applies to: {r.applies_to or where}", f"  where:      {where}",
+                 f"  check:      {r.limit_text()}", f"  severity:   {r.severity}",
+                 f"  source:     {r.source}", f"  rationale:  {r.rationale}",
+                 f"  file:       {r.origin}"]
+        if r.limits:
+            u = f" {r.unit}" if r.unit else ""
+            lines.insert(5, "  limits:     " + "; ".join(
+                f"{k}: {'..'.join(f'{x:g}' for x in v)}{u}" for k, v in r.limits.items()))
+        click.echo("\n".join(lines))
+        return
+    w = max(len(r.name) for r in table.rules)
+    for r in table.rules:
+        click.echo(f"{r.id}  {r.name.ljust(w)}  {r.severity:<7}  {r.limit_text()}")
+
+
+if __name__ == "__main__":  # pragma: no cover
+    main()

@@ -1,0 +1,70 @@
+"""Machine and terminal outputs of a check: text, JSON and JUnit XML."""
+
+from __future__ import annotations
+
+import json
+from xml.sax.saxutils import escape, quoteattr
+
+from .api import CheckResult
+
+_STATUS = {"pass": "PASS", "fail": "FAIL", "not_evaluated": "NOT EVALUATED"}
+
+
+def status_label(status: str, severity: str) -> str:
+    if status == "fail" and severity == "warning":
+        return "WARN"
+    return _STATUS[status]
+
+
+def to_text(res: CheckResult) -> str:
+    """One aligned line per rule result, then a summary line."""
+    rows = []
+    for r in res.results:
+        value = "-" if r.value is None else f"{r.value:.4g}" + (f" {r.unit}" if r.unit else "")
+        rows.append((r.rule, status_label(r.status, r.severity), r.item, value, r.limit,
+                     r.case, r.message if r.status == "not_evaluated" else ""))
+    w = [max([len(x[i]) for x in rows] + [1]) for i in range(6)]
+    lines = []
+    for x in rows:
+        line = "  ".join(x[i].ljust(w[i]) for i in range(6)).rstrip()
+        if x[6]:
+            line += f"\n{'':{w[0]}}  -> {x[6]}"
+        lines.append(line)
+    c = res.counts()
+    lines.append("")
+    lines.append(f"{res.engine.name}: {res.verdict.upper()} - {c['pass']} passed,"
+                 f" {c['fail']} failed, {c['warning']} warnings,"
+                 f" {c['not_evaluated']} not evaluated"
+                 + (f" (modules run: {', '.join(res.outcome.modules_run) or 'none'};"
+                    f" skipped: {', '.join(res.outcome.modules_skipped) or 'none'})"))
+    return "\n".join(lines) + "\n"
+
+
+def to_json(res: CheckResult, timings: bool = True) -> str:
+    """Stable, deterministic JSON (sorted keys); run times only under ``timings``."""
+    return json.dumps(res.to_dict(timings=timings), indent=2, sort_keys=True,
+                      ensure_ascii=False) + "\n"
+
+
+def to_junit(res: CheckResult) -> str:
+    """JUnit XML: one test case per rule result (fail -> failure, not evaluated -> skipped)."""
+    c = res.counts()
+    failures = sum(1 for r in res.results if r.status == "fail" and
+                   (r.severity == "error" or res.fail_on == "warning"))
+    out = ['<?xml version="1.0" encoding="UTF-8"?>',
+           f'<testsuites name="checker" tests="{len(res.results)}" failures="{failures}">',
+           f'  <testsuite name={quoteattr(res.engine.name)} tests="{len(res.results)}"'
+           f' failures="{failures}" skipped="{c["not_evaluated"]}">']
+    for r in res.results:
+        name = quoteattr(f"{r.rule} {r.name} [{r.item}]")
+        out.append(f'    <testcase classname={quoteattr(r.rule.split("-")[0])} name={name}>')
+        if r.status == "fail" and (r.severity == "error" or res.fail_on == "warning"):
+            out.append(f"      <failure message={quoteattr(r.message)}>{escape(r.source)}"
+                       "</failure>")
+        elif r.status == "fail":
+            out.append(f"      <system-out>{escape('WARNING: ' + r.message)}</system-out>")
+        elif r.status == "not_evaluated":
+            out.append(f"      <skipped message={quoteattr(r.message)}/>")
+        out.append("    </testcase>")
+    out += ["  </testsuite>", "</testsuites>"]
+    return "\n".join(out) + "\n"
