@@ -115,8 +115,9 @@ class _Reader:
         where = _addr(sheet, vcell)
         raw = vcell.value
         if fcell is not None and fcell.data_type == "f" and raw is None:
-            self.err(where, f"is a formula ({fcell.value}) with no stored result; open and save"
-                     " the workbook in Excel or LibreOffice so the value is stored")
+            self.err(where, f"{f.label} is a formula ({fcell.value}) with no stored result;"
+                     " open and save the workbook in Excel or LibreOffice so the value is"
+                     " stored")
             return None
         data.where[key] = where
         if raw is None or (isinstance(raw, str) and raw.strip() == ""):
@@ -192,7 +193,7 @@ class _Reader:
         for r, row in enumerate(rows[1:], start=1):
             cells = list(row) + [None] * 4
             label_cell, vcell, ucell = cells[0], cells[1], cells[2]
-            if label_cell is None or label_cell.value is None or str(label_cell.value).strip() == "":
+            if label_cell is None or str(label_cell.value or "").strip() == "":
                 if vcell is not None and vcell.value not in (None, ""):
                     self.err(_addr(name, vcell), "value without a parameter name in column A")
                 continue

@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Set up checker on a fresh machine and render the example report.
+#   bash setup.sh            -> .venv with checker + test extras, engine.xlsx, engine.pdf
+#   bash setup.sh --no-example   (install only)
+set -euo pipefail
+cd "$(dirname "$0")"
+
+PY=${PYTHON:-python3}
+if ! "$PY" -c 'import sys; sys.exit(0 if sys.version_info >= (3, 11) else 1)'; then
+  echo "setup: Python >= 3.11 is required (found: $("$PY" --version 2>&1))" >&2
+  exit 2
+fi
+
+# WeasyPrint (the PDF renderer) needs Pango and fonts from the system.
+missing_libs() {
+  for lib in libpango-1.0.so.0 libpangoft2-1.0.so.0; do
+    ldconfig -p 2>/dev/null | grep -q "$lib" || { echo "$lib"; return; }
+  done
+  fc-list 2>/dev/null | grep -qi dejavu || echo "fonts-dejavu-core"
+}
+if [ -n "$(missing_libs)" ]; then
+  if [ "$(id -u)" = "0" ] && command -v apt-get >/dev/null; then
+    echo "setup: installing Pango and fonts for WeasyPrint (apt-get)" >&2
+    apt-get update -qq >/dev/null && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
+      libpango-1.0-0 libpangoft2-1.0-0 fonts-dejavu-core fontconfig >/dev/null
+  else
+    echo "setup: WeasyPrint needs Pango and fonts. Install them, e.g. on Debian/Ubuntu:" >&2
+    echo "  sudo apt-get install libpango-1.0-0 libpangoft2-1.0-0 fonts-dejavu-core" >&2
+    exit 2
+  fi
+fi
+
+rm -rf .venv
+"$PY" -m venv .venv
+.venv/bin/python -m pip install -q --upgrade pip >/dev/null
+.venv/bin/python -m pip install -q -e ".[test]"
+
+if [ "${1:-}" != "--no-example" ]; then
+  .venv/bin/checker template engine.xlsx --force
+  # exit code 1 is the verdict (the seed's example joints fail their guidelines), not an error
+  .venv/bin/checker report engine.xlsx -o engine.pdf --html engine.html || [ $? -eq 1 ]
+  echo "setup: wrote engine.xlsx and engine.pdf" >&2
+fi

@@ -1,0 +1,136 @@
+"""End-to-end CLI: exit codes, output formats, selection, the example's joint verdicts."""
+
+from __future__ import annotations
+
+import json
+import xml.etree.ElementTree as ET
+
+import pytest
+from click.testing import CliRunner
+
+from checker.cli import main
+from tests.helpers import compliant_joints, edited, example_path
+
+
+@pytest.fixture()
+def example(tmp_path):
+    return example_path(tmp_path)
+
+
+def run(*args):
+    return CliRunner().invoke(main, [str(a) for a in args])
+
+
+def test_template_writes_and_refuses_overwrite(tmp_path):
+    p = tmp_path / "e.xlsx"
+    assert run("template", p).exit_code == 0 and p.exists()
+    r = run("template", p)
+    assert r.exit_code == 2 and "--force" in r.output
+    assert run("template", p, "--force").exit_code == 0
+
+
+def test_example_joints_fail_with_named_rules(example):
+    r = run("check", example, "--select", "JNT")
+    assert r.exit_code == 1
+    lines = {tuple(line.split()[:2]) for line in r.stdout.splitlines() if line.strip()}
+    # seed 000: crank nose above proof-stress (79.5 %) and head pressure (554.5 N/mm^2)
+    # guidelines and below cover factor 1.8 (1.467); flywheel 1.771 < 1.8 at the TV peak
+    for rule in ("JNT-001", "JNT-002", "JNT-003", "JNT-005"):
+        assert (rule, "FAIL") in lines, r.stdout
+    assert ("JNT-004", "WARN") in lines
+
+
+def test_compliant_joints_exit_zero(tmp_path):
+    p = edited(tmp_path, compliant_joints)
+    r = run("check", p, "--select", "JNT", "--format", "json")
+    assert r.exit_code == 0, r.stdout
+    d = json.loads(r.stdout)
+    assert d["verdict"] == "pass"
+    assert all(x["status"] != "fail" for x in d["results"])
+
+
+def test_json_format_stable_keys_and_deterministic(example):
+    a = run("check", example, "--format", "json", "--no-timings", "--select", "JNT")
+    b = run("check", example, "--format", "json", "--no-timings", "--select", "JNT")
+    assert a.stdout == b.stdout  # byte-identical without run times
+    d = json.loads(a.stdout)
+    assert d["verdict"] == "fail" and "timings" not in d
+    for res in d["results"]:
+        assert {"rule", "item", "status", "value", "unit", "limit"} <= set(res)
+        assert res["status"] in ("pass", "fail", "not_evaluated")
+    cn = next(x for x in d["results"] if x["rule"] == "JNT-001")
+    assert cn["item"] == "crank nose" and cn["value"] == pytest.approx(79.507, abs=5e-4)
+    assert cn["limit"] == [70.0, 75.0] and cn["unit"] == "%"
+    t = json.loads(run("check", example, "--format", "json", "--select", "JNT").stdout)
+    assert "joints" in t["timings"]
+
+
+def test_not_evaluated_names_missing_inputs(example):
+    d = json.loads(run("check", example, "--format", "json", "--select", "JNT").stdout)
+    fw_head = next(x for x in d["results"] if x["rule"] == "JNT-002" and x["item"] == "flywheel")
+    assert fw_head["status"] == "not_evaluated"
+    assert any("head bearing outer diameter" in m and "Joints!N4" in m for m in fw_head["missing"])
+    fw_power = next(x for x in d["results"] if x["rule"] == "JNT-006")
+    assert fw_power["status"] == "not_evaluated" and "max power" in fw_power["missing"][0]
+
+
+def test_junit_format(example):
+    r = run("check", example, "--format", "junit", "--select", "JNT")
+    assert r.exit_code == 1
+    root = ET.fromstring(r.stdout)
+    cases = root.findall(".//testcase")
+    assert len(cases) == 8
+    failed = [c.get("name") for c in cases if c.find("failure") is not None]
+    assert any(n.startswith("JNT-003") for n in failed)
+    skipped = [c for c in cases if c.find("skipped") is not None]
+    assert len(skipped) == 3
+
+
+def test_fail_on_warning(tmp_path):
+    def edit(wb):
+        compliant_joints(wb)
+        from tests.helpers import set_cell
+        set_cell(wb, "Joints", "name", "crank nose", "friction coefficient", 0.27)
+
+    p = edited(tmp_path, edit)  # crank-nose CF ~1.97: meets 1.8, misses the preferred 2.0
+    assert run("check", p, "--select", "JNT").exit_code == 0
+    assert run("check", p, "--select", "JNT", "--fail-on", "warning").exit_code == 1
+
+
+def test_usage_errors_exit_2(example, tmp_path):
+    assert run("check", example, "--select", "XYZ").exit_code == 2
+    assert run("check", tmp_path / "missing.xlsx").exit_code == 2
+    assert run("check", example, "--format", "yaml").exit_code == 2
+    assert run("rules", "--explain", "JNT-999").exit_code == 2
+    assert run("frobnicate").exit_code == 2
+
+
+def test_rules_listing_and_explain():
+    r = run("rules")
+    assert r.exit_code == 0 and "JNT-003" in r.stdout
+    e = run("rules", "--explain", "JNT-003")
+    assert "seed 000" in e.stdout and "tv peak" in e.stdout
+
+
+def test_bad_rule_file_exit_2(example, tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[[rule]]\nid = "JNT-1"\nname = "x"\n')
+    r = run("check", example, "--rules", bad)
+    assert r.exit_code == 2 and "rule table" in r.stderr
+
+
+def test_report_pdf_and_html(example, tmp_path):
+    from pypdf import PdfReader
+
+    pdf, html = tmp_path / "r.pdf", tmp_path / "r.html"
+    r = run("report", example, "-o", pdf, "--html", html, "--select", "JNT", "--no-progress")
+    assert r.exit_code == 1, r.output
+    text = "\n".join(p.extract_text() for p in PdfReader(pdf).pages)
+    assert "FAIL" in text and "JNT-003" in text and "Bolted joints" in text
+    assert "79.507" in text and "554.547" in text and "359.524" in text  # seed slide 23
+    assert "64.4939" in text and "67.474" in text and "2154.08" in text  # seed slide 24
+    assert "Page 1 of" in text
+    outline = [o.title for o in PdfReader(pdf).outline if not isinstance(o, list)]
+    assert "Summary of rule results" in outline and "Bolted joints" in outline
+    h = html.read_text()
+    assert 'id="summary"' in h and "sec-joints" in h

@@ -1,0 +1,150 @@
+"""Rule-table validation, selection, overrides and evaluation."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from checker import api
+from checker.errors import InputErrors, RuleFileError
+from checker.graph import Quantity
+from checker.ruletable import Rule, evaluate_rule, load_rules, select_rules
+from tests.helpers import edited, example_path
+
+GOOD = '''
+[[rule]]
+id = "JNT-101"
+name = "x"
+quantity = "joint.cover_factor"
+where = { location = "flywheel", point = "tv peak" }
+check = ">="
+limit = 1.8
+unit = "-"
+severity = "error"
+source = "test"
+rationale = "test"
+'''
+
+
+def write(tmp_path, text, name="r.toml"):
+    p = tmp_path / name
+    p.write_text(text)
+    return p
+
+
+def test_default_table_is_valid_and_sourced():
+    t = load_rules()
+    ids = [r.id for r in t.rules]
+    assert len(ids) == len(set(ids))
+    for r in t.rules:
+        assert r.source.strip() and r.rationale.strip()
+
+
+def test_good_file_loads(tmp_path):
+    t = load_rules(write(tmp_path, GOOD))
+    assert t.rules[0].limit == (1.8,)
+
+
+@pytest.mark.parametrize("change,match", [
+    (('id = "JNT-101"', 'id = "J-1"'), "id must look like"),
+    (('quantity = "joint.cover_factor"', 'quantity = "joint.nothing"'), "unknown quantity"),
+    (('check = ">="', 'check = "=>"'), "check must be one of"),
+    (('severity = "error"', 'severity = "fatal"'), "severity must be"),
+    (('limit = 1.8', 'limit = "high"'), "limit must be"),
+    (('unit = "-"', 'unit = "mm"'), "does not fit quantity"),
+    (('location = "flywheel"', 'colour = "red"'), "where-key 'colour'"),
+    (('point = "tv peak"', 'point = "idle"'), "is not one of"),
+    (('source = "test"\n', ''), "missing 'source'"),
+    (('rationale = "test"', 'rationale = "test"\nlimt = 2'), "unknown key 'limt'"),
+])
+def test_malformed_rules_refused(tmp_path, change, match):
+    with pytest.raises(RuleFileError, match=match):
+        load_rules(write(tmp_path, GOOD.replace(*change)))
+
+
+def test_duplicate_ids_and_bad_toml(tmp_path):
+    with pytest.raises(RuleFileError, match="duplicate rule id"):
+        load_rules(write(tmp_path, GOOD + GOOD))
+    with pytest.raises(RuleFileError, match="not valid TOML"):
+        load_rules(write(tmp_path, "[[rule]\nid=", "b.toml"))
+
+
+def test_between_needs_range(tmp_path):
+    with pytest.raises(RuleFileError, match=r"\[low, high\]"):
+        load_rules(write(tmp_path, GOOD.replace('check = ">="', 'check = "between"')))
+
+
+def test_select_and_ignore_prefixes():
+    t = load_rules()
+    assert {r.id for r in select_rules(t, ["JNT-00"], ["JNT-004"])} == {
+        "JNT-001", "JNT-002", "JNT-003", "JNT-005", "JNT-006", "JNT-007"}
+    with pytest.raises(ValueError):
+        select_rules(t, ["NOPE"], None)
+
+
+def _q(values, coords=None):
+    from checker.graph import QUANTITIES
+    spec = QUANTITIES["joint.cover_factor"]
+    coords = coords or {"item": ["a"], "point": ["tv peak", "max power", "overspeed"]}
+    return Quantity(spec, np.array(values, float), coords,
+                    {"a": {"location": "flywheel"}})
+
+
+def test_evaluation_worst_case_margin_and_tolerance():
+    rule = Rule("JNT-101", "x", "joint.cover_factor", ">=", "", "error", "s", "r", (1.8,))
+    [res] = evaluate_rule(rule, _q([[1.9, 1.7, 2.5]]), None)
+    assert res.status == "fail" and res.value == pytest.approx(1.7) and res.case == "max power"
+    assert res.margin == pytest.approx((1.7 - 1.8) / 1.8)
+    # a value equal to the limit up to float noise passes
+    [res] = evaluate_rule(rule, _q([[1.8 * (1 - 1e-12), 2, 2]]), None)
+    assert res.status == "pass"
+
+
+def test_missing_values_are_not_evaluated_never_pass():
+    rule = Rule("JNT-101", "x", "joint.cover_factor", ">=", "", "error", "s", "r", (1.8,))
+    q = _q([[2.0, np.nan, 2.0]])
+    q.missing[(0, 1)] = ["JointTorques: torque at max power"]
+    [res] = evaluate_rule(rule, q, None)
+    assert res.status == "not_evaluated" and "max power" in res.missing[0]
+    [res] = evaluate_rule(rule, None, ["Joints: no joints"])
+    assert res.status == "not_evaluated" and res.missing == ["Joints: no joints"]
+
+
+def test_override_from_workbook_is_applied_and_listed(tmp_path):
+    def edit(wb):
+        ws = wb["RuleOverrides"]
+        ws.append(["JNT-005", 1.75, "-", "OEM guideline for this flywheel (DMF)"])
+
+    res = api.check(edited(tmp_path, edit), select=["JNT-005"])
+    [r] = res.results
+    assert r.status == "pass" and r.limit == "≥ 1.75"  # 1.771 >= 1.75
+    [o] = res.table.overrides
+    assert o.rule == "JNT-005" and o.old == "≥ 1.8" and "OEM" in o.reason and o.where
+
+
+def test_override_of_unknown_rule_is_input_error(tmp_path):
+    def edit(wb):
+        wb["RuleOverrides"].append(["JNT-999", 2, "-", "why"])
+
+    with pytest.raises(InputErrors, match="unknown rule 'JNT-999'"):
+        api.check(edited(tmp_path, edit))
+
+
+def test_api_returns_dataframe_without_files(tmp_path):
+    p = example_path(tmp_path)
+    before = set(tmp_path.iterdir())
+    res = api.check(p, select=["JNT"])
+    df = res.to_frame()
+    assert set(tmp_path.iterdir()) == before
+    assert {"rule", "item", "status", "value", "unit", "limit"} <= set(df.columns)
+    assert res.verdict == "fail" and res.exit_code == 1
+    # in-memory engine: the same result without a workbook
+    res2 = api.check(res.engine, select=["JNT"])
+    assert res2.to_dict(timings=False)["results"] == res.to_dict(timings=False)["results"]
+
+
+def test_selection_skips_modules(tmp_path):
+    res = api.check(example_path(tmp_path), select=["JNT"])
+    assert res.outcome.modules_run == ["joints"]
+    assert set(res.outcome.modules_skipped) == set(
+        m for m in __import__("checker.graph", fromlist=["MODULES"]).MODULES if m != "joints")
