@@ -23,6 +23,10 @@ journal with the lower number) towards its rear main journal:
   not part of M53's loading and are not modelled.
 * ``force_tangential`` F_T [N]: component along ``e_t``, **positive in the direction of
   rotation** (driving; F_T * E is the positive torque on the crank from this cylinder).
+* Adapter: with :mod:`checker.calc.crank_forces` (crank frame ``y`` = reference, ``x`` = +90 deg
+  in the direction of rotation; throw ``j`` at crank-frame angle ``gamma_j`` from
+  ``throw_angles``; force on the pin = ``crankpin_force(loads.big_end_crank, ...)``), use
+  :func:`pin_force_in_throw_frame` to get ``(force_radial, force_tangential)``.
 * torques [N*m]: element torques (mean brake torque + TV torque from the torsional model) in
   the crankpin and in the two main journals of the throw. Only their variation over the cycle
   and their mean enter the fatigue check; their sign convention is the caller's (the stresses
@@ -71,6 +75,7 @@ __all__ = [
     "bay_bending_moment",
     "local_stresses",
     "oil_hole_bending_stress",
+    "pin_force_in_throw_frame",
     "shaft_section_moduli",
     "throw_nominal_stresses",
     "torsional_stress",
@@ -107,7 +112,36 @@ def _nonneg(name: str, value: float) -> float:
 
 
 # ---------------------------------------------------------------------------------------------
-# geometry
+# frames and geometry
+
+
+def pin_force_in_throw_frame(
+    force_x: ArrayLike, force_y: ArrayLike, throw_angle: ArrayLike
+) -> tuple[np.ndarray, np.ndarray]:
+    """Radial and tangential components of a crank-frame pin force for one or more throws.
+
+    Parameters
+    ----------
+    force_x, force_y : array_like [N]
+        Force on the crankpin in the crank-fixed frame of :mod:`checker.calc.crank_forces`
+        (``y`` = reference axis, ``x`` = +90 deg in the direction of rotation), e.g. shape
+        (..., n_throws, N).
+    throw_angle : array_like [rad]
+        Crank-frame direction ``gamma`` of each throw (from ``y`` in the direction of rotation),
+        broadcast against the forces (e.g. shape (n_throws, 1)).
+
+    Returns
+    -------
+    force_radial : ndarray [N]
+        ``F_R = F_x sin(gamma) + F_y cos(gamma)`` (along the throw, + outward).
+    force_tangential : ndarray [N]
+        ``F_T = F_x cos(gamma) - F_y sin(gamma)`` (+ in the direction of rotation).
+    """
+    fx = _finite("force_x", force_x)
+    fy = _finite("force_y", force_y)
+    g = _finite("throw_angle", throw_angle)
+    c, s = np.cos(g), np.sin(g)
+    return fx * s + fy * c, fx * c - fy * s
 
 
 def web_overlap(

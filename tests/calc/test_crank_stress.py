@@ -17,6 +17,7 @@ from checker.calc.crank_stress import (
     bay_bending_moment,
     local_stresses,
     oil_hole_bending_stress,
+    pin_force_in_throw_frame,
     shaft_section_moduli,
     throw_nominal_stresses,
     torsional_stress,
@@ -47,9 +48,7 @@ def test_overlap_and_web_geometry_hand_calc():
     assert float(web_overlap(48 * MM, 55 * MM, 47.3 * MM)) == pytest.approx(4.2 * MM, rel=1e-12)
     # W_full = (96 - 27 - 24.4)/2 = 22.3 mm (seed: "full width 22.3"); L1 = 13.5 + 11.15
     assert web_centre_distance(96 * MM, 27 * MM, 24.4 * MM) == pytest.approx(24.65 * MM)
-    assert web_centre_distance(96 * MM, 27 * MM, 24.4 * MM, 0.5 * MM) == pytest.approx(
-        25.15 * MM
-    )
+    assert web_centre_distance(96 * MM, 27 * MM, 24.4 * MM, 0.5 * MM) == pytest.approx(25.15 * MM)
     # F = 71.4 * 21.3 = 1520.8 mm^2, W_eqw = 71.4 * 21.3^2 / 6 = 5398.9 mm^3
     area, modulus = web_section_properties(21.3 * MM, 71.4 * MM)
     assert float(area) == pytest.approx(1520.82e-6, rel=1e-4)
@@ -110,6 +109,21 @@ def test_local_stress_signs_under_gas_load():
     np.testing.assert_allclose(loc.sigma_journal_fillet[:, 0], -202.35e6, rtol=1e-4)
     np.testing.assert_allclose(loc.sigma_pin_fillet[:, 1], 0.0, atol=1e-9)
     assert loc.tau_pin_fillet.shape == (2, 2)
+
+
+def test_pin_force_in_throw_frame_rotation():
+    # Throw pointing along crank-frame x (gamma = 90 deg): a force along +x is radial outward,
+    # a force along +y (= -e_t there) is tangential negative. gamma = 0: identity mapping.
+    fr, ft = pin_force_in_throw_frame(np.array([1.0, 0.0]), np.array([0.0, 1.0]), np.pi / 2)
+    np.testing.assert_allclose(fr, [1.0, 0.0], atol=1e-15)
+    np.testing.assert_allclose(ft, [0.0, -1.0], atol=1e-15)
+    fr, ft = pin_force_in_throw_frame(3.0, -2.0, 0.0)
+    assert (float(fr), float(ft)) == (-2.0, 3.0)
+    # magnitude preserved (rotation)
+    rng = np.random.default_rng(3)
+    fx, fy, g = rng.normal(size=(3, 20))
+    fr, ft = pin_force_in_throw_frame(fx, fy, g)
+    np.testing.assert_allclose(np.hypot(fr, ft), np.hypot(fx, fy), rtol=1e-12)
 
 
 def test_bay_bending_moment_triangular_diagram():
@@ -190,7 +204,9 @@ def test_i4_mirror_symmetric_loads_give_matching_throws():
         rtol=1e-12, atol=1e-6,
     )  # fmt: skip
     # centred pin -> front and rear web bending identical
-    np.testing.assert_array_equal(res.sigma_web_bending[..., 0, :], res.sigma_web_bending[..., 1, :])
+    np.testing.assert_array_equal(
+        res.sigma_web_bending[..., 0, :], res.sigma_web_bending[..., 1, :]
+    )
 
     k = m53_scf(
         pin_diameter=48 * MM, journal_diameter=55 * MM, throw=47.3 * MM, web_thickness=21.3 * MM,
@@ -215,11 +231,15 @@ def test_i4_mirror_symmetric_loads_give_matching_throws():
     assert pin.safety_factor.shape == (2, 3, 4, 2)
     assert oil.safety_factor.shape == (2, 3, 4)
     for i, j in ((0, 3), (1, 2)):
-        np.testing.assert_allclose(pin.safety_factor[:, :, i], pin.safety_factor[:, :, j], rtol=1e-12)
+        np.testing.assert_allclose(
+            pin.safety_factor[:, :, i], pin.safety_factor[:, :, j], rtol=1e-12
+        )
         np.testing.assert_allclose(
             jnl.safety_factor[:, :, i], jnl.safety_factor[:, :, j, ::-1], rtol=1e-12
         )
-        np.testing.assert_allclose(oil.safety_factor[:, :, i], oil.safety_factor[:, :, j], rtol=1e-12)
+        np.testing.assert_allclose(
+            oil.safety_factor[:, :, i], oil.safety_factor[:, :, j], rtol=1e-12
+        )
     # the comparison is not vacuous: outer and inner throws differ, and without the mirror
     # (front of throw 1 vs front of throw 4) the journal results differ
     assert not np.allclose(jnl.safety_factor[:, :, 0], jnl.safety_factor[:, :, 1], rtol=1e-6)
