@@ -106,7 +106,10 @@ def crank_to_block(v: Vector2, theta: ArrayLike) -> Vector2:
 
 
 def rod_mass_split(
-    rod_mass: ArrayLike, rod_length: ArrayLike, rod_cg_from_big_end: ArrayLike, rod_inertia: ArrayLike
+    rod_mass: ArrayLike,
+    rod_length: ArrayLike,
+    rod_cg_from_big_end: ArrayLike,
+    rod_inertia: ArrayLike,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Two-mass equivalent of a con-rod and its inertia correction.
 
@@ -153,6 +156,9 @@ def rod_mass_split(
 class CylinderLoads(NamedTuple):
     """Forces of each cylinder's crank slider; every array has shape ``(..., n_cyl, N)``.
 
+    ``inertia_force`` and ``rod_omega`` do not depend on the pressure; where ``pressure`` has more
+    leading axes than ``omega`` they are read-only broadcast views (copy before writing).
+
     Attributes
     ----------
     gas_force : numpy.ndarray [N]
@@ -189,7 +195,7 @@ def _cycle_step(theta: np.ndarray) -> float:
         raise ValueError("theta must be a 1-D cycle grid with at least 8 points")
     step = FOUR_STROKE_CYCLE / n
     if not np.allclose(theta, np.arange(n) * step, rtol=0.0, atol=1e-9):
-        raise ValueError("theta must be the uniform cycle grid k*4*pi/N (see kinematics.cycle_grid)")
+        raise ValueError("theta must be the uniform cycle grid k*4*pi/N (kinematics.cycle_grid)")
     return step
 
 
@@ -249,15 +255,16 @@ def cylinder_loads(
 
     Model: piston assembly + rod small-end mass ``m_a`` translate with the piston pin; rod
     big-end mass ``m_b`` rotates with the crank pin; a massless link between them carries the
-    correction couple ``C = dI * rod_alpha`` that restores the rod's true moment of inertia
-    (:func:`rod_mass_split`). This is the exact rigid-body dynamics of the slider, written in the
-    two-mass form. In the cylinder frame ``(t, c)`` with ``u = (-sin b, cos b)`` (rod, big end ->
-    small end) and ``n = (cos b, sin b)``::
+    correction couple ``C = dI * rod_alpha`` (direction-of-rotation sense, ``rod_alpha`` of
+    :class:`~checker.calc.kinematics.SliderKinematics`) that restores the rod's true moment of
+    inertia (:func:`rod_mass_split`). This is the exact rigid-body dynamics of the slider,
+    written in the two-mass form. In the cylinder frame ``(t, c)`` with ``u = (-sin b, cos b)``
+    (rod, big end -> small end) and ``n = (cos b, sin b)``::
 
-        F       = (p - p_cc) A - m_rec omega^2 x''              axial force on the pin, toward crank
-        L_n     = C / l ... = -dI omega^2 beta'' / l           transverse link force from the couple
-        L_u     = (F - L_n sin b) / cos b                       link force along the rod
-        L       = L_u u + L_n n                                 force of the link on the piston
+        F       = (p - p_cc) A - m_rec omega^2 x''        axial force on the pin, toward crank
+        L_n     = C / l = -dI omega^2 beta'' / l          transverse link force from the couple
+        L_u     = (F - L_n sin b) / cos b                 link force along the rod
+        L       = L_u u + L_n n                           force of the link on the piston
         big end = L + m_b a_B,   a_B = -omega^2 r (sin phi, cos phi)
         torque  = r (sin phi, cos phi) x big_end  (= r sin phi be_c - r cos phi be_t)
         side    = L_t
@@ -549,7 +556,10 @@ def main_bearing_loads(
     n_m = m.size
     if m.shape != (n_m,) or bays.shape != (n_m,) or z_m.shape != (n_m,) or rho.shape != (n_m, 2):
         raise ValueError("mass, mass_bay, mass_axial_position (n_m,) and mass_position (n_m, 2)")
-    if n_m and (not np.issubdtype(bays.dtype, np.integer) or bays.min() < 0 or bays.max() >= n_pins):
+    bad_bay = n_m and (
+        not np.issubdtype(bays.dtype, np.integer) or bays.min() < 0 or bays.max() >= n_pins
+    )
+    if bad_bay:
         raise ValueError(f"mass_bay must be integers in 0..{n_pins - 1}")
     if np.any(m < 0) or not (np.all(np.isfinite(rho)) and np.all(np.isfinite(z_m))):
         raise ValueError("masses must be >= 0 kg with finite positions")

@@ -295,9 +295,12 @@ def synthesize_trace(
     Closed cycle (inlet closing ``IVC`` to exhaust opening ``EVO``): single-zone first law with a
     constant polytropic exponent ``k`` and an apparent heat release ``Q x_b(theta)``::
 
-        dp/dtheta = [(k - 1) Q dx_b/dtheta - k p dV/dtheta] / V          (Heywood 1988, sec. 9.2.2)
-        x_b = 1 - exp(-a ((theta - theta_s)/dtheta_b)^(m+1)),  theta >= theta_s  (Wiebe; Heywood
-              1988, sec. 9.2.1, a = 5, m = 2)
+        dp/dtheta = [(k - 1) Q dx_b/dtheta - k p dV/dtheta] / V
+        x_b = 1 - exp(-a ((theta - theta_s)/dtheta_b)^(m+1)),  theta >= theta_s   (Wiebe)
+
+    (Heywood 1988, *Internal Combustion Engine Fundamentals*, ch. 9, sec. 9.2: single-zone
+    apparent heat-release equation with constant ratio of specific heats, and the Wiebe
+    mass-fraction-burned function with a = 5, m = 2; equation numbers not verified here),
 
     which integrates exactly (integrating factor ``V^k``) to::
 
@@ -335,8 +338,8 @@ def synthesize_trace(
     exhaust_pressure : array_like, broadcast to S [Pa]
         Exhaust-stroke pressure (default 1.1e5).
     polytropic_exponent : array_like, broadcast to S [-]
-        ``k``, 1.1..1.5 (default 1.32; Heywood sec. 9.2.2 quotes 1.3 +- 0.05 for the apparent
-        heat-release analysis of SI engines).
+        ``k``, 1.1..1.5 (default 1.32, a typical value of the apparent-heat-release ratio of
+        specific heats for SI engines, Heywood ch. 9).
     combustion_start : array_like, broadcast to S [rad]
         Wiebe start ``theta_s`` (default -15 deg, i.e. 15 deg before firing TDC).
     combustion_duration : array_like, broadcast to S [rad]
@@ -511,8 +514,8 @@ def indicated_mean_effective_pressure(
 
     Notes
     -----
-    Heywood (1988), eq. 2.19 (net indicated work per cycle over all four strokes) and eq. 2.15
-    (mep = work / V_d). Second-order accurate in the grid step; use <= 1 deg.
+    Heywood (1988), sec. 2.4 (net indicated work per cycle over all four strokes) and sec. 2.7
+    (mep = work per cycle / V_d). Second-order accurate in the grid step; use <= 1 deg.
     """
     p = np.asarray(pressure, dtype=float)
     v = np.asarray(volume, dtype=float)
@@ -614,7 +617,7 @@ def bmep_from_torque(brake_torque: ArrayLike, total_displacement: float) -> np.n
 
     Notes
     -----
-    Heywood (1988), eq. 2.20 (``n_R = 2`` revolutions per cycle).
+    Heywood (1988), sec. 2.7 (``bmep = 2 pi n_R T / V_d``, ``n_R = 2`` revolutions per cycle).
     """
     if not total_displacement > 0:
         raise ValueError("total_displacement must be > 0 m^3")
@@ -694,6 +697,9 @@ def calibrate_combustion_start(
     """
     if "combustion_start" in synthesis_kwargs:
         raise ValueError("combustion_start is the calibrated quantity; do not pass it")
+    missing = {"bore", "crank_radius", "rod_length", "compression_ratio"} - synthesis_kwargs.keys()
+    if missing:
+        raise TypeError(f"calibrate_combustion_start needs the geometry keywords {sorted(missing)}")
     th = np.asarray(theta, dtype=float)
     geo = {
         key: synthesis_kwargs[key]
