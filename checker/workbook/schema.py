@@ -287,11 +287,17 @@ CRANK_MASS = Sheet(
         F("throw", "throw", "int", check=">0", note="Crank throw (bay) the mass belongs to."),
         F("kind", "kind", "choice", choices=("web", "counterweight", "pin")),
         F("mass", "mass", "mass", check=">=0"),
-        F("X", "x", "length"),
-        F("Y", "y", "length"),
-        F("Z", "z", "length", required=False),
+        F("X", "x", "length",
+          note="Axial offset of the centre of mass from the component's reference plane"
+               " (seed 000 convention: mirrored webs have opposite signs)."),
+        F("Y", "y", "length",
+          note="Radial position in the crank frame, along throw 1 (throw 1 pin at +Y)."),
+        F("Z", "z", "length", required=False,
+          note="Lateral position in the crank frame, +90 deg from Y in the direction of"
+               " rotation; blank = 0."),
         F("axial position", "axial", "length", check=">=0",
-          note="Axial distance of the centre of mass from the bay's front main bearing centre."),
+          note="Axial position of the component's reference plane from the bay's front main"
+               " bearing centre (the centre of mass is at axial position + X)."),
         F("relative to", "reference", "choice", choices=("main axis", "pin axis")),
     ),
 )
