@@ -329,7 +329,8 @@ def absorber_magnification(
     Returns
     -------
     numpy.ndarray [-]
-        ``|Theta_primary| / (T / k)``.
+        ``|Theta_primary| / (T / k)``; ``inf`` only for ``damping_ratio = 0`` exactly at a
+        natural frequency of the undamped 2-DOF system (closed-form check function).
 
     Notes
     -----

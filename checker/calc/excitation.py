@@ -25,52 +25,28 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
+from checker.calc.kinematics import FOUR_STROKE_CYCLE, slider_kinematics
+
 __all__ = [
     "DEFAULT_MAX_ORDER",
-    "FOUR_STROKE_CYCLE",
-    "crank_angle_grid",
     "gas_torque",
     "inertia_torque_series",
     "inertia_torque_series_coefficients",
     "major_order_mask",
     "phase_cylinders",
-    "piston_displacement_derivatives",
     "reciprocating_inertia_torque",
     "torque_harmonics",
     "vector_sum",
 ]
 
-#: Highest harmonic order kept by default [-]. benchmarks/bench_tv.py (example I4 engine with
-#: rubber damper, 1000-7000 rpm) shows that truncating at order 24 changes the synthesised
-#: crank-nose amplitude by < 0.1 % against order 48 and leaves every order <= 24 exact; order 12
-#: already errs by several percent at low speed (rolling mode, steep gas pulse). Order 24 also
-#: covers the guideline "18-24 orders for V6 nose checks" (torsion.md section 6).
+#: Highest harmonic order kept by default [-]. benchmarks/bench_tv.py (example I4 with rubber
+#: damper, full load, 61 speeds 1000-7000 rpm, reference: orders to 48 on a 0.25 deg grid):
+#: truncation at 24 changes the synthesised crank-nose amplitude by <= 0.03 % (1e-4 deg) and the
+#: synthesised flywheel-side element torque by <= 0.15 %; at 16 by 0.45 % / 1.4 %, at 12 by
+#: 2.2 % / 7.9 %. Orders kept are unaffected by truncation (linear model). The TV sweep takes
+#: 35-50 ms at 24 orders (70 ms at 48) on the shared 2-core development machine. Order 24 also
+#: covers the "18-24 orders for V6 nose checks" guideline (torsion.md section 6).
 DEFAULT_MAX_ORDER = 24.0
-
-#: Crank angle of one 4-stroke cycle [rad].
-FOUR_STROKE_CYCLE = 4.0 * np.pi
-
-
-def crank_angle_grid(n_points: int, cycle: float = FOUR_STROKE_CYCLE) -> np.ndarray:
-    """Uniform crank-angle grid over one cycle without the end point.
-
-    Parameters
-    ----------
-    n_points : int [-]
-        Number of points per cycle.
-    cycle : float [rad]
-        Cycle length, ``4*pi`` for 4-stroke (default), ``2*pi`` for 2-stroke.
-
-    Returns
-    -------
-    numpy.ndarray, shape (n_points,) [rad]
-        ``theta_k = k * cycle / n_points``.
-    """
-    if int(n_points) != n_points or n_points < 2:
-        raise ValueError(f"n_points must be an integer >= 2, got {n_points!r}")
-    if not cycle > 0:
-        raise ValueError(f"cycle must be > 0 rad, got {cycle!r}")
-    return np.arange(int(n_points)) * (cycle / int(n_points))
 
 
 def torque_harmonics(
@@ -129,42 +105,6 @@ def torque_harmonics(
     return orders, spec
 
 
-def piston_displacement_derivatives(
-    theta: ArrayLike, crank_radius: float, rod_length: float
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Piston position and its first two crank-angle derivatives (zero offsets).
-
-    ``x = r cos(theta) + l sqrt(1 - lam^2 sin^2 theta)``, measured from the crank axis toward the
-    cylinder head, ``lam = r/l``.
-
-    Parameters
-    ----------
-    theta : array_like [rad]
-        Crank angle from TDC.
-    crank_radius : float [m]
-        Crank throw ``r``.
-    rod_length : float [m]
-        Connecting-rod length ``l`` (centre to centre).
-
-    Returns
-    -------
-    x, dx_dtheta, d2x_dtheta2 : numpy.ndarray [m], [m/rad], [m/rad^2]
-
-    Notes
-    -----
-    Heywood 1988, *Internal Combustion Engine Fundamentals*, eq. 2.5 (written from the crank axis).
-    Valid for ``0 < r < l`` and zero piston-pin / crank offsets.
-    """
-    r, lam = _check_crank(crank_radius, rod_length)
-    th = np.asarray(theta, dtype=float)
-    s, c = np.sin(th), np.cos(th)
-    root = np.sqrt(1.0 - (lam * s) ** 2)
-    x = r * (c + root / lam)
-    dx = -r * s * (1.0 + lam * c / root)
-    d2x = -r * (c + lam * (c * c - s * s) / root + lam**3 * s * s * c * c / root**3)
-    return x, dx, d2x
-
-
 def gas_torque(
     theta: ArrayLike,
     pressure: ArrayLike,
@@ -173,10 +113,13 @@ def gas_torque(
     rod_length: float,
     crankcase_pressure: float = 0.0,
 ) -> np.ndarray:
-    """Crankshaft torque of the gas force of one cylinder (zero offsets).
+    """Crankshaft torque of the gas force of one cylinder (zero offsets; helper for tests).
 
-    ``T_g = -(p - p_cc) A_p dx/dtheta = (p - p_cc) A_p r sin(theta) [1 + lam cos(theta)/
-    sqrt(1 - lam^2 sin^2 theta)]`` (torsion.md section 3.1; Heywood 1988, sec. 2.2).
+    ``T_g = (p - p_cc) A_p dx/dtheta = (p - p_cc) A_p r sin(theta) [1 + lam cos(theta)/
+    sqrt(1 - lam^2 sin^2 theta)]`` with ``x`` the piston displacement from TDC toward the crank
+    (:func:`checker.calc.kinematics.slider_kinematics`; torsion.md section 3.1; Heywood 1988,
+    sec. 2.2). The full per-cylinder torque with offsets and con-rod dynamics is
+    :func:`checker.calc.crank_forces.cylinder_loads` (``.torque``).
 
     Parameters
     ----------
@@ -189,7 +132,7 @@ def gas_torque(
     crank_radius, rod_length : float [m]
         Crank throw and connecting-rod length.
     crankcase_pressure : float [Pa]
-        Pressure under the piston (0 gives the convention of absolute pressure on the crown only).
+        Pressure under the piston (0: absolute pressure on the crown only).
 
     Returns
     -------
@@ -198,12 +141,11 @@ def gas_torque(
     """
     if not bore > 0:
         raise ValueError(f"bore must be > 0 m, got {bore!r}")
-    _, dx, _ = piston_displacement_derivatives(theta, crank_radius, rod_length)
     p = np.asarray(pressure, dtype=float)
     if np.any(p < 0):
         raise ValueError("pressure must be >= 0 Pa (absolute)")
-    area = np.pi * bore**2 / 4.0
-    return -(p - crankcase_pressure) * area * dx
+    kin = slider_kinematics(theta, crank_radius, rod_length)
+    return (p - crankcase_pressure) * (np.pi * bore**2 / 4.0) * kin.dx_dtheta
 
 
 def reciprocating_inertia_torque(
@@ -213,9 +155,10 @@ def reciprocating_inertia_torque(
     rod_length: float,
     omega: ArrayLike,
 ) -> np.ndarray:
-    """Exact crank torque of the reciprocating mass at constant crank speed.
+    """Exact crank torque of the reciprocating mass at constant crank speed (zero offsets).
 
-    ``T_i = -m_rec omega^2 x''(theta) x'(theta)`` (torsion.md section 3.1).
+    ``T_i = -m_rec omega^2 x''(theta) x'(theta)`` (torsion.md section 3.1; ``x`` from
+    :func:`checker.calc.kinematics.slider_kinematics`).
 
     Parameters
     ----------
@@ -233,9 +176,9 @@ def reciprocating_inertia_torque(
     """
     if reciprocating_mass < 0:
         raise ValueError("reciprocating_mass must be >= 0 kg")
-    _, dx, d2x = piston_displacement_derivatives(theta, crank_radius, rod_length)
+    kin = slider_kinematics(theta, crank_radius, rod_length)
     w = np.asarray(omega, dtype=float)[..., np.newaxis]
-    return -reciprocating_mass * w**2 * d2x * dx
+    return -reciprocating_mass * w**2 * kin.d2x_dtheta2 * kin.dx_dtheta
 
 
 def inertia_torque_series_coefficients(lam: float) -> tuple[np.ndarray, np.ndarray]:
@@ -367,7 +310,7 @@ def vector_sum(
 
 
 def major_order_mask(orders: ArrayLike, firing_angles: ArrayLike, rtol: float = 1e-9) -> np.ndarray:
-    """Major orders: all cylinder excitations in phase (rigid-body vector sum = number of cylinders).
+    """Major orders: all cylinder excitations in phase (rigid-body vector sum = cylinder count).
 
     Parameters
     ----------

@@ -267,7 +267,7 @@ def bearing_loads(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         rod_cg_from_big_end=p["rod_com"], rod_inertia=p["rod_inertia"], firing_angle=firing,
         bank_angle=bank, cylinder_offset=p.get("cylinder_offset") or 0.0,
         pin_offset=p.get("pin_offset") or 0.0)
-    names, types, fx, fy, wj, wb, dia, length = [], [], [], [], [], [], [], []
+    names, fx, fy, wj, wb, dia, length = [], [], [], [], [], [], []
     missing: dict[tuple, list[str]] = {}
     attrs = {}
     C, S, N = cyc.pressure.shape
