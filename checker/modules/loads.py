@@ -22,6 +22,12 @@ CASES = ("full", "no")
 speed range'). Part-load data are read and shown but not swept."""
 DEFAULT_SPEED_STEP = 100 * RPM
 DEFAULT_INTAKE = 1.0e5
+SYNTHESIS_RESOLUTION = np.radians(0.2)
+"""Internal crank-angle grid of the trace synthesis [rad]; 0.2 deg changes pressures by < 0.1 %
+of the peak and IMEP by < 0.2 % against 0.05 deg, at a quarter of the cost
+(benchmarks/bench_loads_module.py)."""
+CALIBRATION_TOLERANCE = np.radians(0.1)
+"""Bisection tolerance on the combustion start when calibrating IMEP [rad]."""
 
 CYCLE = quantity(QuantitySpec(
     "loads.cycle", "Pa", ("case", "speed"),
@@ -138,7 +144,8 @@ def build_cycle(engine: Engine, step: float = DEFAULT_STEP) -> Cycle:
         kw = dict(bore=p["bore"], crank_radius=r, rod_length=p["rod_length"],
                   compression_ratio=p["compression_ratio"],
                   cylinder_offset=p.get("cylinder_offset") or 0.0,
-                  pin_offset=p.get("pin_offset") or 0.0, intake_pressure=intake)
+                  pin_offset=p.get("pin_offset") or 0.0, intake_pressure=intake,
+                  resolution=SYNTHESIS_RESOLUTION)
         tgt = None
         if case == "full" and engine.brake_torque:
             bt = np.array(engine.brake_torque)
@@ -153,8 +160,8 @@ def build_cycle(engine: Engine, step: float = DEFAULT_STEP) -> Cycle:
             tgt = np.asarray(pr.fmep_barnes_moss(speeds), dtype=float)
         if tgt is not None and np.isfinite(tgt).any():
             ok = np.isfinite(tgt)
-            tr, _, not_matched = pr.calibrate_combustion_start(theta, peak[ok],
-                                                               tgt[ok], **kw)
+            tr, _, not_matched = pr.calibrate_combustion_start(
+                theta, peak[ok], tgt[ok], tolerance=CALIBRATION_TOLERANCE, **kw)
             pressure[ci, ok] = tr.pressure
             motored[ci, ok] = tr.motored
             target[ci, ok] = tgt[ok]
@@ -335,7 +342,8 @@ def bearing_loads(engine: Engine, inputs: dict) -> dict[str, Quantity]:
              "diameter": np.array(dia), "length": np.array(length),
              "frames": {n: ("con-rod frame" if bearings[n].type == "big end" else "block frame")
                         for n in order},
-             "torque": loads.torque, "assumptions": [
+             "torque": loads.torque, "big_end_crank": loads.big_end_crank,
+             "assumptions": [
                  "Main bearing loads by the statically determinate method: rigid crank pinned"
                  " at each main, each main carries only the adjacent throws (seed 000).",
                  "Con-rod as two masses plus an inertia-correction couple (exact rigid-body"

@@ -1,0 +1,86 @@
+"""The loads module on the example engine (seed 000) and its workbook handling."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from checker import api
+from checker.engine import load_engine
+from checker.modules.loads import RPM, build_cycle
+from tests.helpers import edited, example_path, set_param
+
+
+@pytest.fixture(scope="module")
+def example_result(tmp_path_factory):
+    return api.check(example_path(tmp_path_factory.mktemp("ex")), select=["BRG"])
+
+
+def test_sweep_61_speeds_full_and_no_load(example_result):
+    q = example_result.outcome.quantities["bearing.peak_specific_load"]
+    sp = np.array(q.coords["speed"]) / RPM
+    assert sp.size == 61 and sp[0] == pytest.approx(1000) and sp[-1] == pytest.approx(7000)
+    assert q.coords["case"] == ["full", "no"]
+    assert len(q.coords["item"]) == 9 and np.isfinite(q.values).all()
+
+
+def test_every_bearing_evaluated_full_and_no_load(example_result):
+    seen = {(r.rule, r.item) for r in example_result.results if r.status != "not_evaluated"}
+    names = ["M1", "M2", "M3", "M4", "M5", "BE1", "BE2", "BE3", "BE4"]
+    assert {(rule, n) for rule in ("BRG-001", "BRG-002") for n in names} <= seen
+
+
+def test_seed_symmetry_of_mains(example_result):
+    # seed 000 slide 'Concept level bearing analysis results (8)': peak forces similar at
+    # bearings 1 and 5 and at 2 and 4 (symmetric I4); test tolerance 1 % (issue 3)
+    q = example_result.outcome.quantities["loads.bearing_load"]
+    v = {n: q.values[i] for i, n in enumerate(q.coords["item"])}
+    assert np.allclose(v["M1"], v["M5"], rtol=0.01)
+    assert np.allclose(v["M2"], v["M4"], rtol=0.01)
+    # and the four big ends see the same peak loads (same rod, phased traces)
+    assert np.allclose(v["BE1"], v["BE4"], rtol=0.01)
+
+
+def test_synthesized_trace_reaches_peak(example_result):
+    cyc = example_result.outcome.quantities["loads.cycle"].extra["cycle"]
+    e = example_result.engine
+    pts = sorted((s, p) for c, s, p in e.peak_pressure if c == "full")
+    for s, pk in pts:
+        k = int(np.argmin(abs(cyc.speeds - s)))
+        assert cyc.pressure[0, k].max() == pytest.approx(pk, rel=0.005)
+
+
+def test_extrapolation_is_reported(example_result):
+    text = " ".join(example_result.assumptions)
+    assert "Full-load pressure held at the nearest given speed" in text
+    assert "6600-7000 rpm" in text
+    assert "synthesized" in text
+
+
+def test_given_traces_are_used(tmp_path):
+    e = load_engine(example_path(tmp_path))
+    cyc = build_cycle(e)
+    k = int(np.argmin(abs(cyc.speeds - 3000 * RPM)))
+    trace = cyc.pressure[0, k] * 1.1  # a different trace than the synthesized one
+    deg = np.degrees(cyc.theta)
+
+    def edit(wb):
+        ws = wb.create_sheet("PressureTraces")
+        ws.append(["load case", "speed", "crank angle", "pressure"])
+        ws.append(["-", "rpm", "deg", "bar"])
+        for s in (2000, 4000):
+            for a, p in zip(deg[::2], trace[::2]):
+                ws.append(["full", s, float(a), float(p) / 1e5])
+
+    res = api.check(edited(tmp_path, edit), select=["BRG"])
+    c2 = res.outcome.quantities["loads.cycle"].extra["cycle"]
+    assert not c2.synthesized[0].any() and c2.synthesized[1].all()
+    assert c2.pressure[0, k].max() == pytest.approx(trace.max(), rel=2e-3)
+    assert c2.extrapolated[0, c2.speeds < 2000 * RPM - 1].all()
+
+
+def test_missing_compression_ratio_is_not_evaluated(tmp_path):
+    p = edited(tmp_path, lambda wb: set_param(wb, "Engine", "Compression ratio", value=""))
+    res = api.check(p, select=["BRG"])
+    assert all(r.status == "not_evaluated" for r in res.results)
+    assert any("Compression ratio" in m and "Engine!B" in m for m in res.results[0].missing)
