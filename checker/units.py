@@ -234,6 +234,11 @@ def to_si(value: float, unit: str | None, kind: str, percent_formatted: bool = F
         aliases = {"degC": "degC", "C": "degC", "degF": "degF", "F": "degF", "K": "kelvin",
                    "kelvin": "kelvin", "degR": "degR"}
         base = aliases.get(t)
+        if base is None and t in ("delta_degC", "delta_degF", "Δ°C", "Δ°F"):
+            if kind == "temperature":
+                raise UnitProblem(f"expected an absolute temperature (°C, K or °F), found the"
+                                  f" temperature difference unit '{u}'")
+            base = t.replace("Δ", "delta_")
         if base is None:
             units = parse_unit(u)
             raise UnitProblem(f"expected {expected} (°C, K or °F), found unit '{u}'"

@@ -99,3 +99,10 @@ def test_display_conversions():
     assert from_si(403.15, "K", "°C") == pytest.approx(130)
     assert from_si(5e8, "Pa", "MPa") == pytest.approx(500)
     assert from_si(2.2e-6, "m", "um") == pytest.approx(2.2)
+
+
+def test_delta_temperature_spellings():
+    assert to_si(9, "delta_degF", "temperature_difference") == pytest.approx(5.0)
+    assert to_si(5, "delta_degC", "temperature_difference") == pytest.approx(5.0)
+    with pytest.raises(UnitProblem, match="absolute temperature"):
+        to_si(5, "delta_degC", "temperature")
