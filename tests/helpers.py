@@ -78,5 +78,9 @@ def compliant_joints(wb) -> None:
     set_cell(wb, "Joints", "name", "crank nose", "face outer diameter", 42)
     # flywheel: 8 bolts instead of 6 and the bolt head bearing face from the drawing
     set_cell(wb, "Joints", "name", "flywheel", "bolts", 8)
+    # the max-power and overspeed torques now come from the TV module (about 1260 and 1800 N m,
+    # JNT-006 >= 2.0, JNT-007 >= 1.7): a diamond washer at the flywheel face too (mu 0.3,
+    # seed 000) gives a capacity of about 4300 N m, compliant at all three operating points
+    set_cell(wb, "Joints", "name", "flywheel", "friction coefficient", 0.3)
     set_cell(wb, "Joints", "name", "flywheel", "head bearing outer diameter", 16)
     set_cell(wb, "Joints", "name", "flywheel", "head bearing inner diameter", 10.5)

@@ -144,7 +144,13 @@ def test_api_returns_dataframe_without_files(tmp_path):
 
 
 def test_selection_skips_modules(tmp_path):
-    res = api.check(example_path(tmp_path), select=["JNT"])
+    def edit(wb):  # every joint torque given: the TV module (and loads) are not needed
+        ws = wb["JointTorques"]
+        for j in ("crank nose", "flywheel"):
+            for point, speed, torque in (("max power", 5500, 300), ("overspeed", 7000, 280)):
+                ws.append([j, point, speed, torque * (4 if j == "flywheel" else 1)])
+
+    res = api.check(edited(tmp_path, edit), select=["JNT"])
     assert res.outcome.modules_run == ["joints"]
     assert set(res.outcome.modules_skipped) == set(
         m for m in __import__("checker.graph", fromlist=["MODULES"]).MODULES if m != "joints")

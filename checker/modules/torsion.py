@@ -1,0 +1,603 @@
+"""Graph calculations for crankshaft torsional vibration (TV), the rubber TV damper and the
+TV torques at the bolted joints.
+
+Model (seed 000, Ricardo's concept-level VALDYN practice)
+---------------------------------------------------------
+* Lumped-mass chain from sheet ``TVModel``, front to rear in row order: station ``i`` has the
+  inertia ``J_i`` and absolute viscous damping ``d_i`` to a node rotating at the mean speed;
+  element ``e`` joins station ``e`` to station ``e + 1`` with the stiffness and relative damping
+  of row ``e`` ("stiffness to next", "damping to next"). The damper element is the element from
+  the ``damper ring`` station to the next one; it gets the rubber's hysteretic loss factor from
+  sheet ``Damper`` (``k* = k (1 + j eta)``). The variable inertia of pistons and rods is
+  represented by the constant inertia lumped at the cylinder stations (seed 000).
+* Excitation: the crank torque of one cylinder (gas pressure + reciprocating and con-rod
+  inertia at constant speed, :func:`checker.calc.crank_forces.cylinder_loads`, offsets
+  included) from the loads module's pressure traces (quantity ``loads.cycle``), its harmonics
+  (:func:`checker.calc.excitation.torque_harmonics`, orders 0.5..24), phased by the firing
+  angles (sheet ``Cylinders``) and applied at the cylinder stations (``TVModel`` column
+  ``cylinder``). All cylinders have the same geometry, so cylinder ``i`` is cylinder 1 shifted by
+  its firing angle (exact in the frequency domain).
+* Steady-state forced response per order and speed at full and no load in one batched solve
+  (:func:`checker.calc.torsional.forced_response`); totals are synthesised over 720 deg and
+  given as half peak-to-peak ("half range").
+
+Sign conventions
+----------------
+* Angles: ``theta_i(t) = sum_n Re{Theta_in exp(j n w t)}``, station angle relative to a node
+  rotating at the mean speed, positive in the direction of rotation (so the crank-nose motion is
+  *not* twist; seed 000). Amplitudes are 0-to-peak per order, half peak-to-peak for totals.
+* Element torque ``T_e`` (quantity ``tv.element_torque``, extras ``coeffs``, ``vib_max``,
+  ``vib_min``, ``mean``): the torque the front part of the chain exerts on the rear part
+  through element ``e``, positive in the direction of rotation; equivalently positive when the
+  front station leads the rear one. A crankshaft transmitting drive torque to the flywheel
+  carries a positive mean torque.
+* Mean element torque: the mean cylinder (indicated, gas) torques applied at the cylinder
+  stations and the accessory-drive torque taken off at the crank-nose station, summed from the
+  front: ``T_mean,e = sum_{cylinder stations in front of e} mean(T_cyl) - T_FEAD [nose in
+  front of e]``. Friction is not subtracted, so the flywheel element carries brake torque plus
+  friction torque (conservative toward the flywheel); the flywheel station takes the remainder.
+* Damper rubber (``damper.*``): relative twist ``dphi = Theta_hub - Theta_ring`` and torque hub
+  -> ring ``(k' + j k'') dphi`` (:mod:`checker.calc.damper`).
+* Joint torque (``tv.joint_torque``): the peak over the cycle of the magnitude of the total
+  torque (mean + vibratory) through the joint: crank nose ``|T_FEAD - T_rubber(t)|`` (the
+  crank drives the pulley and the damper ring), flywheel ``|T_brake + T_e,flywheel(t)|``.
+
+Damper limits: the supplier's limits are per engine (sheet ``Damper``), so the rules compare
+*ratios* (value / supplier limit) with 1 (``damper.*_ratio``); without the limit the ratio is
+missing and the rule is ``not evaluated`` naming the Damper cell.
+
+Calculations: ``tv_response`` (all ``tv.*`` and ``damper.*`` quantities but the joint torques)
+and ``tv_joint_torque`` (``tv.joint_torque``, needed by the joints module when JointTorques
+does not give every joint and operating point) share one solve per run. ``tv_joint_torque``
+never fails on missing TV inputs: its entries are missing with the reasons, so the joints
+module still uses the torques the workbook gives.
+"""
+
+from __future__ import annotations
+
+import weakref
+
+import numpy as np
+
+from ..calc import crank_forces as cf
+from ..calc import damper as dmp
+from ..calc import excitation as exc
+from ..calc import torsional as tv
+from ..engine import Engine
+from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity, register_module
+from .joints import POINTS
+
+register_module("torsion", "Torsional vibration")
+
+RPM = 2.0 * np.pi / 60.0
+CASES = ("full", "no")
+MAX_ORDER = exc.DEFAULT_MAX_ORDER
+"""Highest harmonic order (24; benchmarks/bench_tv.py: <= 0.03 % on the nose amplitude)."""
+EXTREMES_SAMPLES_PER_PERIOD = 16
+"""Samples per period of the highest order for the max/min of synthesised torques (refined by a
+parabola through the largest sample and its neighbours)."""
+
+NATURAL = quantity(QuantitySpec(
+    "tv.natural_frequency", "Hz", ("mode",),
+    "Undamped natural frequencies of the torsional model (flexible modes)", "Hz"))
+NOSE = quantity(QuantitySpec(
+    "tv.nose_amplitude", "rad", ("case", "speed"),
+    "Crank-nose TV amplitude, all orders synthesised (half peak-to-peak)", "deg",
+    coords={"case": CASES}))
+NOSE_ORDER = quantity(QuantitySpec(
+    "tv.nose_order_amplitude", "rad", ("order", "case", "speed"),
+    "Crank-nose TV amplitude per order (0-to-peak)", "deg", coords={"case": CASES}))
+NOSE_CYL = quantity(QuantitySpec(
+    "tv.nose_cylinder_order_amplitude", "rad", ("case", "speed"),
+    "Crank-nose TV amplitude of the order equal to the cylinder count (4th for an I4, 6th for"
+    " a V6/I6)", "deg", coords={"case": CASES}))
+NOSE_HIGH = quantity(QuantitySpec(
+    "tv.nose_higher_order_amplitude", "rad", ("order", "case", "speed"),
+    "Crank-nose TV amplitude of each order above the cylinder count", "deg",
+    coords={"case": CASES}))
+TWIST = quantity(QuantitySpec(
+    "tv.crank_twist", "rad", ("case", "speed"),
+    "Crankshaft twist crank nose to flywheel, all orders synthesised (half peak-to-peak)", "deg",
+    coords={"case": CASES}))
+ELEMENT = quantity(QuantitySpec(
+    "tv.element_torque", "N*m", ("item", "case", "speed"),
+    "Vibratory torque in each element of the TV model (half peak-to-peak; mean, max/min and"
+    " per-order torques in extra)", "N*m", ("kind",), coords={"case": CASES}))
+JOINT = quantity(QuantitySpec(
+    "tv.joint_torque", "N*m", ("item", "point"),
+    "Peak torque through a bolted joint from the TV model (mean + vibratory)", "N*m",
+    ("location",), coords={"point": POINTS}))
+D_TWIST = quantity(QuantitySpec(
+    "damper.relative_twist", "rad", ("case", "speed"),
+    "Damper rubber relative twist hub - ring (half peak-to-peak)", "deg",
+    coords={"case": CASES}))
+D_TORQUE = quantity(QuantitySpec(
+    "damper.torque", "N*m", ("case", "speed"),
+    "Damper rubber torque (half peak-to-peak)", "N*m", coords={"case": CASES}))
+D_POWER = quantity(QuantitySpec(
+    "damper.power", "W", ("case", "speed"),
+    "Power dissipated in the damper rubber (sum of orders)", "W", coords={"case": CASES}))
+D_SHEAR = quantity(QuantitySpec(
+    "damper.shear_stress", "Pa", ("case", "speed"),
+    "Damper rubber shear stress amplitude at the inner (bonded) radius", "MPa",
+    coords={"case": CASES}))
+D_HEAT = quantity(QuantitySpec(
+    "damper.heat_density", "W/m**3", ("case", "speed"),
+    "Mean heat generated per unit rubber volume (P/V)", "W/cm**3", coords={"case": CASES}))
+D_HEAT_PEAK = quantity(QuantitySpec(
+    "damper.heat_density_peak", "W/m**3", ("case", "speed"),
+    "Peak local heat per unit rubber volume (inner radius, q_mean (r_o/r_i)^2)", "W/cm**3",
+    coords={"case": CASES}))
+D_SHEAR_RATIO = quantity(QuantitySpec(
+    "damper.shear_stress_ratio", "", ("case", "speed"),
+    "Damper rubber shear stress / supplier limit (Damper sheet)", "", coords={"case": CASES}))
+D_HEAT_RATIO = quantity(QuantitySpec(
+    "damper.heat_ratio", "", ("case", "speed"),
+    "Mean rubber heat per unit volume / supplier limit (Damper sheet)", "",
+    coords={"case": CASES}))
+D_HEAT_PEAK_RATIO = quantity(QuantitySpec(
+    "damper.heat_peak_ratio", "", ("case", "speed"),
+    "Peak local rubber heat per unit volume / supplier limit (Damper sheet)", "",
+    coords={"case": CASES}))
+
+_DAMPER_QUANTITIES = ("damper.relative_twist", "damper.torque", "damper.power",
+                      "damper.shear_stress", "damper.heat_density", "damper.heat_density_peak",
+                      "damper.shear_stress_ratio", "damper.heat_ratio", "damper.heat_peak_ratio")
+PROVIDES = ("tv.natural_frequency", "tv.nose_amplitude", "tv.nose_order_amplitude",
+            "tv.nose_cylinder_order_amplitude", "tv.nose_higher_order_amplitude",
+            "tv.crank_twist", "tv.element_torque") + _DAMPER_QUANTITIES
+
+
+def _rpm_text(w: float) -> str:
+    return f"{w / RPM:.0f} rpm"
+
+
+def _extremes(orders: np.ndarray, coeffs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Max and min over 720 deg of ``sum_n Re{c_n exp(j n theta)}`` (order axis last).
+
+    Sampled by :func:`checker.calc.torsional.synthesize` (``EXTREMES_SAMPLES_PER_PERIOD`` per
+    period of the highest order), refined by the vertex of the parabola through the extreme
+    sample and its neighbours (error O(h^4) of the signal's smooth part).
+    """
+    m = int(round(2 * orders.max()))  # FFT bin of the highest order (2 periods per cycle)
+    n_pts = max(64, EXTREMES_SAMPLES_PER_PERIOD * m)
+    _, x = tv.synthesize(orders, coeffs, n_pts)
+
+    def top(y: np.ndarray) -> np.ndarray:
+        k = np.argmax(y, axis=-1)[..., None]
+        y0 = np.take_along_axis(y, k, -1)[..., 0]
+        ym = np.take_along_axis(y, (k - 1) % n_pts, -1)[..., 0]
+        yp = np.take_along_axis(y, (k + 1) % n_pts, -1)[..., 0]
+        a = 0.5 * (ym + yp - 2.0 * y0)
+        b = 0.5 * (yp - ym)
+        return np.where(a < 0, y0 - b * b / (4.0 * np.where(a < 0, a, -1.0)), y0)
+
+    return top(x), -top(-x)
+
+
+def _tv_inputs(engine: Engine) -> dict:
+    """Model data from TVModel/Damper/Cylinders; raises MissingInputs naming the cells."""
+    st = engine.tv_model
+    problems: list[str] = []
+    if len(st) < 2:
+        raise MissingInputs(["TVModel: a torsional model of at least two stations (damper"
+                             " ring, crank nose, cylinders, flywheel) is needed (sheet TVModel)"])
+    roles = [s.role for s in st]
+    if "crank nose" not in roles:
+        problems.append("TVModel: no station with role 'crank nose' (column 'role')")
+    p = engine.params
+    for name in ("piston_mass", "rod_mass", "rod_com", "rod_inertia"):
+        if p.get(name) is None:
+            problems.append(engine.describe_missing("Engine", name, what="the engine (needed"
+                                                    " for the inertia torque of the TV"
+                                                    " excitation)"))
+    station_of = {s.cylinder: i for i, s in enumerate(st) if s.cylinder is not None}
+    for c in engine.cylinders:
+        if c.number not in station_of:
+            problems.append(f"TVModel: no station for cylinder {c.number} (column 'cylinder')")
+    ring = roles.index("damper ring") if "damper ring" in roles else None
+    if ring is not None and ring == len(st) - 1:
+        problems.append("TVModel: the 'damper ring' station is the last one; its rubber element"
+                        " is the element to the next station")
+        ring = None
+    stiffness = np.array([s.stiffness for s in st[:-1]], dtype=float)
+    rel = np.array([s.relative_damping for s in st[:-1]], dtype=float)
+    loss = np.zeros(len(st) - 1)
+    eta = engine.damper.get("loss_factor")
+    if ring is not None:
+        if eta is None and rel[ring] == 0:
+            problems.append(engine.describe_missing("Damper", "loss_factor",
+                                                    what="the damper rubber"))
+        loss[ring] = eta or 0.0
+    if problems:
+        raise MissingInputs(problems)
+    model = tv.TorsionalModel(
+        inertia=[s.inertia for s in st], stiffness=stiffness,
+        damping_abs=[s.absolute_damping for s in st], damping_rel=rel, loss_factor=loss)
+    return {"model": model, "ring": ring, "nose": roles.index("crank nose"),
+            "flywheel": roles.index("flywheel") if "flywheel" in roles else None,
+            "cyl_station": np.array([station_of[c.number] for c in engine.cylinders]),
+            "eta": float(eta or 0.0)}
+
+
+def _excitation(engine: Engine, cyc) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Order coefficients per case, speed, cylinder (C, S, n_cyl, O) and mean cylinder torque.
+
+    One cylinder's torque (firing angle 0) from :func:`cylinder_loads`, its harmonics, phased
+    by each cylinder's firing angle: ``F_in = c_n exp(-j n phi_i)``.
+    """
+    p = engine.params
+    loads = cf.cylinder_loads(
+        cyc.theta, cyc.speeds[None, :], cyc.pressure[:, :, None, :], bore=p["bore"],
+        crank_radius=p["stroke"] / 2.0, rod_length=p["rod_length"],
+        piston_mass=p["piston_mass"], rod_mass=p["rod_mass"], rod_cg_from_big_end=p["rod_com"],
+        rod_inertia=p["rod_inertia"], firing_angle=np.zeros(1),
+        cylinder_offset=p.get("cylinder_offset") or 0.0, pin_offset=p.get("pin_offset") or 0.0)
+    torque = loads.torque[:, :, 0, :]  # (C, S, N)
+    orders, coeffs = exc.torque_harmonics(torque, MAX_ORDER)
+    firing = np.array([c.firing_angle for c in engine.cylinders])
+    return orders, exc.phase_cylinders(coeffs, orders, firing), torque.mean(axis=-1)
+
+
+_SOLUTIONS: list[tuple[weakref.ref, weakref.ref, dict]] = []
+"""Solutions of the current runs, keyed by (engine, loads.cycle quantity) identity, so that the
+two calculations below share one solve within a run (weak references; a few entries)."""
+
+
+def _solution(engine: Engine, cycle: Quantity) -> dict:
+    """The TV solution for this engine and cycle (solved once per run, then reused)."""
+    for e_ref, c_ref, sol in _SOLUTIONS:
+        if e_ref() is engine and c_ref() is cycle:
+            return sol
+    sol = _solve(engine, cycle)
+    _SOLUTIONS[:] = [x for x in _SOLUTIONS if x[0]() is not None and x[1]() is not None][-3:]
+    _SOLUTIONS.append((weakref.ref(engine), weakref.ref(cycle), sol))
+    return sol
+
+
+@calculation("tv_response", "torsion", provides=PROVIDES, needs=("loads.cycle",))
+def tv_response(engine: Engine, inputs: dict) -> dict[str, Quantity]:
+    """Natural frequencies, forced response at full and no load, element and damper results."""
+    return dict(_solution(engine, inputs["loads.cycle"])["quantities"])
+
+
+@calculation("tv_joint_torque", "torsion", provides=("tv.joint_torque",), needs=("loads.cycle",))
+def tv_joint_torque(engine: Engine, inputs: dict) -> dict[str, Quantity]:
+    """Peak TV torque through each bolted joint at the three operating points.
+
+    Never raises for missing TV inputs: the entries are missing with the reasons, so that the
+    joints module still uses the torques the workbook gives (JointTorques).
+    """
+    try:
+        sol = _solution(engine, inputs["loads.cycle"])
+    except MissingInputs as exc:
+        n = len(engine.joints)
+        missing = {(i, k): list(exc.reasons) for i in range(n) for k in range(len(POINTS))}
+        return {"tv.joint_torque": Quantity(
+            JOINT, np.full((n, len(POINTS)), np.nan),
+            {"item": [j.name for j in engine.joints], "point": list(POINTS)},
+            {j.name: {"location": j.location} for j in engine.joints}, missing,
+            extra={"speed": np.full((n, len(POINTS)), np.nan),
+                   "case": np.full((n, len(POINTS)), "", dtype=object),
+                   "how": np.full((n, len(POINTS)), "", dtype=object)})}
+    return {"tv.joint_torque": _joints(engine, **sol["joint_inputs"])}
+
+
+def _solve(engine: Engine, cycle: Quantity) -> dict:
+    """Natural frequencies, forced response at full and no load, element and damper results."""
+    if not engine.cylinders:
+        raise MissingInputs(["Cylinders: no cylinders given (sheet Cylinders)"])
+    data = _tv_inputs(engine)
+    model: tv.TorsionalModel = data["model"]
+    cyc = cycle.extra["cycle"]
+    cases = list(cyc.cases)
+    speeds = np.asarray(cyc.speeds, dtype=float)
+    C, S = len(cases), speeds.size
+    n_st, n_el = model.n_stations, model.n_elements
+    names = [s.station for s in engine.tv_model]
+    roles = [s.role for s in engine.tv_model]
+    nose, ring, fw = data["nose"], data["ring"], data["flywheel"]
+    assumptions = [
+        "TV excitation: crank torque of gas pressure plus reciprocating and con-rod inertia at"
+        " constant speed (checker.calc.crank_forces.cylinder_loads), orders 0.5 to"
+        f" {MAX_ORDER:g}, phased by the firing angles; the variable inertia of pistons and rods"
+        " is the constant inertia lumped at the cylinder stations (seed 000).",
+        "TV response: linear, steady state, frequency domain (seed 000 'analysis in frequency"
+        " domain'); amplitudes relative to a node rotating at the mean speed; totals are the"
+        " half peak-to-peak of all orders synthesised over 720 deg.",
+    ]
+
+    # ---------------------------------------------------------------- natural frequencies
+    w_n, modes = tv.natural_frequencies(model)
+    flex = w_n > 1e-6 * max(w_n.max(), 1.0)
+    zeta = tv.modal_damping_ratios(model, w_n, modes)
+    w_flex, m_flex, z_flex = w_n[flex], modes[:, flex], zeta[flex]
+    mode_labels = [f"mode {i + 1}" for i in range(w_flex.size)]
+
+    # ---------------------------------------------------------------- forced response
+    orders, cyl_coeffs, cyl_mean = _excitation(engine, cyc)
+    O = orders.size
+    force = tv.station_excitation(cyl_coeffs, data["cyl_station"], n_st)  # (C, S, n, O)
+    resp = tv.forced_response(model, np.tile(speeds, C), orders, force.reshape(C * S, n_st, O))
+    theta = resp.theta.reshape(C, S, n_st, O)
+    et = resp.element_torque.reshape(C, S, n_el, O)
+    omega = resp.omega.reshape(C, S, O)
+    reson = resp.resonance.reshape(C, S, O)
+
+    twist_e = theta[:, :, :-1] - theta[:, :, 1:]  # (C, S, E, O) chain: front - rear
+    rear = fw if fw is not None else n_st - 1
+    # rule quantities: exact half range (Newton-polished extremes)
+    nose_amp, crank_twist = tv.half_peak_to_peak(
+        orders, np.stack([theta[:, :, nose], theta[:, :, nose] - theta[:, :, rear]]))  # (C, S)
+    nose_ord = np.abs(theta[:, :, nose])  # (C, S, O)
+    # element torques and twists (report, joints, fatigue): parabola-refined sampled extremes
+    emax, emin = _extremes(orders, np.concatenate([et, twist_e], axis=2))  # (C, S, 2E)
+    vmax, vmin = emax[..., :n_el], emin[..., :n_el]
+    el_amp = 0.5 * (vmax - vmin)
+    tw_amp = 0.5 * (emax[..., n_el:] - emin[..., n_el:])
+
+    # mean torque per element: cylinder mean torques applied at their stations, FEAD taken off
+    # at the crank nose, summed from the front
+    fead = engine.params.get("fead_torque")
+    if fead is None:
+        assumptions.append("Accessory drive (FEAD) torque at the crank nose not given"
+                           f" ({engine.cell('Engine', 'fead_torque')}): 0 N m used.")
+    applied = np.zeros((C, S, n_st))
+    np.add.at(applied, (slice(None), slice(None), data["cyl_station"]),
+              np.broadcast_to(cyl_mean[..., None], (C, S, len(engine.cylinders))))
+    applied[:, :, nose] -= fead or 0.0
+    mean_el = np.cumsum(applied, axis=-1)[..., :n_el]  # (C, S, E)
+
+    # ---------------------------------------------------------------- findings (resonance)
+    res_text: dict[tuple[int, int], list[str]] = {}  # (case, speed) -> texts
+    find_ocs: dict[tuple[int, int, int], list[str]] = {}  # (order, case, speed) -> text
+    for ci, si, oi in zip(*np.nonzero(reson)):
+        ci, si, oi = int(ci), int(si), int(oi)
+        om = omega[ci, si, oi]
+        near = w_flex[np.argmin(np.abs(w_flex - om))] if w_flex.size else om
+        text = (f"undamped resonance: order {orders[oi]:g} at {_rpm_text(speeds[si])}"
+                f" ({cases[ci]} load) hits the natural frequency {near / (2 * np.pi):.1f} Hz;"
+                " the model has no damping for this mode, the amplitude there comes from a"
+                " regularised solve and is not physical - add damping (TVModel absolute or"
+                " relative damping, Damper loss factor)")
+        res_text.setdefault((ci, si), []).append(text)
+        find_ocs[(oi, ci, si)] = [text]
+    find_cs = dict(res_text)
+
+    # ---------------------------------------------------------------- quantities
+    cs_coords = {"case": cases, "speed": list(speeds)}
+    order_labels = [f"order {n:g}" for n in orders]
+    n_cyl = len(engine.cylinders)
+    k_cyl = int(np.argmin(np.abs(orders - n_cyl)))
+    higher = np.nonzero(orders > n_cyl + 1e-9)[0]
+    common = {"orders": orders, "speeds": speeds, "resonance": reson,
+              "assumptions": assumptions}
+    out: dict[str, Quantity] = {}
+    out["tv.natural_frequency"] = Quantity(
+        NATURAL, w_flex / (2 * np.pi), {"mode": mode_labels},
+        extra={"modes": m_flex, "stations": names, "roles": roles, "damping_ratio": z_flex,
+               "omega": w_flex, "critical_speed": w_flex[:, None] / orders[None, :],
+               "orders": orders, "rigid_body_mode": bool((~flex).any()),
+               "assumptions": assumptions})
+    nose_extra = dict(common, theta=theta[:, :, nose], station=names[nose])
+    out["tv.nose_amplitude"] = Quantity(NOSE, nose_amp, cs_coords, findings=find_cs,
+                                        extra=nose_extra)
+    out["tv.nose_order_amplitude"] = Quantity(
+        NOSE_ORDER, np.moveaxis(nose_ord, -1, 0), {"order": order_labels, **cs_coords},
+        findings=find_ocs, extra=common)
+    cyl_find = {(ci, si): v for (oi, ci, si), v in find_ocs.items() if oi == k_cyl}
+    out["tv.nose_cylinder_order_amplitude"] = Quantity(
+        NOSE_CYL, nose_ord[:, :, k_cyl], cs_coords, findings=cyl_find,
+        extra=dict(common, order=float(orders[k_cyl])))
+    pos = {int(o): i for i, o in enumerate(higher)}
+    hi_find = {(pos[oi], ci, si): v for (oi, ci, si), v in find_ocs.items() if oi in pos}
+    out["tv.nose_higher_order_amplitude"] = Quantity(
+        NOSE_HIGH, np.moveaxis(nose_ord[:, :, higher], -1, 0),
+        {"order": [order_labels[i] for i in higher], **cs_coords}, findings=hi_find,
+        extra=dict(common, orders_checked=orders[higher]))
+    out["tv.crank_twist"] = Quantity(TWIST, crank_twist, cs_coords, findings=find_cs,
+                                     extra=dict(common, stations=(names[nose], names[rear])))
+
+    el_names = [f"{names[e]} -> {names[e + 1]}" for e in range(n_el)]
+    el_attrs = {el_names[e]: {"kind": "damper rubber" if e == ring else "shaft",
+                              "front": names[e], "rear": names[e + 1]} for e in range(n_el)}
+    el_find = {(e, ci, si): v for (ci, si), v in res_text.items() for e in range(n_el)}
+    out["tv.element_torque"] = Quantity(
+        ELEMENT, np.moveaxis(el_amp, -1, 0), {"item": el_names, **cs_coords}, el_attrs,
+        findings=el_find,
+        extra=dict(common,
+                   coeffs=np.moveaxis(et, 2, 0),  # (E, C, S, O) complex [N m]
+                   vib_max=np.moveaxis(vmax, -1, 0), vib_min=np.moveaxis(vmin, -1, 0),
+                   mean=np.moveaxis(mean_el, -1, 0),  # (E, C, S) [N m]
+                   twist=np.moveaxis(tw_amp, -1, 0),  # (E, C, S) [rad]
+                   twist_coeffs=np.moveaxis(twist_e, 2, 0),
+                   cylinder_mean_torque=cyl_mean,  # (C, S) one cylinder [N m]
+                   sign=("torque the front part exerts on the rear part through the element,"
+                         " positive in the direction of rotation (front station leads)"),
+                   mean_definition=("sum from the front of the mean cylinder torques at the"
+                                    " cylinder stations minus the FEAD torque at the crank"
+                                    " nose; friction not subtracted")))
+
+    out.update(_damper(engine, data, model, orders, theta, omega, cs_coords, find_cs, common))
+    return {"quantities": out,
+            "joint_inputs": dict(data=data, speeds=speeds, cases=cases, vmax=vmax, vmin=vmin,
+                                 el_names=el_names, res_text=res_text, fead=fead or 0.0,
+                                 assumptions=assumptions)}
+
+
+def _damper(engine: Engine, data: dict, model: tv.TorsionalModel, orders: np.ndarray,
+            theta: np.ndarray, omega: np.ndarray, cs_coords: dict, findings: dict,
+            common: dict) -> dict[str, Quantity]:
+    """Damper rubber twist, torque, power, shear stress and heat (and the limit ratios)."""
+    ring = data["ring"]
+    shape = theta.shape[:2]
+    nan = np.full(shape, np.nan)
+
+    def q(spec, values, missing=(), extra=None):
+        miss = {(ci,): list(missing) for ci in range(shape[0])} if missing else {}
+        return Quantity(spec, values, cs_coords, missing=miss, findings=findings,
+                        extra=dict(common, **(extra or {})))
+
+    if ring is None:
+        why = ["TVModel: no station with role 'damper ring' (engine without a TV damper)"]
+        return {n: q(_SPECS[n], nan, why) for n in _DAMPER_QUANTITIES}
+    hub = ring + 1
+    ks = float(model.stiffness[ring])
+    eta = float(model.loss_factor[ring])
+    c_rel = float(model.damping_rel[ring])
+    dphi = dmp.relative_twist(theta[:, :, hub], theta[:, :, ring])  # (C, S, O)
+    torque = dmp.damper_torque(dphi, omega, ks, eta, c_rel)
+    power_o = dmp.dissipated_power(dphi, omega, ks, eta, c_rel)
+    power = power_o.sum(-1)
+    twist_amp = dmp.synthesized_amplitude(orders, dphi)
+    torque_amp = dmp.synthesized_amplitude(orders, torque)
+    base = {"dphi": dphi, "torque_orders": torque, "power_orders": power_o,
+            "stiffness": ks, "loss_factor": eta, "relative_damping": c_rel,
+            "hub": engine.tv_model[hub].station, "ring": engine.tv_model[ring].station}
+    out = {"damper.relative_twist": q(D_TWIST, twist_amp, extra=base),
+           "damper.torque": q(D_TORQUE, torque_amp, extra=base),
+           "damper.power": q(D_POWER, power, extra=base)}
+    d = engine.damper
+    geo_missing = [engine.describe_missing("Damper", a, what="the damper rubber")
+                   for a in ("inner_radius", "outer_radius", "axial_length") if d.get(a) is None]
+    if geo_missing:
+        for n in ("damper.shear_stress", "damper.heat_density", "damper.heat_density_peak",
+                  "damper.shear_stress_ratio", "damper.heat_ratio", "damper.heat_peak_ratio"):
+            out[n] = q(_SPECS[n], nan, geo_missing)
+        return out
+    ri, ro, ln = d["inner_radius"], d["outer_radius"], d["axial_length"]
+    tau = dmp.annulus_shear_stress(torque_amp, ri, ln)
+    q_mean, q_peak = dmp.annulus_heat_density(power, ri, ro, ln)
+    geom = dict(base, volume=float(dmp.annulus_volume(ri, ro, ln)),
+                shear_modulus=ks / float(dmp.annulus_stiffness(1.0, ri, ro, ln)),
+                shear_orders=dmp.annulus_shear_stress(np.abs(torque), ri, ln))
+    out["damper.shear_stress"] = q(D_SHEAR, tau, extra=geom)
+    out["damper.heat_density"] = q(D_HEAT, q_mean, extra=geom)
+    out["damper.heat_density_peak"] = q(D_HEAT_PEAK, q_peak, extra=geom)
+    for name, spec, val, lim_attr in (
+            ("damper.shear_stress_ratio", D_SHEAR_RATIO, tau, "shear_stress_limit"),
+            ("damper.heat_ratio", D_HEAT_RATIO, q_mean, "heat_limit"),
+            ("damper.heat_peak_ratio", D_HEAT_PEAK_RATIO, q_peak, "heat_limit")):
+        lim = d.get(lim_attr)
+        if lim is None:
+            out[name] = q(spec, nan, [engine.describe_missing(
+                "Damper", lim_attr, what="the damper supplier (needed for the ratio)")])
+        else:
+            out[name] = q(spec, val / lim, extra=dict(geom, limit=lim,
+                                                      limit_cell=engine.cell("Damper",
+                                                                             lim_attr)))
+    return out
+
+
+def _joints(engine: Engine, data: dict, speeds: np.ndarray, cases: list[str], vmax: np.ndarray,
+            vmin: np.ndarray, el_names: list[str], res_text: dict, fead: float,
+            assumptions: list[str]) -> Quantity:
+    """Peak TV torque through each bolted joint at 'tv peak', 'max power' and 'overspeed'.
+
+    * crank nose: the element ending at the crank-nose station (the damper rubber in the usual
+      layout) plus the accessory drive torque: ``max_t |T_FEAD - T_e(t)|``;
+    * flywheel: the element ending at the flywheel station plus the brake torque (full load,
+      BrakeTorque sheet; 0 at no load): ``max_t |T_brake + T_e(t)|``.
+    Points: 'tv peak' = speed of the largest such torque over the full-load sweep; 'max power'
+    = speed of the maximum brake power of the BrakeTorque sheet, full load; 'overspeed' =
+    Engine 'Overspeed', no load. Each uses the nearest swept speed (recorded in extra).
+    """
+    joints = engine.joints
+    nj, npt = len(joints), len(POINTS)
+    vals = np.full((nj, npt), np.nan)
+    speed_used = np.full((nj, npt), np.nan)
+    case_used = np.full((nj, npt), "", dtype=object)
+    how = np.full((nj, npt), "", dtype=object)
+    missing: dict[tuple, list[str]] = {}
+    findings: dict[tuple, list[str]] = {}
+    ci_full, ci_no = cases.index("full"), cases.index("no")
+    bt = np.array(engine.brake_torque, dtype=float).reshape(-1, 2)
+    p = engine.params
+    # operating-point speeds
+    mp_speed = None
+    if bt.size:
+        mp_speed = float(bt[np.argmax(bt[:, 0] * bt[:, 1]), 0])
+    ov_speed = p.get("overspeed")
+    brake_missing = "BrakeTorque: full-load brake torque vs speed (sheet BrakeTorque)"
+    given = {(t.joint, t.point) for t in engine.joint_torques}
+    notes = []
+    for i, j in enumerate(joints):
+        if j.location == "crank nose":
+            e = data["nose"] - 1
+            if e < 0:
+                for k in range(npt):
+                    missing[(i, k)] = ["TVModel: no station in front of the crank nose (damper"
+                                       " ring); the crank-nose joint torque needs its element"]
+                continue
+            sign, mean = -1.0, np.full((len(cases), speeds.size), fead)
+            src = f"{el_names[e]} (damper rubber) + FEAD {fead:g} N m"
+        elif j.location == "flywheel":
+            fw = data["flywheel"]
+            if fw is None or fw == 0:
+                for k in range(npt):
+                    missing[(i, k)] = ["TVModel: no station with role 'flywheel' (the flywheel"
+                                       " joint torque is the torque of the element ending"
+                                       " there)"]
+                continue
+            e = fw - 1
+            sign = 1.0
+            mean = np.zeros((len(cases), speeds.size))
+            if bt.size:
+                mean[ci_full] = np.interp(speeds, bt[:, 0], bt[:, 1])
+            src = f"{el_names[e]} + brake torque"
+        else:
+            for k in range(npt):
+                missing[(i, k)] = [f"TVModel: no torque cut is defined for a joint at location"
+                                   f" '{j.location}' (give its torque in JointTorques)"]
+            continue
+        hi, lo = sign * vmax[:, :, e], sign * vmin[:, :, e]
+        if sign < 0:
+            hi, lo = lo, hi
+        peak = np.maximum(np.abs(mean + hi), np.abs(mean + lo))  # (C, S)
+        points: list[tuple[int, int | None, str]] = []
+        if j.location == "flywheel" and not bt.size:
+            points.append((0, None, brake_missing))
+        else:
+            points.append((ci_full, int(np.argmax(peak[ci_full])), ""))
+        if mp_speed is None:
+            points.append((ci_full, None, brake_missing + " (maximum power speed)"))
+        else:
+            points.append((ci_full, int(np.argmin(np.abs(speeds - mp_speed))), ""))
+        if ov_speed is None:
+            points.append((ci_no, None, engine.describe_missing("Engine", "overspeed")))
+        else:
+            points.append((ci_no, int(np.argmin(np.abs(speeds - ov_speed))), ""))
+        for k, (ci, si, why) in enumerate(points):
+            if si is None:
+                missing[(i, k)] = [why]
+                continue
+            vals[i, k] = peak[ci, si]
+            speed_used[i, k] = speeds[si]
+            case_used[i, k] = cases[ci]
+            how[i, k] = (f"{src}: {cases[ci]} load at {_rpm_text(speeds[si])}, mean"
+                         f" {mean[ci, si]:.0f} N m, vibratory {lo[ci, si]:+.0f}..{hi[ci, si]:+.0f}"
+                         f" N m, peak |T| {peak[ci, si]:.0f} N m")
+            if (ci, si) in res_text:
+                findings[(i, k)] = res_text[(ci, si)]
+            if (j.name, POINTS[k]) in given:
+                continue
+            notes.append(f"{j.name} at '{POINTS[k]}': {vals[i, k]:.0f} N m ({how[i, k]})")
+            if j.location == "flywheel" and ci == ci_full and (
+                    speeds[si] < bt[0, 0] - 1e-9 or speeds[si] > bt[-1, 0] + 1e-9):
+                notes[-1] = (notes[-1][:-1] + "; brake torque held at the end of the"
+                             " BrakeTorque table)")
+    assumptions = list(assumptions)
+    if notes:
+        assumptions.append("Joint torques not given in JointTorques are taken from the TV"
+                           " module (peak |mean + vibratory| over the cycle): "
+                           + "; ".join(notes))
+    attrs = {j.name: {"location": j.location} for j in joints}
+    return Quantity(JOINT, vals, {"item": [j.name for j in joints], "point": list(POINTS)},
+                    attrs, missing, findings,
+                    extra={"speed": speed_used, "case": case_used, "how": how,
+                           "max_power_speed": mp_speed, "overspeed": ov_speed,
+                           "assumptions": assumptions})
+
+
+_SPECS = {s.name: s for s in (D_TWIST, D_TORQUE, D_POWER, D_SHEAR, D_HEAT, D_HEAT_PEAK,
+                              D_SHEAR_RATIO, D_HEAT_RATIO, D_HEAT_PEAK_RATIO)}

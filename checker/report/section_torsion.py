@@ -1,0 +1,411 @@
+"""Report section: crankshaft torsional vibration, TV damper and joint torques."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..api import CheckResult
+from .plots import LIMIT_STYLE, figure, to_svg
+from .sections import fmt, section
+
+RPM = 2 * np.pi / 60
+DEG = 180 / np.pi
+CASE_TEXT = {"full": "full load", "no": "no load"}
+
+
+def _svg(fig) -> str:
+    """SVG of a figure; side-by-side panels get room for their axis labels (cheaper than
+    tight_layout, which renders the figure once more)."""
+    fig.subplots_adjust(wspace=0.35)
+    return to_svg(fig)
+
+
+def _limit(res: CheckResult, quantity: str, unit: str) -> float | None:
+    """Display limit of the rule (after overrides) on ``quantity`` if its unit is ``unit``."""
+    for r in res.table.rules:
+        if r.quantity == quantity and r.limit and r.unit == unit:
+            return r.limit[0]
+    return None
+
+
+def _inputs(res: CheckResult) -> list[dict]:
+    eng = res.engine
+    rows = []
+    for s in eng.tv_model:
+        rows.append([s.station, s.role, "-" if s.cylinder is None else str(s.cylinder),
+                     fmt(s.inertia * 1e3, 5), fmt(s.absolute_damping, 3),
+                     "-" if s.stiffness is None else fmt(s.stiffness / 1e3, 6),
+                     fmt(s.relative_damping, 3)])
+    blocks = [{"type": "table", "caption": "Torsional model (sheet TVModel), front to rear",
+               "columns": ["station", "role", "cylinder", "J [g m²]", "d_abs [N m s/rad]",
+                           "k to next [kN m/rad]", "c to next [N m s/rad]"], "rows": rows}]
+    d = eng.damper
+    rows = []
+    for key, label, f, u in (("loss_factor", "Rubber loss factor η", 1, "-"),
+                             ("inner_radius", "Rubber inner radius", 1e3, "mm"),
+                             ("outer_radius", "Rubber outer radius", 1e3, "mm"),
+                             ("axial_length", "Rubber axial length", 1e3, "mm"),
+                             ("shear_stress_limit", "Shear stress limit (supplier)", 1e-6,
+                              "MPa"),
+                             ("heat_limit", "Heat per unit volume limit (supplier)", 1e-6,
+                              "W/cm³")):
+        v = d.get(key)
+        rows.append([label, "-" if v is None else fmt(v * f, 5), u,
+                     eng.cell("Damper", key)])
+    fead = eng.params.get("fead_torque")
+    rows.append(["Accessory drive torque at the crank nose",
+                 "-" if fead is None else fmt(fead, 4), "N m", eng.cell("Engine", "fead_torque")])
+    blocks.append({"type": "table", "caption": "Damper rubber and accessory drive (sheets"
+                   " Damper, Engine)", "columns": ["parameter", "value", "unit", "cell"],
+                   "rows": rows})
+    return blocks
+
+
+def _modes(res: CheckResult, nf, sp: np.ndarray) -> list[dict]:
+    ex = nf.extra
+    f = nf.values
+    orders = ex["orders"]
+    n_cyl = len(res.engine.cylinders)
+    major = [o for o in orders if abs((o / (n_cyl / 2)) - round(o / (n_cyl / 2))) < 1e-9
+             and o <= 4 * n_cyl]
+    rows = []
+    lo, hi = sp.min(), sp.max()  # [rad/s]
+    for i, lab in enumerate(nf.coords["mode"]):
+        crit = ex["critical_speed"][i]
+        inside = [f"{o:g}: {c / RPM:.0f}" for o, c in zip(orders, crit)
+                  if o in major and lo <= c <= hi]
+        rows.append([lab, fmt(f[i], 5), fmt(ex["damping_ratio"][i] * 100, 3),
+                     ", ".join(inside) or "-"])
+    blocks: list[dict] = [{"type": "table", "caption": "Undamped natural frequencies (flexible"
+                           " modes), modal damping ratio and critical speeds of the major"
+                           " orders inside the speed range",
+                           "columns": ["mode", "f [Hz]", "ζ [%]",
+                                       "major order: critical speed [rpm]"], "rows": rows}]
+    modes = ex["modes"]
+    stations = ex["stations"]
+    n_show = min(3, f.size)
+    if n_show:
+        fig, ax = figure(170, 60)
+        x = np.arange(len(stations))
+        for i in range(n_show):
+            phi = modes[:, i] / np.max(np.abs(modes[:, i]))
+            ax.plot(x, phi, marker="o", label=f"mode {i + 1}: {f[i]:.0f} Hz")
+        ax.axhline(0, color="k", lw=0.6)
+        ax.set_xticks(x, stations, rotation=20, fontsize=6)
+        ax.set_ylabel("Relative amplitude [-]")
+        ax.legend(fontsize=6)
+        blocks.append({"type": "figure", "svg": _svg(fig),
+                       "caption": "Mode shapes (normalised to the largest station amplitude)"})
+    # Campbell diagram
+    fig, ax = figure(170, 80)
+    x_max = hi / RPM * 1.1
+    f_show = f[f <= max(orders) * x_max / 60]
+    y_max = (f_show.max() if f_show.size else f.min()) * 1.15
+    ax.axvspan(lo / RPM, hi / RPM, color="#3498db", alpha=0.08, label="speed range")
+    for o in [o for o in orders if float(o).is_integer() and o <= 2 * n_cyl + 4]:
+        is_major = o in major
+        ax.plot([0, x_max], [0, o * x_max / 60], color="#2c3e50" if is_major else "#95a5a6",
+                lw=1.0 if is_major else 0.6)
+        y_end = o * x_max / 60
+        if y_end > y_max:
+            ax.text(y_max * 60 / o, y_max, f" {o:g}", fontsize=6, va="top")
+        else:
+            ax.text(x_max, y_end, f" {o:g}", fontsize=6, va="center")
+    for i, fi in enumerate(f_show):
+        ax.axhline(fi, **LIMIT_STYLE)
+        ax.text(0, fi, f" mode {i + 1} {fi:.0f} Hz", fontsize=6, va="bottom",
+                color=LIMIT_STYLE["color"])
+        crit = ex["critical_speed"][i] / RPM
+        pick = [(c, o) for o, c in zip(orders, crit) if o in major and lo / RPM <= c <= hi / RPM]
+        if pick:
+            ax.plot([c for c, _ in pick], [fi] * len(pick), "o", color="#c0392b", ms=3)
+    ax.set_xlim(0, x_max)
+    ax.set_ylim(0, y_max)
+    ax.set_xlabel("Engine speed [rpm]")
+    ax.set_ylabel("Frequency [Hz]")
+    ax.legend(fontsize=6, loc="upper left")
+    blocks.append({"type": "figure", "svg": _svg(fig),
+                   "caption": "Campbell diagram: engine orders (dark: major orders) against the"
+                              " natural frequencies; dots mark major-order resonances inside"
+                              " the speed range"})
+    return blocks
+
+
+def _nose(res: CheckResult, q: dict) -> list[dict]:
+    tot, per = q["tv.nose_amplitude"], q["tv.nose_order_amplitude"]
+    cyl = q.get("tv.nose_cylinder_order_amplitude")
+    sp = np.array(tot.coords["speed"]) / RPM
+    labels = per.coords["order"]
+    orders = per.extra["orders"]
+    cases = tot.coords["case"]
+    n_cyl = len(res.engine.cylinders)
+    lim_cyl = _limit(res, "tv.nose_cylinder_order_amplitude", "deg")
+    lim_hi = _limit(res, "tv.nose_higher_order_amplitude", "deg")
+    fig, axes = figure(170, 75, ncols=len(cases), sharey=True, squeeze=False)
+    for ci, c in enumerate(cases):
+        ax = axes[0, ci]
+        ax.plot(sp, tot.values[ci] * DEG, color="k", lw=1.6, label="total (synthesis)")
+        peak = per.values[:, ci].max(axis=-1)
+        k_cyl = int(np.argmin(np.abs(orders - n_cyl)))
+        top = [k for k in np.argsort(-peak) if k != k_cyl][:5]
+        for k in [k_cyl] + sorted(top, key=lambda k: orders[k]):
+            ax.plot(sp, per.values[k, ci] * DEG, lw=1.4 if k == k_cyl else 0.9,
+                    label=labels[k])
+        for lim, text, va in ((lim_cyl, f"order {n_cyl} limit", "bottom"),
+                              (lim_hi, "higher orders limit", "top")):
+            if lim is not None:
+                ax.axhline(lim, **LIMIT_STYLE)
+                ax.text(sp[-1], lim, f"{text} {lim:g}° ", fontsize=6, va=va, ha="right",
+                        color=LIMIT_STYLE["color"])
+        ax.set_yscale("log")
+        ax.set_ylim(1e-3, None)
+        ax.set_title(CASE_TEXT.get(c, c), fontsize=8)
+        ax.set_xlabel("Engine speed [rpm]")
+        ax.legend(fontsize=5.5, ncols=2)
+    axes[0, 0].set_ylabel("Crank-nose amplitude [deg]")
+    blocks: list[dict] = [{"type": "figure", "svg": _svg(fig), "caption": (
+        "Crank-nose TV amplitude against speed (relative to a node rotating at the mean speed,"
+        " not twist): total = half peak-to-peak of all orders; orders 0-to-peak (the"
+        f" cylinder-count order {n_cyl} and the five largest others)")}]
+    rows = []
+    hi_q = q.get("tv.nose_higher_order_amplitude")
+    for ci, c in enumerate(cases):
+        k = int(np.argmax(tot.values[ci]))
+        rows.append([CASE_TEXT.get(c, c), "total (half peak-to-peak)",
+                     fmt(tot.values[ci, k] * DEG, 4), f"{sp[k]:.0f}", "-"])
+        if cyl is not None:
+            k = int(np.argmax(cyl.values[ci]))
+            rows.append([CASE_TEXT.get(c, c), f"order {n_cyl}", fmt(cyl.values[ci, k] * DEG, 4),
+                         f"{sp[k]:.0f}", "-" if lim_cyl is None else f"< {lim_cyl:g}"])
+        if hi_q is not None and hi_q.values.size:
+            v = hi_q.values[:, ci]
+            o, k = np.unravel_index(int(np.argmax(v)), v.shape)
+            rows.append([CASE_TEXT.get(c, c), f"worst higher: {hi_q.coords['order'][o]}",
+                         fmt(v[o, k] * DEG, 4), f"{sp[k]:.0f}",
+                         "-" if lim_hi is None else f"< {lim_hi:g}"])
+    blocks.append({"type": "table", "caption": "Largest crank-nose amplitudes",
+                   "columns": ["case", "content", "amplitude [deg]", "speed [rpm]",
+                               "limit [deg]"], "rows": rows})
+    return blocks
+
+
+def _elements(q: dict) -> list[dict]:
+    et = q["tv.element_torque"]
+    tw = q.get("tv.crank_twist")
+    ex = et.extra
+    sp = np.array(et.coords["speed"]) / RPM
+    cases = et.coords["case"]
+    names = et.coords["item"]
+    fig, axes = figure(170, 70, ncols=2, squeeze=False)
+    ax = axes[0, 0]
+    for ci, c in enumerate(cases):
+        if tw is not None:
+            ax.plot(sp, tw.values[ci] * DEG, label=f"nose to flywheel, {CASE_TEXT.get(c, c)}")
+    ax.set_xlabel("Engine speed [rpm]")
+    ax.set_ylabel("[deg]")
+    ax.set_title("crank twist, half peak-to-peak", fontsize=8)
+    ax.legend(fontsize=6)
+    ax = axes[0, 1]
+    ci = cases.index("full") if "full" in cases else 0
+    for e, n in enumerate(names):
+        ax.plot(sp, et.values[e, ci], label=n, lw=0.9)
+    ax.set_xlabel("Engine speed [rpm]")
+    ax.set_ylabel("[N m]")
+    ax.set_title("vibratory torque, half peak-to-peak, full load", fontsize=8)
+    ax.legend(fontsize=5.5)
+    blocks: list[dict] = [{"type": "figure", "svg": _svg(fig), "caption": (
+        "Crankshaft twist (crank nose to flywheel) and vibratory torque in every element of"
+        " the TV model against speed")}]
+    rows = []
+    for e, n in enumerate(names):
+        for ci, c in enumerate(cases):
+            k = int(np.argmax(et.values[e, ci]))
+            rows.append([n, CASE_TEXT.get(c, c), fmt(et.values[e, ci, k], 4), f"{sp[k]:.0f}",
+                         fmt(ex["mean"][e, ci, k], 4), fmt(ex["vib_min"][e, ci, k], 4),
+                         fmt(ex["vib_max"][e, ci, k], 4), fmt(ex["twist"][e, ci, k] * DEG, 3)])
+    blocks.append({"type": "table", "caption": (
+        "Largest vibratory torque per element (sign: torque of the front part on the rear"
+        " part, positive in the direction of rotation; mean = cylinder mean torques from the"
+        " front minus the accessory drive, friction not subtracted)"),
+        "columns": ["element", "case", "T half range [N m]", "speed [rpm]", "T mean [N m]",
+                    "T vib min [N m]", "T vib max [N m]", "twist [deg]"], "rows": rows})
+    return blocks
+
+
+def _damper(res: CheckResult, q: dict) -> list[dict]:
+    pw = q.get("damper.power")
+    if pw is None or not np.isfinite(pw.values).any():
+        reasons = [] if pw is None else sorted({r for v in pw.missing.values() for r in v})
+        return [{"type": "text", "text": "Damper rubber: not computed"
+                 + (" (" + "; ".join(reasons) + ")" if reasons else "") + "."}]
+    sp = np.array(pw.coords["speed"]) / RPM
+    cases = pw.coords["case"]
+    d = res.engine.damper
+    heat, heat_pk, tau = (q.get(n) for n in ("damper.heat_density", "damper.heat_density_peak",
+                                             "damper.shear_stress"))
+    geo = heat is not None and np.isfinite(heat.values).any()
+    fig, axes = figure(170, 65, ncols=3 if geo else 1, squeeze=False)
+    ax = axes[0, 0]
+    for ci, c in enumerate(cases):
+        ax.plot(sp, pw.values[ci], label=CASE_TEXT.get(c, c))
+    ax.set_ylabel("[W]")
+    ax.set_title("dissipated power", fontsize=8)
+    ax.set_xlabel("Engine speed [rpm]")
+    ax.legend(fontsize=6)
+    if geo:
+        ax = axes[0, 1]
+        for ci, c in enumerate(cases):
+            ax.plot(sp, heat.values[ci] / 1e6, label=f"mean, {CASE_TEXT.get(c, c)}")
+            ax.plot(sp, heat_pk.values[ci] / 1e6, ls=":", label=f"peak, {CASE_TEXT.get(c, c)}")
+        if d.get("heat_limit") is not None:
+            ax.axhline(d["heat_limit"] / 1e6, **LIMIT_STYLE)
+            ax.text(sp[0], d["heat_limit"] / 1e6, " supplier limit", fontsize=6, va="bottom",
+                    color=LIMIT_STYLE["color"])
+        ax.set_ylabel("[W/cm³]")
+        ax.set_title("heat per unit volume", fontsize=8)
+        ax.set_xlabel("Engine speed [rpm]")
+        ax.legend(fontsize=5.5)
+        ax = axes[0, 2]
+        for ci, c in enumerate(cases):
+            ax.plot(sp, tau.values[ci] / 1e6, label=CASE_TEXT.get(c, c))
+        if d.get("shear_stress_limit") is not None:
+            ax.axhline(d["shear_stress_limit"] / 1e6, **LIMIT_STYLE)
+            ax.text(sp[0], d["shear_stress_limit"] / 1e6, " supplier limit", fontsize=6,
+                    va="bottom", color=LIMIT_STYLE["color"])
+        ax.set_ylabel("[MPa]")
+        ax.set_title("shear stress at r_i", fontsize=8)
+        ax.set_xlabel("Engine speed [rpm]")
+        ax.legend(fontsize=6)
+    blocks: list[dict] = [{"type": "figure", "svg": _svg(fig), "caption": (
+        "TV damper rubber: dissipated power (sum of orders), heat per unit rubber volume (mean"
+        " P/V and peak at the inner radius) and shear-stress amplitude at the inner radius")}]
+    tw, tq = q.get("damper.relative_twist"), q.get("damper.torque")
+    rows = []
+    for ci, c in enumerate(cases):
+        k = int(np.argmax(pw.values[ci]))
+        row = [CASE_TEXT.get(c, c), f"{sp[k]:.0f}", fmt(pw.values[ci, k], 4),
+               fmt(tw.values[ci].max() * DEG, 4), fmt(tq.values[ci].max(), 4)]
+        if geo:
+            row += [fmt(heat.values[ci].max() / 1e6, 4), fmt(heat_pk.values[ci].max() / 1e6, 4),
+                    fmt(tau.values[ci].max() / 1e6, 4)]
+        else:
+            row += ["-", "-", "-"]
+        rows.append(row)
+    blocks.append({"type": "table", "caption": "Damper rubber maxima over the speed range",
+                   "columns": ["case", "speed of max power [rpm]", "P max [W]",
+                               "twist [deg]", "torque [N m]", "q mean [W/cm³]",
+                               "q peak [W/cm³]", "τ max [MPa]"], "rows": rows})
+    if geo:
+        ex = heat.extra
+        blocks.append({"type": "list", "items": [
+            f"Rubber volume {ex['volume'] * 1e6:.4g} cm³; storage shear modulus implied by the"
+            f" element stiffness and the geometry G' = {ex['shear_modulus'] / 1e6:.3g} MPa"
+            f" (k' = {ex['stiffness']:.5g} N m/rad, η = {ex['loss_factor']:g}).",
+            "The supplier limits are compared as ratios (value / limit ≤ 1, rules DMP-001..003).",
+        ]})
+    return blocks
+
+
+def _joints(res: CheckResult, q: dict) -> list[dict]:
+    jt = q.get("tv.joint_torque")
+    if jt is None:
+        return []
+    given = {(t.joint, t.point): t for t in res.engine.joint_torques}
+    rows = []
+    for i, n in enumerate(jt.coords["item"]):
+        for k, p in enumerate(jt.coords["point"]):
+            used = "workbook (JointTorques)" if (n, p) in given else "TV module"
+            if np.isfinite(jt.values[i, k]):
+                rows.append([n, p, CASE_TEXT.get(jt.extra["case"][i, k], "-"),
+                             f"{jt.extra['speed'][i, k] / RPM:.0f}", fmt(jt.values[i, k], 5),
+                             fmt(given[(n, p)].torque, 5) if (n, p) in given else "-", used])
+            else:
+                rows.append([n, p, "-", "-", "-",
+                             fmt(given[(n, p)].torque, 5) if (n, p) in given else "-",
+                             used if (n, p) in given else "not available: "
+                             + "; ".join(jt.missing.get((i, k), []))])
+    blocks: list[dict] = [{"type": "table", "caption": (
+        "Peak torque through the bolted joints from the TV model (max over the cycle of"
+        " |mean + vibratory|) and the value the joint check uses"),
+        "columns": ["joint", "operating point", "case", "speed [rpm]", "TV torque [N m]",
+                    "workbook [N m]", "used"], "rows": rows}]
+    items = [f"{n} at '{p}': {jt.extra['how'][i, k]}"
+             for i, n in enumerate(jt.coords["item"]) for k, p in enumerate(jt.coords["point"])
+             if jt.extra["how"][i, k]]
+    mp, ov = jt.extra.get("max_power_speed"), jt.extra.get("overspeed")
+    items.append("Operating points: 'tv peak' = speed of the largest joint torque over the"
+                 " full-load sweep; 'max power' = speed of the maximum brake power of the"
+                 " BrakeTorque sheet"
+                 + (f" ({mp / RPM:.0f} rpm)" if mp is not None else "")
+                 + ", full load; 'overspeed' = Engine 'Overspeed'"
+                 + (f" ({ov / RPM:.0f} rpm)" if ov is not None else "") + ", no load; each at"
+                 " the nearest swept speed. Crank nose: damper rubber element torque plus the"
+                 " accessory drive torque (the hub's own inertia torque is neglected);"
+                 " flywheel: torque of the element ending at the flywheel plus the brake torque"
+                 " (0 at no load).")
+    blocks.append({"type": "list", "items": items})
+    return blocks
+
+
+@section("torsion")
+def torsion_section(res: CheckResult) -> dict:
+    q = res.outcome.quantities
+    blocks: list[dict] = _inputs(res)
+    blocks.append({"type": "equations", "items": [
+        ("Forced response per order n", "[K(1 + jη) + jΩC − Ω²M]·Θₙ = Fₙ,  Ω = n·ω",
+         "torsion.md 3.3; Friswell et al. 2010 ch. 9; seed 000 (linear, frequency domain)"),
+        ("Cylinder excitation", "Fᵢₙ = cₙ·e^(−j n φᵢ),  T(θ) = c₀/2 + Σ Re{cₙ e^(jnθ)}",
+         "torsion.md 3.2-3.3; Ker Wilson vol. 2 ch. 19"),
+        ("Total amplitude", "A = (max θ(t) − min θ(t))/2 over 720°, all orders synthesised",
+         "seed 000 '1/2 peak to peak'; Lloyd's Register 'half-range'"),
+        ("Element torque", "Tₑ = zₑ·(Θ_front − Θ_rear),  zₑ = k(1 + jη) + jΩc", "torsion.md 3.3"),
+        ("Damper power", "P = Σₙ ½·Ωₙ·η·k'·|Δφₙ|²", "torsion.md 3.5; Den Hartog 1956 §2.8"),
+        ("Rubber shear stress", "τ = T / (2π·rᵢ²·L)", "torsion.md 3.5; Gent 2012 ch. 8"),
+        ("Rubber heat per volume", "q_mean = P / (π(rₒ² − rᵢ²)L),  q_peak = q_mean·(rₒ/rᵢ)²",
+         "torsion.md 3.5"),
+        ("Joint torque", "T = max_t |T_mean + T_vib(t)|", "seed 000 slides 23-24 (TV torque"
+         " + FEAD / + brake torque)"),
+    ]})
+    nf = q.get("tv.natural_frequency")
+    tot = q.get("tv.nose_amplitude")
+    if nf is not None and tot is not None:
+        sp = np.array(tot.coords["speed"])
+        blocks.append({"type": "heading", "text": "Natural frequencies and Campbell diagram"})
+        blocks += _modes(res, nf, sp)
+        blocks.append({"type": "heading", "text": "Crank-nose amplitude"})
+        blocks += _nose(res, q)
+        blocks.append({"type": "heading", "text": "Crankshaft twist and element torques"})
+        blocks += _elements(q)
+        blocks.append({"type": "heading", "text": "TV damper rubber"})
+        blocks += _damper(res, q)
+        blocks.append({"type": "heading", "text": "Torques at the bolted joints"})
+        blocks += _joints(res, q)
+        found = sorted({f for v in tot.findings.values() for f in v})
+        if found:
+            blocks.append({"type": "heading", "text": "Numerical findings"})
+            blocks.append({"type": "list", "items": found[:20] + (
+                [f"... and {len(found) - 20} more"] if len(found) > 20 else [])})
+    else:
+        reasons = sorted({r for n, v in res.outcome.unavailable.items()
+                          if n.startswith(("tv.", "damper.")) for r in v})
+        jt = q.get("tv.joint_torque")
+        if jt is not None:
+            reasons += sorted({r for v in jt.missing.values() for r in v} - set(reasons))
+        if jt is not None and np.isfinite(jt.values).any():
+            blocks.append({"type": "text", "text": "Only the joint torques of the TV model were"
+                           " needed by the selected rules; select the TV and DMP rules for the"
+                           " full torsional results."})
+            blocks += _joints(res, q)
+        else:
+            blocks.append({"type": "text", "text": "Torsional vibration not computed: "
+                           + ("; ".join(reasons) or "no torsional quantity was requested")
+                           + "."})
+    return {"id": "torsion", "title": "Torsional vibration and TV damper",
+            "intro": "Lumped-mass torsional model of the crank train (damper ring, crank nose,"
+                     " cylinders, flywheel) excited by the gas and inertia torque of every"
+                     " cylinder, solved per order in the frequency domain at full and no load"
+                     " across the speed range (seed 000, Ricardo's concept-level VALDYN"
+                     " practice): natural frequencies, crank-nose amplitude with its order"
+                     " content, crankshaft twist and element torques, damper rubber power,"
+                     " heat and stress, and the TV torques at the bolted joints.",
+            "blocks": blocks}

@@ -1,0 +1,228 @@
+"""Torsional-vibration module on the example engine: natural frequencies, order structure,
+synthesis bounds, undamped resonance findings, damper limits and the joint torques it provides.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+import scipy.linalg
+
+from checker import api
+from checker.calc import torsional as tv
+from checker.engine import load_engine
+from checker.workbook.example import TV_MODEL
+from tests.helpers import column, edited, example_path, param_row, set_param
+
+RPM = 2 * np.pi / 60
+
+
+def _workbook_chain() -> tuple[np.ndarray, np.ndarray]:
+    """M and K of the example's TVModel rows, assembled by hand (kg m^2, N m/rad)."""
+    rows = TV_MODEL[1]
+    j = np.array([r[3] for r in rows], dtype=float)
+    k = np.array([r[5] for r in rows[:-1]], dtype=float)
+    n = j.size
+    kmat = np.zeros((n, n))
+    for e, ke in enumerate(k):
+        kmat[np.ix_([e, e + 1], [e, e + 1])] += ke * np.array([[1, -1], [-1, 1]])
+    return np.diag(j), kmat
+
+
+@pytest.fixture(scope="module")
+def example(tmp_path_factory):
+    return example_path(tmp_path_factory.mktemp("tv"))
+
+
+@pytest.fixture(scope="module")
+def tv_result(example):
+    return api.check(example, select=["TV", "DMP"])
+
+
+def test_natural_frequencies_equal_direct_eigensolve(tv_result):
+    # independent: generalized symmetric eigenproblem K phi = w^2 M phi of the workbook numbers
+    mmat, kmat = _workbook_chain()
+    lam = scipy.linalg.eigh(kmat, mmat, eigvals_only=True)
+    f_ref = np.sqrt(lam[1:]) / (2 * np.pi)  # drop the free-free rigid-body mode
+    nf = tv_result.outcome.quantities["tv.natural_frequency"]
+    np.testing.assert_allclose(nf.values, f_ref, rtol=1e-9)
+    assert nf.extra["rigid_body_mode"]
+    assert 280 < nf.values[0] < 300  # damper mode below the first crank mode (543 Hz)
+
+
+def test_minor_orders_small_against_major_orders(tv_result, example):
+    # I4 firing 1-3-4-2: orders 0.5, 1, 1.5 cancel for rigid-body motion (vector sum 0), so at
+    # the nose they are only the (small) crank twist; orders 2 and 4 (major) are not.
+    q = tv_result.outcome.quantities["tv.nose_order_amplitude"]
+    amp = {lab: q.values[i] for i, lab in enumerate(q.coords["order"])}
+    minor = np.array([amp[f"order {n}"] for n in ("0.5", "1", "1.5")])  # (3, C, S)
+    assert minor.max() < 0.05 * amp["order 2"].max()
+    low = minor[:, 0, 0]  # full load, lowest speed: rolling-mode regime
+    assert np.all(low < 0.05 * amp["order 2"][0, 0]) and np.all(low < 0.25 * amp["order 4"][0, 0])
+    # control (the check can fail): every cylinder firing together makes orders 0.5..1.5 major
+    eng = load_engine(example)
+    same = dataclasses.replace(eng, cylinders=tuple(dataclasses.replace(c, firing_angle=0.0)
+                                                    for c in eng.cylinders))
+    q2 = api.check(same, select=["TV-001"]).outcome.quantities["tv.nose_order_amplitude"]
+    amp2 = {lab: q2.values[i] for i, lab in enumerate(q2.coords["order"])}
+    assert amp2["order 0.5"][0, 0] > amp["order 4"][0, 0]
+
+
+def test_synthesised_total_between_largest_order_and_sum(tv_result):
+    qs = tv_result.outcome.quantities
+    total = qs["tv.nose_amplitude"].values  # (C, S)
+    orders = qs["tv.nose_order_amplitude"].values  # (O, C, S)
+    assert np.all(np.isfinite(total)) and np.all(total > 0)
+    # sum |Theta_n| bounds the half range from above (triangle inequality); on this engine one
+    # order dominates at every speed, so the total also exceeds each single order
+    assert np.all(total <= orders.sum(axis=0) * (1 + 1e-9))
+    assert np.all(total >= orders.max(axis=0) * (1 - 1e-9))
+
+
+def test_rules_evaluated_with_sources(tv_result):
+    by_rule = {r.rule: r for r in tv_result.results}
+    assert set(by_rule) == {"TV-001", "TV-002", "DMP-001", "DMP-002", "DMP-003"}
+    for r in by_rule.values():
+        assert r.status in ("pass", "fail") and r.value is not None and r.source
+    # seed 000 model: the 6th order crank-mode resonance near 5400 rpm (543 Hz / 6) exceeds
+    # the 0.05 deg target for higher orders
+    assert by_rule["TV-002"].status == "fail" and "order 6" in by_rule["TV-002"].case
+    nose = tv_result.outcome.quantities["tv.nose_cylinder_order_amplitude"]
+    assert nose.extra["order"] == 4.0
+
+
+def test_element_torque_conventions(tv_result):
+    qs = tv_result.outcome.quantities
+    et = qs["tv.element_torque"]
+    ex = et.extra
+    fead = 19.0  # Engine 'Accessory drive torque at crank nose' of the example
+    cyl = ex["cylinder_mean_torque"]  # (C, S) one cylinder
+    # mean torque summed from the front: rubber 0, nose element -FEAD, flywheel element 4 T - FEAD
+    np.testing.assert_allclose(ex["mean"][0], 0.0, atol=1e-9)
+    np.testing.assert_allclose(ex["mean"][1], -fead, atol=1e-9)
+    np.testing.assert_allclose(ex["mean"][-1], 4 * cyl - fead, rtol=1e-12)
+    assert np.all(ex["mean"][-1, 0] > 0)  # full load: the crank drives the flywheel
+    # half range of the sampled extremes agrees with the exact half range
+    exact = tv.half_peak_to_peak(ex["orders"], ex["coeffs"])
+    np.testing.assert_allclose(et.values, exact, rtol=1e-3)
+    np.testing.assert_allclose(0.5 * (ex["vib_max"] - ex["vib_min"]), et.values, rtol=1e-12)
+    # the damper rubber torque is the torque of the damper element (opposite sign convention)
+    np.testing.assert_allclose(qs["damper.torque"].values, et.values[0], rtol=1e-3)
+    # dissipated power = sum over orders of 1/2 Omega eta k' |dphi|^2 (torsion.md 3.5)
+    dphi = qs["damper.power"].extra["dphi"]
+    omega = ex["orders"] * np.array(et.coords["speed"])[:, None]
+    p_ref = (0.5 * omega * 0.15 * 25500 * np.abs(dphi) ** 2).sum(-1)
+    np.testing.assert_allclose(qs["damper.power"].values, p_ref, rtol=1e-12)
+
+
+def test_undamped_resonance_is_a_finding_not_nan(tmp_path):
+    mmat, kmat = _workbook_chain()
+    w1 = np.sqrt(scipy.linalg.eigh(kmat, mmat, eigvals_only=True)[1])
+    rpm = w1 / 6 / RPM  # the 6th order hits mode 1 exactly at the first swept speed
+
+    def edit(wb):
+        set_param(wb, "Damper", "Rubber loss factor", 0)
+        ws = wb["TVModel"]
+        for r in range(3, ws.max_row + 1):
+            ws.cell(r, column(ws, "absolute damping")).value = None
+        ws = wb["Engine"]
+        ws.cell(param_row(ws, "Minimum speed"), 2).value = float(rpm)
+
+    res = api.check(edited(tmp_path, edit), select=["TV", "DMP"])
+    qs = res.outcome.quantities
+    for name, q in qs.items():
+        if name.startswith(("tv.", "damper.")):
+            assert not np.isnan(q.values).any() and not np.isinf(q.values).any(), name
+    nose = qs["tv.nose_amplitude"]
+    assert nose.coords["speed"][0] == pytest.approx(w1 / 6, rel=1e-12)
+    found = nose.findings[(0, 0)]
+    assert any("undamped resonance" in f and "order 6" in f for f in found)
+    tv2 = next(r for r in res.results if r.rule == "TV-002")
+    assert tv2.status == "fail" and any("undamped resonance" in f for f in tv2.findings)
+    assert qs["damper.power"].values.max() == 0.0  # no loss in the rubber
+
+
+def test_damper_rule_not_evaluated_without_supplier_limit(tmp_path):
+    def edit(wb):
+        ws = wb["Damper"]
+        ws.cell(param_row(ws, "Rubber shear stress limit"), 2).value = None
+
+    res = api.check(edited(tmp_path, edit), select=["DMP"])
+    by_rule = {r.rule: r for r in res.results}
+    assert by_rule["DMP-001"].status == "not_evaluated"
+    assert any("Damper!B6" in m and "shear stress limit" in m.lower()
+               for m in by_rule["DMP-001"].missing)
+    assert by_rule["DMP-002"].status in ("pass", "fail")
+
+
+def test_joint_rules_from_tv_torques_when_rows_removed(tmp_path):
+    def edit(wb):
+        ws = wb["JointTorques"]
+        ws.delete_rows(3, ws.max_row)
+
+    path = edited(tmp_path, edit)
+    res = api.check(path, select=["JNT"])
+    assert res.outcome.modules_run == ["joints", "loads", "torsion"]
+    app = res.outcome.quantities["joint.applied_torque"]
+    tq = res.outcome.quantities["tv.joint_torque"]
+    assert np.all(app.extra["source"] == "torsional vibration module")
+    np.testing.assert_array_equal(app.values, tq.values)
+    # operating points: max power 5500 rpm (BrakeTorque: 255 N m x 5500 rpm), overspeed 7000
+    k_mp, k_ov = app.coords["point"].index("max power"), app.coords["point"].index("overspeed")
+    np.testing.assert_allclose(app.extra["speed"][:, k_mp] / RPM, 5500)
+    np.testing.assert_allclose(app.extra["speed"][:, k_ov] / RPM, 7000)
+    assert list(tq.extra["case"][:, k_ov]) == ["no", "no"]
+    # flywheel at overspeed: no load, no brake torque: the peak of the vibratory torque
+    et = api.check(path, select=["TV-001"]).outcome.quantities["tv.element_torque"]
+    i_fw, s_ov = app.coords["item"].index("flywheel"), et.coords["speed"].index(7000 * RPM)
+    peak = max(abs(et.extra["vib_max"][-1, 1, s_ov]), abs(et.extra["vib_min"][-1, 1, s_ov]))
+    assert app.values[i_fw, k_ov] == pytest.approx(peak, rel=1e-12)
+    results = {(r.rule, r.item): r for r in res.results}
+    for rule, item in (("JNT-003", "crank nose"), ("JNT-005", "flywheel"),
+                       ("JNT-006", "flywheel"), ("JNT-007", "flywheel")):
+        assert results[(rule, item)].status in ("pass", "fail")
+    # the JSON and the report say where the torques come from
+    assumptions = " ".join(res.to_dict(timings=False)["assumptions"])
+    assert "taken from the TV module" in assumptions and "flywheel at 'overspeed'" in assumptions
+    from checker.report.sections import build_sections
+
+    sec = {s["id"]: s for s in build_sections(res)}
+    joint_rows = [r for b in sec["joints"]["blocks"] if b["type"] == "table"
+                  for r in b["rows"]]
+    assert any("torsional vibration module" in r for r in joint_rows)
+    tv_rows = [r for b in sec["torsion"]["blocks"] if b["type"] == "table" for r in b["rows"]]
+    assert any(r[:2] == ["flywheel", "overspeed"] and r[-1] == "TV module" for r in tv_rows)
+
+
+def test_tv_module_skipped_when_joint_torques_given(tmp_path):
+    def edit(wb):
+        ws = wb["JointTorques"]
+        for joint, point, speed, torque in (("crank nose", "max power", 5500, 250),
+                                            ("crank nose", "overspeed", 7000, 240),
+                                            ("flywheel", "max power", 5500, 1200),
+                                            ("flywheel", "overspeed", 7000, 1100)):
+            ws.append([joint, point, speed, torque, "test"])
+
+    res = api.check(edited(tmp_path, edit), select=["JNT"])
+    assert res.outcome.modules_run == ["joints"]
+    app = res.outcome.quantities["joint.applied_torque"]
+    assert np.all(app.extra["source"] == "workbook (JointTorques)")
+
+
+def test_workbook_joint_torques_still_used_without_tv_model(tmp_path):
+    def edit(wb):
+        ws = wb["TVModel"]
+        ws.delete_rows(3, ws.max_row)
+
+    res = api.check(edited(tmp_path, edit), select=["JNT", "TV"])
+    results = {(r.rule, r.item): r for r in res.results}
+    # the 'tv peak' torques the workbook gives are used (seed 000: 245 and 1216 N m) ...
+    assert results[("JNT-003", "crank nose")].value == pytest.approx(1.467, abs=5e-4)
+    assert results[("JNT-005", "flywheel")].status == "fail"
+    # ... and the points it does not give name the missing TV model
+    for rule in ("JNT-006", "JNT-007"):
+        r = results[(rule, "flywheel")]
+        assert r.status == "not_evaluated" and any("TVModel" in m for m in r.missing)
+    assert results[("TV-001", "all")].status == "not_evaluated"
