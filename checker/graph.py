@@ -60,6 +60,7 @@ class Quantity:
     missing: dict[tuple, list[str]] = field(default_factory=dict)
     findings: dict[tuple, list[str]] = field(default_factory=dict)
     extra: dict[str, Any] = field(default_factory=dict)  # arrays for plots/report (SI)
+    applies: np.ndarray | None = None  # bool mask: points a rule judges (None = all)
 
     @property
     def name(self) -> str:
@@ -71,6 +72,23 @@ class Quantity:
         if self.values.shape != shape:
             raise ValueError(f"{self.spec.name}: values shape {self.values.shape} does not match"
                              f" coords {shape}")
+        if self.applies is not None:
+            self.applies = np.broadcast_to(np.asarray(self.applies, dtype=bool), shape)
+
+
+def resonant_peaks(values: np.ndarray, axis: int = -1) -> np.ndarray:
+    """Mask of resonant peaks along ``axis`` (the speed axis): interior local maxima, and the
+    last point when the curve still rises there. The first point is excluded: a curve that
+    falls from the lowest speed is the rigid-body (rolling-mode) motion, not a resonance.
+    """
+    a = np.moveaxis(np.asarray(values, dtype=float), axis, -1)
+    m = np.zeros(a.shape, dtype=bool)
+    if a.shape[-1] >= 3:
+        m[..., 1:-1] = (a[..., 1:-1] >= a[..., :-2]) & (a[..., 1:-1] >= a[..., 2:]) & (
+            a[..., 1:-1] > np.minimum(a[..., :-2], a[..., 2:]))
+    if a.shape[-1] >= 2:
+        m[..., -1] = a[..., -1] > a[..., -2]
+    return np.moveaxis(m, -1, axis)
 
 
 @dataclass(frozen=True)

@@ -426,6 +426,17 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None
             continue
         disp = sub * factor
         m = _margin(rule.check, disp, lim)
+        if q.applies is not None:
+            app = q.applies[np.ix_(*sel_i)]
+            if not app.any():
+                results.append(RuleResult(
+                    **base, item=item, status="pass", value=None, limit=lim_text,
+                    limit_values=list(lim), margin=None, case="",
+                    message=f"{rule.name}: nothing to judge ("
+                    + q.extra.get("applies_text", "no applicable point") + ")",
+                    findings=findings))
+                continue
+            m = np.where(app, m, np.inf)
         k = int(np.argmin(m))
         worst = np.unravel_index(k, sub.shape)
         value = float(disp[worst])

@@ -154,3 +154,19 @@ def test_selection_skips_modules(tmp_path):
     assert res.outcome.modules_run == ["joints"]
     assert set(res.outcome.modules_skipped) == set(
         m for m in __import__("checker.graph", fromlist=["MODULES"]).MODULES if m != "joints")
+
+
+def test_resonant_peak_mask_and_applies():
+    from checker.graph import resonant_peaks
+
+    a = np.array([5.0, 4.0, 3.0, 3.5, 2.0, 1.0, 1.5])
+    # rolling-mode fall from the lowest speed is not a peak; interior maximum and rising end are
+    assert resonant_peaks(a).tolist() == [False, False, False, True, False, False, True]
+    rule = Rule("JNT-101", "x", "joint.cover_factor", ">=", "", "error", "s", "r", (1.8,))
+    q = _q([[1.0, 2.0, 2.5]])
+    q.applies = np.array([[False, True, True]])
+    [res] = evaluate_rule(rule, q, None)  # the 1.0 point is not judged
+    assert res.status == "pass" and res.value == pytest.approx(2.0)
+    q.applies = np.zeros((1, 3), bool)
+    [res] = evaluate_rule(rule, q, None)
+    assert res.status == "pass" and res.value is None and "nothing to judge" in res.message
