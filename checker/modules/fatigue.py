@@ -1,0 +1,651 @@
+"""Graph calculation for classical crankshaft fatigue: Goodman safety factors at the crank-pin
+fillets, main-journal fillets and oil holes across the speed range, and the IACS UR M53
+acceptability factor from the same stresses.
+
+Method (seed 000 slides 25-28, Ricardo's concept-stage "classical stress analysis"; IACS UR M53)
+----------------------------------------------------------------------------------------------
+* **Loads** (quantity ``loads.bearing_load``): the force of the con-rod(s) on each crank pin in
+  the crank frame, ``F_pin = -big_end_crank`` summed over the rods of the pin
+  (:func:`checker.calc.crank_forces.crankpin_force`: a big-end load is the force of the journal
+  on the rod's bearing), turned into the throw frame (radial ``F_R`` + outward, tangential
+  ``F_T`` + in the direction of rotation;
+  :func:`checker.calc.crank_stress.pin_force_in_throw_frame`).
+  Gas + reciprocating and con-rod inertia at constant speed, full and no load, every speed.
+  The crank's own centrifugal forces (pin, webs, counterweights) are not part of the M53
+  loading and are not included; being constant at a given speed they would shift only the
+  mean stress.
+* **Bending**: each throw is a beam simply supported at the centres of its two main journals
+  (statically determinate, seed 000 "load sharing between main bearings not included"); the
+  web bending stress at the web centre ``sigma_BF = (F_R (L3 - L2)/L3) L1 / (B W^2/6)`` and the
+  direct stress ``sigma_QF`` (:func:`checker.calc.crank_stress.throw_nominal_stresses`), the
+  oil-bore bending from the moments of ``F_R`` and ``F_T`` at the pin centre.
+* **Torsion** (quantity ``tv.element_torque``): the element torques of the torsional model,
+  synthesised over the cycle on the loads module's crank-angle grid from the per-order complex
+  torques (``T_e(theta) = T_mean,e + sum_n Re{T_en exp(j n theta)}``, the same theta origin:
+  firing TDC of cylinder 1), so bending and torsion are combined at the same crank angle.
+  Mapping of TV elements to the crank (chain front to rear):
+
+  - a **main journal** between cylinder stations ``i`` and ``i + 1`` carries the torque of the
+    element between them; main 1 carries the element ending at the first cylinder station
+    (crank nose -> cylinder 1), the last main the element from the last cylinder station
+    (cylinder n -> flywheel);
+  - a **crank pin** carries the torque of the element on its front side in its front half and
+    that of the element on its rear side in its rear half (the rod's torque enters at the pin
+    centre): the front pin fillet (front web) uses the front element torque, the rear pin
+    fillet the rear one; the **pin oil hole** at the pin centre is evaluated with both and the
+    lower safety factor is kept (conservative);
+  - a throw whose cylinder station is the first/last station of the chain has zero torque on
+    that side (free end).
+* **Stress concentration**: factors from sheet Fatigue where given (``scf_*``), otherwise the
+  IACS UR M53 empirical formulae (:func:`checker.calc.scf.m53_scf`); every M53 validity flag of
+  a factor that is used becomes a finding of the locations that use it (never silent). M53
+  has no factor for the direct stress at the journal fillet other than ``beta_Q`` and none for
+  a journal oil hole: ``beta_Q`` is always from M53; the main oil hole uses M53's ``gamma_T``
+  with ``d_O = D_O / D_G`` (an extension, flagged in the assumptions).
+* **Criterion** (:mod:`checker.calc.fatigue`): amplitude and mean of each local stress history
+  over the cycle (half range, mid value); equivalent alternating stress = von Mises of the
+  amplitudes ``sqrt(sigma_a^2 + 3 tau_a^2)`` (in phase, M53 §5); equivalent mean = signed von
+  Mises ``sign(sigma_m) sqrt(sigma_m^2 + 3 tau_m^2)``, compressive means not credited; oil
+  holes: M53's maximum-principal combination; Goodman ``SF = 1 / (sigma_eq,a / S_e +
+  sigma_eq,m / S_u)`` with the Fatigue sheet strengths (fillets: fillet UTS; oil holes: base
+  UTS).
+* **M53 acceptability** ``Q = sigma_DW / sigma_V`` (alternating only, ``sigma_add`` = 10 MPa
+  for trunk-piston engines, ``sigma_DW`` from M53 §6 with the base UTS, K = 1.05 for drop-forged
+  fillets, 1.0 at the oil bore; radius below 2 mm raised to 2 mm and flagged). Rolled or
+  hardened fillets are not credited (M53 accepts surface-treatment gains only from tests).
+
+Locations (items): ``pin j fillet`` (worst of the two fillets of pin j), ``main k fillet``
+(worst of the fillets of main k next to a crank web), ``pin j oil hole`` (if the big-end rows
+or the Fatigue sheet give a crank-pin oil hole), ``main k oil hole`` (Goodman only, if the
+Fatigue sheet gives a main journal oil hole diameter: torsion only, since the statically
+determinate bending moment is zero at the main journal centre). Item attribute ``location``
+is one of :data:`LOCATIONS`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..calc import crank_forces as cf
+from ..calc import crank_stress as cs
+from ..calc import fatigue as fat
+from ..calc import scf as scf_mod
+from ..calc import torsional as tv
+from ..engine import Engine
+from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity, register_module
+from . import joints, loads, torsion  # noqa: F401  (registered first: report order)
+from .loads import CASES
+
+register_module("fatigue", "Crankshaft fatigue")
+
+LOCATIONS = ("pin fillet", "main fillet", "pin oil hole", "main oil hole")
+M53_K_FILLET = 1.05
+"""M53 §6 factor K of the fillets: continuous grain flow / drop forged (automotive forged
+crank); 1.0 at the oil bore."""
+M53_K_OIL = 1.0
+SIGMA_ADD = fat.SIGMA_ADD_TRUNK_PISTON
+"""M53 §4 additional alternating bending stress of a trunk-piston engine [Pa] (Q only)."""
+WEB_WIDTH_CHOICE = "min"
+"""Web width B of the reference section: the minimum width (smallest section, conservative)."""
+MEAN_CRITERION = "signed_von_mises"
+
+GOODMAN = quantity(QuantitySpec(
+    "fatigue.goodman_sf", "", ("item", "case", "speed"),
+    "Goodman fatigue safety factor per crankshaft location (crank-pin and main-journal fillets,"
+    " oil holes), load case and speed", "", ("location",), coords={"case": CASES}))
+M53Q = quantity(QuantitySpec(
+    "fatigue.m53_q", "", ("item", "case", "speed"),
+    "IACS UR M53 acceptability factor Q = sigma_DW / sigma_V per location, load case and speed",
+    "", ("location",), coords={"case": CASES}))
+
+SCF_FIELDS = {  # factor -> (Fatigue attribute, symbol, description)
+    "alpha_b": ("scf_pin_bending", "α_B", "pin fillet, bending"),
+    "alpha_t": ("scf_pin_torsion", "α_T", "pin fillet, torsion"),
+    "beta_b": ("scf_main_bending", "β_B", "main fillet, bending"),
+    "beta_q": (None, "β_Q", "main fillet, direct (radial) force"),
+    "beta_t": ("scf_main_torsion", "β_T", "main fillet, torsion"),
+    "gamma_b": ("scf_oil_bending", "γ_B", "pin oil hole, bending"),
+    "gamma_t": ("scf_oil_torsion", "γ_T", "pin oil hole, torsion"),
+    "gamma_t_main": ("scf_oil_torsion", "γ_T", "main oil hole, torsion (d_O = D_O/D_G)"),
+}
+FACTORS_OF = {"pin fillet": ("alpha_b", "alpha_t"),
+              "main fillet": ("beta_b", "beta_q", "beta_t"),
+              "pin oil hole": ("gamma_b", "gamma_t"),
+              "main oil hole": ("gamma_t_main",)}
+_RATIOS_OF = {  # M53 related dimensions each factor depends on (validity, M53 §3.1)
+    "alpha_b": ("r_pin", "s", "w", "b", "d_G", "d_H"),
+    "alpha_t": ("r_pin", "s", "w", "b"),
+    "beta_b": ("r_journal", "s", "w", "b", "d_G", "d_H"),
+    "beta_q": ("r_journal", "s", "w", "b", "d_H"),
+    "beta_t": ("r_journal_torsion", "s", "w", "b"),
+    "gamma_b": ("d_O",), "gamma_t": ("d_O",), "gamma_t_main": ("d_O",),
+}
+_EXTRA_FLAGS = {  # non-range M53 flags per factor -> text
+    "alpha_b": (("s_clipped", "s < -0.5: f(s,w) evaluated at s = -0.5 (M53 §3.1 extension)"),
+                ("recess_clipped", "f(recess) < 1 set to 1 (M53 §3.1 extension)")),
+    "alpha_t": (("s_clipped", "s < -0.5: f(r,s) evaluated at s = -0.5 (M53 §3.1 extension)"),),
+    "beta_b": (("journal_s_extrapolated", "s < -0.5: f_B(s,w) evaluated at s = -0.5, an"
+                " extrapolation M53 does not state"),
+               ("recess_clipped", "f(recess) < 1 set to 1 (M53 §3.1 extension)")),
+    "beta_q": (("journal_s_extrapolated", "s < -0.5: f_Q(s) evaluated at s = -0.5, an"
+                " extrapolation M53 does not state"),
+               ("recess_clipped", "f(recess) < 1 set to 1 (M53 §3.1 extension)")),
+    "beta_t": (("s_clipped", "s < -0.5: f(r,s) evaluated at s = -0.5 (M53 §3.1 extension)"),),
+}
+
+
+# ------------------------------------------------------------------------------------ inputs
+def _geometry(engine: Engine) -> tuple[dict, dict, list[str]]:
+    """Throw geometry (SI) and the cells it came from; raises MissingInputs naming cells."""
+    p, fa = engine.params, engine.fatigue
+    missing: list[str] = []
+    notes: list[str] = []
+    mains = [b for b in engine.bearings if b.type == "main"]
+    bigs = [b for b in engine.bearings if b.type == "big end"]
+    if not mains:
+        missing.append("Bearings: no main bearing rows (journal diameter and length of the main"
+                       " journals)")
+    if not bigs:
+        missing.append("Bearings: no big-end bearing rows (crank-pin diameter and length)")
+    for b in mains + bigs:
+        if b.journal_length is None:
+            missing.append(engine.describe_missing("Bearings", "journal_length", b.row,
+                                                   f"bearing {b.name}"))
+    for attr in ("stroke", "main_spacing"):
+        if p.get(attr) is None:
+            missing.append(engine.describe_missing("Engine", attr))
+    for attr in ("web_thickness", "web_min_width"):
+        if fa.get(attr) is None:
+            missing.append(engine.describe_missing("Fatigue", attr, what="the crank web"))
+    if missing:
+        raise MissingInputs(missing)
+    D = min(b.diameter for b in bigs)
+    DG = min(b.diameter for b in mains)
+    LG = max(b.journal_length for b in mains)
+    LH = min(b.journal_length for b in bigs)
+    if len({b.diameter for b in bigs}) > 1 or len({b.diameter for b in mains}) > 1 or len(
+            {b.journal_length for b in mains}) > 1 or len({b.journal_length for b in bigs}) > 1:
+        notes.append("Journal and pin sizes differ between bearing rows: the smallest diameters,"
+                     " the longest main journal and the shortest crank pin are used for every"
+                     " throw (conservative).")
+    g = {"pin_diameter": D, "journal_diameter": DG, "throw": p["stroke"] / 2.0,
+         "main_spacing": p["main_spacing"], "main_journal_length": LG,
+         "pin_journal_length": LH, "web_thickness": fa["web_thickness"],
+         "web_width": cs.web_width(fa["web_min_width"], fa.get("web_max_width"),
+                                   WEB_WIDTH_CHOICE),
+         "web_offset": fa.get("web_offset") or 0.0, "pin_bore": fa.get("pin_bore") or 0.0,
+         "journal_bore": fa.get("main_bore") or 0.0}
+    return g, {"bigs": bigs, "mains": mains}, notes
+
+
+def _pin_oil_hole(engine: Engine, bigs: list) -> tuple[dict | None, list[str]]:
+    """Crank-pin oil hole (diameter, angle) or None when the crank has none; missing texts."""
+    fa = engine.fatigue
+    with_holes = [b for b in bigs if (b.oil_holes or 0) > 0]
+    d = fa.get("pin_oil_hole_diameter")
+    if d is None and with_holes:
+        d = next((b.oil_hole_diameter for b in with_holes if b.oil_hole_diameter), None)
+    if d is None and not with_holes:
+        return None, []
+    missing = []
+    if d is None:
+        missing.append(engine.describe_missing("Fatigue", "pin_oil_hole_diameter",
+                                               what="the crank pin"))
+    ref = with_holes[0] if with_holes else bigs[0]
+    angle = ref.oil_hole_angle
+    if angle is None:
+        missing.append(engine.describe_missing("Bearings", "oil_hole_angle", ref.row,
+                                               f"bearing {ref.name} (crank-pin oil hole)"))
+    elif "trail" in (ref.oil_hole_type or "").lower() and angle > 0:
+        angle = -angle
+    return {"diameter": d, "angle": angle, "row": ref}, missing
+
+
+def _station_elements(engine: Engine, n_pins: int, n_el: int) -> tuple[np.ndarray, list[str]]:
+    """Front and rear TV element of each throw, shape (n_pins, 2); ``n_el`` = none (free end)."""
+    station_of = {s.cylinder: i for i, s in enumerate(engine.tv_model) if s.cylinder is not None}
+    out = np.full((n_pins, 2), n_el, dtype=int)
+    missing = []
+    for j in range(n_pins):
+        st = [station_of.get(c.number) for c in engine.cylinders if c.pin - 1 == j]
+        if not st or None in st:
+            missing.append(f"TVModel: no station for the cylinder(s) of crank pin {j + 1}"
+                           " (column 'cylinder')")
+            continue
+        front, rear = min(st) - 1, max(st)
+        out[j, 0] = front if front >= 0 else n_el
+        out[j, 1] = rear if rear < n_el else n_el
+    return out, missing
+
+
+def _scfs(engine: Engine, g: dict, oil: dict | None, main_oil_d: float | None
+          ) -> tuple[dict, dict, dict]:
+    """Factors used with their sources and M53 values; missing texts and findings per factor."""
+    fa = engine.fatigue
+    m53 = None
+    m53_missing: list[str] = []
+    for attr in ("pin_fillet_radius", "main_fillet_radius"):
+        if fa.get(attr) is None:
+            m53_missing.append(engine.describe_missing("Fatigue", attr,
+                                                       what="the crankshaft (M53 SCF)"))
+    kw = dict(pin_diameter=g["pin_diameter"], journal_diameter=g["journal_diameter"],
+              throw=g["throw"], web_thickness=g["web_thickness"], web_width=g["web_width"],
+              pin_fillet_radius=fa.get("pin_fillet_radius"),
+              journal_fillet_radius=fa.get("main_fillet_radius"),
+              pin_recess=fa.get("pin_fillet_web_undercut") or 0.0,
+              journal_recess=fa.get("main_fillet_web_undercut") or 0.0,
+              pin_bore=g["pin_bore"], journal_bore=g["journal_bore"])
+    m53_main_oil = None
+    if not m53_missing:
+        try:
+            m53 = scf_mod.m53_scf(**kw, oil_hole_diameter=(oil or {}).get("diameter") or 0.0)
+            if main_oil_d is not None:
+                # journal oil hole: M53's pin formula with d_O = D_O / D_G
+                m53_main_oil = scf_mod.m53_scf(
+                    **kw, oil_hole_diameter=main_oil_d * g["pin_diameter"]
+                    / g["journal_diameter"])
+        except ValueError as exc:
+            m53_missing.append(f"Fatigue: M53 stress concentration factors: {exc}")
+    used: dict[str, float | None] = {}
+    source: dict[str, str] = {}
+    m53_val: dict[str, float | None] = {}
+    findings: dict[str, list[str]] = {}
+    missing: dict[str, list[str]] = {}
+    for key, (attr, sym, what) in SCF_FIELDS.items():
+        base = m53_main_oil if key == "gamma_t_main" else m53
+        fkey = "gamma_t" if key == "gamma_t_main" else key
+        v53 = None if base is None else float(getattr(base, fkey))
+        m53_val[key] = v53 if v53 is not None and np.isfinite(v53) else None
+        given = fa.get(attr) if attr else None
+        if given is not None:
+            used[key], source[key] = float(given), f"workbook {engine.cell('Fatigue', attr)}"
+            continue
+        if m53_val[key] is None:
+            used[key], source[key] = None, "missing"
+            why = list(m53_missing) or [f"M53 formula gives no valid {sym} ({what}) for this"
+                                        " geometry (far outside its validity range)"]
+            if attr:
+                why.append("or give the factor: " + engine.describe_missing(
+                    "Fatigue", attr, what=f"{sym} ({what})"))
+            missing[key] = why
+            continue
+        used[key], source[key] = m53_val[key], "IACS UR M53 §3"
+        texts = []
+        ratios = base.ratios
+        for name in _RATIOS_OF[key]:
+            if base.flags[f"{name}_out_of_range"].any():
+                lo, hi = scf_mod.VALIDITY[name]
+                val = float(getattr(ratios, "r_pin" if (name == "r_journal_torsion" and bool(
+                    base.flags["beta_t_equal_to_alpha_t"])) else name))
+                texts.append(f"M53 {sym} ({what}): {name} = {val:.4g} outside"
+                             f" [{'-inf' if lo is None else f'{lo:g}'},"
+                             f" {'+inf' if hi is None else f'{hi:g}'}] (M53 §3.1); factor"
+                             " used, confirm by FEM or give it in the Fatigue sheet")
+        for flag, text in _EXTRA_FLAGS.get(key, ()):
+            if base.flags[flag].any():
+                texts.append(f"M53 {sym} ({what}): {text}")
+        if texts:
+            findings[key] = texts
+    info = {"used": used, "source": source, "m53": m53_val,
+            "ratios": None if m53 is None else m53.ratios,
+            "ratios_main_oil": None if m53_main_oil is None else m53_main_oil.ratios,
+            "m53_missing": m53_missing}
+    return info, missing, findings
+
+
+def _strengths(engine: Engine, has: dict) -> tuple[dict, dict]:
+    """(S_e, S_u) per location type [Pa] and the missing cells per location type."""
+    fa = engine.fatigue
+    spec = {"pin fillet": ("pin_fillet_fatigue", "fillet_uts"),
+            "main fillet": ("main_fillet_fatigue", "fillet_uts"),
+            "pin oil hole": ("pin_oil_hole_fatigue", "uts"),
+            "main oil hole": ("main_oil_hole_fatigue", "uts")}
+    out, missing = {}, {}
+    for loc, (se, su) in spec.items():
+        if not has.get(loc):
+            continue
+        miss = [engine.describe_missing("Fatigue", a, what=f"the {loc}s") for a in (se, su)
+                if fa.get(a) is None]
+        if miss:
+            missing[loc] = miss
+        out[loc] = (fa.get(se), fa.get(su), engine.cell("Fatigue", se), engine.cell("Fatigue", su))
+    return out, missing
+
+
+def _throw_fatigue(f_r: np.ndarray, f_t: np.ndarray, t_side: np.ndarray, g: dict, phi: float,
+                   k: dict, st, pin_oil: bool) -> tuple:
+    """Goodman results of the pin fillets, journal fillets and pin oil holes of every throw.
+
+    ``f_r, f_t`` (S, T, N) [N], ``t_side`` (S, T, 2, N) [N m] front/rear element torques.
+    Returns (pin, journal, oil or None) :class:`checker.calc.fatigue.CycleFatigue` with shapes
+    (S, T, 2): fillets per web (front, rear), oil holes per torque (front, rear element), and
+    the nominal web bending and direct stresses (S, T, 2, N), L1 and the overlap S.
+    """
+    try:
+        nom = cs.throw_nominal_stresses(f_r, f_t, t_side[..., 0, :], t_side, **g,
+                                        oil_hole_angle=phi)
+    except ValueError as exc:
+        raise MissingInputs([f"Fatigue/Bearings/Engine geometry of the crank throw: {exc}"]
+                            ) from None
+    loc = cs.local_stresses(nom, **{n: k[n] for n in ("alpha_b", "alpha_t", "beta_b", "beta_q",
+                                                      "beta_t", "gamma_b", "gamma_t")})
+    # each pin fillet with the torque of the element on its side of the throw
+    tau_pin_side = cs.torsional_stress(t_side, g["pin_diameter"], g["pin_bore"])  # (S,T,2,N)
+    se, su = st("pin fillet")
+    pin = fat.fillet_goodman(loc.sigma_pin_fillet, k["alpha_t"] * tau_pin_side,
+                             endurance_limit=se, ultimate_strength=su,
+                             mean_criterion=MEAN_CRITERION)
+    se, su = st("main fillet")
+    jnl = fat.fillet_goodman(loc.sigma_journal_fillet, loc.tau_journal_fillet,
+                             endurance_limit=se, ultimate_strength=su,
+                             mean_criterion=MEAN_CRITERION)
+    oil = None
+    if pin_oil:
+        se, su = st("pin oil hole")
+        oil = fat.oil_hole_goodman(loc.sigma_oil_bending[..., None, :],
+                                   k["gamma_t"] * tau_pin_side, endurance_limit=se,
+                                   ultimate_strength=su)
+    return pin, jnl, oil, nom.sigma_web_bending, nom.sigma_web_direct, \
+        nom.web_centre_distance, nom.overlap
+
+
+# ------------------------------------------------------------------------------- calculation
+@calculation("crank_fatigue", "fatigue", provides=("fatigue.goodman_sf", "fatigue.m53_q"),
+             needs=("loads.bearing_load", "tv.element_torque"))
+def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
+    """Goodman safety factor and M53 Q at every fillet and oil hole, full/no load, all speeds."""
+    bl: Quantity = inputs["loads.bearing_load"]
+    et: Quantity = inputs["tv.element_torque"]
+    fa = engine.fatigue
+    g, rows, notes = _geometry(engine)
+    cyls = engine.cylinders
+    pins = np.array([c.pin - 1 for c in cyls])
+    n_pins = int(pins.max()) + 1
+    n_mains = n_pins + 1
+    theta = np.asarray(bl.extra["theta"])
+    N = theta.size
+    cases, speeds = list(bl.coords["case"]), np.asarray(bl.coords["speed"], dtype=float)
+    C, S = len(cases), speeds.size
+    if list(et.coords["case"]) != cases or not np.allclose(et.coords["speed"], speeds):
+        raise MissingInputs(["tv.element_torque and loads.bearing_load disagree on the load"
+                             " cases or speeds (internal)"])
+
+    # ------------------------------------------------------------- locations and their inputs
+    oil, oil_missing = _pin_oil_hole(engine, rows["bigs"])
+    main_oil_d = fa.get("main_oil_hole_diameter")
+    has = {"pin fillet": True, "main fillet": True, "pin oil hole": oil is not None,
+           "main oil hole": main_oil_d is not None}
+    if oil is None:
+        notes.append("No crank-pin oil hole (Bearings big-end 'oil holes' 0 and no Fatigue"
+                     " 'Pin journal oil hole diameter'): pin oil holes not evaluated.")
+    if main_oil_d is None:
+        notes.append("No main journal oil hole diameter (Fatigue sheet): main oil holes not"
+                     " evaluated.")
+    strengths, s_missing = _strengths(engine, has)
+    scf, scf_missing, scf_find = _scfs(engine, g, oil, main_oil_d)
+    stress_missing: dict[str, list[str]] = {}  # local stresses (SCF, oil hole) not available
+    loc_missing: dict[str, list[str]] = {}  # Goodman: + the Goodman strengths
+    for loc in LOCATIONS:
+        if not has[loc]:
+            continue
+        why = list(oil_missing) if loc == "pin oil hole" else []
+        for fkey in FACTORS_OF[loc]:
+            why += [w for w in scf_missing.get(fkey, []) if w not in why]
+        if why:
+            stress_missing[loc] = why
+        why = list(s_missing.get(loc, [])) + why
+        if why:
+            loc_missing[loc] = why
+
+    # ------------------------------------------------------------- pin forces (throw frame)
+    firing = np.array([c.firing_angle for c in cyls])
+    bank = np.array([c.bank_angle for c in cyls])
+    f_pin = cf.crankpin_force(bl.extra["big_end_crank"], pins, n_pins)  # (C, S, T, N)
+    try:
+        gamma = cf.throw_angles(firing, bank, pins, n_pins)
+    except ValueError as exc:
+        raise MissingInputs([f"Cylinders: {exc}"]) from None
+    f_r, f_t = cs.pin_force_in_throw_frame(f_pin.x, f_pin.y, gamma[:, None])
+
+    # ------------------------------------------------------------- element torques (time signal)
+    ex = et.extra
+    n_el = len(et.coords["item"])
+    sides, st_missing = _station_elements(engine, n_pins, n_el)
+    if st_missing:
+        raise MissingInputs(st_missing)
+    _, vib = tv.synthesize(ex["orders"], ex["coeffs"], N)  # (E, C, S, N)
+    torque = np.zeros((C, S, n_el + 1, N))  # + a zero "element" for a free end
+    torque[:, :, :n_el] = np.moveaxis(vib + ex["mean"][..., None], 0, 2)
+    t_side = torque[:, :, sides, :]  # (C, S, T, 2, N): front / rear element of each throw
+
+    # ------------------------------------------------------------- nominal and local stresses
+    phi = 0.0 if oil is None or oil["angle"] is None else float(oil["angle"])
+    k = {key: (v if v is not None else 1.0) for key, v in scf["used"].items()}
+
+    def st(name: str) -> tuple[float, float]:
+        se, su = strengths.get(name, (None, None, "", ""))[:2]
+        return (se or 1.0), (su or 1.0)
+
+    # one load case at a time: halves the peak memory (fresh pages are the main cost here)
+    parts = [_throw_fatigue(f_r[ci], f_t[ci], t_side[ci], g, phi, k, st, has["pin oil hole"])
+             for ci in range(C)]
+    pin, jnl, pin_oil = (None if parts[0][n] is None else type(parts[0][n])(
+        *(np.stack(x) for x in zip(*(p[n] for p in parts), strict=True))) for n in range(3))
+    sigma_bf = np.stack([p[3] for p in parts])  # (C, S, T, 2, N) nominal web bending [Pa]
+    sigma_qf = np.stack([p[4] for p in parts])
+    results: dict[str, tuple] = {}
+    if pin_oil is not None:
+        results["pin oil hole"] = pin_oil  # (C, S, T, 2 torque variants)
+    # main journals: candidate elements (front element of throw k, rear element of throw k-1)
+    main_el = np.empty((n_mains, 2), dtype=int)
+    for m in range(n_mains):
+        adj_el = ([sides[m, 0]] if m < n_pins else []) + ([sides[m - 1, 1]] if m > 0 else [])
+        main_el[m] = (adj_el * 2)[:2]
+    if has["main oil hole"]:
+        # torsion only (no bending at the journal centre): evaluated once per TV element, then
+        # gathered per main journal and candidate element
+        tau_el = cs.torsional_stress(torque, g["journal_diameter"], g["journal_bore"])
+        se, su = st("main oil hole")
+        per_el = fat.oil_hole_goodman(np.zeros((1, 1, 1, 1)), k["gamma_t_main"] * tau_el,
+                                      endurance_limit=se, ultimate_strength=su)  # (C,S,E+1)
+        results["main oil hole"] = type(per_el)(*(
+            x[:, :, main_el] for x in per_el))  # (C, S, M, 2 candidates)
+
+    # ------------------------------------------------------------- items
+    items: list[str] = []
+    attrs: dict[str, dict] = {}
+    sel: list[tuple[str, object, list[tuple[int, int]]]] = []  # (location, result, [(t, side)])
+    for j in range(n_pins):
+        sel.append(("pin fillet", pin, [(j, 0), (j, 1)]))
+        items.append(f"pin {j + 1} fillet")
+    for m in range(n_mains):
+        adj = ([(m, 0)] if m < n_pins else []) + ([(m - 1, 1)] if m > 0 else [])
+        sel.append(("main fillet", jnl, adj))
+        items.append(f"main {m + 1} fillet")
+    if has["pin oil hole"]:
+        for j in range(n_pins):
+            sel.append(("pin oil hole", results["pin oil hole"], [(j, 0), (j, 1)]))
+            items.append(f"pin {j + 1} oil hole")
+    if has["main oil hole"]:
+        for m in range(n_mains):
+            sel.append(("main oil hole", results["main oil hole"], [(m, 0), (m, 1)]))
+            items.append(f"main {m + 1} oil hole")
+    n_it = len(items)
+    # gather (C, S, I, 2) arrays of every candidate (fancy indexing, no loop over speed/angle)
+    fields = ("safety_factor", "sigma_eq_a", "sigma_eq_m", "sigma_a", "sigma_m", "tau_a",
+              "tau_m")
+    cand = {f: np.empty((C, S, n_it, 2)) for f in fields}
+    for i, (_, r, adj) in enumerate(sel):
+        idx = (adj * 2)[:2]
+        t_idx, s_idx = [a[0] for a in idx], [a[1] for a in idx]
+        for f in fields:
+            cand[f][:, :, i, :] = getattr(r, f)[:, :, t_idx, s_idx]
+    worst = np.argmin(cand["safety_factor"], axis=-1)[..., None]  # (C, S, I, 1)
+    pick = {f: np.moveaxis(np.take_along_axis(v, worst, -1)[..., 0], 2, 0)
+            for f, v in cand.items()}  # (I, C, S)
+    sf = pick["safety_factor"].copy()
+    location = [s[0] for s in sel]
+    loc_arr = np.array(location)
+    missing: dict[tuple, list[str]] = {}
+    for i, lname in enumerate(location):
+        attrs[items[i]] = {"location": lname}
+        if lname in loc_missing:
+            sf[i] = np.nan
+            missing[(i,)] = loc_missing[lname]
+    # findings: M53 validity of the factors used; undamped TV resonance at (case, speed)
+    findings: dict[tuple, list[str]] = {}
+    for i, lname in enumerate(location):
+        texts = [t for key in FACTORS_OF[lname] for t in scf_find.get(key, [])]
+        if texts and lname not in loc_missing:
+            findings[(i,)] = list(dict.fromkeys(texts))
+    tv_find: dict[tuple[int, int], list[str]] = {}
+    for (_, ci, si), v in et.findings.items():
+        lst = tv_find.setdefault((ci, si), [])
+        lst += [x for x in v if x not in lst]
+    for (ci, si), v in tv_find.items():
+        for i in range(n_it):
+            findings[(i, ci, si)] = list(v)
+
+    # ------------------------------------------------------------- M53 acceptability
+    m53_items = [i for i, lname in enumerate(location) if lname != "main oil hole"]
+    uts = fa.get("uts")
+    q_vals = np.full((len(m53_items), C, S), np.nan)
+    q_missing: dict[tuple, list[str]] = {}
+    q_find: dict[tuple, list[str]] = {}
+    dw_of: dict[str, float] = {}
+    sv_pick = np.full((len(m53_items), C, S), np.nan)
+    m53_base_missing = []
+    if uts is None:
+        m53_base_missing.append(engine.describe_missing("Fatigue", "uts",
+                                                        what="the crankshaft (M53 sigma_B)"))
+    radius = {"pin fillet": ("pin_fillet_radius", g["pin_diameter"], M53_K_FILLET),
+              "main fillet": ("main_fillet_radius", g["journal_diameter"], M53_K_FILLET),
+              "pin oil hole": (None, g["pin_diameter"], M53_K_OIL)}
+    clip_text = {}
+    for lname, (rattr, dia, kk) in radius.items():
+        if not has[lname]:
+            continue
+        if lname == "pin oil hole":
+            rx = None if oil is None or oil["diameter"] is None else oil["diameter"] / 2.0
+        else:
+            rx = fa.get(rattr)
+        if uts is None or rx is None:
+            continue
+        dw = fat.m53_fatigue_strength(uts, dia, rx, kk)
+        dw_of[lname] = float(dw.value)
+        if bool(dw.radius_clipped):
+            clip_text[lname] = (f"M53 sigma_DW ({lname}): radius {rx * 1e3:.3g} mm below 2 mm,"
+                                " taken as 2 mm (IACS UR M53 §6)")
+    for qi, i in enumerate(m53_items):
+        lname = location[i]
+        why = list(m53_base_missing) + stress_missing.get(lname, [])
+        if lname != "pin oil hole" and fa.get(radius[lname][0]) is None:
+            why.append(engine.describe_missing("Fatigue", radius[lname][0],
+                                               what="the crankshaft (M53 sigma_DW)"))
+        if why:
+            q_missing[(qi,)] = list(dict.fromkeys(why))
+            continue
+        a = cand["sigma_a"][:, :, i, :]
+        t = cand["tau_a"][:, :, i, :]
+        if lname == "pin oil hole":
+            sv = fat.oil_bore_equivalent_stress(a, t)
+        else:
+            sv = fat.equivalent_alternating_stress(a, t, SIGMA_ADD)
+        sv_max = sv.max(axis=-1)  # (C, S): worst fillet / torque variant
+        sv_pick[qi] = sv_max
+        q_vals[qi] = fat.m53_acceptability_factor(dw_of[lname], sv_max)
+        texts = list(findings.get((i,), []))
+        if lname in clip_text:
+            texts.append(clip_text[lname])
+        if texts:
+            q_find[(qi,)] = texts
+    for (i, ci, si), v in ((k_, v_) for k_, v_ in findings.items() if len(k_) == 3):
+        if i in m53_items:
+            q_find[(m53_items.index(i), ci, si)] = v
+
+    # ------------------------------------------------------------- assumptions and extras
+    assumptions = [
+        "Crankshaft fatigue (classical, seed 000 slides 25-28; IACS UR M53 §2-5): each throw"
+        " simply supported at its main journal centres (statically determinate, no load"
+        " sharing, no bending vibration); con-rod gas and inertia forces on the pin; web width"
+        " B = minimum web width; K_e = 1 (4-stroke). The crank's own centrifugal forces (pin,"
+        " webs, counterweights) are not included (M53 loading; they shift only the mean).",
+        "Crankshaft torsion from the TV model, synthesised over the cycle (mean + all orders,"
+        " same crank angle as the bending): a main journal carries the element torque between"
+        " the cylinder stations on either side; each pin fillet the element torque on its side"
+        " of the throw; the pin oil hole the worse of the two. Mean torque = sum of the mean"
+        " cylinder (indicated) torques from the front minus the FEAD torque (friction not"
+        " subtracted, conservative).",
+        "Goodman safety factor: von Mises of the amplitudes (half range over the cycle), signed"
+        " von Mises mean (compressive means not credited), SF = 1/(σa/Se + σm/Su); oil holes:"
+        " M53 maximum-principal combination of bending and torsion.",
+        f"M53 acceptability Q: σ_add = {SIGMA_ADD / 1e6:g} MPa (trunk piston), σ_DW from M53 §6"
+        f" with the base UTS, K = {M53_K_FILLET:g} at fillets (drop forged, assumed) and"
+        f" {M53_K_OIL:g} at the oil bore; fillet rolling/induction hardening not credited"
+        " (M53 accepts surface-treatment gains only from tests).",
+    ]
+    if has["main oil hole"]:
+        assumptions.append("Main journal oil holes: torsion only (the statically determinate"
+                           " bending moment is zero at the journal centre), γ_T of M53's"
+                           " crank-pin oil bore with d_O = D_O/D_G (M53 has no journal oil-bore"
+                           " factor); evaluated at every main journal.")
+    assumptions += notes
+    sf_by_loc = np.full((len(LOCATIONS), C, S), np.nan)
+    for li, lname in enumerate(LOCATIONS):
+        rows_i = np.nonzero(loc_arr == lname)[0]
+        if rows_i.size and lname not in loc_missing:
+            sf_by_loc[li] = sf[rows_i].min(axis=0)
+    side_text = {"pin fillet": ("front web", "rear web"),
+                 "main fillet": None, "pin oil hole": ("front torque", "rear torque"),
+                 "main oil hole": None}
+    s_e = np.array([strengths.get(n, (None,))[0] or np.nan for n in location], dtype=float)
+    s_u = np.array([(strengths.get(n, (None, None))[1] or np.nan) for n in location],
+                   dtype=float)
+    governing = np.moveaxis(worst[..., 0], 2, 0)  # (I, C, S) index into the candidates
+    adj_text = []
+    for lname, _, adj in sel:
+        if lname == "main fillet":
+            adj_text.append(tuple(f"throw {t + 1} {'front' if s == 0 else 'rear'} web"
+                                  for t, s in (adj * 2)[:2]))
+        elif lname == "main oil hole":
+            adj_text.append(tuple(et.coords["item"][e] if e < n_el else "free end"
+                                  for e in main_el[int(adj[0][0])]))
+        else:
+            adj_text.append(side_text[lname])
+    common = {
+        "geometry": g, "scf": scf, "scf_findings": scf_find, "strengths": strengths,
+        "oil_hole": oil, "main_oil_hole_diameter": main_oil_d, "theta": theta,
+        "speeds": speeds, "locations": location, "sf_by_location": sf_by_loc,
+        "assumptions": assumptions,
+    }
+    extra = dict(
+        common,
+        sigma_eq_a=pick["sigma_eq_a"], sigma_eq_m=pick["sigma_eq_m"],  # (I, C, S) [Pa]
+        sigma_a=pick["sigma_a"], sigma_m=pick["sigma_m"], tau_a=pick["tau_a"],
+        tau_m=pick["tau_m"], governing=governing, candidates=adj_text,
+        sigma_eq_max=pick["sigma_eq_m"] + pick["sigma_eq_a"],  # (I, C, S) [Pa] mean + amp.
+        sigma_eq_min=pick["sigma_eq_m"] - pick["sigma_eq_a"],
+        endurance_limit=s_e, ultimate_strength=s_u,  # (I,) [Pa] (nan if missing)
+        haigh_x=pick["sigma_eq_m"] / s_u[:, None, None],  # sigma_eq,m / S_u
+        haigh_y=pick["sigma_eq_a"] / s_e[:, None, None],  # sigma_eq,a / S_e
+        candidate_sf=np.moveaxis(cand["safety_factor"], 2, 0),  # (I, C, S, 2)
+        pin_force_radial=f_r, pin_force_tangential=f_t,  # (C, S, T, N) [N]
+        throw_angle=gamma, throw_elements=sides, main_elements=main_el,
+        nominal={"sigma_web_bending": sigma_bf,  # (C, S, T, 2, N) [Pa], journal-side face
+                 "sigma_web_direct": sigma_qf,
+                 "web_centre_distance": parts[0][5], "overlap": parts[0][6]},
+        element_names=list(et.coords["item"]) + ["free end"],
+        element_torque=torque,  # (C, S, E + 1, N) [N m], last = 0 (free end)
+        mean_criterion=MEAN_CRITERION)
+    coords = {"item": items, "case": cases, "speed": list(speeds)}
+    q_items = [items[i] for i in m53_items]
+    out = {
+        "fatigue.goodman_sf": Quantity(GOODMAN, sf, coords, attrs, missing, findings,
+                                       extra=extra),
+        "fatigue.m53_q": Quantity(
+            M53Q, q_vals, {"item": q_items, "case": cases, "speed": list(speeds)},
+            {n: attrs[n] for n in q_items}, q_missing, q_find,
+            extra=dict(common, sigma_v=sv_pick, sigma_dw=dw_of, sigma_add=SIGMA_ADD,
+                       k_fillet=M53_K_FILLET, k_oil=M53_K_OIL)),
+    }
+    return out

@@ -1,0 +1,355 @@
+"""Report section: classical crankshaft fatigue (Goodman safety factors, IACS UR M53 Q)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..api import CheckResult
+from ..calc.fatigue import goodman_line
+from ..calc.scf import VALIDITY
+from ..modules.fatigue import FACTORS_OF, LOCATIONS, SCF_FIELDS
+from .plots import LIMIT_STYLE, figure, to_svg
+from .sections import fmt, section
+
+RPM = 2 * np.pi / 60
+CASE_TEXT = {"full": "full load", "no": "no load"}
+COLORS = {"pin fillet": "#1f77b4", "main fillet": "#2ca02c", "pin oil hole": "#d62728",
+          "main oil hole": "#9467bd"}
+SF_PLOT_MAX = 6.0
+"""Upper end of the safety-factor axis (factors above it are clipped in the plot only)."""
+
+
+def _limit(res: CheckResult, quantity: str) -> float | None:
+    """Display limit of the rule (after overrides) on ``quantity``."""
+    for r in res.table.rules:
+        if r.quantity == quantity and r.limit:
+            return r.limit[0]
+    return None
+
+
+def _svg(fig) -> str:
+    fig.subplots_adjust(wspace=0.3, hspace=0.45)
+    return to_svg(fig)
+
+
+def _inputs(res: CheckResult, ex: dict, m53q) -> list[dict]:
+    eng = res.engine
+    fa = eng.fatigue
+    g = ex["geometry"]
+    oil = ex["oil_hole"]
+
+    def cell(sheet: str, attr: str) -> str:
+        c = eng.cell(sheet, attr)
+        return f"{sheet} (blank)" if c == sheet else c
+
+    def mm(v) -> str:
+        return "-" if v is None else fmt(v * 1e3, 4)
+
+    rows = [
+        ["Crank-pin diameter", "D", mm(g["pin_diameter"]), "mm", "Bearings (big end)"],
+        ["Main journal diameter", "D_G", mm(g["journal_diameter"]), "mm", "Bearings (main)"],
+        ["Crank radius (stroke/2)", "E", mm(g["throw"]), "mm", cell("Engine", "stroke")],
+        ["Main journal spacing", "L3", mm(g["main_spacing"]), "mm",
+         cell("Engine", "main_spacing")],
+        ["Main journal length", "L_G", mm(g["main_journal_length"]), "mm", "Bearings (main)"],
+        ["Crank-pin length", "L_H", mm(g["pin_journal_length"]), "mm",
+         "Bearings (big end)"],
+        ["Web reduced thickness", "W", mm(g["web_thickness"]), "mm",
+         cell("Fatigue", "web_thickness")],
+        ["Web width (minimum)", "B", mm(g["web_width"]), "mm", cell("Fatigue", "web_min_width")],
+        ["Web offset", "-", mm(g["web_offset"]), "mm", cell("Fatigue", "web_offset")],
+        ["Pin / journal axial bore", "D_BH / D_BG",
+         f"{mm(g['pin_bore'])} / {mm(g['journal_bore'])}", "mm",
+         f"{cell('Fatigue', 'pin_bore')}, {cell('Fatigue', 'main_bore')}"],
+        ["Pin fillet radius", "R_H", mm(fa.get("pin_fillet_radius")), "mm",
+         cell("Fatigue", "pin_fillet_radius")],
+        ["Main fillet radius", "R_G", mm(fa.get("main_fillet_radius")), "mm",
+         cell("Fatigue", "main_fillet_radius")],
+        ["Pin / main fillet recess into the web", "T_H / T_G",
+         f"{mm(fa.get('pin_fillet_web_undercut') or 0.0)} /"
+         f" {mm(fa.get('main_fillet_web_undercut') or 0.0)}", "mm",
+         f"{cell('Fatigue', 'pin_fillet_web_undercut')},"
+         f" {cell('Fatigue', 'main_fillet_web_undercut')}"],
+        ["Pin / main radial fillet undercut (not an M53 parameter, not used)", "-",
+         f"{mm(fa.get('pin_fillet_undercut'))} / {mm(fa.get('main_fillet_undercut'))}", "mm",
+         f"{cell('Fatigue', 'pin_fillet_undercut')}, {cell('Fatigue', 'main_fillet_undercut')}"],
+    ]
+    if oil is not None:
+        rows.append(["Crank-pin oil hole diameter", "D_O", mm(oil["diameter"]), "mm",
+                     cell("Fatigue", "pin_oil_hole_diameter")])
+        ang = oil["angle"]
+        rows.append(["Crank-pin oil hole angle from the throw axis (+ leading)", "φ",
+                     "-" if ang is None else fmt(np.degrees(ang), 4), "deg",
+                     f"Bearings {oil['row'].name}"])
+    if ex["main_oil_hole_diameter"] is not None:
+        rows.append(["Main journal oil hole diameter", "D_O,G",
+                     mm(ex["main_oil_hole_diameter"]), "mm",
+                     cell("Fatigue", "main_oil_hole_diameter")])
+    blocks: list[dict] = [{"type": "table", "caption": "Geometry of the crank throw (SI inputs"
+                           " shown in mm; sizes of the first/smallest bearing rows)",
+                           "columns": ["parameter", "symbol", "value", "unit", "source"],
+                           "rows": rows}]
+    rows = []
+    dw = {} if m53q is None else m53q.extra["sigma_dw"]
+    for loc in LOCATIONS:
+        st = ex["strengths"].get(loc)
+        if st is None:
+            continue
+        se, su, c_se, c_su = st
+        rows.append([loc, "-" if se is None else fmt(se / 1e6, 4), c_se,
+                     "-" if su is None else fmt(su / 1e6, 4), c_su,
+                     fmt(dw[loc] / 1e6, 4) if loc in dw else "-"])
+    blocks.append({"type": "table", "caption": "Material strengths (sheet Fatigue) and the IACS"
+                   " UR M53 §6 fatigue strength σ_DW (base UTS, no surface-treatment credit)",
+                   "columns": ["location", "S_e [MPa]", "cell", "S_u [MPa]", "cell",
+                               "M53 σ_DW [MPa]"], "rows": rows})
+    return blocks
+
+
+def _scf(ex: dict) -> list[dict]:
+    scf = ex["scf"]
+    find = ex["scf_findings"]
+    rows = []
+    for key, (_, sym, what) in SCF_FIELDS.items():
+        if not any(key in FACTORS_OF[loc] for loc in LOCATIONS if loc in ex["strengths"]):
+            continue
+        used = scf["used"][key]
+        status = "; ".join(t.split("): ", 1)[-1] for t in find.get(key, [])) or (
+            "within M53 validity" if scf["source"][key].startswith("IACS") else "-")
+        rows.append([sym, what, fmt(used, 4), scf["source"][key], fmt(scf["m53"][key], 4),
+                     status])
+    blocks: list[dict] = [{"type": "table", "caption": "Stress concentration factors: workbook"
+                           " value where given, otherwise IACS UR M53 §3 (validity flags"
+                           " reported, never silent)",
+                           "columns": ["factor", "location and load", "used", "source",
+                                       "M53 value", "M53 validity"], "rows": rows}]
+    ratios = scf.get("ratios")
+    if ratios is not None:
+        rows = []
+        for name in ("r_pin", "r_journal", "r_journal_torsion", "s", "w", "b", "d_O", "d_G",
+                     "d_H"):
+            lo, hi = VALIDITY[name]
+            v = float(getattr(ratios, name))
+            inside = (lo is None or v >= lo) and (hi is None or v <= hi)
+            rows.append([name, fmt(v, 4), f"{'-∞' if lo is None else f'{lo:g}'} .."
+                         f" {'∞' if hi is None else f'{hi:g}'}", "yes" if inside else "NO"])
+        blocks.append({"type": "table", "caption": "M53 related dimensions (§3.1): r = R/D, s ="
+                       " S/D with the overlap S = (D + D_G)/2 − E, w = W/D, b = B/D, d_O = D_O/D,"
+                       " d_G = D_BG/D, d_H = D_BH/D (r_journal_torsion = R_G/D_G is used only"
+                       " when D ≠ D_G or R_H ≠ R_G)",
+                       "columns": ["ratio", "value", "validity range", "inside"],
+                       "rows": rows})
+    return blocks
+
+
+def _equations() -> list[dict]:
+    return [{"type": "equations", "items": [
+        ("Pin force in the throw frame", "F_R = F·e_r (+ outward),  F_T = F·e_t (+ rotation),"
+         "  F = −Σ big-end load of the rods on the pin", "checker.calc.crank_forces;"
+         " IACS UR M53 §2.1"),
+        ("Web bending (web centre)", "σ_BF = K_e·Q_RF·L1 / (B·W²/6),  Q_RF = F_R·(L3 − L2)/L3,"
+         "  K_e = 1", "M53 §2.1; seed 000 slide 25 (statically determinate)"),
+        ("Web direct stress", "σ_QF = K_e·Q_RF / (B·W)", "M53 §2.1"),
+        ("Oil-bore bending", "σ_BO = (M_BRO·cos φ + M_BTO·sin φ) / W_e,  W_e = π/32·(D⁴ − D_BH⁴)/D",
+         "M53 §2.1.2"),
+        ("Torsion", "τ = T_e(θ) / W_P,  W_P = π/16·(D⁴ − D_B⁴)/D,  T_e(θ) = T_mean,e + Σ"
+         " Re{T_en·e^(jnθ)}", "M53 §2.2; TV element torques (torsion section)"),
+        ("Local stresses", "σ_H = −α_B·σ_BF,  τ_H = α_T·τ_pin,  σ_G = β_B·σ_BF + β_Q·σ_QF,"
+         "  τ_G = β_T·τ_journal,  σ_BO·γ_B,  σ_TO = γ_T·τ_pin", "M53 §2.1.3, §2.2.3, §3"),
+        ("Amplitude and mean", "X_a = (X_max − X_min)/2,  X_m = (X_max + X_min)/2 over 720°",
+         "M53 §2.1.2"),
+        ("Equivalent alternating (fillet)", "σ_eq,a = √(σ_a² + 3·τ_a²)  (von Mises of the"
+         " amplitudes, in phase)", "M53 §5"),
+        ("Equivalent mean (fillet)", "σ_eq,m = sign(σ_m)·√(σ_m² + 3·τ_m²),  compressive"
+         " σ_eq,m not credited (taken as 0)", "signed von Mises; standards.md §3"),
+        ("Oil hole (amplitude and mean)", "σ_eq = (σ_BO + 2·√(σ_BO² + 9/4·σ_TO²))/3",
+         "M53 §5(4), maximum principal stress"),
+        ("Goodman safety factor", "SF = 1 / (σ_eq,a/S_e + σ_eq,m/S_u) ≥ 1.5",
+         "Shigley eq. 6-46; seed 000 slide 28"),
+        ("M53 acceptability", "Q = σ_DW / σ_V ≥ 1.15,  σ_V = √((σ_a + σ_add)² + 3·τ_a²),"
+         "  σ_add = 10 MPa", "M53 §4-7"),
+        ("M53 fatigue strength", "σ_DW = K(0.42σ_B + 39.3)[0.264 + 1.073·D^−0.2 + (785 − σ_B)/4900"
+         " + 196/σ_B·√(1/R_X)]", "M53 §6 (N/mm², mm; R_X ≥ 2 mm)"),
+    ]}]
+
+
+def _governing(q) -> dict[str, int]:
+    """Index of the item with the lowest factor per location type."""
+    out = {}
+    for loc in LOCATIONS:
+        idx = [i for i, n in enumerate(q.coords["item"]) if q.item_attrs[n]["location"] == loc
+               and np.isfinite(q.values[i]).all()]
+        if idx:
+            out[loc] = min(idx, key=lambda i: float(np.min(q.values[i])))
+    return out
+
+
+def _plots(res: CheckResult, q) -> list[dict]:
+    ex = q.extra
+    sp = np.array(q.coords["speed"]) / RPM
+    cases = q.coords["case"]
+    gov = _governing(q)
+    blocks: list[dict] = []
+    if not gov:
+        return blocks
+    # max/min equivalent stress vs speed, governing item per location type
+    n = len(gov)
+    fig, axes = figure(170, 58 * ((n + 1) // 2), nrows=(n + 1) // 2, ncols=2, squeeze=False,
+                       sharex=True)
+    for a, (loc, i) in enumerate(gov.items()):
+        ax = axes[a // 2, a % 2]
+        for ci, c in enumerate(cases):
+            ls = "-" if c == "full" else "--"
+            ax.plot(sp, ex["sigma_eq_max"][i, ci] / 1e6, ls=ls, color="#c0392b",
+                    label=f"max, {CASE_TEXT.get(c, c)}")
+            ax.plot(sp, ex["sigma_eq_min"][i, ci] / 1e6, ls=ls, color="#2980b9",
+                    label=f"min, {CASE_TEXT.get(c, c)}")
+        ax.axhline(0, color="k", lw=0.5)
+        ax.set_title(f"{q.coords['item'][i]} (lowest SF of the {loc}s)", fontsize=8)
+        ax.set_ylabel("Equivalent stress [MPa]")
+        ax.legend(fontsize=5.5, ncols=2)
+    for a in range(n, axes.size):
+        axes[a // 2, a % 2].set_visible(False)
+    for ax in axes[-1]:
+        ax.set_xlabel("Engine speed [rpm]")
+    blocks.append({"type": "figure", "svg": _svg(fig), "caption": (
+        "Maximum and minimum equivalent stress over the cycle against speed (σ_eq,m ± σ_eq,a,"
+        " local stresses with SCFs) at the location of each type with the lowest safety factor")})
+    # Goodman SF vs speed with the limit
+    lim = _limit(res, "fatigue.goodman_sf")
+    fig, axes = figure(170, 65, ncols=len(cases), squeeze=False, sharey=True)
+    by_loc = ex["sf_by_location"]
+    for ci, c in enumerate(cases):
+        ax = axes[0, ci]
+        for li, loc in enumerate(LOCATIONS):
+            if loc in gov:
+                ax.plot(sp, np.minimum(by_loc[li, ci], SF_PLOT_MAX), color=COLORS[loc],
+                        label=loc)
+        if lim is not None:
+            ax.axhline(lim, **LIMIT_STYLE)
+            ax.text(sp[0], lim, f" limit {lim:g}", fontsize=6, va="bottom",
+                    color=LIMIT_STYLE["color"])
+        ax.set_ylim(0, SF_PLOT_MAX)
+        ax.set_title(CASE_TEXT.get(c, c), fontsize=8)
+        ax.set_xlabel("Engine speed [rpm]")
+        ax.legend(fontsize=6)
+    axes[0, 0].set_ylabel("Goodman safety factor [-]")
+    blocks.append({"type": "figure", "svg": _svg(fig), "caption": (
+        f"Lowest Goodman safety factor of each location type against speed (FAT-001 limit;"
+        f" axis clipped at {SF_PLOT_MAX:g})")})
+    # normalised Haigh (Goodman) diagram
+    fig, ax = figure(170, 85)
+    x_max = max(1.05, float(np.nanmax(ex["haigh_x"][list(gov.values())])) * 1.1)
+    xs = np.linspace(min(-0.5, float(np.nanmin(ex["haigh_x"][list(gov.values())])) * 1.1),
+                     x_max, 200)
+    ax.plot(xs, goodman_line(xs, 1.0, 1.0, 1.0), color="k", lw=1.0, label="Goodman, SF = 1")
+    if lim is not None:
+        ax.plot(xs, goodman_line(xs, 1.0, 1.0, lim), **LIMIT_STYLE,
+                label=f"SF = {lim:g} (FAT-001)")
+    step = max(1, sp.size // 31)
+    for loc, i in gov.items():
+        for ci, c in enumerate(cases):
+            ax.scatter(ex["haigh_x"][i, ci, ::step], ex["haigh_y"][i, ci, ::step], s=7,
+                       color=COLORS[loc], marker="o" if c == "full" else "^",
+                       facecolors=COLORS[loc] if c == "full" else "none", linewidths=0.6,
+                       label=f"{q.coords['item'][i]}, {CASE_TEXT.get(c, c)}")
+    ax.axvline(0, color="k", lw=0.5)
+    ax.set_xlim(xs[0], xs[-1])
+    ax.set_ylim(0, max(1.1, float(np.nanmax(ex["haigh_y"][list(gov.values())])) * 1.1))
+    ax.set_xlabel("Equivalent mean stress / S_u [-]")
+    ax.set_ylabel("Equivalent alternating stress / S_e [-]")
+    ax.legend(fontsize=5.5, ncols=2)
+    blocks.append({"type": "figure", "svg": _svg(fig), "caption": (
+        "Normalised Haigh (Goodman) diagram: operating points of the location of each type with"
+        " the lowest safety factor (every "
+        + ("" if step == 1 else f"{step}th ") + "swept speed; filled: full load, open: no"
+        " load). Compressive means are not credited: the line is flat for σ_m < 0.")})
+    return blocks
+
+
+def _worst(q, m53q) -> list[dict]:
+    ex = q.extra
+    sp = np.array(q.coords["speed"]) / RPM
+    cases = q.coords["case"]
+    rows = []
+    for i, n in enumerate(q.coords["item"]):
+        v = q.values[i]
+        qrow = ["-", "-"]
+        if m53q is not None and n in m53q.coords["item"]:
+            k = m53q.coords["item"].index(n)
+            if np.isfinite(m53q.values[k]).all():
+                cq, sq = np.unravel_index(int(np.argmin(m53q.values[k])), m53q.values[k].shape)
+                qrow = [fmt(m53q.values[k][cq, sq], 3),
+                        f"{CASE_TEXT.get(cases[cq], cases[cq])}, {sp[sq]:.0f}"]
+        if not np.isfinite(v).all():
+            rows.append([n, "not evaluated: " + "; ".join(q.missing.get((i,), [])), "-", "-",
+                         "-", "-", "-", *qrow])
+            continue
+        ci, si = np.unravel_index(int(np.argmin(v)), v.shape)
+        side = ex["candidates"][i][int(ex["governing"][i, ci, si])]
+        rows.append([n, fmt(v[ci, si], 3), f"{CASE_TEXT.get(cases[ci], cases[ci])}",
+                     f"{sp[si]:.0f}", fmt(ex["sigma_eq_a"][i, ci, si] / 1e6, 4),
+                     fmt(ex["sigma_eq_m"][i, ci, si] / 1e6, 4), side, *qrow])
+    return [{"type": "table", "caption": (
+        "Lowest Goodman safety factor per location with its operating point and governing"
+        " fillet/torque (rule FAT-001), and the lowest M53 Q (FAT-002)"),
+        "columns": ["location", "SF min", "case", "speed [rpm]", "σ_eq,a [MPa]",
+                    "σ_eq,m [MPa]", "governing", "M53 Q min", "Q at"], "rows": rows}]
+
+
+@section("fatigue")
+def fatigue_section(res: CheckResult) -> dict:
+    qs = res.outcome.quantities
+    q = qs.get("fatigue.goodman_sf")
+    m53q = qs.get("fatigue.m53_q")
+    title = "Crankshaft fatigue (classical stress analysis)"
+    intro = ("Classical (statically determinate) stresses at the crank-pin fillets, main-journal"
+             " fillets and oil holes over the 720° cycle at full and no load across the speed"
+             " range (seed 000 slides 25-28; IACS UR M53 §2-5): bending of each throw from the"
+             " con-rod forces of the loads module, torsion from the TV module's element torques"
+             " synthesised at the same crank angle, stress concentration factors from the"
+             " workbook or IACS UR M53, Goodman safety factor against the workbook's fatigue"
+             " strengths (FAT-001) and the M53 acceptability factor (FAT-002).")
+    if q is None:
+        q = m53q
+    if q is None:
+        reasons = sorted({r for n, v in res.outcome.unavailable.items()
+                          if n.startswith("fatigue.") for r in v})
+        return {"id": "fatigue", "title": title, "intro": intro, "blocks": [
+            {"type": "text", "text": "Crankshaft fatigue not computed: "
+             + ("; ".join(reasons) or "no fatigue quantity was requested") + "."}]}
+    ex = q.extra
+    blocks: list[dict] = [{"type": "heading", "text": "Inputs"}]
+    blocks += _inputs(res, ex, m53q)
+    blocks += _scf(ex)
+    blocks.append({"type": "heading", "text": "Equations and criteria"})
+    blocks += _equations()
+    blocks.append({"type": "list", "items": [
+        "Stress criterion (Goodman, FAT-001): von Mises of the component amplitudes (bending and"
+        " torsion assumed in phase, as M53 §5) against S_e; signed von Mises of the means against"
+        " S_u (keeps the mean shear of the drive torque; a compressive mean is not credited);"
+        " oil holes: M53's maximum-principal combination for both. The two criteria FAT-001 and"
+        " FAT-002 are not equivalent: M53 neglects means and uses its own σ_DW.",
+        "Mapping of TV elements (sign: torque of the front part on the rear part, + in the"
+        " direction of rotation): a main journal carries the element torque between the"
+        " cylinder stations on either side; the front pin fillet of a throw the element in"
+        " front of its cylinder station, the rear pin fillet the element behind it; the pin"
+        " oil hole (at the pin centre) is evaluated with both and the lower factor kept.",
+        "Main journal fillets: each main journal's fillets next to a crank web (main 1 and the"
+        " last main have one); bending of the adjacent throw plus the journal's torque. Main"
+        " oil holes: torsion only (zero bending moment at the journal centre in the statically"
+        " determinate scheme).",
+        "The loading assumptions (statically determinate throw, TV torque, M53 constants) are"
+        " listed under 'Assumptions and run'.",
+    ]})
+    if q.name == "fatigue.goodman_sf":
+        blocks.append({"type": "heading", "text": "Results"})
+        blocks += _plots(res, q)
+        blocks += _worst(q, m53q)
+    found = sorted({f for v in q.findings.values() for f in v}
+                   | ({f for v in m53q.findings.values() for f in v} if m53q else set()))
+    if found:
+        blocks.append({"type": "heading", "text": "Findings"})
+        blocks.append({"type": "list", "items": found[:20] + (
+            [f"... and {len(found) - 20} more"] if len(found) > 20 else [])})
+    return {"id": "fatigue", "title": title, "intro": intro, "blocks": blocks}
