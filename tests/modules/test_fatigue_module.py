@@ -15,7 +15,6 @@ import pytest
 
 from checker import api
 from checker.calc.fatigue import goodman_line
-from checker.engine import load_engine
 from checker.modules import fatigue as fm
 from tests.helpers import edited, example_path, param_row, set_param
 
