@@ -101,9 +101,49 @@ FATIGUE_ROWS = [
 ]
 
 # ---------------------------------------------------------------- table sheets
+CYLINDER_COLUMNS = [
+    ("cylinder", "-"), ("throw angle", "deg"), ("firing angle", "deg"), ("bank angle", "deg"),
+    ("crank pin", "-"), ("note", ""),
+]
+BRAKE_TORQUE_COLUMNS = [
+    ("speed", "rpm"), ("brake torque", "N m"), ("note", ""),
+]
+BEARING_COLUMNS = [
+    ("name", "-"), ("type", "-"), ("journal diameter", "mm"), ("journal length", "mm"),
+    ("effective length", "mm"), ("radial clearance", "mm"), ("groove", "-"),
+    ("groove width", "mm"), ("groove start", "deg"), ("groove end", "deg"), ("oil feed", "-"),
+    ("oil holes", "-"), ("oil hole type", "-"), ("oil hole diameter", "mm"),
+    ("oil hole angle", "deg"), ("lining", "-"), ("note", ""),
+]
+CRANK_MASS_COLUMNS = [
+    ("location", "-"), ("throw", "-"), ("kind", "-"), ("mass", "kg"), ("X", "mm"), ("Y", "mm"),
+    ("Z", "mm"), ("axial position", "mm"), ("relative to", "-"), ("note", ""),
+]
+TV_MODEL_COLUMNS = [
+    ("station", "-"), ("role", "-"), ("cylinder", "-"), ("inertia", "kg m^2"),
+    ("absolute damping", "N m s/rad"), ("stiffness to next", "N m/rad"),
+    ("damping to next", "N m s/rad"), ("note", ""),
+]
+JOINT_COLUMNS = [
+    ("name", "-"), ("location", "-"), ("bolts", "-"), ("nominal diameter", "mm"),
+    ("thread pitch", "mm"), ("stress area coefficient", "-"), ("property class", "-"),
+    ("tightening", "-"), ("tightening torque", "N m"), ("nut factor", "-"),
+    ("preload fraction", "-"), ("proof stress Rp0.2", "N/mm^2"),
+    ("proof load stress", "N/mm^2"), ("head bearing outer diameter", "mm"),
+    ("head bearing inner diameter", "mm"), ("clamped material", "-"),
+    ("face outer diameter", "mm"), ("face inner diameter", "mm"),
+    ("friction coefficient", "-"), ("note", ""),
+]
+JOINT_TORQUE_COLUMNS = [
+    ("joint", "-"), ("operating point", "-"), ("speed", "rpm"), ("applied torque", "N m"),
+    ("note", ""),
+]
+RULE_OVERRIDE_COLUMNS = [
+    ("rule", "-"), ("limit", "-"), ("unit", "-"), ("reason", "-"),
+]
+
 CYLINDERS = (
-    [("cylinder", "-"), ("throw angle", "deg"), ("firing angle", "deg"), ("bank angle", "deg"),
-     ("crank pin", "-"), ("note", "")],
+    CYLINDER_COLUMNS,
     [
         [1, 0, 0, 0, 1, SEED + ": phase angle 0"],
         [2, 180, 540, 0, 2, SEED + ": phase angle 540"],
@@ -121,7 +161,7 @@ PEAK_PRESSURE = (
 )
 
 BRAKE_TORQUE = (
-    [("speed", "rpm"), ("brake torque", "N m"), ("note", "")],
+    BRAKE_TORQUE_COLUMNS,
     [[n, t, SEED] for n, t in [(1000, 175), (1500, 200), (2000, 245), (2500, 255), (3000, 265),
                                (3500, 265), (4000, 265), (4500, 265), (5000, 265), (5500, 255),
                                (6000, 220), (6500, 190)]],
@@ -131,11 +171,7 @@ _MAIN = ["main", 55.0, 27.0, 18.2, 0.022, "partial", 4, 270, 90, "bearing", 0, N
 _PIN = ["big end", 48.0, 24.4, 17.8, 0.024, "none", None, None, None, "crank", 1, "leading", 5.4,
         45]
 BEARINGS = (
-    [("name", "-"), ("type", "-"), ("journal diameter", "mm"), ("journal length", "mm"),
-     ("effective length", "mm"), ("radial clearance", "mm"), ("groove", "-"),
-     ("groove width", "mm"), ("groove start", "deg"), ("groove end", "deg"), ("oil feed", "-"),
-     ("oil holes", "-"), ("oil hole type", "-"), ("oil hole diameter", "mm"),
-     ("oil hole angle", "deg"), ("lining", "-"), ("note", "")],
+    BEARING_COLUMNS,
     [[f"M{i}", *_MAIN, "AS16", SEED + "; lining AS16 is an " + ASSUMPTION]
      for i in range(1, 6)]
     + [[f"BE{i}", *_PIN, "AS15", SEED + "; lining AS15 is an " + ASSUMPTION]
@@ -162,15 +198,12 @@ for _t in range(1, 5):
     ]
 CRANK_MASS_ROWS = [r[:-1] + [r[-1] + "; " + _AX_NOTE] for r in CRANK_MASS_ROWS]
 CRANK_MASS = (
-    [("location", "-"), ("throw", "-"), ("kind", "-"), ("mass", "kg"), ("X", "mm"), ("Y", "mm"),
-     ("Z", "mm"), ("axial position", "mm"), ("relative to", "-"), ("note", "")],
+    CRANK_MASS_COLUMNS,
     CRANK_MASS_ROWS,
 )
 
 TV_MODEL = (
-    [("station", "-"), ("role", "-"), ("cylinder", "-"), ("inertia", "kg m^2"),
-     ("absolute damping", "N m s/rad"), ("stiffness to next", "N m/rad"),
-     ("damping to next", "N m s/rad"), ("note", "")],
+    TV_MODEL_COLUMNS,
     [
         ["Damper ring", "damper ring", None, 0.0055, None, 25500, None,
          SEED + ": damper stiffness 1 = rubber; rubber damping from Damper loss factor"],
@@ -186,13 +219,7 @@ TV_MODEL = (
 )
 
 JOINTS = (
-    [("name", "-"), ("location", "-"), ("bolts", "-"), ("nominal diameter", "mm"),
-     ("thread pitch", "mm"), ("stress area coefficient", "-"), ("property class", "-"),
-     ("tightening", "-"), ("tightening torque", "N m"), ("nut factor", "-"),
-     ("preload fraction", "-"), ("proof stress Rp0.2", "N/mm^2"), ("proof load stress", "N/mm^2"),
-     ("head bearing outer diameter", "mm"), ("head bearing inner diameter", "mm"),
-     ("clamped material", "-"), ("face outer diameter", "mm"), ("face inner diameter", "mm"),
-     ("friction coefficient", "-"), ("note", "")],
+    JOINT_COLUMNS,
     [
         ["crank nose", "crank nose", 1, 16, 1.5, 0.938, "10.9", "torque", 400, 0.2, None, 940,
          None, 24, 17, "steel", 36, 20, 0.2,
@@ -205,8 +232,7 @@ JOINTS = (
 )
 
 JOINT_TORQUES = (
-    [("joint", "-"), ("operating point", "-"), ("speed", "rpm"), ("applied torque", "N m"),
-     ("note", "")],
+    JOINT_TORQUE_COLUMNS,
     [
         ["crank nose", "tv peak", 7100, 245,
          SEED + ": 226 N m max positive nose torque from VALDYN at 7100 rpm + 19 N m FEAD"],
@@ -216,7 +242,7 @@ JOINT_TORQUES = (
 )
 
 RULE_OVERRIDES = (
-    [("rule", "-"), ("limit", "-"), ("unit", "-"), ("reason", "-")],
+    RULE_OVERRIDE_COLUMNS,
     [],
 )
 

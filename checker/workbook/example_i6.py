@@ -49,6 +49,17 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from .example import (
+    BEARING_COLUMNS,
+    BRAKE_TORQUE_COLUMNS,
+    CRANK_MASS_COLUMNS,
+    CYLINDER_COLUMNS,
+    JOINT_COLUMNS,
+    JOINT_TORQUE_COLUMNS,
+    RULE_OVERRIDE_COLUMNS,
+    TV_MODEL_COLUMNS,
+)
+
 MENDES = "Mendes et al. 2008 (doi 10.1243/14644193JMBD126)"
 OT = "openTorsion examples/ICE_example.py (reproduces Mendes et al. 2008)"
 OT_PEAK = "Mendes et al. 2008 peak-pressure curve, digitised in openTorsion ICE_data/peak_data.csv"
@@ -239,8 +250,7 @@ FIRING_ANGLES = {1: 0, 2: 480, 3: 240, 4: 600, 5: 120, 6: 360}
 THROW_ANGLES = {c: (-phi) % 360 for c, phi in FIRING_ANGLES.items()}
 
 CYLINDERS = (
-    [("cylinder", "-"), ("throw angle", "deg"), ("firing angle", "deg"), ("bank angle", "deg"),
-     ("crank pin", "-"), ("note", "")],
+    CYLINDER_COLUMNS,
     [[c, THROW_ANGLES[c], FIRING_ANGLES[c], 0, c,
       OT + ": firing order 1-5-3-6-2-4 at 120 deg intervals; throw = -firing angle (mod 360)"]
      for c in range(1, 7)],
@@ -255,7 +265,7 @@ PEAK_PRESSURE = (
 )
 
 BRAKE_TORQUE = (
-    [("speed", "rpm"), ("brake torque", "N m"), ("note", "")],
+    BRAKE_TORQUE_COLUMNS,
     [[n, t, ASSUMPTION + ": typical 7.2 L truck diesel curve (900 N m, 184 kW at 2200 rpm),"
       " IMEP ~19 bar of the published trace; 2300-2550 rpm scaled by the published"
       " peak-pressure drop to zero at high idle"] for n, t in _BRAKE],
@@ -273,11 +283,7 @@ _PIN_NOTE = (MANUAL + ": pin 62.950-62.989 mm (shell bore 63.015-63.031 minus cl
              " manual's 7.2 L engine is Mendes' engine, journal length 40 mm, 2 x 2 mm chamfers,"
              " sputter lining (usual for ~150 bar truck diesels), oil hole 7 mm at 45 deg leading")
 BEARINGS = (
-    [("name", "-"), ("type", "-"), ("journal diameter", "mm"), ("journal length", "mm"),
-     ("effective length", "mm"), ("radial clearance", "mm"), ("groove", "-"),
-     ("groove width", "mm"), ("groove start", "deg"), ("groove end", "deg"), ("oil feed", "-"),
-     ("oil holes", "-"), ("oil hole type", "-"), ("oil hole diameter", "mm"),
-     ("oil hole angle", "deg"), ("lining", "-"), ("note", "")],
+    BEARING_COLUMNS,
     [[f"M{i}", *_MAIN, _MAIN_NOTE] for i in range(1, 8)]
     + [[f"BE{i}", *_PIN, _PIN_NOTE] for i in range(1, 7)],
 )
@@ -328,8 +334,7 @@ for _t in range(1, 7):
         CRANK_MASS_ROWS.append([f"Web{_b} c/w", _t, "counterweight", _CW_MASS, _cx, _cy, 0,
                                 _W_REAR, "main axis", _cn])
 CRANK_MASS = (
-    [("location", "-"), ("throw", "-"), ("kind", "-"), ("mass", "kg"), ("X", "mm"), ("Y", "mm"),
-     ("Z", "mm"), ("axial position", "mm"), ("relative to", "-"), ("note", "")],
+    CRANK_MASS_COLUMNS,
     CRANK_MASS_ROWS,
 )
 
@@ -373,21 +378,13 @@ def _tv_rows(damper_ring: bool) -> list[list[Any]]:
 
 def _tv_model(damper_ring: bool) -> tuple[list, list]:
     return (
-        [("station", "-"), ("role", "-"), ("cylinder", "-"), ("inertia", "kg m^2"),
-         ("absolute damping", "N m s/rad"), ("stiffness to next", "N m/rad"),
-         ("damping to next", "N m s/rad"), ("note", "")],
+        TV_MODEL_COLUMNS,
         _tv_rows(damper_ring),
     )
 
 
 JOINTS = (
-    [("name", "-"), ("location", "-"), ("bolts", "-"), ("nominal diameter", "mm"),
-     ("thread pitch", "mm"), ("stress area coefficient", "-"), ("property class", "-"),
-     ("tightening", "-"), ("tightening torque", "N m"), ("nut factor", "-"),
-     ("preload fraction", "-"), ("proof stress Rp0.2", "N/mm^2"), ("proof load stress", "N/mm^2"),
-     ("head bearing outer diameter", "mm"), ("head bearing inner diameter", "mm"),
-     ("clamped material", "-"), ("face outer diameter", "mm"), ("face inner diameter", "mm"),
-     ("friction coefficient", "-"), ("note", "")],
+    JOINT_COLUMNS,
     [
         ["crank nose", "crank nose", 6, 12, 1.5, None, "10.9", "torque", 145, 0.2, None, None,
          None, 19, 13, "steel", 110, 64, 0.2,
@@ -405,8 +402,7 @@ _T_FW_RATED = round(FIG31_AT_2200 + _brake_at(RATED_SPEED))
 _T_NOSE_PEAK = round(FIG32_PEAK[1] + FEAD_TORQUE)
 _T_NOSE_RATED = round(FIG32_AT_2200 + FEAD_TORQUE)
 JOINT_TORQUES = (
-    [("joint", "-"), ("operating point", "-"), ("speed", "rpm"), ("applied torque", "N m"),
-     ("note", "")],
+    JOINT_TORQUE_COLUMNS,
     [
         ["crank nose", "tv peak", round(FIG32_PEAK[0]), _T_NOSE_PEAK,
          MENDES + " Fig. 32 (pulley - gear train), digitised in openTorsion: 841 N m at 2148 rpm;"
@@ -422,7 +418,7 @@ JOINT_TORQUES = (
 )
 
 RULE_OVERRIDES = (
-    [("rule", "-"), ("limit", "-"), ("unit", "-"), ("reason", "-")],
+    RULE_OVERRIDE_COLUMNS,
     [],
 )
 
