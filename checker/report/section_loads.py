@@ -22,6 +22,37 @@ def _rule_limits(res: CheckResult, quantity: str, case: str) -> dict[str, float]
     return {}
 
 
+def bearing_speed_figure(res: CheckResult, q, scale: float, ylabel: str, unit: str) -> str:
+    """Per-bearing curves against speed (mains / big ends x load cases) with the rule limits
+    of each lining; ``q`` has dims (item, case, speed) and item attributes type and lining."""
+    names = q.coords["item"]
+    sp = np.array(q.coords["speed"]) / RPM
+    fig, axes = figure(170, 110, nrows=2, ncols=2, sharex=True)
+    for ci, c in enumerate(q.coords["case"]):
+        lim = _rule_limits(res, q.name, c)
+        for row, typ in enumerate(("main", "big end")):
+            ax = axes[row, ci]
+            linings = set()
+            for i, n in enumerate(names):
+                if q.item_attrs[n]["type"] != typ or not np.isfinite(q.values[i, ci]).all():
+                    continue
+                ax.plot(sp, q.values[i, ci] / scale, label=n)
+                linings.add(q.item_attrs[n]["lining"])
+            for ln in sorted(x for x in linings if x):
+                v = lim.get(ln, lim.get("*"))
+                if v is not None:
+                    ax.axhline(v, **LIMIT_STYLE)
+                    ax.text(sp[0], v, f" limit {ln} {v:g} {unit}", va="bottom", fontsize=6,
+                            color=LIMIT_STYLE["color"])
+            ax.set_title(f"{typ} bearings, {c} load", fontsize=8)
+            ax.set_ylabel(ylabel)
+            ax.set_ylim(bottom=0)
+            ax.legend(fontsize=6, ncols=3)
+    for ax in axes[-1]:
+        ax.set_xlabel("Engine speed [rpm]")
+    return to_svg(fig)
+
+
 @section("loads")
 def loads_section(res: CheckResult) -> dict:
     q = res.outcome.quantities
@@ -87,31 +118,9 @@ def loads_section(res: CheckResult) -> dict:
         names = sl.coords["item"]
         sp = np.array(sl.coords["speed"]) / RPM
         cases = sl.coords["case"]
-        fig, axes = figure(170, 110, nrows=2, ncols=2, sharex=True)
-        for ci, c in enumerate(cases):
-            lim = _rule_limits(res, "bearing.peak_specific_load", c)
-            for row, typ in enumerate(("main", "big end")):
-                ax = axes[row, ci]
-                linings = set()
-                for i, n in enumerate(names):
-                    if sl.item_attrs[n]["type"] != typ or not np.isfinite(sl.values[i, ci]).all():
-                        continue
-                    ax.plot(sp, sl.values[i, ci] / 1e6, label=n)
-                    linings.add(sl.item_attrs[n]["lining"])
-                for ln in sorted(x for x in linings if x):
-                    v = lim.get(ln, lim.get("*"))
-                    if v is not None:
-                        ax.axhline(v, **LIMIT_STYLE)
-                        ax.text(sp[0], v, f" limit {ln} {v:g} MPa", va="bottom", fontsize=6,
-                                color=LIMIT_STYLE["color"])
-                ax.set_title(f"{typ} bearings, {c} load", fontsize=8)
-                ax.set_ylabel("Peak specific load [MPa]")
-                ax.set_ylim(bottom=0)
-                ax.legend(fontsize=6, ncols=3)
-        for ax in axes[-1]:
-            ax.set_xlabel("Engine speed [rpm]")
-        blocks.append({"type": "figure", "svg": to_svg(fig),
-                       "caption": "Peak specific load against speed, full and no load"})
+        blocks.append({"type": "figure", "svg": bearing_speed_figure(
+            res, sl, 1e-6, "Peak specific load [MPa]", "MPa"),
+            "caption": "Peak specific load against speed, full and no load"})
         th = sl.extra["theta_at_max"]
         rows = []
         for i, n in enumerate(names):
