@@ -24,6 +24,16 @@ def _environment():
                        autoescape=select_autoescape(["html"]), undefined=StrictUndefined)
 
 
+def _findings_text(findings: list[str]) -> str:
+    """The first finding of a result (the module section lists all of them)."""
+    if not findings:
+        return ""
+    first = findings[0] if len(findings[0]) <= 160 else findings[0][:157] + "..."
+    more = len(findings) - 1
+    return first + (f" (+{more} more finding{'s' if more > 1 else ''}, see the module"
+                    " section)" if more else "")
+
+
 def _margin_text(m: float | None) -> str:
     return "-" if m is None else f"{m * 100:+.1f} %"
 
@@ -40,7 +50,7 @@ def context(res: CheckResult) -> dict:
             "status": status_label(r.status, r.severity),
             "css": {"PASS": "pass", "FAIL": "fail", "WARN": "warn"}.get(
                 status_label(r.status, r.severity), "ne"),
-            "note": r.message if r.status == "not_evaluated" else "; ".join(r.findings),
+            "note": r.message if r.status == "not_evaluated" else _findings_text(r.findings),
             "severity": r.severity,
         })
     selected = {r.id for r in res.rules}
