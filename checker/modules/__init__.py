@@ -1,3 +1,3 @@
 """Graph calculations, one module per analysis family. Importing registers them."""
 
-from . import fatigue, joints, loads, torsion  # noqa: F401
+from . import fatigue, joints, loads, moft, torsion  # noqa: F401

@@ -26,6 +26,8 @@ SYNTHESIS_RESOLUTION = np.radians(0.2)
 """Internal crank-angle grid of the trace synthesis [rad]; 0.2 deg changes pressures by < 0.1 %
 of the peak and IMEP by < 0.2 % against 0.05 deg, at a quarter of the cost
 (benchmarks/bench_loads_module.py)."""
+CRANK_STEP = DEFAULT_STEP
+"""Crank-angle step of the cycle grid [rad] (1 deg: benchmarks/run_all.py, bench_loads.py)."""
 CALIBRATION_TOLERANCE = np.radians(0.1)
 """Bisection tolerance on the combustion start when calibrating IMEP [rad]."""
 
@@ -108,8 +110,9 @@ def _trace_from_table(engine: Engine, case: str, theta: np.ndarray, speeds: np.n
     return out, extrap
 
 
-def build_cycle(engine: Engine, step: float = DEFAULT_STEP) -> Cycle:
+def build_cycle(engine: Engine, step: float | None = None) -> Cycle:
     """Pressure traces for every swept case and speed (given traces or synthesized)."""
+    step = CRANK_STEP if step is None else step
     p = engine.params
     speeds, notes = speed_sweep(engine)
     theta = cycle_grid(step)

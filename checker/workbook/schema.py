@@ -107,6 +107,11 @@ OIL = Sheet(
           required=False),
         F("Film temperature rise", "temperature_rise", "temperature_difference", check=">=0",
           required=False, note="Added to the supply temperature to give the film temperature."),
+        F("Mobility model", "mobility_model", "choice",
+          choices=("short bearing", "exact short bearing", "finite length"), required=False,
+          note="short bearing = Booker closed form (default, seed 000); exact short bearing ="
+               " numerical short-bearing mobility (reference); finite length = Butenschoen"
+               " fits (L/D 1/8..1)."),
     ),
 )
 
