@@ -138,3 +138,13 @@ def test_report_pdf_and_html(example, tmp_path):
     assert "Summary of rule results" in outline and "Bolted joints" in outline
     h = html.read_text()
     assert 'id="summary"' in h and "sec-joints" in h
+
+
+def test_whole_check_is_deterministic_and_exit_1(example):
+    # all modules; run times are the only run-dependent output and sit under "timings"
+    a = run("check", example, "--format", "json", "--no-timings")
+    b = run("check", example, "--format", "json", "--no-timings")
+    assert a.exit_code == 1 and a.stdout == b.stdout
+    d = json.loads(a.stdout)
+    assert set(d["modules"]["run"]) == {"joints", "loads", "torsion", "fatigue", "bearings"}
+    assert {r["rule"].split("-")[0] for r in d["results"]} == {"JNT", "BRG", "TV", "DMP", "FAT"}

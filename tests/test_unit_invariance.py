@@ -66,7 +66,7 @@ def _numbers(res):
     return out
 
 
-@pytest.mark.parametrize("select", [["JNT", "BRG"]])
+@pytest.mark.parametrize("select", [None])
 def test_imperial_units_give_identical_results(tmp_path, select):
     si, imp = tmp_path / "si.xlsx", tmp_path / "imperial.xlsx"
     write_workbook(si, example_content())
