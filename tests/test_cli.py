@@ -148,3 +148,18 @@ def test_whole_check_is_deterministic_and_exit_1(example):
     d = json.loads(a.stdout)
     assert set(d["modules"]["run"]) == {"joints", "loads", "torsion", "fatigue", "bearings"}
     assert {r["rule"].split("-")[0] for r in d["results"]} == {"JNT", "BRG", "TV", "DMP", "FAT"}
+
+
+def test_report_figures_use_display_units(example, tmp_path):
+    # the specific-load and MOFT plots are in MPa and um: their axis tick labels stay small
+    import re
+
+    from checker import api
+    from checker.report.section_bearings import bearings_section
+    from checker.report.section_loads import loads_section
+
+    res = api.check(example, select=["BRG"])
+    for sec in (loads_section(res), bearings_section(res)):
+        svgs = [b["svg"] for b in sec["blocks"] if b["type"] == "figure"]
+        text = " ".join(svgs)
+        assert "1e" not in " ".join(re.findall(r">([^<]{1,12})</text>", text)), sec["id"]

@@ -46,7 +46,7 @@ def bearings_section(res: CheckResult) -> dict:
     ]})
     sp = np.array(q.coords["speed"]) / RPM
     cases = q.coords["case"]
-    blocks.append({"type": "figure", "svg": bearing_speed_figure(res, q, 1e-6, "MOFT [µm]", "µm"),
+    blocks.append({"type": "figure", "svg": bearing_speed_figure(res, q, 1e6, "MOFT [µm]", "µm"),
                    "caption": "Minimum oil film thickness against speed, full and no load"})
     rows = []
     for i, n in enumerate(names):

@@ -23,8 +23,9 @@ def _rule_limits(res: CheckResult, quantity: str, case: str) -> dict[str, float]
 
 
 def bearing_speed_figure(res: CheckResult, q, scale: float, ylabel: str, unit: str) -> str:
-    """Per-bearing curves against speed (mains / big ends x load cases) with the rule limits
-    of each lining; ``q`` has dims (item, case, speed) and item attributes type and lining."""
+    """Per-bearing curves (values x ``scale``) against speed, mains / big ends x load cases,
+    with the rule limit of each lining; ``q`` has dims (item, case, speed) and item attributes
+    type and lining."""
     names = q.coords["item"]
     sp = np.array(q.coords["speed"]) / RPM
     fig, axes = figure(170, 110, nrows=2, ncols=2, sharex=True)
@@ -36,7 +37,7 @@ def bearing_speed_figure(res: CheckResult, q, scale: float, ylabel: str, unit: s
             for i, n in enumerate(names):
                 if q.item_attrs[n]["type"] != typ or not np.isfinite(q.values[i, ci]).all():
                     continue
-                ax.plot(sp, q.values[i, ci] / scale, label=n)
+                ax.plot(sp, q.values[i, ci] * scale, label=n)
                 linings.add(q.item_attrs[n]["lining"])
             for ln in sorted(x for x in linings if x):
                 v = lim.get(ln, lim.get("*"))
