@@ -13,6 +13,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from . import __version__, graph
 from .engine import Engine, load_engine
 from .ruletable import Rule, RuleResult, RuleTable, apply_overrides, evaluate_rule, load_rules
@@ -90,6 +92,29 @@ def _assumptions(engine: Engine, outcome: graph.RunOutcome) -> list[str]:
     return out
 
 
+def _apply_envelope(outcome: graph.RunOutcome) -> None:
+    """Restrict rules on (case, speed) quantities to the engine's operating envelope (full load
+    only within its data range; see :func:`checker.modules.loads.build_cycle`)."""
+    cyc_q = outcome.quantities.get("loads.cycle")
+    if cyc_q is None:
+        return
+    cyc = cyc_q.extra["cycle"]
+    env = getattr(cyc, "envelope", None)
+    if env is None or env.all():
+        return
+    for q in outcome.quantities.values():
+        dims = q.spec.dims
+        if "case" not in dims or "speed" not in dims or dims.index("speed") != len(dims) - 1:
+            continue
+        if list(q.coords["case"]) != list(cyc.cases) or len(q.coords["speed"]) != env.shape[1]:
+            continue
+        if dims.index("case") != len(dims) - 2:
+            continue
+        mask = np.broadcast_to(env, q.values.shape)
+        q.applies = mask if q.applies is None else (q.applies & mask)
+        q.extra.setdefault("applies_text", "outside the operating envelope")
+
+
 def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = None,
           select: list[str] | None = None, ignore: list[str] | None = None,
           fail_on: str = "error", progress: Callable[[str], None] | None = None
@@ -116,6 +141,7 @@ def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = No
     table = apply_overrides(table, engine)
     chosen = _select(table, select, ignore)
     outcome = graph.run(engine, {r.quantity for r in chosen}, progress=progress)
+    _apply_envelope(outcome)
     results: list[RuleResult] = []
     for r in chosen:
         results += evaluate_rule(r, outcome.quantities.get(r.quantity),

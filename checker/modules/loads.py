@@ -82,6 +82,7 @@ class Cycle:
     imep: np.ndarray  # (C, S) [Pa]
     target_imep: np.ndarray  # (C, S) [Pa] from brake torque + FMEP (nan if not calibrated)
     notes: list[str]
+    envelope: np.ndarray | None = None  # (C, S) bool: operating points the rules judge
 
 
 def _trace_from_table(engine: Engine, case: str, theta: np.ndarray, speeds: np.ndarray):
@@ -193,7 +194,24 @@ def build_cycle(engine: Engine, step: float | None = None) -> Cycle:
         if extrap[ci].any():
             notes.append(f"{case.capitalize()}-load pressure held at the nearest given speed"
                          f" (explicit extrapolation) at {_speeds_text(speeds[extrap[ci]] / RPM)}.")
-    return Cycle(theta, speeds, CASES, pressure, synth, extrap, motored, imep, target, notes)
+    envelope = np.ones((C, S), bool)
+    if "full" in CASES:
+        # full load exists only where the engine has full-load data: above (below) the last
+        # (first) given full-load speed the points are computed and plotted but not judged
+        ci = CASES.index("full")
+        data_speeds = [s for c, s, _ in engine.peak_pressure if c == "full"] + [
+            r[1] for r in engine.pressure_traces if r[0] == "full"]
+        if data_speeds:
+            envelope[ci] = (speeds >= min(data_speeds) - 1e-9) & (
+                speeds <= max(data_speeds) + 1e-9)
+            if not envelope[ci].all():
+                notes.append("Full-load rules are judged within the full-load data range"
+                             f" ({min(data_speeds) / RPM:.0f}-{max(data_speeds) / RPM:.0f} rpm);"
+                             " full-load points outside it rest on extrapolated pressure and are"
+                             " shown, not judged. No load is judged at every speed including"
+                             " overspeed.")
+    return Cycle(theta, speeds, CASES, pressure, synth, extrap, motored, imep, target, notes,
+                 envelope)
 
 
 def _speeds_text(rpm: np.ndarray) -> str:

@@ -436,7 +436,8 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
     return {"quantities": out,
             "joint_inputs": dict(data=data, speeds=speeds, cases=cases, vmax=vmax, vmin=vmin,
                                  el_names=el_names, res_text=res_text, fead=fead or 0.0,
-                                 assumptions=assumptions)}
+                                 assumptions=assumptions,
+                                 envelope=getattr(cyc, "envelope", None))}
 
 
 def _damper(engine: Engine, data: dict, model: tv.TorsionalModel, orders: np.ndarray,
@@ -505,7 +506,7 @@ def _damper(engine: Engine, data: dict, model: tv.TorsionalModel, orders: np.nda
 
 def _joints(engine: Engine, data: dict, speeds: np.ndarray, cases: list[str], vmax: np.ndarray,
             vmin: np.ndarray, el_names: list[str], res_text: dict, fead: float,
-            assumptions: list[str]) -> Quantity:
+            assumptions: list[str], envelope: np.ndarray | None = None) -> Quantity:
     """Peak TV torque through each bolted joint at 'tv peak', 'max power' and 'overspeed'.
 
     * crank nose: the element ending at the crank-nose station (the damper rubber in the usual
@@ -572,7 +573,9 @@ def _joints(engine: Engine, data: dict, speeds: np.ndarray, cases: list[str], vm
         if j.location == "flywheel" and not bt.size:
             points.append((0, None, brake_missing))
         else:
-            points.append((ci_full, int(np.argmax(peak[ci_full])), ""))
+            inside = np.ones(speeds.size, bool) if envelope is None else envelope[ci_full]
+            points.append((ci_full, int(np.argmax(np.where(inside, peak[ci_full], -np.inf))),
+                           ""))
         if mp_speed is None:
             points.append((ci_full, None, brake_missing + " (maximum power speed)"))
         else:

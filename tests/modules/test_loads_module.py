@@ -84,3 +84,13 @@ def test_missing_compression_ratio_is_not_evaluated(tmp_path):
     res = api.check(p, select=["BRG"])
     assert all(r.status == "not_evaluated" for r in res.results)
     assert any("Compression ratio" in m and "Engine!B" in m for m in res.results[0].missing)
+
+
+def test_full_load_judged_within_its_data_range(example_result):
+    # seed 000 full-load data end at 6500 rpm: 6600-7000 rpm are computed, shown, not judged
+    q = example_result.outcome.quantities["bearing.peak_specific_load"]
+    sp = np.array(q.coords["speed"]) / RPM
+    assert q.applies is not None
+    assert q.applies[:, 0, sp <= 6500 + 1e-6].all() and not q.applies[:, 0, sp > 6500].any()
+    assert q.applies[:, 1].all()  # no load: every speed including overspeed
+    assert any("judged within the full-load data range" in a for a in example_result.assumptions)
