@@ -104,16 +104,20 @@ def main() -> None:
 @main.command()
 @click.argument("path", type=click.Path(dir_okay=False), default="engine.xlsx")
 @click.option("--force", is_flag=True, help="Overwrite an existing file.")
-def template(path: str, force: bool) -> None:
-    """Write the example workbook (the seed's 4-cylinder gasoline engine) to PATH."""
+@click.option("--engine", "which", type=click.Choice(["i4", "i6"]), default="i4",
+              show_default=True, help="i4: the seed's gasoline engine (Ricardo 2013); i6: a"
+              " truck diesel from Mendes et al. 2008 with labelled assumptions.")
+def template(path: str, force: bool, which: str) -> None:
+    """Write an example workbook (default: the seed's 4-cylinder gasoline engine) to PATH."""
     from .workbook.example import example_content, write_workbook
+    from .workbook.example_i6 import i6_content
 
     p = Path(path)
     if p.exists() and not force:
         raise click.UsageError(f"{p} exists; use --force to overwrite it")
     with tempfile.TemporaryDirectory() as d:
         tmp = Path(d) / "engine.xlsx"
-        write_workbook(tmp, example_content())
+        write_workbook(tmp, example_content() if which == "i4" else i6_content())
         _atomic_write(p, tmp.read_bytes())
     click.echo(f"wrote {p}", err=True)
 

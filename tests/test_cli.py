@@ -163,3 +163,10 @@ def test_report_figures_use_display_units(example, tmp_path):
         svgs = [b["svg"] for b in sec["blocks"] if b["type"] == "figure"]
         text = " ".join(svgs)
         assert "1e" not in " ".join(re.findall(r">([^<]{1,12})</text>", text)), sec["id"]
+
+
+def test_template_i6_engine(tmp_path):
+    p = tmp_path / "i6.xlsx"
+    assert run("template", p, "--engine", "i6").exit_code == 0
+    r = run("check", p, "--select", "JNT", "--format", "json")
+    assert r.exit_code in (0, 1) and json.loads(r.stdout)["engine"].startswith("Example I6")
