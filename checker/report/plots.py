@@ -16,6 +16,7 @@ plt.rcParams.update({
     "font.family": "DejaVu Sans",
     "font.size": 8,
     "axes.grid": True,
+    "axes.grid.axis": "y",  # y grid only: each grid line is an SVG path WeasyPrint lays out
     "grid.alpha": 0.3,
     "axes.spines.top": False,
     "axes.spines.right": False,
