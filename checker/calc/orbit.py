@@ -347,6 +347,22 @@ def _make_rate(model: str, bear: dict):
     return rate
 
 
+def _load_at(fk3, iw3, t: float):
+    """Load (complex), its unit conjugate and the whirl term at fraction ``t`` of a step,
+    linear between the step's start, middle and end samples ``fk3``/``iw3``."""
+    if t <= 0.5:
+        s = 2.0 * t
+        f = fk3[0] + s * (fk3[1] - fk3[0])
+        w = iw3[0] + s * (iw3[1] - iw3[0])
+    else:
+        s = 2.0 * t - 1.0
+        f = fk3[1] + s * (fk3[2] - fk3[1])
+        w = iw3[1] + s * (iw3[2] - iw3[1])
+    fa = np.abs(f)
+    uc = np.where(fa > 0.0, np.conj(f) / np.where(fa > 0.0, fa, 1.0), 1.0)
+    return f, uc, w
+
+
 def _ros2_steps(rate, z, fk3, iw3, sel, h, nsub):
     """Advance ``z`` over one RK step of length ``h`` with ``nsub`` ROS2 sub-steps.
 
@@ -362,17 +378,7 @@ def _ros2_steps(rate, z, fk3, iw3, sel, h, nsub):
     """
 
     def at(t):
-        if t <= 0.5:
-            s = 2.0 * t
-            f = fk3[0] + s * (fk3[1] - fk3[0])
-            w = iw3[0] + s * (iw3[1] - iw3[0])
-        else:
-            s = 2.0 * t - 1.0
-            f = fk3[1] + s * (fk3[2] - fk3[1])
-            w = iw3[1] + s * (iw3[2] - iw3[1])
-        fa = np.abs(f)
-        uc = np.where(fa > 0.0, np.conj(f) / np.where(fa > 0.0, fa, 1.0), 1.0)
-        return f, uc, w
+        return _load_at(fk3, iw3, t)
 
     hs = h / nsub
     gh = _ROS2_GAMMA * hs
@@ -414,17 +420,7 @@ def _rk4_steps(rate, z, fk3, iw3, h, nsub):
     (loads piecewise-linear between the three nodes of the step)."""
 
     def at(t):
-        if t <= 0.5:
-            s = 2.0 * t
-            f = fk3[0] + s * (fk3[1] - fk3[0])
-            w = iw3[0] + s * (iw3[1] - iw3[0])
-        else:
-            s = 2.0 * t - 1.0
-            f = fk3[1] + s * (fk3[2] - fk3[1])
-            w = iw3[1] + s * (iw3[2] - iw3[1])
-        fa = np.abs(f)
-        uc = np.where(fa > 0.0, np.conj(f) / np.where(fa > 0.0, fa, 1.0), 1.0)
-        return f, uc, w
+        return _load_at(fk3, iw3, t)
 
     hs = h / nsub
     p1 = at(0.0)
