@@ -214,8 +214,9 @@ def rules_cmd(rules, explain) -> None:
         click.echo("\n".join(lines))
         return
     w = max(len(r.name) for r in table.rules)
+    wi = max(len(r.id) for r in table.rules)
     for r in table.rules:
-        click.echo(f"{r.id}  {r.name.ljust(w)}  {r.severity:<7}  {r.limit_text()}")
+        click.echo(f"{r.id.ljust(wi)}  {r.name.ljust(w)}  {r.severity:<7}  {r.limit_text()}")
 
 
 if __name__ == "__main__":  # pragma: no cover
