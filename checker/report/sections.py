@@ -44,9 +44,35 @@ def build_sections(res: CheckResult) -> list[dict]:
     for m in pkgutil.iter_modules(report.__path__):
         if m.name.startswith("section_"):
             importlib.import_module(f"{report.__name__}.{m.name}")
-    out = []
-    for m in res.outcome.modules_run:
-        f = SECTIONS.get(m)
-        if f is not None:
-            out.append(f(res))
-    return out
+    mods = [m for m in res.outcome.modules_run if m in SECTIONS]
+    return _build_parallel(res, mods) if len(mods) > 1 else [SECTIONS[m](res) for m in mods]
+
+
+_RESULT: CheckResult | None = None
+
+
+def _one(module: str) -> dict:
+    assert _RESULT is not None
+    return SECTIONS[module](_RESULT)
+
+
+def _build_parallel(res: CheckResult, mods: list[str]) -> list[dict]:
+    """Draw the sections' figures in forked worker processes (matplotlib is single-threaded
+    and drawing dominates the report's time); sequential where fork is unavailable."""
+    import multiprocessing as mp
+    import os
+    from concurrent.futures import ProcessPoolExecutor
+
+    global _RESULT
+    workers = min(len(mods), os.cpu_count() or 1)
+    if workers < 2 or "fork" not in mp.get_all_start_methods():
+        return [SECTIONS[m](res) for m in mods]
+    _RESULT = res
+    try:
+        with ProcessPoolExecutor(workers, mp_context=mp.get_context("fork")) as pool:
+            # the slowest sections first, so the pool stays busy
+            order = sorted(mods, key=lambda m: m not in ("torsion", "loads", "fatigue"))
+            done = dict(zip(order, pool.map(_one, order)))
+        return [done[m] for m in mods]
+    finally:
+        _RESULT = None
