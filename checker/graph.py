@@ -101,7 +101,11 @@ class Calculation:
     func: Callable[[Engine, dict[str, Quantity]], dict[str, Quantity]]
     needs: Callable[[Engine], tuple[str, ...]] = lambda engine: ()
     description: str = ""
+    optional: tuple[str, ...] = ()  # needs that may be unavailable (the calc copes)
 
+
+UNAVAILABLE = "__unavailable__"
+"""Key of the inputs dict that maps optional needs that could not be computed to reasons."""
 
 QUANTITIES: dict[str, QuantitySpec] = {}
 CALCULATIONS: dict[str, Calculation] = {}
@@ -120,14 +124,14 @@ def quantity(spec: QuantitySpec) -> QuantitySpec:
 
 def calculation(name: str, module: str, provides: Iterable[str],
                 needs: Callable[[Engine], tuple[str, ...]] | Iterable[str] = (),
-                description: str = ""):
+                description: str = "", optional: Iterable[str] = ()):
     """Decorator registering a calculation function ``f(engine, inputs) -> {name: Quantity}``."""
     provides = tuple(provides)
     needs_f = needs if callable(needs) else (lambda engine, _n=tuple(needs): _n)
 
     def deco(func):
         calc = Calculation(name, module, provides, func, needs_f, description or func.__doc__
-                           or "")
+                           or "", tuple(optional))
         CALCULATIONS[name] = calc
         for q in provides:
             if q not in QUANTITIES:
@@ -191,7 +195,7 @@ def run(engine: Engine, wanted: Iterable[str], progress: Callable[[str], None] |
     for cname in order:
         calc = CALCULATIONS[cname]
         deps = calc.needs(engine)
-        blocked = [d for d in deps if d in unavailable]
+        blocked = [d for d in deps if d in unavailable and d not in calc.optional]
         if blocked:
             reasons = []
             for d in blocked:
@@ -205,7 +209,11 @@ def run(engine: Engine, wanted: Iterable[str], progress: Callable[[str], None] |
             progress(f"{calc.module}: {calc.name}")
         t0 = time.perf_counter()
         try:
-            out = calc.func(engine, {d: have[d] for d in deps})
+            inputs: dict = {d: have[d] for d in deps if d in have}
+            gone = {d: unavailable[d] for d in deps if d in unavailable}
+            if gone:
+                inputs[UNAVAILABLE] = gone
+            out = calc.func(engine, inputs)
         except MissingInputs as exc:
             for q in calc.provides:
                 unavailable[q] = exc.reasons

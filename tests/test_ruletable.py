@@ -170,3 +170,20 @@ def test_resonant_peak_mask_and_applies():
     q.applies = np.zeros((1, 3), bool)
     [res] = evaluate_rule(rule, q, None)
     assert res.status == "pass" and res.value is None and "nothing to judge" in res.message
+
+
+def test_joints_only_workbook_uses_given_torques(tmp_path):
+    """Only Engine, Joints and JointTorques: the given TV-peak torques are used although the
+    torsional module cannot run; the other points say why they are not evaluated."""
+    from checker.workbook.example import example_content, write_workbook
+
+    c = example_content()
+    p = tmp_path / "joints_only.xlsx"
+    write_workbook(p, {k: c[k] for k in ("Engine", "Joints", "JointTorques")})
+    res = api.check(p, select=["JNT"])
+    by = {(r.rule, r.item): r for r in res.results}
+    assert by[("JNT-003", "crank nose")].status == "fail"
+    assert by[("JNT-005", "flywheel")].value == pytest.approx(1.771, abs=5e-4)
+    r6 = by[("JNT-006", "flywheel")]
+    assert r6.status == "not_evaluated" and "torsional module could not run" in r6.missing[0]
+    assert "Cylinders" in r6.missing[0]

@@ -6,7 +6,15 @@ import numpy as np
 
 from ..calc import bolted_joint as bj
 from ..engine import Engine, Joint
-from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity, register_module
+from ..graph import (
+    UNAVAILABLE,
+    MissingInputs,
+    Quantity,
+    QuantitySpec,
+    calculation,
+    quantity,
+    register_module,
+)
 
 register_module("joints", "Bolted joints")
 
@@ -152,7 +160,7 @@ def _applied_needs(engine: Engine) -> tuple[str, ...]:
 
 
 @calculation("joint_applied_torque", "joints", provides=("joint.applied_torque",),
-             needs=_applied_needs)
+             needs=_applied_needs, optional=("tv.joint_torque",))
 def joint_applied_torque(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Peak applied torque per joint and operating point: the workbook's value where given,
     otherwise from the torsional-vibration module (when it runs)."""
@@ -166,6 +174,7 @@ def joint_applied_torque(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     missing: dict[tuple, list[str]] = {}
     given = {(t.joint, t.point): t for t in engine.joint_torques}
     tv = inputs.get("tv.joint_torque")
+    tv_gone = inputs.get(UNAVAILABLE, {}).get("tv.joint_torque")
     for i, j in enumerate(joints):
         for k, p in enumerate(POINTS):
             t = given.get((j.name, p))
@@ -180,8 +189,12 @@ def joint_applied_torque(engine: Engine, inputs: dict) -> dict[str, Quantity]:
             else:
                 reason = (f"JointTorques: peak applied torque of joint '{j.name}' at '{p}'"
                           " (not given in the workbook")
-                reason += (" and not computed: " + "; ".join(tv.missing.get((i, k), []))
-                           + ")") if tv is not None else "; the torsional module did not run)"
+                if tv is not None:
+                    reason += " and not computed: " + "; ".join(tv.missing.get((i, k), [])) + ")"
+                elif tv_gone:
+                    reason += "; the torsional module could not run: " + "; ".join(tv_gone) + ")"
+                else:
+                    reason += "; the torsional module did not run)"
                 missing[(i, k)] = [reason]
     coords = {"item": names, "point": list(POINTS)}
     attrs = {j.name: _attrs(j) for j in joints}
