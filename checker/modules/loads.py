@@ -266,8 +266,6 @@ def _bearing_sets(engine: Engine, n_pins: int, n_cyl: int) -> tuple[list[Bearing
                         f" throws has {n_pins + 1}")
     if bigs and len(bigs) != n_cyl:
         problems.append(f"Bearings: {len(bigs)} big-end bearings given for {n_cyl} cylinders")
-    if not engine.bearings:
-        problems.append("Bearings: no bearings given (sheet Bearings)")
     if problems:
         raise MissingInputs(problems)
     return mains, bigs
@@ -346,8 +344,12 @@ def bearing_loads(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     order = [b.name for b in engine.bearings]
     idx = [names.index(n) for n in order]
     bearings = {b.name: b for b in engine.bearings}
-    fx = np.stack([fx[i] for i in idx])
-    fy = np.stack([fy[i] for i in idx])
+    empty = np.zeros((0, C, S, N))  # no Bearings sheet: crank forces only (fatigue, TV)
+
+    def stacked(arrays: list) -> np.ndarray:
+        return np.stack([arrays[i] for i in idx]) if idx else empty
+
+    fx, fy = stacked(fx), stacked(fy)
     missing = {(order.index(names[k[0]]),): v for k, v in missing.items()}
     mag = np.hypot(fx, fy)
     peak = np.where(np.isnan(mag).any(axis=-1), np.nan, np.nanmax(
@@ -358,8 +360,7 @@ def bearing_loads(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         dia.append(b.diameter)
         length.append(b.length)
     extra = {"theta": cyc.theta, "fx": fx, "fy": fy,
-             "omega_journal": np.stack([wj[i] for i in idx]),
-             "omega_bearing": np.stack([wb[i] for i in idx]),
+             "omega_journal": stacked(wj), "omega_bearing": stacked(wb),
              "diameter": np.array(dia), "length": np.array(length),
              "frames": {n: ("con-rod frame" if bearings[n].type == "big end" else "block frame")
                         for n in order},
@@ -379,6 +380,8 @@ def bearing_loads(engine: Engine, inputs: dict) -> dict[str, Quantity]:
 def specific_load(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Peak specific load = max|F| / (D L_eff) per bearing, load case and speed."""
     bl = inputs["loads.bearing_load"]
+    if not bl.coords["item"]:
+        raise MissingInputs(["Bearings: no bearings given (sheet Bearings)"])
     ex = bl.extra
     ok = np.isfinite(bl.values)
     val = np.full(bl.values.shape, np.nan)

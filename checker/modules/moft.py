@@ -73,6 +73,8 @@ def oil_viscosity(engine: Engine) -> tuple[float, float, list[str]]:
 def moft(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Periodic journal orbits of all bearings x load cases x speeds in one batch."""
     bl = inputs["loads.bearing_load"]
+    if not bl.coords["item"]:
+        raise MissingInputs(["Bearings: no bearings given (sheet Bearings)"])
     ex = bl.extra
     t_film, mu, notes = oil_viscosity(engine)
     choice = engine.oil.get("mobility_model") or "short bearing"

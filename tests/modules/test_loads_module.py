@@ -94,3 +94,15 @@ def test_full_load_judged_within_its_data_range(example_result):
     assert q.applies[:, 0, sp <= 6500 + 1e-6].all() and not q.applies[:, 0, sp > 6500].any()
     assert q.applies[:, 1].all()  # no load: every speed including overspeed
     assert any("judged within the full-load data range" in a for a in example_result.assumptions)
+
+
+def test_without_bearings_the_crank_forces_still_feed_tv(tmp_path):
+    from checker.workbook.example import example_content, write_workbook
+
+    c = example_content()
+    p = tmp_path / "nobearings.xlsx"
+    write_workbook(p, {k: v for k, v in c.items() if k != "Bearings"})
+    res = api.check(p, select=["BRG", "TV"])
+    brg = [r for r in res.results if r.rule.startswith("BRG")]
+    assert brg and all(r.status == "not_evaluated" and "Bearings" in r.missing[0] for r in brg)
+    assert all(r.status != "not_evaluated" for r in res.results if r.rule.startswith("TV"))
