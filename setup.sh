@@ -13,7 +13,7 @@ fi
 
 # WeasyPrint (the PDF renderer) needs Pango and fonts from the system.
 missing_libs() {
-  for lib in libpango-1.0.so.0 libpangoft2-1.0.so.0; do
+  for lib in libpango-1.0.so.0 libpangoft2-1.0.so.0 libharfbuzz-subset.so.0; do
     ldconfig -p 2>/dev/null | grep -q "$lib" || { echo "$lib"; return; }
   done
   fc-list 2>/dev/null | grep -qi dejavu || echo "fonts-dejavu-core"
@@ -22,10 +22,12 @@ if [ -n "$(missing_libs)" ]; then
   if [ "$(id -u)" = "0" ] && command -v apt-get >/dev/null; then
     echo "setup: installing Pango and fonts for WeasyPrint (apt-get)" >&2
     apt-get update -qq >/dev/null && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
-      libpango-1.0-0 libpangoft2-1.0-0 fonts-dejavu-core fontconfig >/dev/null
+      libpango-1.0-0 libpangoft2-1.0-0 libharfbuzz-subset0 fonts-dejavu-core fontconfig \
+      >/dev/null
   else
     echo "setup: WeasyPrint needs Pango and fonts. Install them, e.g. on Debian/Ubuntu:" >&2
-    echo "  sudo apt-get install libpango-1.0-0 libpangoft2-1.0-0 fonts-dejavu-core" >&2
+    echo "  sudo apt-get install libpango-1.0-0 libpangoft2-1.0-0 libharfbuzz-subset0" \
+      "fonts-dejavu-core" >&2
     exit 2
   fi
 fi
