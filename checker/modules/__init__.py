@@ -1,3 +1,12 @@
 """Graph calculations, one module per analysis family. Importing registers them."""
 
-from . import fatigue, joints, loads, moft, torsion  # noqa: F401
+from .. import graph
+from . import crank_nose, fatigue, joints, loads, moft, torsion  # noqa: F401
+
+ORDER = ("loads", "bearings", "torsion", "joints", "fatigue")
+"""Order of the modules in listings and in the report (each builds on the ones before)."""
+
+_registered = dict(graph.MODULES)
+graph.MODULES.clear()
+graph.MODULES.update({m: _registered[m] for m in ORDER if m in _registered})
+graph.MODULES.update({m: t for m, t in _registered.items() if m not in ORDER})

@@ -352,4 +352,30 @@ def fatigue_section(res: CheckResult) -> dict:
         blocks.append({"type": "heading", "text": "Findings"})
         blocks.append({"type": "list", "items": found[:20] + (
             [f"... and {len(found) - 20} more"] if len(found) > 20 else [])})
+    blocks += _nose(res)
     return {"id": "fatigue", "title": title, "intro": intro, "blocks": blocks}
+
+
+def _nose(res: CheckResult) -> list[dict]:
+    """Crank-nose check (FAT-003): the worst point per load case, or why it did not run."""
+    nq = res.outcome.quantities.get("fatigue.nose_goodman_sf")
+    out: list[dict] = [{"type": "heading", "text": "Crank nose (FAT-003)"}]
+    if nq is None:
+        why = res.outcome.unavailable.get("fatigue.nose_goodman_sf")
+        if why is None:
+            return []
+        return out + [{"type": "text", "text": "Not evaluated: missing " + "; ".join(why)}]
+    ex = nq.extra
+    sp = np.array(nq.coords["speed"]) * 30 / np.pi
+    rows = []
+    judged = nq.values if nq.applies is None else np.where(nq.applies, nq.values, np.inf)
+    for ci, c in enumerate(nq.coords["case"]):
+        k = int(np.argmin(judged[ci]))
+        rows.append([f"{c} load", f"{sp[k]:.0f}", f"{nq.values[ci, k]:.3g}",
+                     f"{ex['torque_min'][ci, k]:.0f} / {ex['torque_max'][ci, k]:.0f}",
+                     f"{ex['sigma_eq_a'][ci, k] / 1e6:.1f}",
+                     f"{ex['sigma_eq_m'][ci, k] / 1e6:.1f}"])
+    return out + [{"type": "table", "caption": f"Worst crank-nose point (torque of TV element"
+                   f" '{ex['element']}')", "columns": ["case", "speed [rpm]", "Goodman SF",
+                                                       "T min / max [N m]", "σ_eq,a [MPa]",
+                                                       "σ_eq,m [MPa]"], "rows": rows}]

@@ -200,6 +200,20 @@ FATIGUE = Sheet(
           required=False),
         F("Oil hole stress concentration torsion", "scf_oil_torsion", "ratio", check=">=1",
           required=False),
+        F("Crank nose diameter", "nose_diameter", "length", check=">0", required=False,
+          note="Smallest nose section at the critical fillet (crank-nose check, FAT-003)."),
+        F("Crank nose bore diameter", "nose_bore", "length", check=">=0", required=False),
+        F("Crank nose stress concentration bending", "scf_nose_bending", "ratio", check=">=1",
+          required=False),
+        F("Crank nose stress concentration torsion", "scf_nose_torsion", "ratio", check=">=1",
+          required=False),
+        F("Crank nose fatigue strength", "nose_fatigue", "stress", check=">0", required=False,
+          note="Fully reversed fatigue strength at the nose fillet (with its treatment)."),
+        F("Belt load on crank nose", "belt_load", "force", check=">=0", required=False,
+          note="Resultant FEAD + timing drive belt/chain pull on the nose (blank = none"
+               " given: torsion only, stated in the report)."),
+        F("Belt load overhang", "belt_overhang", "length", check=">=0", required=False,
+          note="Axial distance from the belt load line to the critical nose section."),
     ),
 )
 

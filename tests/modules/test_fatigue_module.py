@@ -32,7 +32,7 @@ def example(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def result(example):
-    return api.check(example, select=["FAT"])
+    return api.check(example, select=["FAT-001", "FAT-002"])
 
 
 def _q(res, name="fatigue.goodman_sf"):
@@ -188,7 +188,7 @@ def test_workbook_scfs_override_m53(tmp_path, result):
         cells["bt"] = _append_param(wb, "Fatigue", "Main fillet stress concentration torsion",
                                     2.0)
 
-    res = api.check(edited(tmp_path, edit), select=["FAT"])
+    res = api.check(edited(tmp_path, edit), select=["FAT-001", "FAT-002"])
     q = _q(res)
     scf = q.extra["scf"]
     assert scf["used"]["alpha_b"] == 3.0 and cells["ab"] in scf["source"]["alpha_b"]
@@ -210,7 +210,7 @@ def test_not_evaluated_without_tv_model(tmp_path):
         ws = wb["TVModel"]
         ws.delete_rows(3, ws.max_row)
 
-    res = api.check(edited(tmp_path, edit), select=["FAT"])
+    res = api.check(edited(tmp_path, edit), select=["FAT-001", "FAT-002"])
     assert {r.rule for r in res.results} == {"FAT-001", "FAT-002"}
     for r in res.results:
         assert r.status == "not_evaluated"
@@ -225,7 +225,7 @@ def test_missing_fatigue_cells_are_named(tmp_path):
         cell["se"] = set_param(wb, "Fatigue", "Pin fillet fatigue strength")
         wb["Fatigue"].cell(param_row(wb["Fatigue"], "Pin fillet fatigue strength"), 2).value = None
 
-    res = api.check(edited(tmp_path, edit), select=["FAT"])
+    res = api.check(edited(tmp_path, edit), select=["FAT-001", "FAT-002"])
     by = {(r.rule, r.item): r for r in res.results}
     for item in PINS:
         r = by[("FAT-001", item)]
@@ -239,7 +239,7 @@ def test_missing_fatigue_cells_are_named(tmp_path):
         cell["w"] = set_param(wb, "Fatigue", "Web reduced thickness")
         wb["Fatigue"].cell(param_row(wb["Fatigue"], "Web reduced thickness"), 2).value = None
 
-    res = api.check(edited(tmp_path, edit2, "web.xlsx"), select=["FAT"])
+    res = api.check(edited(tmp_path, edit2, "web.xlsx"), select=["FAT-001", "FAT-002"])
     for r in res.results:
         assert r.status == "not_evaluated"
         assert any(cell["w"] in m and "Web reduced thickness" in m for m in r.missing)

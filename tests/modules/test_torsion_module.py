@@ -164,7 +164,7 @@ def test_joint_rules_from_tv_torques_when_rows_removed(tmp_path):
 
     path = edited(tmp_path, edit)
     res = api.check(path, select=["JNT"])
-    assert res.outcome.modules_run == ["joints", "loads", "torsion"]
+    assert res.outcome.modules_run == ["loads", "torsion", "joints"]
     app = res.outcome.quantities["joint.applied_torque"]
     tq = res.outcome.quantities["tv.joint_torque"]
     assert np.all(app.extra["source"] == "torsional vibration module")
