@@ -134,6 +134,8 @@ def test_report_pdf_and_html(example, tmp_path):
     assert "79.507" in text and "554.547" in text and "359.524" in text  # seed slide 23
     assert "64.4939" in text and "67.474" in text and "2154.08" in text  # seed slide 24
     assert "Page 1 of" in text
+    # figures are vector graphics with real (searchable) text
+    assert "Cover factor (slip torque capacity / applied torque)" in text
     outline = [o.title for o in PdfReader(pdf).outline if not isinstance(o, list)]
     assert "Summary of rule results" in outline and "Bolted joints" in outline
     h = html.read_text()
