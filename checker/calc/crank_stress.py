@@ -69,6 +69,8 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ._checks import finite as _finite
+
 __all__ = [
     "LocalStresses",
     "ThrowNominalStresses",
@@ -90,11 +92,6 @@ __all__ = [
 # validation helpers
 
 
-def _finite(name: str, value: ArrayLike) -> np.ndarray:
-    arr = np.asarray(value, dtype=float)
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be finite (no NaN/inf)")
-    return arr
 
 
 def _pos(name: str, value: float) -> float:

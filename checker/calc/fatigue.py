@@ -41,6 +41,10 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ._checks import finite as _finite
+from ._checks import non_negative as _non_negative
+from ._checks import positive as _positive
+
 __all__ = [
     "GOODMAN_SF_MIN",
     "M53_Q_MIN",
@@ -73,25 +77,10 @@ SIGMA_ADD_CROSSHEAD = 30.0e6
 _MEAN_CRITERIA = ("signed_von_mises", "normal", "von_mises")
 
 
-def _finite(name: str, value: ArrayLike) -> np.ndarray:
-    arr = np.asarray(value, dtype=float)
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be finite (no NaN/inf)")
-    return arr
 
 
-def _positive(name: str, value: ArrayLike) -> np.ndarray:
-    arr = _finite(name, value)
-    if np.any(arr <= 0.0):
-        raise ValueError(f"{name} must be > 0, got {value!r}")
-    return arr
 
 
-def _non_negative(name: str, value: ArrayLike) -> np.ndarray:
-    arr = _finite(name, value)
-    if np.any(arr < 0.0):
-        raise ValueError(f"{name} must be >= 0 (an amplitude)")
-    return arr
 
 
 # ---------------------------------------------------------------------------------------------

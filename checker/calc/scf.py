@@ -37,6 +37,9 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ._checks import non_negative as _non_negative
+from ._checks import positive as _positive
+
 __all__ = [
     "ALPHA_T_FB_CUBIC",
     "BETA_B_FSW_QUADRATIC",
@@ -116,25 +119,10 @@ class M53SCF(NamedTuple):
         return ~np.logical_or.reduce(fired)
 
 
-def _as_float_array(name: str, value: ArrayLike) -> np.ndarray:
-    arr = np.asarray(value, dtype=float)
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be finite, got {value!r}")
-    return arr
 
 
-def _positive(name: str, value: ArrayLike) -> np.ndarray:
-    arr = _as_float_array(name, value)
-    if np.any(arr <= 0.0):
-        raise ValueError(f"{name} must be > 0 [m], got {value!r}")
-    return arr
 
 
-def _non_negative(name: str, value: ArrayLike) -> np.ndarray:
-    arr = _as_float_array(name, value)
-    if np.any(arr < 0.0):
-        raise ValueError(f"{name} must be >= 0 [m], got {value!r}")
-    return arr
 
 
 def m53_ratios(
