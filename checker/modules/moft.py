@@ -106,18 +106,16 @@ def moft(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         h[sel] = res.h_min
         eps[sel] = res.eps_max
         th_min[sel] = res.theta_h_min
-        for a, i in enumerate(sel):
-            for ci in range(nc):
-                for si in range(ns):
-                    if res.collapse[a, ci, si]:
-                        findings.setdefault((i, ci, si), []).append(
-                            f"film collapse at {speeds[si] * 30 / np.pi:.0f} rpm"
-                            f" ({CASES[ci]} load): eccentricity {res.eps_max[a, ci, si]:.4f};"
-                            f" {res.message[a, ci, si]}")
-                    elif not res.converged[a, ci, si]:
-                        findings.setdefault((i, ci, si), []).append(
-                            f"orbit not periodic after {res.n_cycles[a, ci, si]} cycles at"
-                            f" {speeds[si] * 30 / np.pi:.0f} rpm ({CASES[ci]} load)")
+        # only the flagged points (film collapse, not periodic) are visited
+        for a, ci, si in np.argwhere(res.collapse | ~res.converged):
+            rpm = speeds[si] * 30 / np.pi
+            if res.collapse[a, ci, si]:
+                text = (f"film collapse at {rpm:.0f} rpm ({CASES[ci]} load): eccentricity"
+                        f" {res.eps_max[a, ci, si]:.4f}; {res.message[a, ci, si]}")
+            else:
+                text = (f"orbit not periodic after {res.n_cycles[a, ci, si]} cycles at"
+                        f" {rpm:.0f} rpm ({CASES[ci]} load)")
+            findings.setdefault((int(sel[a]), int(ci), int(si)), []).append(text)
         orbit_store = {"rows": sel, "theta": res.theta, "eps_x": res.eps_x,
                        "eps_y": res.eps_y, "converged": res.converged,
                        "collapse": res.collapse, "n_cycles": res.n_cycles}
