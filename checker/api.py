@@ -17,13 +17,53 @@ import numpy as np
 
 from . import __version__, graph
 from .engine import Engine, load_engine
-from .ruletable import Rule, RuleResult, RuleTable, apply_overrides, evaluate_rule, load_rules
+from .ruletable import (
+    Rule,
+    RuleResult,
+    RuleTable,
+    apply_overrides,
+    evaluate_rule,
+    load_rules,
+    override_problems,
+)
 from .ruletable import select_rules as _select
+
+FAIL_ON = ("error", "warning", "not-evaluated")
+"""Values of ``fail_on``: ``error`` (default), ``warning`` (also failed warnings),
+``not-evaluated`` (also results that could not be evaluated); combine with commas."""
+
+
+def parse_fail_on(value: str | list[str] | tuple[str, ...] | None) -> str:
+    """Normalize ``fail_on`` (``"warning,not-evaluated"`` or a list) to a canonical string.
+
+    Raises :class:`checker.errors.UsageProblem` for an unknown value.
+    """
+    from .errors import UsageProblem
+
+    if value is None:
+        return "error"
+    parts = value.split(",") if isinstance(value, str) else list(value)
+    got = {p.strip().lower().replace("_", "-") for p in parts if p.strip()} or {"error"}
+    bad = sorted(got - set(FAIL_ON))
+    if bad:
+        raise UsageProblem(f"--fail-on: unknown value '{bad[0]}' (use one or more of"
+                           f" {', '.join(FAIL_ON)})")
+    return ",".join(x for x in FAIL_ON if x in got)
 
 
 @dataclass
 class CheckResult:
-    """Everything a check produced: rule results, quantities, timings, assumptions."""
+    """Everything a check produced: rule results, quantities, timings, assumptions.
+
+    Verdict rules (README, "Verdicts"):
+
+    * ``verdict`` is ``fail`` when an error-severity result fails (or a warning with
+      ``fail_on`` warning, or a not-evaluated result with ``fail_on`` not-evaluated), else
+      ``pass``;
+    * ``complete`` is False when any selected result is not evaluated: a pass is then an
+      *incomplete* pass, shown as such everywhere;
+    * ``nothing_checked``: no selected result was evaluated at all; the CLI then exits 2.
+    """
 
     engine: Engine
     table: RuleTable
@@ -34,26 +74,81 @@ class CheckResult:
     assumptions: list[str] = field(default_factory=list)
 
     @property
+    def not_evaluated(self) -> list[RuleResult]:
+        return [r for r in self.results if r.status == "not_evaluated"]
+
+    @property
     def failed(self) -> list[RuleResult]:
-        sev = ("error", "warning") if self.fail_on == "warning" else ("error",)
-        return [r for r in self.results if r.status == "fail" and r.severity in sev]
+        modes = self.fail_on.split(",")
+        sev = ("error", "warning") if "warning" in modes else ("error",)
+        out = [r for r in self.results if r.status == "fail" and
+               (r.severity in sev or r.internal_error)]
+        if "not-evaluated" in modes:
+            out += self.not_evaluated
+        return out
+
+    @property
+    def complete(self) -> bool:
+        """True when every selected result was evaluated."""
+        return not self.not_evaluated
+
+    @property
+    def nothing_checked(self) -> bool:
+        """True when not a single selected result was evaluated (a vacuous check)."""
+        return all(r.status == "not_evaluated" for r in self.results)
+
+    def nothing_checked_reason(self) -> str:
+        """Why nothing was checked: the selection and the distinct missing inputs."""
+        if not self.results:
+            return "no rule result was produced for the selected rules"
+        reasons: list[str] = []
+        for r in self.results:
+            for m in r.missing or [r.message]:
+                if m not in reasons:
+                    reasons.append(m)
+        shown = reasons[:8] + ([f"... and {len(reasons) - 8} more"] if len(reasons) > 8
+                               else [])
+        ids = sorted({r.rule for r in self.results})
+        return (f"nothing was checked: none of the {len(self.results)} selected rule results"
+                f" ({', '.join(ids)}) could be evaluated. Missing:\n"
+                + "\n".join(f"  - {x}" for x in shown))
 
     @property
     def verdict(self) -> str:
         return "fail" if self.failed else "pass"
 
     @property
+    def verdict_text(self) -> str:
+        """The verdict as shown to people: ``FAIL``, ``PASS``, or ``PASS (INCOMPLETE)``;
+        a failing incomplete check reads ``FAIL (INCOMPLETE)``."""
+        v = self.verdict.upper()
+        return v if self.complete else f"{v} (INCOMPLETE)"
+
+    @property
     def exit_code(self) -> int:
+        if self.nothing_checked:
+            return 2
         return 1 if self.failed else 0
 
     def counts(self) -> dict[str, int]:
         out = {"pass": 0, "fail": 0, "warning": 0, "not_evaluated": 0}
         for r in self.results:
-            if r.status == "fail" and r.severity == "warning":
+            if r.status == "fail" and r.severity == "warning" and not r.internal_error:
                 out["warning"] += 1
             else:
                 out[r.status] += 1
         return out
+
+    def summary_text(self) -> str:
+        """One line: verdict, counts and completeness (text output, report command)."""
+        c = self.counts()
+        line = (f"{self.verdict_text} - {c['pass']} passed, {c['fail']} failed,"
+                f" {c['warning']} warnings, {c['not_evaluated']} not evaluated")
+        if not self.complete and "not-evaluated" not in self.fail_on:
+            line += (f"; incomplete: {c['not_evaluated']} result"
+                     f"{'s' if c['not_evaluated'] != 1 else ''} could not be evaluated"
+                     " (not a pass; --fail-on not-evaluated makes them fail)")
+        return line
 
     def to_frame(self):
         """The rule results as a pandas DataFrame (one row per rule and item)."""
@@ -69,6 +164,8 @@ class CheckResult:
             "input": {"file": Path(self.engine.source).name, "sha256": self.engine.sha256},
             "engine": self.engine.name,
             "verdict": self.verdict,
+            "complete": self.complete,
+            "not_evaluated": len(self.not_evaluated),
             "fail_on": self.fail_on,
             "counts": self.counts(),
             "results": [r.as_dict() for r in self.results],
@@ -129,16 +226,31 @@ def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = No
         Rule file or folder; ``None`` = the default table in ``rules/``.
     select, ignore : list of str
         Rule id prefixes to run / to skip (``["JNT"]``, ``["BRG-002"]``).
-    fail_on : {"error", "warning"}
-        Lowest severity whose failure fails the verdict.
+    fail_on : str
+        ``"error"`` (default), ``"warning"`` (failed warnings fail the verdict too),
+        ``"not-evaluated"`` (results that could not be evaluated fail the verdict); combine
+        with commas, e.g. ``"warning,not-evaluated"``.
 
     Raises
     ------
-    checker.errors.InputErrors, checker.errors.RuleFileError, ValueError
+    checker.errors.InputErrors, checker.errors.RuleFileError, checker.errors.UsageProblem
     """
-    engine = source if isinstance(source, Engine) else load_engine(source)
+    fail_on = parse_fail_on(fail_on)
     table = rules if isinstance(rules, RuleTable) else load_rules(rules)
-    table = apply_overrides(table, engine)
+    if isinstance(source, Engine):
+        engine = source
+        table = apply_overrides(table, engine)
+    else:
+        # Override problems (unknown rule, bad limit) are input problems of the workbook:
+        # reported in the same pass as every cell problem.
+        resolved: dict[str, Any] = {}
+
+        def _check_overrides(overrides):
+            resolved["rules"], resolved["applied"], errs = override_problems(table, overrides)
+            return errs
+
+        engine = load_engine(source, check_overrides=_check_overrides)
+        table = RuleTable(resolved["rules"], table.files, resolved["applied"])
     chosen = _select(table, select, ignore)
     outcome = graph.run(engine, {r.quantity for r in chosen}, progress=progress)
     _apply_envelope(outcome)

@@ -14,7 +14,7 @@ from pathlib import Path
 import click
 
 from . import __version__
-from .errors import CheckerError
+from .errors import CheckerError, InternalError, UsageProblem
 
 
 def _split(values: tuple[str, ...]) -> list[str] | None:
@@ -33,14 +33,21 @@ class _Progress:
             click.echo(f"checker: {text}", err=True)
 
 
+def _short(exc: BaseException, limit: int = 300) -> str:
+    """First line of an exception text, cut to ``limit`` characters (no array dumps)."""
+    text = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
 def _fail(exc: BaseException) -> None:
     if os.environ.get("CHECKER_DEBUG"):
         raise exc
-    if isinstance(exc, CheckerError):
+    if isinstance(exc, CheckerError) and not isinstance(exc, InternalError):
         click.echo(f"error: {exc}", err=True)
     else:
-        click.echo(f"internal error: {type(exc).__name__}: {exc}\n(set CHECKER_DEBUG=1 for a"
-                   " traceback and please report it)", err=True)
+        click.echo(f"internal error: {type(exc).__name__}: {_short(exc)}\n(this is a bug in"
+                   " checker, not in your input; set CHECKER_DEBUG=1 for a traceback and"
+                   " please report it with the workbook)", err=True)
     sys.exit(2)
 
 
@@ -48,18 +55,31 @@ def _run_check(workbook, rules, select, ignore, fail_on, progress):
     from . import api
 
     try:
-        return api.check(workbook, rules=rules, select=_split(select), ignore=_split(ignore),
-                         fail_on=fail_on, progress=progress)
-    except ValueError as exc:
-        if isinstance(exc, CheckerError):
-            _fail(exc)
+        res = api.check(workbook, rules=rules, select=_split(select), ignore=_split(ignore),
+                        fail_on=",".join(fail_on) if fail_on else None, progress=progress)
+    except UsageProblem as exc:
         raise click.UsageError(str(exc)) from None
     except Exception as exc:  # noqa: BLE001 - reported without traceback
         _fail(exc)
+    if res.nothing_checked:
+        # like a test runner that collected no tests: never a vacuous PASS, no output file
+        click.echo(f"error: {res.nothing_checked_reason()}", err=True)
+        sys.exit(2)
+    return res
 
 
 def _atomic_write(path: Path, data: bytes) -> None:
-    """Write via a temporary file in the same folder, so no half-written output remains."""
+    """Write via a temporary file in the same folder, so no half-written output remains.
+
+    Only a regular file (or a new path) is replaced atomically; anything else that exists
+    (a device such as /dev/null, a FIFO, a terminal) is written to, never replaced.
+    """
+    if path.exists() and not path.is_file():
+        if path.is_dir():
+            raise click.UsageError(f"output {path} is a folder; give a file name")
+        with open(path, "wb") as f:
+            f.write(data)
+        return
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=".checker-", dir=path.parent)
     try:
@@ -81,8 +101,10 @@ _common = [
     click.option("--select", multiple=True, help="Run only rules with these id prefixes"
                  " (comma-separated or repeated), e.g. JNT or BRG-001."),
     click.option("--ignore", multiple=True, help="Skip rules with these id prefixes."),
-    click.option("--fail-on", type=click.Choice(["error", "warning"]), default="error",
-                 show_default=True, help="Lowest severity whose failure fails the check."),
+    click.option("--fail-on", multiple=True, metavar="error|warning|not-evaluated",
+                 help="What fails the check (default: error). 'warning': failed warnings"
+                 " too; 'not-evaluated': results that could not be evaluated too; combine"
+                 " with commas or repeat."),
 ]
 
 
@@ -147,6 +169,7 @@ def check(workbook, rules, select, ignore, fail_on, fmt, no_timings, output, pro
         if Path(output).resolve() == Path(workbook).resolve():
             raise click.UsageError("the output file would overwrite the input workbook")
         _atomic_write(Path(output), text.encode("utf-8"))
+        click.echo(f"{output}: {res.summary_text()}", err=True)
     else:
         click.echo(text, nl=False)
     sys.exit(res.exit_code)
@@ -179,9 +202,7 @@ def report(workbook, rules, select, ignore, fail_on, output, html_out, progress)
     _atomic_write(pdf_path, pdf)
     if html_out:
         _atomic_write(Path(html_out), html.encode("utf-8"))
-    c = res.counts()
-    click.echo(f"{pdf_path}: {res.verdict.upper()} ({c['pass']} passed, {c['fail']} failed,"
-               f" {c['warning']} warnings, {c['not_evaluated']} not evaluated)", err=True)
+    click.echo(f"{pdf_path}: {res.summary_text()}", err=True)
     sys.exit(res.exit_code)
 
 

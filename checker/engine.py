@@ -7,6 +7,7 @@ floats). Cross-sheet consistency is checked here; every problem names its cell.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -177,8 +178,14 @@ def _firing_order(text: str) -> list[int] | None:
         return None
 
 
-def build_engine(data: WorkbookData) -> Engine:
-    """Build and cross-check the typed engine from converted workbook data."""
+def build_engine(data: WorkbookData,
+                 check_overrides: Callable[[list[RuleOverride]], list[InputError]] | None = None
+                 ) -> Engine:
+    """Build and cross-check the typed engine from converted workbook data.
+
+    ``check_overrides`` validates the RuleOverrides rows against the rule table in use; its
+    problems are reported together with every other problem of the workbook.
+    """
     errs: list[InputError] = list(data.errors)
 
     def err(sheet: str, attr: str, row: int | None, msg: str) -> None:
@@ -370,6 +377,8 @@ def build_engine(data: WorkbookData) -> Engine:
                                       r["unit"], r["reason"],
                                       data.where.get(("RuleOverrides", i, "limit"), "")))
 
+    if check_overrides is not None:
+        errs += check_overrides(overrides)
     if errs:
         raise InputErrors(errs)
     return Engine(
@@ -384,11 +393,12 @@ def build_engine(data: WorkbookData) -> Engine:
     )
 
 
-def load_engine(path) -> Engine:
+def load_engine(path, check_overrides: Callable[[list[RuleOverride]], list[InputError]]
+                | None = None) -> Engine:
     """Read, convert and check a workbook (raises :class:`InputErrors` with every problem)."""
     from .workbook.loader import read_workbook
 
-    return build_engine(read_workbook(path, raise_errors=False))
+    return build_engine(read_workbook(path, raise_errors=False), check_overrides)
 
 
 __all__ = ["Engine", "Cylinder", "Bearing", "MassItem", "TVStation", "Joint", "JointTorque",

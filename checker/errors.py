@@ -46,3 +46,12 @@ class RuleFileError(CheckerError):
         n = len(self.problems)
         head = f"{n} problem{'s' if n != 1 else ''} in the rule table:"
         return head + "\n" + "\n".join(f"  {p}" for p in self.problems)
+
+
+class UsageProblem(CheckerError, ValueError):
+    """A command-line or API usage problem (unknown selector, bad option value)."""
+
+
+class InternalError(CheckerError):
+    """A calculation failed on input it should never have received (a bug in checker):
+    reported with a short message and exit code 2, never as a usage error."""

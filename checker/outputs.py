@@ -30,11 +30,8 @@ def to_text(res: CheckResult) -> str:
         if x[6]:
             line += f"\n{'':{w[0]}}  -> {x[6]}"
         lines.append(line)
-    c = res.counts()
     lines.append("")
-    lines.append(f"{res.engine.name}: {res.verdict.upper()} - {c['pass']} passed,"
-                 f" {c['fail']} failed, {c['warning']} warnings,"
-                 f" {c['not_evaluated']} not evaluated"
+    lines.append(f"{res.engine.name}: {res.summary_text()}"
                  + (f" (modules run: {', '.join(res.outcome.modules_run) or 'none'};"
                     f" skipped: {', '.join(res.outcome.modules_skipped) or 'none'})"))
     return "\n".join(lines) + "\n"
@@ -49,16 +46,23 @@ def to_json(res: CheckResult, timings: bool = True) -> str:
 def to_junit(res: CheckResult) -> str:
     """JUnit XML: one test case per rule result (fail -> failure, not evaluated -> skipped)."""
     c = res.counts()
-    failures = sum(1 for r in res.results if r.status == "fail" and
-                   (r.severity == "error" or res.fail_on == "warning"))
+    failing = {id(r) for r in res.failed}
+    failures = len(failing)
+    skipped = sum(1 for r in res.results if r.status == "not_evaluated" and id(r) not in failing)
     out = ['<?xml version="1.0" encoding="UTF-8"?>',
            f'<testsuites name="checker" tests="{len(res.results)}" failures="{failures}">',
            f'  <testsuite name={quoteattr(res.engine.name)} tests="{len(res.results)}"'
-           f' failures="{failures}" skipped="{c["not_evaluated"]}">']
+           f' failures="{failures}" skipped="{skipped}">',
+           "    <properties>",
+           f'      <property name="verdict" value={quoteattr(res.verdict_text)}/>',
+           f'      <property name="complete" value="{str(res.complete).lower()}"/>',
+           f'      <property name="not_evaluated" value="{c["not_evaluated"]}"/>',
+           f'      <property name="fail_on" value={quoteattr(res.fail_on)}/>',
+           "    </properties>"]
     for r in res.results:
         name = quoteattr(f"{r.rule} {r.name} [{r.item}]")
         out.append(f'    <testcase classname={quoteattr(r.rule.split("-")[0])} name={name}>')
-        if r.status == "fail" and (r.severity == "error" or res.fail_on == "warning"):
+        if id(r) in failing:
             out.append(f"      <failure message={quoteattr(r.message)}>{escape(r.source)}"
                        "</failure>")
         elif r.status == "fail":

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from .engine import Engine
-from .errors import InputError, InputErrors, RuleFileError
+from .errors import InputError, InputErrors, RuleFileError, UsageProblem
 from .graph import QUANTITIES, Quantity, ensure_registered
 from .units import Q_, from_si
 
@@ -242,20 +242,27 @@ def _parse_limit(text: str) -> tuple[float, ...] | None:
         return None
 
 
-def apply_overrides(table: RuleTable, engine: Engine) -> RuleTable:
-    """Replace limits with the workbook's RuleOverrides; every change is recorded."""
+def override_problems(table: RuleTable, overrides) -> tuple[list[Rule], list[Override],
+                                                             list[InputError]]:
+    """Resolve workbook RuleOverrides against ``table``: the new rule list, the applied
+    overrides and every problem (unknown rule, bad limit, unit) with its cell."""
     errs: list[InputError] = []
     rules = list(table.rules)
-    overrides: list[Override] = []
+    applied: list[Override] = []
     by_id = {r.id: i for i, r in enumerate(rules)}
-    for o in engine.overrides:
-        if o.rule not in by_id:
-            errs.append(InputError(o.where or "RuleOverrides", f"unknown rule '{o.rule}'"))
+    for o in overrides:
+        rid = o.rule.strip().upper()
+        if rid not in by_id:
+            import difflib
+
+            near = difflib.get_close_matches(rid, list(by_id), n=1)
+            hint = f"; did you mean '{near[0]}'?" if near else " (see 'checker rules')"
+            errs.append(InputError(o.where or "RuleOverrides", f"unknown rule '{o.rule}'{hint}"))
             continue
-        r = rules[by_id[o.rule]]
+        r = rules[by_id[rid]]
         lim = _parse_limit(o.limit)
         n = 2 if r.check == "between" else 1
-        if lim is None or len(lim) != n:
+        if lim is None or len(lim) != n or not all(math.isfinite(x) for x in lim):
             errs.append(InputError(o.where or "RuleOverrides", f"limit for {r.id} must be"
                                    f" {'a range low..high' if n == 2 else 'a number'},"
                                    f" found '{o.limit}'"))
@@ -271,26 +278,35 @@ def apply_overrides(table: RuleTable, engine: Engine) -> RuleTable:
             continue
         new = tuple(x * factor for x in lim)
         old_text = r.limit_text()
-        rules[by_id[o.rule]] = replace(r, limit=new, limit_by=None, limits={})
-        overrides.append(Override(r.id, old_text, rules[by_id[o.rule]].limit_text(), o.reason,
-                                  o.where))
+        rules[by_id[rid]] = replace(r, limit=new, limit_by=None, limits={})
+        applied.append(Override(r.id, old_text, rules[by_id[rid]].limit_text(), o.reason,
+                                o.where))
+    return rules, applied, errs
+
+
+def apply_overrides(table: RuleTable, engine: Engine) -> RuleTable:
+    """Replace limits with the workbook's RuleOverrides; every change is recorded."""
+    rules, applied, errs = override_problems(table, engine.overrides)
     if errs:
         raise InputErrors(errs)
-    return RuleTable(rules, table.files, overrides)
+    return RuleTable(rules, table.files, applied)
 
 
 def select_rules(table: RuleTable, select: list[str] | None, ignore: list[str] | None
                  ) -> list[Rule]:
     """Rules whose id starts with a ``select`` prefix and with no ``ignore`` prefix.
 
-    Raises ValueError for a selector that matches no rule (a usage error).
+    Prefixes are case-insensitive (``jnt`` = ``JNT``). Raises :class:`UsageProblem` for a
+    selector that matches no rule.
     """
     def matches(r: Rule, s: str) -> bool:
-        return r.id == s or r.id.startswith(s)
+        return r.id.startswith(s)
 
+    select = [x.strip().upper() for x in select] if select else None
+    ignore = [x.strip().upper() for x in ignore] if ignore else None
     for s in (select or []) + (ignore or []):
         if not any(matches(r, s) for r in table.rules):
-            raise ValueError(f"'{s}' matches no rule id (see 'checker rules')")
+            raise UsageProblem(f"'{s}' matches no rule id (see 'checker rules')")
     chosen = [r for r in table.rules if not select or any(matches(r, s) for s in select)]
     return [r for r in chosen if not any(matches(r, s) for s in (ignore or []))]
 
@@ -313,6 +329,7 @@ class RuleResult:
     source: str
     missing: list[str] = field(default_factory=list)
     findings: list[str] = field(default_factory=list)
+    internal_error: bool = False  # the calculation ran but produced no number (NaN/inf)
 
     def as_dict(self) -> dict[str, Any]:
         return {
@@ -323,6 +340,7 @@ class RuleResult:
             "margin": None if self.margin is None else float(f"{self.margin:.4g}"),
             "case": self.case, "message": self.message, "source": self.source,
             "missing": self.missing, "findings": self.findings,
+            "internal_error": self.internal_error,
         }
 
 
@@ -415,7 +433,31 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None
                         findings.append(f)
         if sub.size == 0:
             continue
-        if np.isnan(sub).any():
+        bad = ~np.isfinite(sub)
+        if bad.any():
+            # A non-finite value is "not evaluated" only where a missing input explains it;
+            # anywhere else the calculation ran and failed: an internal error of this result,
+            # which fails (never a missing input, never a pass).
+            unexplained = [loc for loc in np.argwhere(bad) if not any(
+                q.missing.get(t[:n]) for t in [tuple(int(sel_i[j][loc[j]])
+                                                     for j in range(len(dims)))]
+                for n in range(len(t), 0, -1))]
+            if unexplained:
+                loc = unexplained[0]
+                where_txt = ", ".join(_coord_text(d, q.coords[d][sel_i[j][loc[j]]])
+                                      for j, d in enumerate(dims) if d != "item")
+                kind = "NaN" if np.isnan(sub[tuple(loc)]) else "an infinite value"
+                msg = (f"{rule.name}: internal error: the calculation ran but gave {kind}"
+                       + (f" at {where_txt}" if where_txt else "")
+                       + (f" ({len(unexplained)} points)" if len(unexplained) > 1 else "")
+                       + "; the result cannot be judged and counts as failed"
+                       + (f". Findings: {'; '.join(findings[:3])}" if findings else "")
+                       + ". Please report it with the workbook.")
+                results.append(RuleResult(**base, item=item, status="fail", value=None,
+                                          limit=lim_text, limit_values=list(lim), margin=None,
+                                          case=where_txt, message=msg, findings=findings,
+                                          internal_error=True))
+                continue
             if not missing:
                 missing = ["some values could not be computed"]
             results.append(RuleResult(**base, item=item, status="not_evaluated", value=None,
