@@ -124,17 +124,18 @@ def main() -> None:
 
 
 @main.command()
-@click.argument("path", type=click.Path(dir_okay=False), default="engine.xlsx")
+@click.argument("path", type=click.Path(dir_okay=False), required=False)
 @click.option("--force", is_flag=True, help="Overwrite an existing file.")
 @click.option("--engine", "which", type=click.Choice(["i4", "i6"]), default="i4",
               show_default=True, help="i4: the seed's gasoline engine (Ricardo 2013); i6: a"
               " truck diesel from Mendes et al. 2008 with labelled assumptions.")
 def template(path: str, force: bool, which: str) -> None:
-    """Write an example workbook (default: the seed's 4-cylinder gasoline engine) to PATH."""
+    """Write an example workbook to PATH (default: engine.xlsx for the I4, engine-i6.xlsx for
+    the I6)."""
     from .workbook.example import example_content, write_workbook
     from .workbook.example_i6 import i6_content
 
-    p = Path(path)
+    p = Path(path or ("engine.xlsx" if which == "i4" else f"engine-{which}.xlsx"))
     if p.exists() and not force:
         raise click.UsageError(f"{p} exists; use --force to overwrite it")
     with tempfile.TemporaryDirectory() as d:
