@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import datetime as _dt
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -214,8 +214,8 @@ def _apply_envelope(outcome: graph.RunOutcome) -> None:
 
 def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = None,
           select: list[str] | None = None, ignore: list[str] | None = None,
-          fail_on: str = "error", progress: Callable[[str], None] | None = None
-          ) -> CheckResult:
+          fail_on: str = "error", progress: Callable[[str], None] | None = None,
+          cache: dict | None = None) -> CheckResult:
     """Run the design-rule check.
 
     Parameters
@@ -230,6 +230,9 @@ def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = No
         ``"error"`` (default), ``"warning"`` (failed warnings fail the verdict too),
         ``"not-evaluated"`` (results that could not be evaluated fail the verdict); combine
         with commas, e.g. ``"warning,not-evaluated"``.
+    cache : dict, optional
+        Calculation results kept across calls (parametric studies): a calculation whose
+        inputs are unchanged is reused (:func:`checker.graph.input_key`).
 
     Raises
     ------
@@ -252,7 +255,10 @@ def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = No
         engine = load_engine(source, check_overrides=_check_overrides)
         table = RuleTable(resolved["rules"], table.files, resolved["applied"])
     chosen = _select(table, select, ignore)
-    outcome = graph.run(engine, {r.quantity for r in chosen}, progress=progress)
+    outcome = graph.run(engine, {r.quantity for r in chosen}, progress=progress, cache=cache)
+    if cache is not None:  # cached quantities are shared between variants: judge on copies
+        outcome.quantities = {k: replace(q, extra=dict(q.extra))
+                              for k, q in outcome.quantities.items()}
     _apply_envelope(outcome)
     results: list[RuleResult] = []
     for r in chosen:

@@ -102,6 +102,7 @@ class Calculation:
     needs: Callable[[Engine], tuple[str, ...]] = lambda engine: ()
     description: str = ""
     optional: tuple[str, ...] = ()  # needs that may be unavailable (the calc copes)
+    reads: tuple[str, ...] | None = None  # engine inputs read (None = all); see input_key
 
 
 UNAVAILABLE = "__unavailable__"
@@ -124,14 +125,23 @@ def quantity(spec: QuantitySpec) -> QuantitySpec:
 
 def calculation(name: str, module: str, provides: Iterable[str],
                 needs: Callable[[Engine], tuple[str, ...]] | Iterable[str] = (),
-                description: str = "", optional: Iterable[str] = ()):
-    """Decorator registering a calculation function ``f(engine, inputs) -> {name: Quantity}``."""
+                description: str = "", optional: Iterable[str] = (),
+                reads: Iterable[str] | None = None):
+    """Decorator registering a calculation function ``f(engine, inputs) -> {name: Quantity}``.
+
+    ``reads`` names the engine inputs the calculation reads, for result caching across
+    variants (:func:`input_key`): a part of the engine (``"params"``, ``"bearings"``,
+    ``"oil"``...) or one field of it (``"params.bore"``, ``"bearings.clearance"``). ``None``
+    (the default) means the whole engine: always safe, never reused across variants.
+    A test perturbs every input a calculation does not declare and checks its results stay
+    identical.
+    """
     provides = tuple(provides)
     needs_f = needs if callable(needs) else (lambda engine, _n=tuple(needs): _n)
 
     def deco(func):
         calc = Calculation(name, module, provides, func, needs_f, description or func.__doc__
-                           or "", tuple(optional))
+                           or "", tuple(optional), None if reads is None else tuple(reads))
         CALCULATIONS[name] = calc
         for q in provides:
             if q not in QUANTITIES:
@@ -147,6 +157,41 @@ def ensure_registered() -> None:
     from . import modules  # noqa: F401
 
 
+ENGINE_PARTS = ("params", "cylinders", "bearings", "crank_mass", "tv_model", "joints",
+                "joint_torques", "peak_pressure", "pressure_traces", "brake_torque", "oil",
+                "damper", "fatigue")
+"""Parts of :class:`checker.engine.Engine` that calculations read (``reads`` entries)."""
+
+
+def engine_projection(engine: Engine, reads: tuple[str, ...] | None) -> tuple:
+    """The values of the engine inputs named by ``reads`` (all parts when None), plus the
+    cell addresses (messages name cells), as a plain tuple with a deterministic ``repr``."""
+    out: list = [("where", tuple(sorted((repr(k), v) for k, v in engine.where.items())))]
+    for entry in sorted(ENGINE_PARTS if reads is None else reads):
+        part, _, fld = entry.partition(".")
+        obj = getattr(engine, part)
+        if not fld:
+            val = tuple(obj.items()) if isinstance(obj, dict) else obj
+        elif isinstance(obj, dict):
+            val = obj.get(fld)
+        else:
+            val = tuple(getattr(r, fld) for r in obj)
+        out.append((entry, val))
+    return tuple(out)
+
+
+def input_key(engine: Engine, calc: Calculation, upstream: Iterable[str]) -> str:
+    """Cache key of one calculation: its name, the engine inputs it reads and the keys of the
+    calculations upstream of it (a change anywhere upstream changes the key)."""
+    import hashlib
+
+    h = hashlib.sha256(calc.name.encode())
+    h.update(repr(engine_projection(engine, calc.reads)).encode())
+    for k in upstream:
+        h.update(k.encode())
+    return h.hexdigest()
+
+
 @dataclass
 class RunOutcome:
     quantities: dict[str, Quantity]
@@ -156,6 +201,7 @@ class RunOutcome:
     modules_run: list[str]
     modules_skipped: list[str]
     errors: dict[str, str] = field(default_factory=dict)  # calculation -> internal error text
+    reused: list[str] = field(default_factory=list)  # calculations taken from the cache
 
 
 def plan(engine: Engine, wanted: Iterable[str]) -> list[str]:
@@ -184,17 +230,33 @@ def plan(engine: Engine, wanted: Iterable[str]) -> list[str]:
     return order
 
 
-def run(engine: Engine, wanted: Iterable[str], progress: Callable[[str], None] | None = None
-        ) -> RunOutcome:
-    """Compute the ``wanted`` quantities and only what they need."""
+def run(engine: Engine, wanted: Iterable[str], progress: Callable[[str], None] | None = None,
+        cache: dict | None = None) -> RunOutcome:
+    """Compute the ``wanted`` quantities and only what they need.
+
+    ``cache`` (a dict kept by the caller, e.g. across the variants of a study) stores each
+    calculation's outputs under :func:`input_key`; a calculation whose key is in the cache is
+    not run again. Cached quantities are shared: treat them as read-only.
+    """
     order = plan(engine, wanted)
     have: dict[str, Quantity] = {}
     unavailable: dict[str, list[str]] = {}
     timings: dict[str, float] = {}
     errors: dict[str, str] = {}
+    keys: dict[str, str] = {}
+    reused: list[str] = []
     for cname in order:
         calc = CALCULATIONS[cname]
         deps = calc.needs(engine)
+        if cache is not None:
+            keys[cname] = input_key(engine, calc, [keys[PROVIDER[d]] for d in deps])
+            hit = cache.get(keys[cname])
+            if hit is not None:
+                out_q, out_u = hit
+                have.update(out_q)
+                unavailable.update(out_u)
+                reused.append(cname)
+                continue
         blocked = [d for d in deps if d in unavailable and d not in calc.optional]
         if blocked:
             reasons = []
@@ -224,6 +286,11 @@ def run(engine: Engine, wanted: Iterable[str], progress: Callable[[str], None] |
         for q in calc.provides:
             if q not in have and q not in unavailable:
                 unavailable[q] = [f"{calc.name} did not produce {q}"]
-    ran_modules = [m for m in MODULES if m in timings]
-    skipped = [m for m in MODULES if m not in timings]
-    return RunOutcome(have, unavailable, timings, order, ran_modules, skipped, errors)
+        if cache is not None:
+            cache[keys[cname]] = ({q: have[q] for q in calc.provides if q in have},
+                                  {q: unavailable[q] for q in calc.provides if q in unavailable})
+    from_cache = {CALCULATIONS[c].module for c in reused}
+    # a module whose results came from the cache counts as run (its results are used)
+    ran_modules = [m for m in MODULES if m in timings or m in from_cache]
+    skipped = [m for m in MODULES if m not in ran_modules]
+    return RunOutcome(have, unavailable, timings, order, ran_modules, skipped, errors, reused)

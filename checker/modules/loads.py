@@ -227,7 +227,8 @@ def _required(engine: Engine, names: tuple[str, ...]) -> None:
         raise MissingInputs(miss)
 
 
-@calculation("pressure_traces", "loads", provides=("loads.cycle",))
+@calculation("pressure_traces", "loads", provides=("loads.cycle",),
+             reads=("params", "cylinders", "peak_pressure", "pressure_traces", "brake_torque"))
 def pressure_traces(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Cylinder pressure over the 720 deg cycle for every load case and speed."""
     if not engine.cylinders:
@@ -272,7 +273,9 @@ def _bearing_sets(engine: Engine, n_pins: int, n_cyl: int) -> tuple[list[Bearing
 
 
 @calculation("bearing_loads", "loads", provides=("loads.bearing_load",),
-             needs=("loads.cycle",))
+             needs=("loads.cycle",),
+             reads=("params", "cylinders", "crank_mass", "bearings.name", "bearings.type",
+                    "bearings.index", "bearings.lining", "bearings.diameter", "bearings.length"))
 def bearing_loads(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Big-end loads (rod frame) and main bearing loads (block frame, statically determinate)."""
     _required(engine, ("piston_mass", "rod_mass", "rod_com", "rod_inertia"))
@@ -376,7 +379,7 @@ def bearing_loads(engine: Engine, inputs: dict) -> dict[str, Quantity]:
 
 
 @calculation("specific_load", "loads", provides=("bearing.peak_specific_load",),
-             needs=("loads.bearing_load",))
+             needs=("loads.bearing_load",), reads=("bearings",))
 def specific_load(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Peak specific load = max|F| / (D L_eff) per bearing, load case and speed."""
     bl = inputs["loads.bearing_load"]

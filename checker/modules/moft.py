@@ -69,7 +69,8 @@ def oil_viscosity(engine: Engine) -> tuple[float, float, list[str]]:
     return t_film, mu, notes
 
 
-@calculation("moft", "bearings", provides=("bearing.moft",), needs=("loads.bearing_load",))
+@calculation("moft", "bearings", provides=("bearing.moft",), needs=("loads.bearing_load",),
+             reads=("bearings", "oil"))
 def moft(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Periodic journal orbits of all bearings x load cases x speeds in one batch."""
     bl = inputs["loads.bearing_load"]
