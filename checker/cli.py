@@ -207,6 +207,106 @@ def report(workbook, rules, select, ignore, fail_on, output, html_out, progress)
     sys.exit(res.exit_code)
 
 
+@main.command()
+@WORKBOOK
+@click.argument("study_file", type=click.Path(exists=True, dir_okay=False))
+@click.option("-o", "--output", "out_dir", type=click.Path(file_okay=False), required=True,
+              help="Folder for the results (variants/, results.parquet, results.xlsx,"
+              " study.pdf); re-running resumes.")
+@click.option("--workers", type=int, default=None,
+              help="Local worker processes (default: one per core).")
+@click.option("--dask", "dask_address", metavar="ADDRESS|local", default=None,
+              help="Run on a Dask distributed cluster (scheduler address), or 'local' for a"
+              " LocalCluster.")
+@click.option("--no-pdf", is_flag=True, help="Write the results tables only.")
+@click.option("--progress/--no-progress", default=None,
+              help="Progress bar on stderr (default: when stderr is a terminal).")
+def study(workbook, study_file, out_dir, workers, dask_address, no_pdf, progress) -> None:
+    """Run a parametric study (variants of WORKBOOK described by STUDY_FILE)."""
+    from .study.results import tidy, write_tables
+    from .study.run import run_study
+    from .study.spec import load_study
+
+    show = sys.stderr.isatty() if progress is None else progress
+
+    def say(text: str) -> None:
+        click.echo(f"checker: {text}", err=True)
+
+    try:
+        st = load_study(study_file)
+        run = run_study(st, workbook, out_dir, workers=workers, dask=dask_address,
+                        progress=show, say=say)
+        df = tidy(run)
+        written = write_tables(df, out_dir)
+        if not no_pdf:
+            from .study.report import render
+
+            say("drawing the study report")
+            html, pdf = render(run, df)
+            _atomic_write(Path(out_dir) / "study.pdf", pdf)
+            written.append(str(Path(out_dir) / "study.pdf"))
+    except UsageProblem as exc:
+        raise click.UsageError(str(exc)) from None
+    except Exception as exc:  # noqa: BLE001 - reported without traceback
+        _fail(exc)
+    bad = sum(1 for r in run.records if r["status"] == "input error")
+    say(f"{len(run.records)} variants ({run.computed} computed, {len(run.records) - run.computed}"
+        f" resumed{f', {bad} with input errors' if bad else ''}) in {run.seconds:.1f} s;"
+        f" wrote {', '.join(written)}")
+
+
+@main.command()
+@click.argument("baseline", type=click.Path(exists=True, dir_okay=False))
+@click.argument("variants", nargs=-1, required=True,
+                type=click.Path(exists=True, dir_okay=False))
+@common
+@click.option("--format", "fmt", type=click.Choice(["pdf", "json"]), default="pdf",
+              show_default=True)
+@click.option("-o", "--output", type=click.Path(dir_okay=False),
+              help="Output file (default: the baseline name with -compare.pdf; JSON: stdout).")
+def compare(baseline, variants, rules, select, ignore, fail_on, fmt, output) -> None:
+    """Compare BASELINE with VARIANTS: input changes, status changes first, curves overlaid.
+
+    Exit code 1 when a variant has a failing result the baseline does not have."""
+    import json as _json
+
+    from . import compare as cmp
+
+    try:
+        comps = cmp.compare(baseline, list(variants), select=_split(select),
+                            ignore=_split(ignore),
+                            fail_on=",".join(fail_on) if fail_on else "error")
+    except UsageProblem as exc:
+        raise click.UsageError(str(exc)) from None
+    except Exception as exc:  # noqa: BLE001
+        _fail(exc)
+    worse = any(r["change"] == "newly failing" for c in comps for r in c.results)
+    if fmt == "json":
+        text = _json.dumps({"baseline": Path(baseline).name,
+                            "comparisons": [c.to_dict() for c in comps]}, indent=2,
+                           sort_keys=True, ensure_ascii=False) + "\n"
+        if output:
+            _atomic_write(Path(output), text.encode("utf-8"))
+        else:
+            click.echo(text, nl=False)
+    else:
+        try:
+            from .report.compare import render
+
+            html, pdf = render(comps)
+        except Exception as exc:  # noqa: BLE001
+            _fail(exc)
+        out = Path(output) if output else Path(baseline).with_name(
+            Path(baseline).stem + "-compare.pdf")
+        _atomic_write(out, pdf)
+        click.echo(f"wrote {out}", err=True)
+    for c in comps:
+        n = sum(1 for r in c.results if r["change"] == "newly failing")
+        click.echo(f"{Path(c.variant.engine.source).name}: {c.variant.verdict_text}"
+                   f" ({len(c.inputs)} input changes, {n} newly failing)", err=True)
+    sys.exit(1 if worse else 0)
+
+
 @main.command("rules")
 @click.option("--rules", "rules", type=click.Path(exists=True), help="Rule file or folder.")
 @click.option("--explain", metavar="ID", help="Show one rule in full.")

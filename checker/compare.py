@@ -1,0 +1,195 @@
+"""Compare a baseline workbook with variants: what changed in the inputs, what changed in the
+results (status changes first), side-by-side worst cases, and the key curves overlaid.
+
+The same comparison is given as data (``--format json``, for CI: "this change makes JNT-003
+fail") and as the design-review pack (PDF)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from .api import CheckResult
+from .workbook.schema import SHEETS
+
+# status change classes, in the order a reviewer reads them
+CHANGE_ORDER = ("newly failing", "newly passing", "newly not evaluated", "now evaluated",
+                "warning changed", "margin changed", "new result", "result gone")
+
+
+@dataclass
+class Comparison:
+    baseline: CheckResult
+    variant: CheckResult
+    inputs: list[dict[str, Any]] = field(default_factory=list)
+    results: list[dict[str, Any]] = field(default_factory=list)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"baseline": Path(self.baseline.engine.source).name,
+                "variant": Path(self.variant.engine.source).name,
+                "verdict": {"baseline": self.baseline.verdict,
+                            "variant": self.variant.verdict},
+                "complete": {"baseline": self.baseline.complete,
+                             "variant": self.variant.complete},
+                "input_changes": self.inputs, "result_changes": self.results}
+
+
+def _text(v: Any) -> str:
+    if v is None:
+        return ""
+    if isinstance(v, float):
+        return f"{v:.10g}"
+    return str(v).strip()
+
+
+def input_changes(base_raw, var_raw) -> list[dict[str, Any]]:
+    """Every differing input cell (value or unit), addressed as the user sees it."""
+    from openpyxl.utils import get_column_letter
+
+    out: list[dict[str, Any]] = []
+    for name, spec in SHEETS.items():
+        a, b = base_raw.sheets.get(name), var_raw.sheets.get(name)
+        if spec.shape == "notes":
+            continue
+        if (a is None) != (b is None):
+            out.append({"sheet": name, "cell": name, "what": "sheet",
+                        "baseline": "present" if a else "missing",
+                        "variant": "present" if b else "missing"})
+            continue
+        if a is None:
+            continue
+        if spec.shape == "parameters":
+            def rows_by_label(raw):
+                d = {}
+                for r, row in raw.rows.items():
+                    if r > 1 and row and _text(row[0][0]):
+                        d[_text(row[0][0]).lower()] = (r, row)
+                return d
+            ra, rb = rows_by_label(a), rows_by_label(b)
+            for label in sorted(set(ra) | set(rb), key=lambda k: (ra.get(k, rb.get(k))[0])):
+                (r1, x), (r2, y) = ra.get(label, (None, ())), rb.get(label, (None, ()))
+                va = (_text(x[1][0]) if len(x) > 1 else "", _text(x[2][0]) if len(x) > 2 else "")
+                vb = (_text(y[1][0]) if len(y) > 1 else "", _text(y[2][0]) if len(y) > 2 else "")
+                if va != vb:
+                    nm = _text((x or y)[0][0])
+                    out.append({"sheet": name, "cell": f"{name}!B{r2 or r1}", "what": nm,
+                                "baseline": " ".join(t for t in va if t) or "(blank)",
+                                "variant": " ".join(t for t in vb if t) or "(blank)"})
+            continue
+        ha = [_text(v) for v, _ in a.rows.get(1, ())]
+        hb = [_text(v) for v, _ in b.rows.get(1, ())]
+        ua = [_text(v) for v, _ in a.rows.get(2, ())]
+        ub = [_text(v) for v, _ in b.rows.get(2, ())]
+        cols = [c for c in ha if c] + [c for c in hb if c and c not in ha]
+        key = None
+        if spec.key:
+            kf = next(f for f in spec.fields if f.attr == spec.key)
+            key = next((c for c in cols if c.lower() in (kf.label.lower(), kf.attr)), None)
+
+        def keyed(raw, hdr, key=key):
+            j = hdr.index(key) if key in hdr else None
+            d = {}
+            for r, row in sorted(raw.rows.items()):
+                if r < 3:
+                    continue
+                k = _text(row[j][0]).lower() if j is not None and j < len(row) else f"row {r}"
+                d[k] = (r, {hdr[i]: _text(v) for i, (v, _) in enumerate(row) if i < len(hdr)})
+            return d
+        da, db = keyed(a, ha), keyed(b, hb)
+        for c in cols:
+            i, k = (ha.index(c) if c in ha else None), (hb.index(c) if c in hb else None)
+            u1 = ua[i] if i is not None and i < len(ua) else ""
+            u2 = ub[k] if k is not None and k < len(ub) else ""
+            if u1 != u2:
+                col = get_column_letter((k if k is not None else i) + 1)
+                out.append({"sheet": name, "cell": f"{name}!{col}2", "what": f"unit of '{c}'",
+                            "baseline": u1 or "(blank)", "variant": u2 or "(blank)"})
+        for rk in list(da) + [x for x in db if x not in da]:
+            (r1, x), (r2, y) = da.get(rk, (None, None)), db.get(rk, (None, None))
+            if x is None or y is None:
+                out.append({"sheet": name, "cell": f"{name}!A{r2 or r1}",
+                            "what": f"row '{rk}'", "baseline": "present" if x else "missing",
+                            "variant": "present" if y else "missing"})
+                continue
+            for c in cols:
+                if x.get(c, "") != y.get(c, ""):
+                    k = hb.index(c) if c in hb else ha.index(c)
+                    unit = (ub[k] if k < len(ub) else "") if c in hb else ""
+                    u = f" {unit}" if unit and unit != "-" else ""
+                    out.append({"sheet": name, "cell": f"{name}!{get_column_letter(k + 1)}{r2}",
+                                "what": f"{rk}: {c}",
+                                "baseline": (x.get(c) or "(blank)") + (u if x.get(c) else ""),
+                                "variant": (y.get(c) or "(blank)") + (u if y.get(c) else "")})
+    return out
+
+
+def _state(r) -> str:
+    if r is None:
+        return "absent"
+    if r.status == "fail" and r.severity == "warning" and not r.internal_error:
+        return "warning"
+    return r.status
+
+
+def result_changes(base: CheckResult, var: CheckResult) -> list[dict[str, Any]]:
+    """Results that differ, status changes first, then the largest margin changes."""
+    a = {(r.rule, r.item): r for r in base.results}
+    b = {(r.rule, r.item): r for r in var.results}
+    out = []
+    for k in list(a) + [x for x in b if x not in a]:
+        ra, rb = a.get(k), b.get(k)
+        sa, sb = _state(ra), _state(rb)
+        if ra is None:
+            kind = "new result"
+        elif rb is None:
+            kind = "result gone"
+        elif sa != "fail" and sb == "fail":
+            kind = "newly failing"
+        elif sa == "fail" and sb != "fail" and sb != "not_evaluated":
+            kind = "newly passing"
+        elif sb == "not_evaluated" and sa != "not_evaluated":
+            kind = "newly not evaluated"
+        elif sa == "not_evaluated" and sb != "not_evaluated":
+            kind = "now evaluated"
+        elif sa != sb:
+            kind = "warning changed"
+        else:
+            kind = "margin changed"
+        ma = None if ra is None else ra.margin
+        mb = None if rb is None else rb.margin
+        dm = None if ma is None or mb is None else mb - ma
+        if kind == "margin changed" and (dm is None or abs(dm) < 1e-6) and \
+                (ra.value == rb.value):
+            continue
+        r0 = rb or ra
+        out.append({"rule": k[0], "item": k[1], "name": r0.name, "change": kind,
+                    "baseline": _side(ra), "variant": _side(rb),
+                    "margin_change": None if dm is None else float(f"{dm:.4g}")})
+    out.sort(key=lambda d: (CHANGE_ORDER.index(d["change"]),
+                            -abs(d["margin_change"] or 0.0), d["rule"], d["item"]))
+    return out
+
+
+def _side(r) -> dict[str, Any] | None:
+    if r is None:
+        return None
+    d = r.as_dict()
+    return {"status": _state(r), "value": d["value"], "unit": d["unit"],
+            "limit": d["limit_text"], "margin": d["margin"], "case": d["case"]}
+
+
+def compare(baseline: str | Path, variants: list[str | Path], select=None, ignore=None,
+            fail_on: str = "error") -> list[Comparison]:
+    """Check the baseline and every variant with the same rules; one comparison per variant."""
+    from . import api
+    from .workbook.loader import read_raw_workbook
+
+    base_res = api.check(baseline, select=select, ignore=ignore, fail_on=fail_on)
+    base_raw = read_raw_workbook(baseline)
+    out = []
+    for v in variants:
+        res = api.check(v, select=select, ignore=ignore, fail_on=fail_on)
+        out.append(Comparison(base_res, res, input_changes(base_raw, read_raw_workbook(v)),
+                              result_changes(base_res, res)))
+    return out
