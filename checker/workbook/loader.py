@@ -174,7 +174,7 @@ def _short(exc: BaseException) -> str:
 def _unreadable(p: Path, detail: str) -> InputErrors:
     return InputErrors([InputError(
         p.name, f"cannot be read: not an Excel .xlsx workbook, or a damaged one ({detail});"
-        " open it in Excel or LibreOffice and save it again as .xlsx")])
+        " open it in Excel or LibreOffice and save it again as an unencrypted .xlsx")])
 
 
 class _Reader:
@@ -426,6 +426,21 @@ def _merged_ranges(ws) -> list[str]:
     return refs
 
 
+def _declared_sheets(p: Path) -> list[str]:
+    """Sheet names the workbook part declares (openpyxl silently drops a sheet whose part is
+    missing from the archive; a damaged file must not lose a sheet unnoticed)."""
+    import xml.etree.ElementTree as ET
+    import zipfile
+
+    with zipfile.ZipFile(p) as z:
+        types = ET.fromstring(z.read("[Content_Types].xml"))
+        part = next((el.get("PartName", "") for el in types
+                     if el.tag.rsplit("}", 1)[-1] == "Override"
+                     and el.get("ContentType", "").endswith(".main+xml")), "")
+        book = ET.fromstring(z.read(part.lstrip("/")))
+    return [str(el.get("name")) for el in book.iter() if el.tag.rsplit("}", 1)[-1] == "sheet"]
+
+
 def _sheet_width(ws) -> int:
     """Last column of row 1 that holds a value (the table's width)."""
     for row in ws.iter_rows(min_row=1, max_row=1):
@@ -487,8 +502,8 @@ def read_workbook(path: str | Path, raise_errors: bool = True) -> WorkbookData:
         raise InputErrors([InputError(p.name, f"cannot be read ({_short(exc)})")]) from None
     sha = hashlib.sha256(blob).hexdigest()
     if blob.startswith(_OLE_MAGIC):
-        raise _unreadable(p, "an encrypted (password-protected) workbook or an old .xls file"
-                          " is not supported; save it unencrypted as .xlsx") from None
+        raise _unreadable(p, "it is an encrypted (password-protected) workbook or an old .xls"
+                          " file")
     reader = _Reader(p)
     raws: dict[str, _RawSheet] = {}
     wbs = []
@@ -499,6 +514,9 @@ def read_workbook(path: str | Path, raise_errors: bool = True) -> WorkbookData:
         wb_formulas = openpyxl.load_workbook(p, data_only=False, read_only=True)
         wbs.append(wb_formulas)
         sheetnames = tuple(wb_values.sheetnames)
+        lost = [n for n in _declared_sheets(p) if n not in sheetnames]
+        if lost:
+            raise _unreadable(p, f"the content of sheet '{lost[0]}' is missing")
         known = {_norm(s): s for s in SHEETS}
         present: dict[str, str] = {}
         for sn in sheetnames:
@@ -520,7 +538,7 @@ def read_workbook(path: str | Path, raise_errors: bool = True) -> WorkbookData:
                 continue
             ncols = _PARAM_COLUMNS if spec.shape == "parameters" else _sheet_width(ws)
             raws[name] = _read_raw(ws, wsf, ncols)
-    except InputErrors:  # pragma: no cover - not raised inside
+    except InputErrors:
         raise
     except Exception as exc:  # noqa: BLE001 - any failure of the file is a file-level error
         raise _unreadable(p, _short(exc)) from None
