@@ -144,6 +144,9 @@ class Engine:
     sha256: str = ""
     where: dict[tuple, str] = field(default_factory=dict)
     assumptions: tuple[str, ...] = ()  # workbook values marked as assumptions (with cells)
+    #: Inputs that can be computed with but are unusual for a crank-train engine (value
+    #: outside a field's usual range, a very fine speed grid...), each with its cell.
+    warnings: tuple[InputError, ...] = ()
 
     @property
     def name(self) -> str:
@@ -178,6 +181,194 @@ def _firing_order(text: str) -> list[int] | None:
         return None
 
 
+_PIN_TOL = 1e-6  # [rad] cylinders on one pin: as checker.calc.crank_forces.throw_angles
+_THROW_TOL = math.radians(0.05)  # [rad] throw angle vs firing/bank angles (rounded entries)
+_TWO_PI = 2.0 * math.pi
+
+
+def _angle_diff(a: float, b: float) -> float:
+    """Smallest absolute difference of two angles [rad] (modulo 2 pi)."""
+    d = (a - b) % _TWO_PI
+    return min(d, _TWO_PI - d)
+
+
+def _deg(a: float) -> str:
+    return f"{math.degrees(a):.6g} deg"
+
+
+def check_cylinders(cylinders: list[Cylinder], row_of: dict[int, int],
+                    err: Callable[[str, str, int | None, str], None]) -> None:
+    """Cross-check the Cylinders sheet: crank pins, shared pins and throw angles.
+
+    Convention of the calculations (:func:`checker.calc.crank_forces.throw_angles`, module
+    docstring of :mod:`checker.calc.crank_forces`): crank angle 0 is the firing TDC of
+    cylinder 1, and the throw of cylinder ``i`` (bank angle ``alpha_i``, firing angle
+    ``phi_i``) points at crank-frame angle ``gamma_i = alpha_i - phi_i`` (mod 360 deg),
+    measured in the direction of rotation: at crank angle ``phi_i`` that throw lies on the
+    cylinder's axis (4-stroke: firing TDC every 720 deg, throw direction modulo 360 deg).
+    The workbook's throw angle is measured from throw 1 in the direction of rotation, so it must
+    equal ``gamma_i - gamma_(throw 1)`` (mod 360 deg); cylinders sharing a crank pin (V engines)
+    must give the same ``gamma``. ``row_of`` maps the cylinder number to its data row index.
+    """
+    def gamma(c: Cylinder) -> float:
+        return (c.bank_angle - c.firing_angle) % _TWO_PI
+
+    by_pin: dict[int, list[Cylinder]] = {}
+    for c in sorted(cylinders, key=lambda c: c.number):
+        by_pin.setdefault(c.pin, []).append(c)
+    first = next((c for c in cylinders if c.number == 1), None)
+    if first is not None and _angle_diff(first.firing_angle, 0.0) > 1e-9:
+        err("Cylinders", "firing_angle", row_of[1], "cylinder 1 fires at 0 deg by definition"
+            " (firing angles are crank angles after cylinder 1 fires), found"
+            f" {_deg(first.firing_angle)}")
+    n_pins = max(by_pin, default=0)
+    empty = [j for j in range(1, n_pins + 1) if j not in by_pin]
+    if empty:
+        c = next(c for c in cylinders if c.pin == n_pins)
+        err("Cylinders", "pin", row_of[c.number], f"crank pins must be numbered 1..{n_pins}"
+            f" without gaps: pin {', '.join(map(str, empty))} carries no cylinder")
+    shared_ok = True
+    for pin, cs in by_pin.items():
+        g0 = gamma(cs[0])
+        for c in cs[1:]:
+            if _angle_diff(gamma(c), g0) > _PIN_TOL:
+                shared_ok = False
+                want = (cs[0].firing_angle + c.bank_angle - cs[0].bank_angle) % _TWO_PI
+                err("Cylinders", "firing_angle", row_of[c.number],
+                    f"cylinders {cs[0].number} and {c.number} share crank pin {pin}, so their"
+                    " firing angles must differ by the difference of their bank angles"
+                    f" ({_deg(c.bank_angle - cs[0].bank_angle)}): expected {_deg(want)} or"
+                    f" {_deg(want + _TWO_PI)}, found {_deg(c.firing_angle)}")
+    if not shared_ok or 1 not in by_pin:
+        return
+    ref = gamma(by_pin[1][0])
+    for c in sorted(cylinders, key=lambda c: c.number):
+        expected = (gamma(c) - ref) % _TWO_PI
+        if _angle_diff(c.throw_angle, expected) > _THROW_TOL:
+            err("Cylinders", "throw_angle", row_of[c.number],
+                f"throw angle {_deg(c.throw_angle)} contradicts the firing and bank angles:"
+                f" cylinder {c.number} (crank pin {c.pin}, bank {_deg(c.bank_angle)}) fires"
+                f" {_deg(c.firing_angle)} after cylinder 1, so its throw is at"
+                f" {_deg(expected)} from throw 1 in the direction of rotation (throw = bank"
+                " angle - firing angle, relative to throw 1, modulo 360 deg)")
+
+
+def check_traces(rows: list[dict[str, Any]], err: Callable[[str, str, int | None, str], None]
+                 ) -> None:
+    """Check every pressure trace (one per load case and speed) as the calculation will use it.
+
+    The same conditions as :func:`checker.calc.pressure.interpolate_trace`, with the cells:
+    at least 8 points, distinct crank angles, at most one 720 deg cycle (a duplicated end point
+    at first + 720 deg must repeat the first pressure within 2 % of the peak), and no gap
+    above :data:`checker.calc.pressure.MAX_TRACE_GAP` (10 deg; exactly 10 deg passes) between
+    neighbouring points, including the wrap-around from the last point to the first.
+    """
+    from .calc.pressure import MAX_TRACE_GAP
+
+    groups: dict[tuple[str, float], list[tuple[float, float, int]]] = {}
+    for i, r in enumerate(rows):
+        if None in (r["case"], r["speed"], r["crank_angle"], r["pressure"]):
+            continue
+        groups.setdefault((r["case"], round(r["speed"], 9)), []).append(
+            (r["crank_angle"], r["pressure"], i))
+    cycle = 2 * _TWO_PI
+    tol = 1e-9 * cycle
+    for (case, speed), pts in groups.items():
+        what = f"{case} load trace at {speed * 60 / _TWO_PI:.6g} rpm"
+        pts.sort()
+        if len(pts) < 8:
+            err("PressureTraces", "crank_angle", pts[0][2], f"the {what} has {len(pts)} points;"
+                " at least 8 are needed (one 720 deg cycle, at most 10 deg apart)")
+            continue
+        dup = next((k for k in range(1, len(pts)) if pts[k][0] - pts[k - 1][0] <= 0), None)
+        if dup is not None:
+            err("PressureTraces", "crank_angle", pts[dup][2], f"the {what} has two points at"
+                f" crank angle {_deg(pts[dup][0])}")
+            continue
+        span = pts[-1][0] - pts[0][0]
+        if span > cycle + tol:
+            err("PressureTraces", "crank_angle", pts[-1][2], f"the {what} spans {_deg(span)},"
+                " more than one 720 deg cycle; give one cycle")
+            continue
+        if span > cycle - tol:  # duplicated end point
+            peak = max(p for _, p, _ in pts)
+            if abs(pts[-1][1] - pts[0][1]) > 0.02 * peak:
+                err("PressureTraces", "pressure", pts[-1][2], f"the {what} is not periodic: the"
+                    f" end point at {_deg(pts[-1][0])} repeats the start but its pressure"
+                    " differs from the first by more than 2 % of the peak")
+                continue
+            pts = pts[:-1]
+        for k in range(len(pts)):
+            a0 = pts[k - 1][0] if k else pts[-1][0] - cycle
+            gap = pts[k][0] - a0
+            if gap > MAX_TRACE_GAP * (1.0 + 1e-9):
+                before = pts[k - 1] if k else pts[-1]
+                err("PressureTraces", "crank_angle", pts[k][2], f"the {what} has a gap of"
+                    f" {_deg(gap)} between crank angles {_deg(before[0])} and"
+                    f" {_deg(pts[k][0])} (wrapped over the 720 deg cycle where needed); at most"
+                    " 10 deg between points")
+                break
+
+
+def check_speed_grid(p: Params, peak_pressure: list[tuple[str, float, float]],
+                     err: Callable[[str, str, int | None, str], None],
+                     warn: Callable[[str, str, int | None, str], None]) -> None:
+    """Number of swept speeds (as :func:`checker.modules.loads.speed_sweep` builds them)."""
+    from .modules.loads import DEFAULT_SPEED_STEP
+    from .workbook.schema import MAX_SPEEDS, USUAL_SPEEDS
+
+    full = sorted(s for c, s, _ in peak_pressure if c == "full")
+    lo = p.get("speed_min") or (full[0] if full else None)
+    hi = p.get("speed_max") or (full[-1] if full else None)
+    step = p.get("speed_step") or DEFAULT_SPEED_STEP
+    if lo is None or hi is None or hi <= lo:
+        return
+    n = math.floor((hi - lo) / step + 1e-9) + 3  # grid, maximum speed, overspeed
+    rpm = 60.0 / _TWO_PI
+    text = (f"the speed grid {lo * rpm:.6g}..{hi * rpm:.6g} rpm in steps of"
+            f" {step * rpm:.6g} rpm has {n if n < 1e15 else float(n):.6g} speeds")
+    if n > MAX_SPEEDS:
+        err("Engine", "speed_step", None, f"{text}; at most {MAX_SPEEDS} can be computed (the"
+            " run time grows with every speed): use a larger speed step")
+    elif n > USUAL_SPEEDS:
+        warn("Engine", "speed_step", None, f"{text}, more than the usual {USUAL_SPEEDS}: the"
+             " check takes correspondingly longer")
+
+
+def check_oil(oil: Params, err: Callable[[str, str, int | None, str], None]) -> None:
+    """The oil data must give a viscosity curve that holds at the film temperature."""
+    from .calc import viscosity as vs
+
+    fit, what = None, ""
+    if oil.get("kv40") is not None and oil.get("kv100") is not None:
+        dens = oil.get("density")
+        try:
+            fit = vs.vogel_from_datasheet(oil["kv40"], oil["kv100"],
+                                          dens if dens is not None else vs.DENSITY_15C_DEFAULT,
+                                          oil.get("hths"))
+        except (ValueError, ArithmeticError) as exc:
+            err("Oil", "kv40", None, "the datasheet values (kinematic viscosities at 40 and"
+                " 100 °C, density, HTHS) do not give a Vogel viscosity curve: " + str(exc))
+            return
+        what = "the datasheet"
+    elif oil.get("grade"):
+        try:
+            fit = vs.vogel_from_j300(str(oil["grade"]), basis="minimum")
+        except (ValueError, KeyError):
+            err("Oil", "grade", None, f"'{oil['grade']}' is not an SAE J300 grade (e.g. 0W20,"
+                " 5W30, 15W40, 40); give it, or the kinematic viscosities at 40 and 100 °C")
+            return
+        what = f"grade {oil['grade']}"
+    t = oil.get("supply_temperature")
+    if fit is None or t is None:
+        return
+    t_film = t + (oil.get("temperature_rise") or 0.0)
+    if not t_film > fit.c + 1.0:
+        err("Oil", "supply_temperature", None, f"the film temperature {t_film - 273.15:.4g} °C"
+            f" is at or below the Vogel temperature {fit.c - 273.15:.4g} °C of the oil"
+            f" ({what}), where its viscosity curve has no value")
+
+
 def build_engine(data: WorkbookData,
                  check_overrides: Callable[[list[RuleOverride]], list[InputError]] | None = None
                  ) -> Engine:
@@ -187,25 +378,36 @@ def build_engine(data: WorkbookData,
     problems are reported together with every other problem of the workbook.
     """
     errs: list[InputError] = list(data.errors)
+    warns: list[InputError] = list(data.warnings)
 
     def err(sheet: str, attr: str, row: int | None, msg: str) -> None:
         key = (sheet, attr) if row is None else (sheet, row, attr)
         errs.append(InputError(data.where.get(key, sheet), msg))
+
+    def warn(sheet: str, attr: str, row: int | None, msg: str) -> None:
+        key = (sheet, attr) if row is None else (sheet, row, attr)
+        warns.append(InputError(data.where.get(key, sheet), msg))
 
     p = Params(data.params["Engine"])
     n_cyl = p.get("cylinders")
 
     cyl_rows = _rows(data, "Cylinders")
     cylinders = []
+    row_of: dict[int, int] = {}
+    complete = True
     for i, r in enumerate(cyl_rows):
         if r["cylinder"] is None or r["throw_angle"] is None or r["firing_angle"] is None:
+            complete = False
             continue
         fa = r["firing_angle"]
         if not (0 <= fa < 4 * math.pi + 1e-12):
             err("Cylinders", "firing_angle", i, "firing angle must be in 0..720 deg, found"
                 f" {math.degrees(fa):g} deg")
+        row_of.setdefault(r["cylinder"], i)
         cylinders.append(Cylinder(r["cylinder"], r["throw_angle"], fa % (4 * math.pi),
                                   r["bank_angle"] or 0.0, r["pin"] or r["cylinder"]))
+    if complete and cylinders and len(row_of) == len(cylinders):
+        check_cylinders(cylinders, row_of, err)
     if n_cyl is not None and cyl_rows and len(cyl_rows) != n_cyl:
         errs.append(InputError("Cylinders", f"{len(cyl_rows)} cylinder rows but Engine says"
                                f" {n_cyl} cylinders ({data.where.get(('Engine', 'cylinders'))})"))
@@ -315,7 +517,7 @@ def build_engine(data: WorkbookData,
                     r["property_class"], r["tightening"], r["face_outer"], r["face_inner"]):
             continue
         joints.append(Joint(**{k: v for k, v in r.items() if not k.startswith("_")}, row=i))
-    names = {j.name.lower() for j in joints}
+    names = {j.name.lower(): j.name for j in joints}
     jt = []
     seen = {}
     for i, r in enumerate(_rows(data, "JointTorques")):
@@ -330,7 +532,7 @@ def build_engine(data: WorkbookData,
                 f" joint '{r['joint']}'")
             continue
         seen[key] = i
-        name = next(j.name for j in joints if j.name.lower() == r["joint"].lower())
+        name = names[r["joint"].lower()]
         jt.append(JointTorque(name, r["point"], r["torque"], r["speed"]))
 
     pk = []
@@ -343,6 +545,8 @@ def build_engine(data: WorkbookData,
             err("PeakPressure", "speed", i, f"duplicate speed for load case '{r['case']}'")
         seen_pk.add(key)
         pk.append((r["case"], r["speed"], r["peak_pressure"]))
+    check_traces(_rows(data, "PressureTraces"), err)
+    check_speed_grid(p, pk, err, warn)
     traces = tuple((r["case"], r["speed"], r["crank_angle"], r["pressure"])
                    for r in _rows(data, "PressureTraces")
                    if None not in (r["case"], r["speed"], r["crank_angle"], r["pressure"]))
@@ -356,6 +560,7 @@ def build_engine(data: WorkbookData,
         seen_bt.add(round(r["speed"], 6))
         bt.append((r["speed"], r["brake_torque"]))
 
+    check_oil(Params(data.params.get("Oil", {})), err)
     damper = Params(data.params.get("Damper", {}))
     if damper.get("inner_radius") is not None and damper.get("outer_radius") is not None and \
             damper["inner_radius"] >= damper["outer_radius"]:
@@ -389,7 +594,7 @@ def build_engine(data: WorkbookData,
         oil=Params(data.params.get("Oil", {})), damper=damper,
         fatigue=Params(data.params.get("Fatigue", {})), overrides=tuple(overrides),
         source=data.path, sha256=data.sha256, where=dict(data.where),
-        assumptions=tuple(data.assumptions),
+        assumptions=tuple(data.assumptions), warnings=tuple(warns),
     )
 
 

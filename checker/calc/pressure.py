@@ -30,6 +30,7 @@ from numpy.typing import ArrayLike
 from checker.calc.kinematics import FOUR_STROKE_CYCLE, dead_centres, slider_kinematics
 
 __all__ = [
+    "MAX_TRACE_GAP",
     "SynthesizedTrace",
     "bmep_from_torque",
     "calibrate_combustion_start",
@@ -46,6 +47,9 @@ __all__ = [
 
 _CYCLE = FOUR_STROKE_CYCLE
 _DEG = np.pi / 180.0
+MAX_TRACE_GAP = 10.0 * _DEG
+"""Largest accepted spacing of a pressure trace [rad] (10 deg, documented in the workbook)."""
+_GAP_RTOL = 1e-9  # a spacing of exactly max_gap passes despite degree-to-radian round-off
 
 
 # ---------------------------------------------------------------------------------------------
@@ -68,7 +72,7 @@ def interpolate_trace(
     theta: ArrayLike,
     *,
     firing_tdc: float = 0.0,
-    max_gap: float = 10.0 * _DEG,
+    max_gap: float = MAX_TRACE_GAP,
     method: str = "linear",
     endpoint_tolerance: float = 0.02,
 ) -> np.ndarray:
@@ -90,7 +94,8 @@ def interpolate_trace(
         Angle of firing TDC in the data's scale (``0`` for a -360..360 deg trace, ``2*pi`` for a
         0..720 deg trace with firing TDC at 360 deg).
     max_gap : float [rad]
-        Largest accepted spacing between data points (default 10 deg).
+        Largest accepted spacing between data points (default 10 deg; a spacing equal to it
+        passes, within a relative round-off of 1e-9).
     method : {"linear", "pchip"}
         Periodic piecewise-linear (no overshoot, slightly cuts a coarse peak) or periodic
         monotone cubic (PCHIP, Fritsch & Carlson 1980, SIAM J. Numer. Anal. 17(2); no overshoot
@@ -139,7 +144,7 @@ def interpolate_trace(
         xp, fp = xp[:-1], fp[..., :-1]
     gaps = np.append(np.diff(xp), xp[0] + _CYCLE - xp[-1])
     k = int(np.argmax(gaps))
-    if gaps[k] > max_gap:
+    if gaps[k] > max_gap * (1.0 + _GAP_RTOL):
         start = xp[k]
         raise ValueError(
             f"trace does not cover the 720 deg cycle: gap of {np.rad2deg(gaps[k]):.2f} deg after "

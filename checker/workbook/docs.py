@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from ..units import KINDS
-from .schema import SHEETS
+from .schema import MAX_SPEEDS, SHEETS, USUAL_SPEEDS, choice_key
 
 
 def _kind(kind: str) -> str:
@@ -30,22 +30,57 @@ def workbook_markdown() -> str:
            " (75 % = 0.75) and is only accepted for dimensionless values.",
            "* Notes that contain the word `ASSUMPTION` are listed in the report's assumptions.",
            "* Unknown sheets, parameters and columns are errors (typos must not be ignored);"
-           " the sheet `Notes` is free text.", ""]
+           " the sheet `Notes` is free text.",
+           "* **Choice** columns accept only the listed values, compared ignoring case, spaces,"
+           " hyphens and underscores (`AS16` = `as16`, `Tri Metal` = `tri-metal`), plus the"
+           " other spellings listed under each table. Anything else is an input error that"
+           " names the cell, the allowed values and the closest one (\"did you mean\"); an"
+           " ambiguous spelling (a clamped material `cast iron`: grey or nodular?) is an error"
+           " that asks which one is meant, never a silent guess. A typo can therefore never"
+           " leave a rule not evaluated unnoticed.",
+           "* **Ranges**: every number is checked against two ranges declared per field"
+           " (columns *valid* and *usual*, in the unit shown; an open end is `at least` /"
+           " `at most`). Outside *valid* the calculations cannot run meaningfully (overflow,"
+           " a grid that would take hours, a temperature below absolute zero, a unit slip of"
+           " orders of magnitude): an **input error** with the cell. Outside *usual*, the range"
+           " of crank-train engines from small high-speed engines to marine two-strokes, the"
+           " check runs and the value is reported as a **warning** with its cell (often a unit"
+           " slip such as a bore in `in` instead of `mm`).",
+           f"* The swept speed grid (minimum..maximum speed in speed steps, plus the overspeed)"
+           f" may have at most {MAX_SPEEDS} speeds (error) and usually has at most"
+           f" {USUAL_SPEEDS} (warning). A table sheet with more data rows than its stated"
+           " maximum is an error.", ""]
     for s in SHEETS.values():
         req = " (required)" if s.required else ""
         out += [f"## {s.name}{req}", "", s.note, ""]
         if s.shape == "notes":
             continue
         head = "parameter" if s.shape == "parameters" else "column"
-        out += [f"| {head} | kind | required | check | note |", "|---|---|---|---|---|"]
+        out += [f"| {head} | kind | required | check | valid | usual | note |",
+                "|---|---|---|---|---|---|---|"]
         for f in s.fields:
             kind = _kind(f.kind)
             if f.choices:
                 kind += ": " + ", ".join(f"`{c}`" for c in f.choices)
+            valid = f.valid.text() if f.valid else ""
+            usual = f.usual.text() if f.usual else ""
             out.append(f"| {f.label} | {kind} | {'yes' if f.required else ''} |"
-                       f" {f.check or ''} | {f.note} |")
+                       f" {f.check or ''} | {valid} | {usual} | {f.note} |")
+        extra = []
         if s.key:
-            out += ["", f"Values of `{s.key}` must be unique."]
+            extra.append(f"Values of `{s.key}` must be unique.")
+        if s.max_rows is not None:
+            extra.append(f"At most {s.max_rows} data rows.")
+        for f in s.fields:
+            shown = [(a, c) for a, c in f.aliases if choice_key(a) != choice_key(c)]
+            if shown:
+                extra.append(f"Also accepted for *{f.label}*: " + ", ".join(
+                    f"`{a}` (= `{c}`)" for a, c in shown) + ".")
+            for spelling, options in f.ambiguous:
+                extra.append(f"*{f.label}* `{spelling}` is refused as ambiguous: give "
+                             + " or ".join(f"`{c}`" for c in options) + ".")
+        for text in extra:
+            out += ["", text]
         out.append("")
     return "\n".join(out)
 

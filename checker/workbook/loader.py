@@ -1,9 +1,15 @@
 """Read an engine workbook defensively: every problem found, each with its sheet and cell.
 
-The workbook is opened read-only twice with openpyxl: once for formulas (to find formula cells
-that have no stored result, which pandas/openpyxl would silently read as empty) and once for the
-stored values. Values are converted to SI through :func:`checker.units.to_si`. Nothing is
-written and the file is never modified.
+The workbook is streamed read-only twice with openpyxl: once for the stored values and once
+for formulas (to find formula cells that have no stored result, which pandas/openpyxl would
+silently read as empty). Only rows that hold something are kept, so a sheet whose used range
+reaches row 1,048,576 through empty formatted cells costs no more than its data. Everything
+openpyxl, zipfile or the XML parser raises while opening or reading is a file-level input
+error naming the file (a damaged, encrypted or non-workbook file), never an internal error.
+Values are converted to SI through :func:`checker.units.to_si`, choices through
+:func:`checker.workbook.schema.resolve_choice`, and checked against the fields' declared
+ranges (``valid``: error, ``usual``: warning). Nothing is written and the file is never
+modified.
 """
 
 from __future__ import annotations
@@ -11,21 +17,30 @@ from __future__ import annotations
 import hashlib
 import math
 import re
-import zipfile
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from openpyxl.utils import get_column_letter
+
 from ..errors import InputError, InputErrors
-from ..units import KINDS, UnitProblem, to_si
-from .schema import SHEETS, Field, Sheet
+from ..units import KINDS, UnitProblem, from_si, to_si
+from .schema import SHEETS, ChoiceProblem, Field, Sheet, expected_choices, resolve_choice
 
 _PARAM_HEADER = ("parameter", "value", "unit")
+_LAST_ROW = 1_048_576  # last row of an .xlsx sheet
+_PARAM_COLUMNS = 4  # parameter | value | unit | note
+_OLE_MAGIC = b"\xd0\xcf\x11\xe0\xa1\xb1\x1a\xe1"  # encrypted .xlsx and old .xls files
 
 
 @dataclass
 class WorkbookData:
-    """Everything read from a workbook, in SI, with the cell each value came from."""
+    """Everything read from a workbook, in SI, with the cell each value came from.
+
+    ``errors`` are input errors (the check cannot run); ``warnings`` are values that parse
+    and can be computed with but lie outside the usual range of crank-train engines (each
+    with its cell), to be shown with the results.
+    """
 
     path: str
     sha256: str
@@ -35,6 +50,7 @@ class WorkbookData:
     units: dict[tuple, str] = field(default_factory=dict)
     sheets_present: tuple[str, ...] = ()
     errors: list[InputError] = field(default_factory=list)
+    warnings: list[InputError] = field(default_factory=list)
     assumptions: list[str] = field(default_factory=list)
 
     def cell(self, sheet: str, attr: str, row: int | None = None) -> str:
@@ -43,18 +59,38 @@ class WorkbookData:
         return self.where.get(key, f"{sheet}")
 
 
+@dataclass
+class _RawSheet:
+    """The cells of one sheet that hold something: plain values, no openpyxl objects.
+
+    ``rows`` maps a 1-based row number to ``(value, number_format)`` per column (1-based
+    column ``j`` at index ``j - 1``); ``formulas`` maps ``(row, column)`` to the formula text
+    of formula cells.
+    """
+
+    rows: dict[int, tuple[tuple[Any, str | None], ...]]
+    formulas: dict[tuple[int, int], str]
+    merged: list[str]
+    ncols: int
+
+
 def _norm(s: Any) -> str:
     return re.sub(r"\s+", " ", str(s)).strip().lower()
 
 
-def _addr(sheet: str, cell) -> str:
-    return f"{sheet}!{cell.coordinate}"
+def _addr(sheet: str, row: int, col: int) -> str:
+    """``Sheet!B4`` for 1-based row and column numbers."""
+    return f"{sheet}!{get_column_letter(col)}{row}"
 
 
 def _describe(v: Any) -> str:
     if isinstance(v, str):
         return f"text '{v}'"
     return repr(v)
+
+
+def _blank(v: Any) -> bool:
+    return v is None or (isinstance(v, str) and not v.strip())
 
 
 _NUMBER_TEXT = re.compile(r"^[+-]?(\d+(\.\d*)?|\.\d+)([eE][+-]?\d+)?$")
@@ -77,7 +113,7 @@ def _expected(f: Field) -> str:
     if f.kind == "text":
         return "text"
     if f.kind == "choice":
-        return "one of " + ", ".join(f"'{c}'" for c in f.choices)
+        return expected_choices(f)
     k = KINDS[f.kind]
     if f.kind in ("dimensionless", "ratio"):
         return "a number (dimensionless)"
@@ -85,7 +121,7 @@ def _expected(f: Field) -> str:
 
 
 def _check(f: Field, v: float) -> str | None:
-    """Physical range check; returns a problem text or None."""
+    """Sign check; returns a problem text or None."""
     c = f.check
     if c is None:
         return None
@@ -102,38 +138,81 @@ def _check(f: Field, v: float) -> str | None:
     return None
 
 
+def _shown(f: Field, num: float, unit: str | None, si: float) -> str:
+    """The value as entered, plus its value in the unit of the field's ranges when different."""
+    text = f"{num:g}" + (f" {unit}" if unit and unit != "-" else "")
+    span = f.valid or f.usual
+    if f.kind == "int" or span is None or span.unit in ("", "-") or span.unit == (unit or ""):
+        return text
+    try:
+        conv = float(from_si(si, KINDS[f.kind].si, span.unit))
+    except Exception:  # pragma: no cover - display only
+        return text
+    return f"{text} (= {conv:.4g} {span.unit})"
+
+
+def _range_problem(f: Field, si: float, shown: str, unit: str | None
+                   ) -> tuple[str | None, str | None]:
+    """(error, warning) texts for a value outside the field's ``valid`` / ``usual`` range."""
+    hint = f"; check the value and its unit ('{unit}')" if unit and unit != "-" else \
+        "; check the value"
+    if f.valid is not None and not f.valid.contains(si, f.kind):
+        return (f"{f.label} {shown} is outside {f.valid.text()}, the range the calculations"
+                f" can handle{hint}"), None
+    if f.usual is not None and not f.usual.contains(si, f.kind):
+        return None, (f"{f.label} {shown} is outside the usual range {f.usual.text()} of"
+                      f" crank-train engines{hint}")
+    return None, None
+
+
+def _short(exc: BaseException) -> str:
+    text = " ".join(str(exc).split())
+    text = text if len(text) <= 160 else text[:157] + "..."
+    return type(exc).__name__ + (f": {text}" if text else "")
+
+
+def _unreadable(p: Path, detail: str) -> InputErrors:
+    return InputErrors([InputError(
+        p.name, f"cannot be read: not an Excel .xlsx workbook, or a damaged one ({detail});"
+        " open it in Excel or LibreOffice and save it again as an unencrypted .xlsx")])
+
+
 class _Reader:
     def __init__(self, path: Path):
         self.path = path
         self.errors: list[InputError] = []
+        self.warnings: list[InputError] = []
+        self._error_cells: set[str] = set()
 
     def err(self, where: str, msg: str) -> None:
         self.errors.append(InputError(where, msg))
+        self._error_cells.add(where)
 
-    def value(self, sheet: str, f: Field, vcell, fcell, ucell, data: WorkbookData, key: tuple):
-        """Convert one value cell (with unit cell text) according to field ``f``."""
-        where = _addr(sheet, vcell)
-        raw = vcell.value
-        if fcell is not None and fcell.data_type == "f" and raw is None:
-            self.err(where, f"{f.label} is a formula ({fcell.value}) with no stored result;"
+    def warn(self, where: str, msg: str) -> None:
+        self.warnings.append(InputError(where, msg))
+
+    def has_error(self, where: str) -> bool:
+        return where in self._error_cells
+
+    def value(self, where: str, f: Field, raw: Any, number_format: str | None,
+              formula: str | None, unit: str | None, data: WorkbookData, key: tuple):
+        """Convert one value cell (with its unit cell text) according to field ``f``."""
+        if formula is not None and raw is None:
+            self.err(where, f"{f.label} is a formula ({formula}) with no stored result;"
                      " open and save the workbook in Excel or LibreOffice so the value is"
                      " stored")
             return None
         data.where[key] = where
-        if raw is None or (isinstance(raw, str) and raw.strip() == ""):
+        if _blank(raw):
             return None
-        unit = None if ucell is None else ucell
         if f.kind == "text":
             return str(raw).strip() if not isinstance(raw, float) else f"{raw:g}"
         if f.kind == "choice":
-            text = _norm(raw if not isinstance(raw, float) else f"{raw:g}")
-            text = {"big-end": "big end", "bigend": "big end", "v-engine": "v",
-                    "counter weight": "counterweight", "c/w": "counterweight",
-                    "yield": "yield controlled", "angle": "angle controlled"}.get(text, text)
-            if text not in f.choices:
-                self.err(where, f"{f.label}: expected {_expected(f)}, found {_describe(raw)}")
+            try:
+                return resolve_choice(f, raw)
+            except ChoiceProblem as exc:
+                self.err(where, f"{f.label}: {exc}")
                 return None
-            return text
         num = _number(raw)
         if num is None:
             hint = " (use a decimal point, not a comma)" if isinstance(raw, str) and re.match(
@@ -147,117 +226,126 @@ class _Reader:
             if not float(num).is_integer():
                 self.err(where, f"{f.label}: expected a whole number, found {raw!r}")
                 return None
-            v = int(num)
-            problem = _check(f, v)
+            problem = _check(f, num)
             if problem:
-                self.err(where, f"{f.label} {problem}, found {v}")
+                self.err(where, f"{f.label} {problem}, found {num:g}")
                 return None
-            return v
-        percent = "%" in str(vcell.number_format or "")
+            error, warning = _range_problem(f, num, f"{num:g}", None)
+            if error:
+                self.err(where, error)
+                return None
+            if warning:
+                self.warn(where, warning)
+            return int(num)
+        percent = "%" in str(number_format or "")
         try:
             si = to_si(num, unit, f.kind, percent_formatted=percent)
         except UnitProblem as exc:
-            uw = where if ucell is None else where
-            self.err(uw, f"{f.label}: {exc}")
+            self.err(where, f"{f.label}: {exc}")
             return None
         problem = _check(f, si)
         if problem:
             shown = f"{num:g}" + (f" {unit}" if unit else "")
             self.err(where, f"{f.label} {problem}, found {shown}")
             return None
+        error, warning = _range_problem(f, si, _shown(f, num, unit, si), unit)
+        if error:
+            self.err(where, error)
+            return None
+        if warning:
+            self.warn(where, warning)
         data.units[key] = unit or ""
         return si
 
-    def merged(self, sheet: str, ws) -> None:
-        for rng in getattr(ws, "merged_cells", None) and ws.merged_cells.ranges or []:
-            self.err(f"{sheet}!{rng.coord}", "merged cells are not allowed in the input area;"
+    def merged(self, sheet: str, raw: _RawSheet) -> None:
+        for ref in raw.merged:
+            self.err(f"{sheet}!{ref}", "merged cells are not allowed in the input area;"
                      " unmerge them and fill every cell")
 
-    def parameters(self, spec: Sheet, ws, wsf, data: WorkbookData) -> None:
+    def parameters(self, spec: Sheet, raw: _RawSheet, data: WorkbookData) -> None:
         name = spec.name
-        rows = list(ws.iter_rows())
-        frows = list(wsf.iter_rows()) if wsf is not None else [None] * len(rows)
         by_label = {_norm(f.label): f for f in spec.fields}
         by_label.update({_norm(f.attr): f for f in spec.fields})
         params: dict[str, Any] = {f.attr: None for f in spec.fields}
         seen: dict[str, str] = {}
-        if not rows:
+        data.params[name] = params
+        row_numbers = sorted(set(raw.rows) | {r for r, _ in raw.formulas})
+        if not row_numbers:
             self.err(name, "sheet is empty; expected the header 'parameter | value | unit |"
                      " note' in row 1")
-            data.params[name] = params
             return
-        header = tuple(_norm(c.value) if c.value is not None else "" for c in rows[0][:3])
+        empty = ((None, None),) * _PARAM_COLUMNS
+
+        def cells(r: int) -> tuple[tuple[Any, str | None], ...]:
+            return (raw.rows.get(r, empty) + empty)[:_PARAM_COLUMNS]
+
+        header = tuple(_norm(v) if v is not None else "" for v, _ in cells(1)[:3])
         if header != _PARAM_HEADER:
             self.err(f"{name}!A1", "expected the header 'parameter | value | unit | note' in"
                      f" row 1, found {' | '.join(h or '(blank)' for h in header)}")
-        for r, row in enumerate(rows[1:], start=1):
-            cells = list(row) + [None] * 4
-            label_cell, vcell, ucell = cells[0], cells[1], cells[2]
-            if label_cell is None or str(label_cell.value or "").strip() == "":
-                if vcell is not None and vcell.value not in (None, ""):
-                    self.err(_addr(name, vcell), "value without a parameter name in column A")
+        for r in row_numbers:
+            if r == 1:
                 continue
-            label = _norm(label_cell.value)
-            f = by_label.get(label)
+            (label_raw, _), (value_raw, value_fmt), (unit_raw, _), (note, _) = cells(r)
+            vwhere = _addr(name, r, 2)
+            formula = raw.formulas.get((r, 2))
+            if _blank(label_raw):
+                if not _blank(value_raw) or formula is not None:
+                    self.err(vwhere, "value without a parameter name in column A")
+                continue
+            f = by_label.get(_norm(label_raw))
             if f is None:
-                self.err(_addr(name, label_cell), f"unknown parameter '{label_cell.value}'"
-                         f" (see docs/workbook.md for the parameters of sheet {name})")
+                self.err(_addr(name, r, 1), f"unknown parameter '{label_raw}' (see"
+                         f" docs/workbook.md for the parameters of sheet {name})")
                 continue
             if f.attr in seen:
-                self.err(_addr(name, label_cell), f"duplicate parameter '{label_cell.value}'"
-                         f" (already given in {seen[f.attr]})")
+                self.err(_addr(name, r, 1), f"duplicate parameter '{label_raw}' (already given"
+                         f" in {seen[f.attr]})")
                 continue
-            seen[f.attr] = _addr(name, label_cell)
-            frow = frows[r] if r < len(frows) and frows[r] is not None else None
-            fcell = list(frow)[1] if frow is not None and len(list(frow)) > 1 else None
-            if vcell is None:
-                continue
-            unit_text = None
-            if ucell is not None and ucell.value is not None:
-                unit_text = str(ucell.value).strip()
-            params[f.attr] = self.value(name, f, vcell, fcell, unit_text, data, (name, f.attr))
-            note = cells[3].value if cells[3] is not None else None
+            seen[f.attr] = _addr(name, r, 1)
+            unit_text = None if unit_raw is None else str(unit_raw).strip()
+            params[f.attr] = self.value(vwhere, f, value_raw, value_fmt, formula, unit_text,
+                                        data, (name, f.attr))
             if note and "assumption" in str(note).lower():
-                shown = f"{vcell.value}" + (f" {unit_text}" if unit_text not in (None, "-") else "")
-                data.assumptions.append(f"{_addr(name, vcell)} {f.label} = {shown}: {note}")
-            if params[f.attr] is None and f.required and (name, f.attr) in data.where and not any(
-                e.where == _addr(name, vcell) for e in self.errors
-            ):
-                self.err(_addr(name, vcell), f"{f.label} is required: expected {_expected(f)},"
-                         " found an empty cell")
+                shown = f"{value_raw}" + (f" {unit_text}" if unit_text not in (None, "-")
+                                          else "")
+                data.assumptions.append(f"{vwhere} {f.label} = {shown}: {note}")
+            if params[f.attr] is None and f.required and not self.has_error(vwhere):
+                self.err(vwhere, f"{f.label} is required: expected {_expected(f)}, found an"
+                         " empty cell")
         for f in spec.fields:
             if f.required and f.attr not in seen:
                 self.err(name, f"required parameter '{f.label}' is missing: add a row with"
                          f" {_expected(f)}")
-        data.params[name] = params
 
-    def table(self, spec: Sheet, ws, wsf, data: WorkbookData) -> None:
+    def table(self, spec: Sheet, raw: _RawSheet, data: WorkbookData) -> None:
         name = spec.name
-        rows = list(ws.iter_rows())
-        frows = list(wsf.iter_rows()) if wsf is not None else []
         out: list[dict[str, Any]] = []
         data.tables[name] = out
-        if not rows:
+        if not raw.rows and not raw.formulas:
             self.err(name, "sheet is empty; expected column names in row 1 and units in row 2")
             return
-        header = rows[0]
-        units_row = rows[1] if len(rows) > 1 else []
-        col_of: dict[str, int] = {}
+        header = raw.rows.get(1, ())
+        units_row = raw.rows.get(2, ())
+        col_of: dict[str, int] = {}  # attr -> 1-based column
         by_label = {_norm(f.label): f for f in spec.fields}
         by_label.update({_norm(f.attr): f for f in spec.fields})
-        for j, c in enumerate(header):
-            if c.value is None or str(c.value).strip() == "":
+        note_col = None
+        for j, (v, _) in enumerate(header, start=1):
+            if _blank(v):
                 continue
-            label = _norm(c.value)
+            label = _norm(v)
             if label in spec.extra_columns:
+                if label in ("note", "notes") and note_col is None:
+                    note_col = j
                 continue
             f = by_label.get(label)
             if f is None:
-                self.err(_addr(name, c), f"unknown column '{c.value}'; expected one of "
+                self.err(_addr(name, 1, j), f"unknown column '{v}'; expected one of "
                          + ", ".join(f"'{x.label}'" for x in spec.fields))
                 continue
             if f.attr in col_of:
-                self.err(_addr(name, c), f"duplicate column '{c.value}'")
+                self.err(_addr(name, 1, j), f"duplicate column '{v}'")
                 continue
             col_of[f.attr] = j
         for f in spec.fields:
@@ -265,54 +353,266 @@ class _Reader:
                 self.err(f"{name}!1:1", f"required column '{f.label}' is missing")
         unit_of: dict[str, str | None] = {}
         for attr, j in col_of.items():
-            u = units_row[j].value if j < len(units_row) else None
+            u = units_row[j - 1][0] if j <= len(units_row) else None
             unit_of[attr] = None if u is None else str(u).strip()
         keys_seen: dict[Any, str] = {}
-        note_col = next((j for j, c in enumerate(header)
-                         if c.value is not None and _norm(c.value) in ("note", "notes")), None)
         notes: dict[str, list[int]] = {}
-        for r in range(2, len(rows)):
-            row = rows[r]
-            if all(c.value is None or (isinstance(c.value, str) and not c.value.strip())
-                   for c in row):
+        formula_rows = {r for r, _ in raw.formulas}
+        for r in sorted(set(raw.rows) | formula_rows):
+            if r <= 2:
                 continue
-            frow = frows[r] if r < len(frows) else None
-            rec: dict[str, Any] = {"_row": r + 1}
+            row = raw.rows.get(r, ())
+            if r not in formula_rows and all(_blank(v) for v, _ in row):
+                continue
+            rec: dict[str, Any] = {"_row": r}
             idx = len(out)
             for f in spec.fields:
                 j = col_of.get(f.attr)
                 if j is None:
                     rec[f.attr] = None
                     continue
-                vcell = row[j] if j < len(row) else None
-                fcell = frow[j] if frow is not None and j < len(frow) else None
-                if vcell is None:
-                    rec[f.attr] = None
-                    continue
-                v = self.value(name, f, vcell, fcell, unit_of.get(f.attr), data,
-                               (name, idx, f.attr))
-                rec[f.attr] = v
-                if v is None and f.required and not any(
-                    e.where == _addr(name, vcell) for e in self.errors
-                ):
-                    self.err(_addr(name, vcell), f"{f.label} is required: expected"
-                             f" {_expected(f)}, found an empty cell")
+                v, fmt = row[j - 1] if j <= len(row) else (None, None)
+                where = _addr(name, r, j)
+                val = self.value(where, f, v, fmt, raw.formulas.get((r, j)), unit_of.get(f.attr),
+                                 data, (name, idx, f.attr))
+                rec[f.attr] = val
+                if val is None and f.required and not self.has_error(where):
+                    self.err(where, f"{f.label} is required: expected {_expected(f)}, found an"
+                             " empty cell")
             if spec.key and rec.get(spec.key) is not None:
                 k = rec[spec.key]
                 kk = _norm(k) if isinstance(k, str) else k
-                j = col_of[spec.key]
-                where = _addr(name, row[j])
+                where = _addr(name, r, col_of[spec.key])
                 if kk in keys_seen:
                     self.err(where, f"duplicate {spec.key} '{k}' (already in {keys_seen[kk]})")
                 else:
                     keys_seen[kk] = where
             out.append(rec)
-            if note_col is not None and note_col < len(row) and row[note_col].value and \
-                    "assumption" in str(row[note_col].value).lower():
-                notes.setdefault(str(row[note_col].value), []).append(r + 1)
+            if note_col is not None and note_col <= len(row):
+                note = row[note_col - 1][0]
+                if note and "assumption" in str(note).lower():
+                    notes.setdefault(str(note), []).append(r)
+        if spec.max_rows is not None and len(out) > spec.max_rows:
+            self.err(name, f"{len(out)} data rows; at most {spec.max_rows} are accepted (the"
+                     " calculation time grows with them)")
         for text, rws in notes.items():
             rr = f"row {rws[0]}" if len(rws) == 1 else f"rows {', '.join(map(str, rws))}"
             data.assumptions.append(f"{name} {rr}: {text}")
+
+
+def _merged_ranges(ws) -> list[str]:
+    """``A3:A4`` refs of the merged ranges of a read-only sheet (streamed, rows discarded)."""
+    import xml.etree.ElementTree as ET
+
+    refs: list[str] = []
+    sheet_data = None
+    source = getattr(ws, "_get_source", None)  # openpyxl's read-only sheet XML stream
+    if source is None:  # pragma: no cover - other openpyxl versions
+        return refs
+    with source() as src:
+        for event, el in ET.iterparse(src, events=("start", "end")):
+            tag = el.tag.rsplit("}", 1)[-1]
+            if event == "start":
+                if tag == "sheetData":
+                    sheet_data = el
+                continue
+            if tag == "mergeCell":
+                refs.append(str(el.get("ref", "?")))
+            elif tag == "row" and sheet_data is not None:
+                try:
+                    sheet_data.remove(el)
+                except ValueError:  # pragma: no cover - a row outside sheetData
+                    el.clear()
+    return refs
+
+
+def _declared_sheets(p: Path) -> list[str]:
+    """Sheet names the workbook part declares (openpyxl silently drops a sheet whose part is
+    missing from the archive; a damaged file must not lose a sheet unnoticed)."""
+    import xml.etree.ElementTree as ET
+    import zipfile
+
+    with zipfile.ZipFile(p) as z:
+        types = ET.fromstring(z.read("[Content_Types].xml"))
+        part = next((el.get("PartName", "") for el in types
+                     if el.tag.rsplit("}", 1)[-1] == "Override"
+                     and el.get("ContentType", "").endswith(".main+xml")), "")
+        book = ET.fromstring(z.read(part.lstrip("/")))
+    return [str(el.get("name")) for el in book.iter() if el.tag.rsplit("}", 1)[-1] == "sheet"]
+
+
+def _sheet_width(ws) -> int:
+    """Last column of row 1 that holds a value (the table's width)."""
+    for row in ws.iter_rows(min_row=1, max_row=1):
+        return max((j for j, c in enumerate(row, start=1) if not _blank(c.value)), default=0)
+    return 0
+
+
+def _read_raw(ws_values, ws_formulas, ncols: int) -> _RawSheet:
+    """Stream both passes of one sheet, keeping only the rows that hold something."""
+    rows: dict[int, tuple[tuple[Any, str | None], ...]] = {}
+    formulas: dict[tuple[int, int], str] = {}
+    if ncols > 0:
+        last_empty = None
+        for r, row in enumerate(ws_values.iter_rows(min_row=1, max_row=_LAST_ROW,
+                                                    max_col=ncols), start=1):
+            if row is last_empty:  # openpyxl repeats one tuple for missing rows
+                continue
+            if all(c.value is None for c in row):
+                last_empty = row
+                continue
+            rows[r] = tuple((c.value, c.number_format if c.value is not None else None)
+                            for c in row)
+        last_empty = None
+        for r, row in enumerate(ws_formulas.iter_rows(min_row=1, max_row=_LAST_ROW,
+                                                      max_col=ncols), start=1):
+            if row is last_empty:
+                continue
+            found = False
+            for j, c in enumerate(row, start=1):
+                if c.data_type == "f" and c.value is not None:
+                    formulas[(r, j)] = str(c.value)
+                    found = True
+            if not found and all(c.value is None for c in row):
+                last_empty = row
+    return _RawSheet(rows, formulas, _merged_ranges(ws_values), ncols)
+
+
+@dataclass(frozen=True)
+class RawWorkbook:
+    """The cells of a workbook that hold something, read once (plain values, no openpyxl
+    objects; picklable). :func:`convert_raw` turns it into :class:`WorkbookData`; a
+    parametric study changes cells in memory with :meth:`with_values` and converts again,
+    without touching the file."""
+
+    path: str
+    sha256: str
+    sheetnames: tuple[str, ...]
+    sheets: dict[str, _RawSheet]  # schema sheet name -> its cells
+    problems: tuple[InputError, ...] = ()  # sheet-level problems (unknown, duplicate...)
+    present: tuple[str, ...] = ()  # schema sheet names found in the file
+
+    def with_values(self, changes: dict[tuple[str, int, int], Any]) -> RawWorkbook:
+        """A copy with cell values replaced: ``{(sheet, row, column): value}`` (1-based);
+        only the changed rows are copied, the number formats are kept. The sha256 of the
+        copy identifies the base and the changes."""
+        if not changes:
+            return self
+        sheets = dict(self.sheets)
+        by_sheet: dict[str, dict[tuple[int, int], Any]] = {}
+        for (sh, r, c), v in changes.items():
+            by_sheet.setdefault(sh, {})[(r, c)] = v
+        for sh, cells in by_sheet.items():
+            raw = sheets[sh]
+            rows = dict(raw.rows)
+            for (r, c), v in cells.items():
+                row = list(rows.get(r, ()))
+                row += [(None, None)] * (c - len(row))
+                row[c - 1] = (v, row[c - 1][1])
+                rows[r] = tuple(row)
+            sheets[sh] = _RawSheet(rows, {k: f for k, f in raw.formulas.items()
+                                          if k not in cells}, raw.merged, raw.ncols)
+        h = hashlib.sha256(self.sha256.encode())
+        h.update(repr(sorted(changes.items())).encode())
+        return RawWorkbook(self.path, h.hexdigest(), self.sheetnames, sheets, self.problems,
+                           self.present)
+
+
+def read_raw_workbook(path: str | Path) -> RawWorkbook:
+    """Read the cells of an engine workbook (one pass over the file, nothing converted).
+
+    A file that is not a readable workbook raises :class:`InputErrors` at once, with one
+    file-level error naming the file.
+    """
+    import openpyxl
+
+    p = Path(path)
+    if not p.is_file():
+        raise InputErrors([InputError(str(p), "file not found")])
+    try:
+        blob = p.read_bytes()
+    except OSError as exc:
+        raise InputErrors([InputError(p.name, f"cannot be read ({_short(exc)})")]) from None
+    sha = hashlib.sha256(blob).hexdigest()
+    if blob.startswith(_OLE_MAGIC):
+        raise _unreadable(p, "it is an encrypted (password-protected) workbook or an old .xls"
+                          " file")
+    reader = _Reader(p)
+    raws: dict[str, _RawSheet] = {}
+    wbs = []
+    present: dict[str, str] = {}
+    try:
+        # everything that touches the file: open, stream the sheets, scan merged cells
+        wb_values = openpyxl.load_workbook(p, data_only=True, read_only=True)
+        wbs.append(wb_values)
+        wb_formulas = openpyxl.load_workbook(p, data_only=False, read_only=True)
+        wbs.append(wb_formulas)
+        sheetnames = tuple(wb_values.sheetnames)
+        lost = [n for n in _declared_sheets(p) if n not in sheetnames]
+        if lost:
+            raise _unreadable(p, f"the content of sheet '{lost[0]}' is missing")
+        known = {_norm(s): s for s in SHEETS}
+        for sn in sheetnames:
+            key = known.get(_norm(sn))
+            if key is None:
+                reader.err(sn, f"unknown sheet '{sn}'; known sheets: {', '.join(SHEETS)}")
+                continue
+            if key in present:
+                reader.err(sn, f"duplicate sheet '{sn}'")
+                continue
+            present[key] = sn
+        for name, spec in SHEETS.items():
+            if name not in present or spec.shape == "notes":
+                continue
+            ws, wsf = wb_values[present[name]], wb_formulas[present[name]]
+            if not hasattr(ws, "iter_rows") or not hasattr(wsf, "iter_rows"):
+                reader.err(name, f"sheet '{present[name]}' is a chart sheet; expected a"
+                           " worksheet")
+                continue
+            ncols = _PARAM_COLUMNS if spec.shape == "parameters" else _sheet_width(ws)
+            raws[name] = _read_raw(ws, wsf, ncols)
+    except InputErrors:
+        raise
+    except Exception as exc:  # noqa: BLE001 - any failure of the file is a file-level error
+        raise _unreadable(p, _short(exc)) from None
+    finally:
+        for wb in wbs:
+            try:
+                wb.close()
+            except Exception:  # noqa: BLE001, S110 - closing a damaged archive
+                pass
+    return RawWorkbook(str(p), sha, sheetnames, raws, tuple(reader.errors), tuple(present))
+
+
+def convert_raw(raw: RawWorkbook, raise_errors: bool = True) -> WorkbookData:
+    """Convert the cells of a :class:`RawWorkbook` to SI (every problem with its cell)."""
+    reader = _Reader(Path(raw.path))
+    for e in raw.problems:
+        reader.err(e.where, e.message)
+    data = WorkbookData(path=raw.path, sha256=raw.sha256, sheets_present=raw.sheetnames)
+    for name, spec in SHEETS.items():
+        if name not in raw.present:
+            if spec.required:
+                reader.err(name, f"required sheet '{name}' is missing")
+            continue
+        sheet = raw.sheets.get(name)
+        if sheet is None:
+            continue
+        reader.merged(name, sheet)
+        if spec.shape == "parameters":
+            reader.parameters(spec, sheet, data)
+        else:
+            reader.table(spec, sheet, data)
+    for name, spec in SHEETS.items():
+        if spec.shape == "parameters" and name not in data.params:
+            data.params[name] = {f.attr: None for f in spec.fields}
+        if spec.shape == "table" and name not in data.tables:
+            data.tables[name] = []
+    data.errors = list(reader.errors)
+    data.warnings = list(reader.warnings)
+    if raise_errors and reader.errors:
+        raise InputErrors(reader.errors)
+    return data
 
 
 def read_workbook(path: str | Path, raise_errors: bool = True) -> WorkbookData:
@@ -320,62 +620,12 @@ def read_workbook(path: str | Path, raise_errors: bool = True) -> WorkbookData:
 
     With ``raise_errors=False`` the cell-level problems are returned in ``data.errors`` so the
     caller can add cross-sheet problems and report all of them together (a file that is not a
-    workbook still raises at once).
+    readable workbook still raises at once, with one file-level error naming the file).
+    Values outside a field's usual range are returned in ``data.warnings``.
 
     Parameters
     ----------
     path : str or Path
         An ``.xlsx`` file laid out as described in ``docs/workbook.md``.
     """
-    import openpyxl
-    from openpyxl.utils.exceptions import InvalidFileException
-
-    p = Path(path)
-    if not p.is_file():
-        raise InputErrors([InputError(str(p), "file not found")])
-    blob = p.read_bytes()
-    sha = hashlib.sha256(blob).hexdigest()
-    reader = _Reader(p)
-    try:
-        wb_values = openpyxl.load_workbook(p, data_only=True, read_only=False)
-        wb_formulas = openpyxl.load_workbook(p, data_only=False, read_only=False)
-    except (zipfile.BadZipFile, InvalidFileException, KeyError, OSError, ValueError) as exc:
-        raise InputErrors([InputError(p.name, "is not an Excel .xlsx workbook"
-                                      f" ({type(exc).__name__}); save it as .xlsx")]) from None
-    data = WorkbookData(path=str(p), sha256=sha, sheets_present=tuple(wb_values.sheetnames))
-    known = {_norm(s): s for s in SHEETS}
-    present: dict[str, str] = {}
-    for sn in wb_values.sheetnames:
-        key = known.get(_norm(sn))
-        if key is None:
-            reader.err(sn, f"unknown sheet '{sn}'; known sheets: {', '.join(SHEETS)}")
-            continue
-        if key in present:
-            reader.err(sn, f"duplicate sheet '{sn}'")
-            continue
-        present[key] = sn
-    for name, spec in SHEETS.items():
-        if name not in present:
-            if spec.required:
-                reader.err(name, f"required sheet '{name}' is missing")
-            continue
-        if spec.shape == "notes":
-            continue
-        ws = wb_values[present[name]]
-        wsf = wb_formulas[present[name]]
-        reader.merged(name, ws)
-        if spec.shape == "parameters":
-            reader.parameters(spec, ws, wsf, data)
-        else:
-            reader.table(spec, ws, wsf, data)
-    for name, spec in SHEETS.items():
-        if spec.shape == "parameters" and name not in data.params:
-            data.params[name] = {f.attr: None for f in spec.fields}
-        if spec.shape == "table" and name not in data.tables:
-            data.tables[name] = []
-    wb_values.close()
-    wb_formulas.close()
-    data.errors = list(reader.errors)
-    if raise_errors and reader.errors:
-        raise InputErrors(reader.errors)
-    return data
+    return convert_raw(read_raw_workbook(path), raise_errors)

@@ -9,18 +9,84 @@ Two sheet shapes:
   row 2 the unit of each column (``-`` or blank for text and dimensionless), data from row 3.
 
 Each field has a *kind* (a key of :data:`checker.units.KINDS`, or ``int``, ``text``,
-``choice``), whether it is required, and a physical check. The loader converts every value to
-SI and reports all problems of a workbook together.
+``choice``), whether it is required, a sign check, and two declared ranges (:class:`Span`):
+
+* ``valid``: outside it the calculations cannot run meaningfully (overflow, a grid that would
+  take hours, a temperature below absolute zero...): an **input error**;
+* ``usual``: the range of crank-train engines, from small high-speed engines to marine
+  two-strokes; outside it the value is probably a unit or typing slip: a **warning**.
+
+A choice field accepts its :attr:`Field.choices` (and :attr:`Field.aliases`), compared
+ignoring case, spaces, hyphens and underscores (:func:`resolve_choice`, the one place where
+spellings are mapped). :data:`CHOICE_SETS` lists the allowed values per attribute so the rule
+table can be checked against them. The loader converts every value to SI and reports all
+problems of a workbook together.
 """
 
 from __future__ import annotations
 
+import difflib
+import functools
+import re
 from dataclasses import dataclass, field
+from typing import Any
+
+
+@dataclass(frozen=True)
+class Span:
+    """A closed range ``lo..hi`` of a field, in the stated ``unit`` (``None`` = open end).
+
+    ``unit`` is read like a workbook unit cell (``mm``, ``rpm``, ``°C``, ``-``...); the loader
+    converts the ends to SI with :func:`checker.units.to_si` (:meth:`si`).
+    """
+
+    lo: float | None
+    hi: float | None
+    unit: str = ""
+
+    def text(self) -> str:
+        """The range as users read it, e.g. ``25..1000 mm``."""
+        lo = "" if self.lo is None else f"{self.lo:g}"
+        hi = "" if self.hi is None else f"{self.hi:g}"
+        if self.lo is None:
+            rng = f"at most {hi}"
+        elif self.hi is None:
+            rng = f"at least {lo}"
+        else:
+            rng = f"{lo}..{hi}"
+        return rng + ("" if self.unit in ("", "-") else f" {self.unit}")
+
+    def si(self, kind: str) -> tuple[float, float]:
+        """The ends in SI for a field of ``kind`` (open ends as -inf/inf)."""
+        return _span_si(self, kind)
+
+    def contains(self, value_si: float, kind: str) -> bool:
+        lo, hi = self.si(kind)
+        return lo <= value_si <= hi
+
+
+@functools.cache
+def _span_si(span: Span, kind: str) -> tuple[float, float]:
+    if kind == "int":
+        conv = float
+    else:
+        from ..units import to_si
+
+        def conv(v: float) -> float:
+            return to_si(v, span.unit, kind)
+    lo = -float("inf") if span.lo is None else conv(span.lo)
+    hi = float("inf") if span.hi is None else conv(span.hi)
+    return lo, hi
 
 
 @dataclass(frozen=True)
 class Field:
-    """One parameter (parameter sheet) or column (table sheet)."""
+    """One parameter (parameter sheet) or column (table sheet).
+
+    ``aliases`` maps other spellings to a choice, ``(spelling, choice)``; ``ambiguous`` names
+    spellings that could mean several choices, ``(spelling, (choice, ...))``: such a value is
+    an input error that asks the user to pick one.
+    """
 
     label: str
     attr: str
@@ -29,6 +95,10 @@ class Field:
     check: str | None = None  # ">0", ">=0", "0..1", "<0.5" ...
     choices: tuple[str, ...] = ()
     note: str = ""
+    valid: Span | None = None
+    usual: Span | None = None
+    aliases: tuple[tuple[str, str], ...] = ()
+    ambiguous: tuple[tuple[str, tuple[str, ...]], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -42,9 +112,87 @@ class Sheet:
     key: str | None = None  # table column whose values must be unique (names)
     note: str = ""
     extra_columns: tuple[str, ...] = field(default=("note", "notes", "source", "comment"))
+    max_rows: int | None = None  # more data rows than this is an input error (run time)
+
+
+# ---------------------------------------------------------------------------- choices
+def choice_key(text: Any) -> str:
+    """Spelling-insensitive form of a choice: lower case without spaces, hyphens, underscores."""
+    if isinstance(text, float):
+        text = f"{text:g}"
+    return re.sub(r"[\s_\-]+", "", str(text)).lower()
+
+
+class ChoiceProblem(ValueError):
+    """A value that is not one of a choice field's values; the message is for the user."""
+
+
+@functools.cache
+def _choice_table(f: Field) -> dict[str, str]:
+    table = {choice_key(c): c for c in f.choices}
+    for spelling, target in f.aliases:
+        if target not in f.choices:  # pragma: no cover - schema error
+            raise AssertionError(f"{f.label}: alias '{spelling}' -> unknown choice '{target}'")
+        table.setdefault(choice_key(spelling), target)
+    return table
+
+
+def expected_choices(f: Field) -> str:
+    """``one of 'a', 'b', 'c'`` for messages."""
+    return "one of " + ", ".join(f"'{c}'" for c in f.choices)
+
+
+def resolve_choice(f: Field, value: Any) -> str:
+    """The choice of field ``f`` that ``value`` names (aliases and spelling variants included).
+
+    Raises
+    ------
+    ChoiceProblem
+        With the allowed values and, where one is close, a "did you mean" suggestion; an
+        ambiguous spelling (``ambiguous``) names the choices it could mean.
+    """
+    text = f"{value:g}" if isinstance(value, float) else re.sub(r"\s+", " ", str(value)).strip()
+    key = choice_key(text)
+    table = _choice_table(f)
+    if key in table:
+        return table[key]
+    for spelling, options in f.ambiguous:
+        if choice_key(spelling) == key:
+            raise ChoiceProblem(
+                f"'{text}' is ambiguous: give one of " + ", ".join(f"'{c}'" for c in options)
+                + " (their limits differ)")
+    close = difflib.get_close_matches(key, list(table), n=1, cutoff=0.6)
+    hint = f"; did you mean '{table[close[0]]}'?" if close else ""
+    raise ChoiceProblem(f"expected {expected_choices(f)}, found '{text}'{hint}")
+
+
+#: Bearing linings (``Bearings`` column ``lining``); the keys of ``limit_by = "lining"`` rules.
+LININGS = ("as15", "as16", "aluminium bimetal", "tri-metal", "sputter", "polymer")
+_LINING_ALIASES = (
+    ("aluminum bimetal", "aluminium bimetal"),
+    ("al bimetal", "aluminium bimetal"), ("aluminium-tin bimetal", "aluminium bimetal"),
+    ("alsn bimetal", "aluminium bimetal"), ("alsn", "aluminium bimetal"),
+    ("trimetallic", "tri-metal"), ("sputtered", "sputter"), ("sputter bearing", "sputter"),
+    ("sputter coated", "sputter"), ("polymer coated", "polymer"), ("polymer coating", "polymer"),
+)
+#: Clamped materials under a bolt head (``Joints`` column ``clamped material``); the keys of
+#: ``limit_by = "clamped_material"`` rules.
+CLAMPED_MATERIALS = ("steel", "grey cast iron", "nodular cast iron", "aluminium")
+_CLAMPED_ALIASES = (
+    ("gray cast iron", "grey cast iron"), ("grey iron", "grey cast iron"),
+    ("gray iron", "grey cast iron"), ("lamellar cast iron", "grey cast iron"),
+    ("gjl", "grey cast iron"), ("en gjl", "grey cast iron"),
+    ("ductile iron", "nodular cast iron"), ("ductile cast iron", "nodular cast iron"),
+    ("nodular iron", "nodular cast iron"), ("sg iron", "nodular cast iron"),
+    ("spheroidal graphite iron", "nodular cast iron"), ("gjs", "nodular cast iron"),
+    ("en-gjs", "nodular cast iron"), ("aluminum", "aluminium"), ("aluminium alloy", "aluminium"),
+    ("aluminum alloy", "aluminium"), ("cast aluminium", "aluminium"), ("al", "aluminium"),
+)
+_CASE_ALIASES = (("full load", "full"), ("part load", "part"), ("no load", "no"))
 
 
 F = Field
+R = Span
 
 ENGINE = Sheet(
     "Engine",
@@ -53,39 +201,63 @@ ENGINE = Sheet(
     note="Engine geometry, masses and operating range.",
     fields=(
         F("Engine name", "name", "text"),
-        F("Number of cylinders", "cylinders", "int", check=">0"),
+        F("Number of cylinders", "cylinders", "int", check=">0",
+          valid=R(1, 64), usual=R(1, 24)),
         F("Layout", "layout", "choice", choices=("inline", "v"), required=False,
-          note="inline or V; a V engine gives a bank angle per cylinder in Cylinders."),
-        F("Bore", "bore", "length", check=">0"),
-        F("Stroke", "stroke", "length", check=">0"),
+          note="inline or V; a V engine gives a bank angle per cylinder in Cylinders.",
+          aliases=(("straight", "inline"), ("vee", "v"),
+                   ("v engine", "v"))),
+        F("Bore", "bore", "length", check=">0",
+          valid=R(1, 5000, "mm"), usual=R(25, 1000, "mm")),
+        F("Stroke", "stroke", "length", check=">0",
+          valid=R(1, 10000, "mm"), usual=R(25, 3500, "mm")),
         F("Connecting rod length", "rod_length", "length", check=">0",
-          note="Big-end to small-end centre distance."),
+          note="Big-end to small-end centre distance.",
+          valid=R(1, 20000, "mm"), usual=R(50, 8000, "mm")),
         F("Cylinder offset", "cylinder_offset", "length", required=False,
-          note="Offset of the cylinder axis from the crank axis (seed 004 convention)."),
+          note="Offset of the cylinder axis from the crank axis (seed 004 convention).",
+          valid=R(-1000, 1000, "mm"), usual=R(-50, 50, "mm")),
         F("Pin offset", "pin_offset", "length", required=False,
-          note="Piston pin offset from the cylinder axis, towards the thrust side positive."),
+          note="Piston pin offset from the cylinder axis, towards the thrust side positive.",
+          valid=R(-500, 500, "mm"), usual=R(-10, 10, "mm")),
         F("Crankshaft rotation", "rotation", "choice", choices=("clockwise", "anticlockwise"),
-          required=False, note="Seen from the front (crank nose)."),
+          required=False, note="Seen from the front (crank nose).",
+          aliases=(("cw", "clockwise"), ("ccw", "anticlockwise"), ("acw", "anticlockwise"),
+                   ("counterclockwise", "anticlockwise"))),
         F("Firing order", "firing_order", "text", note="e.g. 1-3-4-2"),
-        F("Cylinder spacing", "cylinder_spacing", "length", check=">0", required=False),
-        F("Main journal spacing", "main_spacing", "length", check=">0", required=False),
+        F("Cylinder spacing", "cylinder_spacing", "length", check=">0", required=False,
+          valid=R(1, 20000, "mm"), usual=R(50, 2000, "mm")),
+        F("Main journal spacing", "main_spacing", "length", check=">0", required=False,
+          valid=R(1, 20000, "mm"), usual=R(50, 2000, "mm")),
         F("Connecting rod mass", "rod_mass", "mass", check=">0", required=False,
-          note="Including bolts and bearing shells."),
-        F("Rod centre of mass from big end", "rod_com", "length", check=">0", required=False),
+          note="Including bolts and bearing shells.",
+          valid=R(0.001, 100000, "kg"), usual=R(0.05, 10000, "kg")),
+        F("Rod centre of mass from big end", "rod_com", "length", check=">0", required=False,
+          valid=R(0.1, 20000, "mm"), usual=R(5, 5000, "mm")),
         F("Rod moment of inertia about centre of mass", "rod_inertia", "inertia", check=">0",
-          required=False),
+          required=False,
+          valid=R(1e-9, 1e6, "kg m^2"), usual=R(1e-5, 1e4, "kg m^2")),
         F("Piston assembly mass", "piston_mass", "mass", check=">0", required=False,
-          note="Piston, rings, pin and clips."),
-        F("Compression ratio", "compression_ratio", "ratio", check=">1", required=False),
+          note="Piston, rings, pin and clips.",
+          valid=R(0.001, 100000, "kg"), usual=R(0.05, 10000, "kg")),
+        F("Compression ratio", "compression_ratio", "ratio", check=">1", required=False,
+          valid=R(1, 100), usual=R(6, 25)),
         F("Intake manifold pressure at full load", "intake_pressure", "pressure", check=">0",
-          required=False),
-        F("Rated speed", "rated_speed", "speed", check=">0", required=False),
-        F("Minimum speed", "speed_min", "speed", check=">0", required=False),
-        F("Maximum speed", "speed_max", "speed", check=">0", required=False),
-        F("Speed step", "speed_step", "speed", check=">0", required=False),
-        F("Overspeed", "overspeed", "speed", check=">0", required=False),
+          required=False,
+          valid=R(0.05, 50, "bar"), usual=R(0.3, 6, "bar")),
+        F("Rated speed", "rated_speed", "speed", check=">0", required=False,
+          valid=R(1, 100000, "rpm"), usual=R(30, 20000, "rpm")),
+        F("Minimum speed", "speed_min", "speed", check=">0", required=False,
+          valid=R(1, 100000, "rpm"), usual=R(30, 20000, "rpm")),
+        F("Maximum speed", "speed_max", "speed", check=">0", required=False,
+          valid=R(1, 100000, "rpm"), usual=R(30, 20000, "rpm")),
+        F("Speed step", "speed_step", "speed", check=">0", required=False,
+          valid=R(0.1, 10000, "rpm"), usual=R(10, 1000, "rpm")),
+        F("Overspeed", "overspeed", "speed", check=">0", required=False,
+          valid=R(1, 100000, "rpm"), usual=R(30, 20000, "rpm")),
         F("Accessory drive torque at crank nose", "fead_torque", "torque", check=">=0",
-          required=False, note="FEAD + timing drive torque added at the crank-nose joint."),
+          required=False, note="FEAD + timing drive torque added at the crank-nose joint.",
+          valid=R(0, 1e8, "N m"), usual=R(0, 1e5, "N m")),
     ),
 )
 
@@ -96,22 +268,32 @@ OIL = Sheet(
     fields=(
         F("Oil grade", "grade", "text", required=False, note="SAE J300 grade, e.g. 5W30"),
         F("Kinematic viscosity at 40 °C", "kv40", "kinematic_viscosity", check=">0",
-          required=False),
+          required=False,
+          valid=R(2, 1e5, "mm^2/s"), usual=R(10, 1000, "mm^2/s")),
         F("Kinematic viscosity at 100 °C", "kv100", "kinematic_viscosity", check=">0",
-          required=False),
-        F("Density at 15 °C", "density", "density", check=">0", required=False),
-        F("HTHS viscosity at 150 °C", "hths", "viscosity", check=">0", required=False),
+          required=False,
+          valid=R(2, 1e4, "mm^2/s"), usual=R(3, 50, "mm^2/s")),
+        F("Density at 15 °C", "density", "density", check=">0", required=False,
+          valid=R(650, 1050, "kg/m^3"), usual=R(800, 950, "kg/m^3")),
+        F("HTHS viscosity at 150 °C", "hths", "viscosity", check=">0", required=False,
+          valid=R(0.5, 1000, "mPa s"), usual=R(1.5, 8, "mPa s")),
         F("Oil supply pressure", "supply_pressure", "pressure_gauge", check=">=0",
-          required=False),
+          required=False,
+          valid=R(0, 200, "bar(g)"), usual=R(0, 15, "bar(g)")),
         F("Oil supply temperature", "supply_temperature", "temperature", check=">0",
-          required=False),
+          required=False,
+          valid=R(-40, 250, "°C"), usual=R(20, 160, "°C")),
         F("Film temperature rise", "temperature_rise", "temperature_difference", check=">=0",
-          required=False, note="Added to the supply temperature to give the film temperature."),
+          required=False, note="Added to the supply temperature to give the film temperature.",
+          valid=R(0, 200, "K"), usual=R(0, 60, "K")),
         F("Mobility model", "mobility_model", "choice",
           choices=("short bearing", "exact short bearing", "finite length"), required=False,
           note="short bearing = Booker closed form (default, seed 000); exact short bearing ="
                " numerical short-bearing mobility (reference); finite length = Butenschoen"
-               " fits (L/D 1/8..1)."),
+               " fits (L/D 1/8..1).",
+          aliases=(("short", "short bearing"), ("booker", "short bearing"),
+                   ("exact short", "exact short bearing"), ("finite", "finite length"),
+                   ("butenschoen", "finite length"), ("finite bearing", "finite length"))),
     ),
 )
 
@@ -120,14 +302,20 @@ DAMPER = Sheet(
     "parameters",
     note="TV damper rubber: properties, geometry and the supplier's limits.",
     fields=(
-        F("Rubber loss factor", "loss_factor", "ratio", check=">=0", required=False),
-        F("Rubber inner radius", "inner_radius", "length", check=">0", required=False),
-        F("Rubber outer radius", "outer_radius", "length", check=">0", required=False),
-        F("Rubber axial length", "axial_length", "length", check=">0", required=False),
+        F("Rubber loss factor", "loss_factor", "ratio", check=">=0", required=False,
+          valid=R(0, 10), usual=R(0.02, 1)),
+        F("Rubber inner radius", "inner_radius", "length", check=">0", required=False,
+          valid=R(1, 5000, "mm"), usual=R(10, 1000, "mm")),
+        F("Rubber outer radius", "outer_radius", "length", check=">0", required=False,
+          valid=R(1, 5000, "mm"), usual=R(10, 1000, "mm")),
+        F("Rubber axial length", "axial_length", "length", check=">0", required=False,
+          valid=R(0.1, 5000, "mm"), usual=R(2, 500, "mm")),
         F("Rubber shear stress limit", "shear_stress_limit", "stress", check=">0",
-          required=False),
+          required=False,
+          valid=R(0.001, 1000, "MPa"), usual=R(0.05, 10, "MPa")),
         F("Rubber heat per unit volume limit", "heat_limit", "power_density", check=">0",
-          required=False),
+          required=False,
+          valid=R(1e-6, 1e4, "W/cm^3"), usual=R(0.001, 10, "W/cm^3")),
     ),
 )
 
@@ -136,263 +324,397 @@ FATIGUE = Sheet(
     "parameters",
     note="Classical stress inputs: web, fillet, oil-hole geometry and material strengths.",
     fields=(
-        F("Web reduced thickness", "web_thickness", "length", check=">0", required=False),
-        F("Web full thickness", "web_full_thickness", "length", check=">0", required=False),
-        F("Web minimum width", "web_min_width", "length", check=">0", required=False),
-        F("Web maximum width", "web_max_width", "length", check=">0", required=False),
-        F("Web offset", "web_offset", "length", required=False),
-        F("Crank pin fillet radius", "pin_fillet_radius", "length", check=">0", required=False),
+        F("Web reduced thickness", "web_thickness", "length", check=">0", required=False,
+          valid=R(0.1, 10000, "mm"), usual=R(1, 1000, "mm")),
+        F("Web full thickness", "web_full_thickness", "length", check=">0", required=False,
+          valid=R(0.1, 10000, "mm"), usual=R(1, 1000, "mm")),
+        F("Web minimum width", "web_min_width", "length", check=">0", required=False,
+          valid=R(0.1, 10000, "mm"), usual=R(1, 1000, "mm")),
+        F("Web maximum width", "web_max_width", "length", check=">0", required=False,
+          valid=R(0.1, 10000, "mm"), usual=R(1, 1000, "mm")),
+        F("Web offset", "web_offset", "length", required=False,
+          valid=R(-5000, 5000, "mm"), usual=R(-1000, 1000, "mm")),
+        F("Crank pin fillet radius", "pin_fillet_radius", "length", check=">0", required=False,
+          valid=R(0.05, 1000, "mm"), usual=R(0.5, 100, "mm")),
         F("Crank pin fillet undercut", "pin_fillet_undercut", "length", check=">=0",
-          required=False),
+          required=False,
+          valid=R(0, 1000, "mm"), usual=R(0, 20, "mm")),
         F("Crank pin fillet web undercut", "pin_fillet_web_undercut", "length", check=">=0",
-          required=False),
+          required=False,
+          valid=R(0, 1000, "mm"), usual=R(0, 20, "mm")),
         F("Main journal fillet radius", "main_fillet_radius", "length", check=">0",
-          required=False),
+          required=False,
+          valid=R(0.05, 1000, "mm"), usual=R(0.5, 100, "mm")),
         F("Main journal fillet undercut", "main_fillet_undercut", "length", check=">=0",
-          required=False),
+          required=False,
+          valid=R(0, 1000, "mm"), usual=R(0, 20, "mm")),
         F("Main journal web undercut", "main_fillet_web_undercut", "length", check=">=0",
-          required=False),
+          required=False,
+          valid=R(0, 1000, "mm"), usual=R(0, 20, "mm")),
         F("Pin journal oil hole diameter", "pin_oil_hole_diameter", "length", check=">0",
-          required=False),
-        F("Pin journal oil hole height", "pin_oil_hole_height", "length", required=False),
+          required=False,
+          valid=R(0.1, 1000, "mm"), usual=R(1, 100, "mm")),
+        F("Pin journal oil hole height", "pin_oil_hole_height", "length", required=False,
+          valid=R(-5000, 5000, "mm"), usual=R(-1000, 1000, "mm")),
         F("Main journal oil hole diameter", "main_oil_hole_diameter", "length", check=">0",
-          required=False),
-        F("Main journal oil hole height", "main_oil_hole_height", "length", required=False),
-        F("Pin journal land diameter", "pin_land_diameter", "length", check=">0", required=False),
+          required=False,
+          valid=R(0.1, 1000, "mm"), usual=R(1, 100, "mm")),
+        F("Main journal oil hole height", "main_oil_hole_height", "length", required=False,
+          valid=R(-5000, 5000, "mm"), usual=R(-1000, 1000, "mm")),
+        F("Pin journal land diameter", "pin_land_diameter", "length", check=">0", required=False,
+          valid=R(0.1, 10000, "mm"), usual=R(1, 1000, "mm")),
         F("Pin journal land thickness", "pin_land_thickness", "length", check=">=0",
-          required=False),
+          required=False,
+          valid=R(0, 1000, "mm"), usual=R(0, 200, "mm")),
         F("Main journal land diameter", "main_land_diameter", "length", check=">0",
-          required=False),
+          required=False,
+          valid=R(0.1, 10000, "mm"), usual=R(1, 1000, "mm")),
         F("Main journal land thickness", "main_land_thickness", "length", check=">=0",
-          required=False),
-        F("Pin bore diameter", "pin_bore", "length", check=">=0", required=False),
-        F("Main journal bore diameter", "main_bore", "length", check=">=0", required=False),
-        F("Base material UTS", "uts", "stress", check=">0", required=False),
-        F("Fillet UTS", "fillet_uts", "stress", check=">0", required=False),
-        F("Base tensile yield strength", "yield_strength", "stress", check=">0", required=False),
+          required=False,
+          valid=R(0, 1000, "mm"), usual=R(0, 200, "mm")),
+        F("Pin bore diameter", "pin_bore", "length", check=">=0", required=False,
+          valid=R(0, 5000, "mm"), usual=R(0, 1000, "mm")),
+        F("Main journal bore diameter", "main_bore", "length", check=">=0", required=False,
+          valid=R(0, 5000, "mm"), usual=R(0, 1000, "mm")),
+        F("Base material UTS", "uts", "stress", check=">0", required=False,
+          valid=R(1, 20000, "MPa"), usual=R(20, 3000, "MPa")),
+        F("Fillet UTS", "fillet_uts", "stress", check=">0", required=False,
+          valid=R(1, 20000, "MPa"), usual=R(20, 3000, "MPa")),
+        F("Base tensile yield strength", "yield_strength", "stress", check=">0", required=False,
+          valid=R(1, 20000, "MPa"), usual=R(20, 3000, "MPa")),
         F("Base compressive yield strength", "compressive_yield", "stress", check=">0",
-          required=False),
+          required=False,
+          valid=R(1, 20000, "MPa"), usual=R(20, 3000, "MPa")),
         F("Base infinite life fatigue strength", "fatigue_strength", "stress", check=">0",
-          required=False),
+          required=False,
+          valid=R(1, 20000, "MPa"), usual=R(20, 3000, "MPa")),
         F("Base hydrostatic fatigue strength", "hydrostatic_fatigue_strength", "stress",
-          check=">0", required=False),
+          check=">0", required=False,
+          valid=R(1, 20000, "MPa"), usual=R(20, 3000, "MPa")),
         F("Base torsional fatigue strength", "torsional_fatigue_strength", "stress", check=">0",
-          required=False),
+          required=False,
+          valid=R(1, 20000, "MPa"), usual=R(20, 3000, "MPa")),
         F("Fillet tensile and compressive yield", "fillet_yield", "stress", check=">0",
-          required=False),
+          required=False,
+          valid=R(1, 20000, "MPa"), usual=R(20, 3000, "MPa")),
         F("Pin fillet fatigue strength", "pin_fillet_fatigue", "stress", check=">0",
-          required=False),
+          required=False,
+          valid=R(1, 20000, "MPa"), usual=R(20, 3000, "MPa")),
         F("Pin oil hole fatigue strength", "pin_oil_hole_fatigue", "stress", check=">0",
-          required=False),
+          required=False,
+          valid=R(1, 20000, "MPa"), usual=R(20, 3000, "MPa")),
         F("Main fillet fatigue strength", "main_fillet_fatigue", "stress", check=">0",
-          required=False),
+          required=False,
+          valid=R(1, 20000, "MPa"), usual=R(20, 3000, "MPa")),
         F("Main oil hole fatigue strength", "main_oil_hole_fatigue", "stress", check=">0",
-          required=False),
+          required=False,
+          valid=R(1, 20000, "MPa"), usual=R(20, 3000, "MPa")),
         F("Pin fillet stress concentration bending", "scf_pin_bending", "ratio", check=">=1",
-          required=False, note="Leave blank to use the IACS UR M53 empirical formula."),
+          required=False, note="Leave blank to use the IACS UR M53 empirical formula.",
+          valid=R(1, 100), usual=R(1, 10)),
         F("Pin fillet stress concentration torsion", "scf_pin_torsion", "ratio", check=">=1",
-          required=False),
+          required=False,
+          valid=R(1, 100), usual=R(1, 10)),
         F("Main fillet stress concentration bending", "scf_main_bending", "ratio", check=">=1",
-          required=False),
+          required=False,
+          valid=R(1, 100), usual=R(1, 10)),
         F("Main fillet stress concentration torsion", "scf_main_torsion", "ratio", check=">=1",
-          required=False),
+          required=False,
+          valid=R(1, 100), usual=R(1, 10)),
         F("Oil hole stress concentration bending", "scf_oil_bending", "ratio", check=">=1",
-          required=False),
+          required=False,
+          valid=R(1, 100), usual=R(1, 10)),
         F("Oil hole stress concentration torsion", "scf_oil_torsion", "ratio", check=">=1",
-          required=False),
+          required=False,
+          valid=R(1, 100), usual=R(1, 10)),
         F("Crank nose diameter", "nose_diameter", "length", check=">0", required=False,
-          note="Smallest nose section at the critical fillet (crank-nose check, FAT-003)."),
-        F("Crank nose bore diameter", "nose_bore", "length", check=">=0", required=False),
+          note="Smallest nose section at the critical fillet (crank-nose check, FAT-003).",
+          valid=R(0.1, 10000, "mm"), usual=R(1, 1000, "mm")),
+        F("Crank nose bore diameter", "nose_bore", "length", check=">=0", required=False,
+          valid=R(0, 5000, "mm"), usual=R(0, 1000, "mm")),
         F("Crank nose stress concentration bending", "scf_nose_bending", "ratio", check=">=1",
-          required=False),
+          required=False,
+          valid=R(1, 100), usual=R(1, 10)),
         F("Crank nose stress concentration torsion", "scf_nose_torsion", "ratio", check=">=1",
-          required=False),
+          required=False,
+          valid=R(1, 100), usual=R(1, 10)),
         F("Crank nose fatigue strength", "nose_fatigue", "stress", check=">0", required=False,
-          note="Fully reversed fatigue strength at the nose fillet (with its treatment)."),
+          note="Fully reversed fatigue strength at the nose fillet (with its treatment).",
+          valid=R(1, 20000, "MPa"), usual=R(20, 3000, "MPa")),
         F("Belt load on crank nose", "belt_load", "force", check=">=0", required=False,
           note="Resultant FEAD + timing drive belt/chain pull on the nose (blank = none"
-               " given: torsion only, stated in the report)."),
+               " given: torsion only, stated in the report).",
+          valid=R(0, 1e5, "kN"), usual=R(0, 200, "kN")),
         F("Belt load overhang", "belt_overhang", "length", check=">=0", required=False,
-          note="Axial distance from the belt load line to the critical nose section."),
+          note="Axial distance from the belt load line to the critical nose section.",
+          valid=R(0, 10000, "mm"), usual=R(0, 1000, "mm")),
     ),
 )
 
 CYLINDERS = Sheet(
     "Cylinders",
     "table",
+    max_rows=64,
     key="cylinder",
     note="One row per cylinder: crank throw angle, firing angle, bank angle, crank pin.",
     fields=(
-        F("cylinder", "cylinder", "int", check=">0"),
+        F("cylinder", "cylinder", "int", check=">0",
+          valid=R(1, 64)),
         F("throw angle", "throw_angle", "angle",
-          note="Angle of the crank throw from throw 1, in the direction of rotation."),
+          note="Angle of the crank throw from throw 1, in the direction of rotation.",
+          valid=R(-720, 720, "deg")),
         F("firing angle", "firing_angle", "angle",
-          note="Crank angle after cylinder 1 fires at which this cylinder fires (0..720 deg)."),
+          note="Crank angle after cylinder 1 fires at which this cylinder fires (0..720 deg).",
+          valid=R(0, 720, "deg")),
         F("bank angle", "bank_angle", "angle", required=False,
-          note="Cylinder axis angle from vertical (V engines); blank = 0."),
+          note="Cylinder axis angle from vertical (V engines); blank = 0.",
+          valid=R(-360, 360, "deg"), usual=R(-180, 180, "deg")),
         F("crank pin", "pin", "int", check=">0", required=False,
-          note="Crank pin (throw) carrying this cylinder's rod; blank = cylinder number."),
+          note="Crank pin (throw) carrying this cylinder's rod; blank = cylinder number.",
+          valid=R(1, 64)),
     ),
 )
 
 PEAK_PRESSURE = Sheet(
     "PeakPressure",
     "table",
+    max_rows=2000,
     note="Peak cylinder pressure per speed and load case (full, part, no load).",
     fields=(
-        F("load case", "case", "choice", choices=("full", "part", "no")),
-        F("speed", "speed", "speed", check=">0"),
-        F("peak pressure", "peak_pressure", "pressure", check=">0"),
+        F("load case", "case", "choice", choices=("full", "part", "no"),
+          aliases=_CASE_ALIASES),
+        F("speed", "speed", "speed", check=">0",
+          valid=R(1, 100000, "rpm"), usual=R(30, 20000, "rpm")),
+        F("peak pressure", "peak_pressure", "pressure", check=">0",
+          valid=R(0.05, 5000, "bar"), usual=R(2, 350, "bar")),
     ),
 )
 
 PRESSURE_TRACES = Sheet(
     "PressureTraces",
     "table",
-    note="Optional measured/simulated traces: crank angle vs cylinder pressure per speed/case.",
+    max_rows=500000,
+    note="Optional measured/simulated traces: crank angle vs absolute cylinder pressure, one"
+         " trace per load case and speed, crank angle from firing TDC of that cylinder"
+         " (-360..360 or 0..720 deg), one 720 deg cycle with at least 8 points and at most"
+         " 10 deg between neighbouring points (including the wrap-around from the last point"
+         " to the first).",
     fields=(
-        F("load case", "case", "choice", choices=("full", "part", "no")),
-        F("speed", "speed", "speed", check=">0"),
-        F("crank angle", "crank_angle", "angle"),
-        F("pressure", "pressure", "pressure", check=">0"),
+        F("load case", "case", "choice", choices=("full", "part", "no"),
+          aliases=_CASE_ALIASES),
+        F("speed", "speed", "speed", check=">0",
+          valid=R(1, 100000, "rpm"), usual=R(30, 20000, "rpm")),
+        F("crank angle", "crank_angle", "angle",
+          valid=R(-720, 720, "deg")),
+        F("pressure", "pressure", "pressure", check=">0",
+          valid=R(0.001, 5000, "bar"), usual=R(0.05, 350, "bar")),
     ),
 )
 
 BRAKE_TORQUE = Sheet(
     "BrakeTorque",
     "table",
+    max_rows=2000,
     note="Full-load brake torque vs speed (mean torque for stress and joints).",
     fields=(
-        F("speed", "speed", "speed", check=">0"),
-        F("brake torque", "brake_torque", "torque"),
+        F("speed", "speed", "speed", check=">0",
+          valid=R(1, 100000, "rpm"), usual=R(30, 20000, "rpm")),
+        F("brake torque", "brake_torque", "torque",
+          valid=R(-1e9, 1e9, "N m"), usual=R(0, 1e7, "N m")),
     ),
 )
 
 BEARINGS = Sheet(
     "Bearings",
     "table",
+    max_rows=500,
     key="name",
     note="One row per bearing: mains M1..M(n+1) front to rear, big ends BE1..BEn.",
     fields=(
         F("name", "name", "text"),
-        F("type", "type", "choice", choices=("main", "big end")),
-        F("journal diameter", "diameter", "length", check=">0"),
-        F("journal length", "journal_length", "length", check=">0", required=False),
+        F("type", "type", "choice", choices=("main", "big end"),
+          aliases=(("main bearing", "main"), ("big end bearing", "big end"),
+                   ("con rod", "big end"), ("conrod", "big end"), ("rod", "big end"))),
+        F("journal diameter", "diameter", "length", check=">0",
+          valid=R(1, 10000, "mm"), usual=R(15, 1500, "mm")),
+        F("journal length", "journal_length", "length", check=">0", required=False,
+          valid=R(0.1, 5000, "mm"), usual=R(3, 1000, "mm")),
         F("effective length", "length", "length", check=">0",
-          note="Shell land length carrying load (excluding chamfers and grooves)."),
+          note="Shell land length carrying load (excluding chamfers and grooves).",
+          valid=R(0.1, 5000, "mm"), usual=R(3, 1000, "mm")),
         F("radial clearance", "clearance", "length", check=">0",
-          note="Mean cold radial clearance."),
-        F("groove", "groove", "choice", choices=("none", "partial", "full"), required=False),
-        F("groove width", "groove_width", "length", check=">=0", required=False),
-        F("groove start", "groove_start", "angle", required=False),
-        F("groove end", "groove_end", "angle", required=False),
+          note="Mean cold radial clearance.",
+          valid=R(0.1, 10000, "um"), usual=R(3, 1000, "um")),
+        F("groove", "groove", "choice", choices=("none", "partial", "full"), required=False,
+          aliases=(("no", "none"), ("ungrooved", "none"), ("half", "partial"),
+                   ("partial groove", "partial"), ("full groove", "full"),
+                   ("circumferential", "full"), ("fully grooved", "full"))),
+        F("groove width", "groove_width", "length", check=">=0", required=False,
+          valid=R(0, 5000, "mm"), usual=R(0, 100, "mm")),
+        F("groove start", "groove_start", "angle", required=False,
+          valid=R(-720, 720, "deg")),
+        F("groove end", "groove_end", "angle", required=False,
+          valid=R(-720, 720, "deg")),
         F("oil feed", "oil_feed", "text", required=False),
-        F("oil holes", "oil_holes", "int", check=">=0", required=False),
+        F("oil holes", "oil_holes", "int", check=">=0", required=False,
+          valid=R(0, 64), usual=R(0, 8)),
         F("oil hole type", "oil_hole_type", "text", required=False),
-        F("oil hole diameter", "oil_hole_diameter", "length", check=">0", required=False),
-        F("oil hole angle", "oil_hole_angle", "angle", required=False),
-        F("lining", "lining", "text", required=False,
-          note="Lining material, e.g. AS16, AS15, sputter; selects the specific-load limit."),
+        F("oil hole diameter", "oil_hole_diameter", "length", check=">0", required=False,
+          valid=R(0.1, 1000, "mm"), usual=R(1, 50, "mm")),
+        F("oil hole angle", "oil_hole_angle", "angle", required=False,
+          valid=R(-720, 720, "deg")),
+        F("lining", "lining", "choice", required=False, choices=LININGS,
+          aliases=_LINING_ALIASES,
+          note="Lining material; selects the specific-load and film-thickness limits (AS15/AS16"
+               " are aluminium-tin bimetal linings). Blank: those rules are not evaluated."),
     ),
 )
 
 CRANK_MASS = Sheet(
     "CrankMass",
     "table",
+    max_rows=10000,
     key="location",
     note="Crankshaft mass properties per web, counterweight and crank pin (crank frame).",
     fields=(
         F("location", "location", "text"),
-        F("throw", "throw", "int", check=">0", note="Crank throw (bay) the mass belongs to."),
-        F("kind", "kind", "choice", choices=("web", "counterweight", "pin")),
-        F("mass", "mass", "mass", check=">=0"),
+        F("throw", "throw", "int", check=">0", note="Crank throw (bay) the mass belongs to.",
+          valid=R(1, 64)),
+        F("kind", "kind", "choice", choices=("web", "counterweight", "pin"),
+          aliases=(("c/w", "counterweight"), ("cw", "counterweight"),
+                   ("crank pin", "pin"), ("crankpin", "pin"), ("crank web", "web"))),
+        F("mass", "mass", "mass", check=">=0",
+          valid=R(0, 1e6, "kg"), usual=R(0, 20000, "kg")),
         F("X", "x", "length",
           note="Axial offset of the centre of mass from the component's reference plane"
-               " (seed 000 convention: mirrored webs have opposite signs)."),
+               " (seed 000 convention: mirrored webs have opposite signs).",
+          valid=R(-20000, 20000, "mm"), usual=R(-3000, 3000, "mm")),
         F("Y", "y", "length",
-          note="Radial position in the crank frame, along throw 1 (throw 1 pin at +Y)."),
+          note="Radial position in the crank frame, along throw 1 (throw 1 pin at +Y).",
+          valid=R(-20000, 20000, "mm"), usual=R(-3000, 3000, "mm")),
         F("Z", "z", "length", required=False,
           note="Lateral position in the crank frame, +90 deg from Y in the direction of"
-               " rotation; blank = 0."),
+               " rotation; blank = 0.",
+          valid=R(-20000, 20000, "mm"), usual=R(-3000, 3000, "mm")),
         F("axial position", "axial", "length", check=">=0",
           note="Axial position of the component's reference plane from the bay's front main"
-               " bearing centre (the centre of mass is at axial position + X)."),
-        F("relative to", "reference", "choice", choices=("main axis", "pin axis")),
+               " bearing centre (the centre of mass is at axial position + X).",
+          valid=R(0, 20000, "mm"), usual=R(0, 3000, "mm")),
+        F("relative to", "reference", "choice", choices=("main axis", "pin axis"),
+          aliases=(("main", "main axis"), ("crank axis", "main axis"), ("pin", "pin axis"),
+                   ("crank pin axis", "pin axis"))),
     ),
 )
 
 TV_MODEL = Sheet(
     "TVModel",
     "table",
+    max_rows=1000,
     key="station",
     note="Torsional lumped-mass chain from front (damper) to rear (flywheel).",
     fields=(
         F("station", "station", "text"),
         F("role", "role", "choice",
-          choices=("damper ring", "crank nose", "cylinder", "flywheel", "other")),
-        F("cylinder", "cylinder", "int", check=">0", required=False),
-        F("inertia", "inertia", "inertia", check=">0"),
+          choices=("damper ring", "crank nose", "cylinder", "flywheel", "other"),
+          aliases=(("ring", "damper ring"), ("damper inertia ring", "damper ring"),
+                   ("nose", "crank nose"), ("cyl", "cylinder"))),
+        F("cylinder", "cylinder", "int", check=">0", required=False,
+          valid=R(1, 64)),
+        F("inertia", "inertia", "inertia", check=">0",
+          valid=R(1e-9, 1e7, "kg m^2"), usual=R(1e-5, 1e6, "kg m^2")),
         F("absolute damping", "absolute_damping", "torsional_damping", check=">=0",
-          required=False),
-        F("stiffness to next", "stiffness", "torsional_stiffness", check=">0", required=False),
+          required=False,
+          valid=R(0, 1e9, "N m s/rad"), usual=R(0, 1e6, "N m s/rad")),
+        F("stiffness to next", "stiffness", "torsional_stiffness", check=">0", required=False,
+          valid=R(1, 1e13, "N m/rad"), usual=R(1e3, 1e11, "N m/rad")),
         F("damping to next", "relative_damping", "torsional_damping", check=">=0",
-          required=False),
+          required=False,
+          valid=R(0, 1e9, "N m s/rad"), usual=R(0, 1e6, "N m s/rad")),
     ),
 )
 
 JOINTS = Sheet(
     "Joints",
     "table",
+    max_rows=100,
     key="name",
     note="Bolted joints at the crank nose and flywheel (any number).",
     fields=(
         F("name", "name", "text"),
-        F("location", "location", "choice", choices=("crank nose", "flywheel", "other")),
-        F("bolts", "bolts", "int", check=">0"),
-        F("nominal diameter", "diameter", "length", check=">0"),
-        F("thread pitch", "pitch", "length", check=">0"),
+        F("location", "location", "choice", choices=("crank nose", "flywheel", "other"),
+          aliases=(("nose", "crank nose"), ("front end", "crank nose"))),
+        F("bolts", "bolts", "int", check=">0",
+          valid=R(1, 200), usual=R(1, 32)),
+        F("nominal diameter", "diameter", "length", check=">0",
+          valid=R(1, 1000, "mm"), usual=R(4, 100, "mm")),
+        F("thread pitch", "pitch", "length", check=">0",
+          valid=R(0.05, 50, "mm"), usual=R(0.35, 8, "mm")),
         F("stress area coefficient", "stress_area_coefficient", "ratio", check=">0",
           required=False,
-          note="A_s = pi/4 (d - c p)^2; blank = 0.9382 (ISO 898-1)."),
+          note="A_s = pi/4 (d - c p)^2; blank = 0.9382 (ISO 898-1).",
+          valid=R(0.01, 10), usual=R(0.5, 1.5)),
         F("property class", "property_class", "choice",
           choices=("8.8", "9.8", "10.9", "11.9", "12.9")),
         F("tightening", "tightening", "choice",
-          choices=("torque", "torque wrench", "yield controlled", "angle controlled")),
-        F("tightening torque", "tightening_torque", "torque", check=">0", required=False),
+          choices=("torque", "torque wrench", "yield controlled", "angle controlled"),
+          aliases=(("yield", "yield controlled"), ("angle", "angle controlled"),
+                   ("torque angle", "angle controlled"), ("torque controlled", "torque"),
+                   ("wrench", "torque wrench"))),
+        F("tightening torque", "tightening_torque", "torque", check=">0", required=False,
+          valid=R(0.001, 1e8, "N m"), usual=R(1, 1e5, "N m")),
         F("nut factor", "nut_factor", "ratio", check=">0", required=False,
-          note="F = T/(K d); blank = 0.2 (seed 000)."),
+          note="F = T/(K d); blank = 0.2 (seed 000).",
+          valid=R(0.01, 2), usual=R(0.08, 0.4)),
         F("preload fraction", "preload_fraction", "ratio", check="0..1", required=False,
-          note="Fraction of the reference stress for method-based preload; blank = seed table."),
+          note="Fraction of the reference stress for method-based preload; blank = seed table.",
+          valid=R(0, 1), usual=R(0.3, 1)),
         F("proof stress Rp0.2", "rp02", "stress", check=">0", required=False,
-          note="Blank = ISO 898-1 minimum for the property class."),
+          note="Blank = ISO 898-1 minimum for the property class.",
+          valid=R(1, 20000, "MPa"), usual=R(200, 2000, "MPa")),
         F("proof load stress", "proof_load_stress", "stress", check=">0", required=False,
-          note="Blank = ISO 898-1 stress under proof load for the property class."),
-        F("head bearing outer diameter", "head_outer", "length", check=">0", required=False),
-        F("head bearing inner diameter", "head_inner", "length", check=">0", required=False),
-        F("clamped material", "clamped_material", "text", required=False,
-          note="Selects the head contact-pressure limit (steel, cast iron, aluminium...)."),
-        F("face outer diameter", "face_outer", "length", check=">0"),
-        F("face inner diameter", "face_inner", "length", check=">=0"),
+          note="Blank = ISO 898-1 stress under proof load for the property class.",
+          valid=R(1, 20000, "MPa"), usual=R(200, 2000, "MPa")),
+        F("head bearing outer diameter", "head_outer", "length", check=">0", required=False,
+          valid=R(1, 2000, "mm"), usual=R(3, 300, "mm")),
+        F("head bearing inner diameter", "head_inner", "length", check=">0", required=False,
+          valid=R(1, 2000, "mm"), usual=R(3, 300, "mm")),
+        F("clamped material", "clamped_material", "choice", required=False,
+          choices=CLAMPED_MATERIALS, aliases=_CLAMPED_ALIASES,
+          ambiguous=(("cast iron", ("grey cast iron", "nodular cast iron")),
+                     ("iron", ("grey cast iron", "nodular cast iron"))),
+          note="Material under the bolt head; selects the head contact-pressure limit. 'cast"
+               " iron' alone is refused: say grey or nodular (their limits differ)."),
+        F("face outer diameter", "face_outer", "length", check=">0",
+          valid=R(1, 10000, "mm"), usual=R(10, 3000, "mm")),
+        F("face inner diameter", "face_inner", "length", check=">=0",
+          valid=R(0, 10000, "mm"), usual=R(0, 3000, "mm")),
         F("friction coefficient", "friction", "ratio", check=">0", required=False,
-          note="Blank = 0.2 (seed 000)."),
+          note="Blank = 0.2 (seed 000).",
+          valid=R(0.001, 2), usual=R(0.05, 0.6)),
     ),
 )
 
 JOINT_TORQUES = Sheet(
     "JointTorques",
     "table",
+    max_rows=300,
     note="Peak applied torque per joint and operating point (blank table = from TV module).",
     fields=(
         F("joint", "joint", "text"),
-        F("operating point", "point", "choice", choices=("tv peak", "max power", "overspeed")),
-        F("speed", "speed", "speed", check=">0", required=False),
-        F("applied torque", "torque", "torque", check=">0"),
+        F("operating point", "point", "choice", choices=("tv peak", "max power", "overspeed"),
+          aliases=(("tv", "tv peak"), ("torsional peak", "tv peak"), ("maximum power", "max power"),
+                   ("max. power", "max power"), ("rated power", "max power"))),
+        F("speed", "speed", "speed", check=">0", required=False,
+          valid=R(1, 100000, "rpm"), usual=R(30, 20000, "rpm")),
+        F("applied torque", "torque", "torque", check=">0",
+          valid=R(0.001, 1e9, "N m"), usual=R(1, 1e7, "N m")),
     ),
 )
 
 RULE_OVERRIDES = Sheet(
     "RuleOverrides",
     "table",
+    max_rows=1000,
     key="rule",
     note="Project-specific limits replacing the rule table's defaults (each listed in the report).",
     fields=(
@@ -405,6 +727,12 @@ RULE_OVERRIDES = Sheet(
 
 NOTES = Sheet("Notes", "notes", note="Free text; not read.")
 
+#: Largest number of speeds in the swept speed grid (minimum..maximum in speed steps, plus the
+#: overspeed): more is an input error (the run time grows linearly, ~15 ms per speed on the I4
+#: example); more than :data:`USUAL_SPEEDS` is a warning.
+MAX_SPEEDS = 1000
+USUAL_SPEEDS = 300
+
 SHEETS: dict[str, Sheet] = {
     s.name: s
     for s in (
@@ -412,3 +740,29 @@ SHEETS: dict[str, Sheet] = {
         OIL, TV_MODEL, DAMPER, FATIGUE, JOINTS, JOINT_TORQUES, RULE_OVERRIDES, NOTES,
     )
 }
+
+
+def _choice_sets() -> dict[str, tuple[str, ...]]:
+    out: dict[str, tuple[str, ...]] = {}
+    for sheet in SHEETS.values():
+        for f in sheet.fields:
+            if f.kind != "choice":
+                continue
+            if out.setdefault(f.attr, f.choices) != f.choices:  # pragma: no cover - schema error
+                raise AssertionError(f"choice attribute '{f.attr}' has two different sets")
+    return out
+
+
+#: Allowed values of every choice attribute (``lining``, ``clamped_material``, ``case``,
+#: ``point``, ``tightening``...): the item attributes and coordinates rules filter on and key
+#: their ``limits`` by. A rule table keyed by a value outside these sets can never apply.
+CHOICE_SETS: dict[str, tuple[str, ...]] = _choice_sets()
+
+
+def choice_field(attr: str) -> Field:
+    """The (first) choice field of attribute ``attr``: use with :func:`resolve_choice`."""
+    for sheet in SHEETS.values():
+        for f in sheet.fields:
+            if f.kind == "choice" and f.attr == attr:
+                return f
+    raise KeyError(attr)

@@ -1,0 +1,168 @@
+"""Cross-sheet checks of checker.engine: throw angles against firing and bank angles (the
+convention of checker.calc.crank_forces.throw_angles), pressure-trace spacing, speed grid, oil."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from checker.calc.crank_forces import throw_angles
+from checker.engine import Cylinder, check_cylinders, load_engine
+from checker.errors import InputErrors
+from tests.helpers import edited, example_path, set_cell, set_param
+
+
+def _errors(path) -> list[str]:
+    with pytest.raises(InputErrors) as info:
+        load_engine(path)
+    return [str(e) for e in info.value.errors]
+
+
+def _run_check(cyls: list[tuple[int, float, float, float, int]]) -> list[tuple[str, int, str]]:
+    """check_cylinders on (number, throw, firing, bank, pin) rows in degrees."""
+    out: list[tuple[str, int, str]] = []
+    cylinders = [Cylinder(n, math.radians(t), math.radians(f), math.radians(b), p)
+                 for n, t, f, b, p in cyls]
+    row_of = {c.number: i for i, c in enumerate(cylinders)}
+    check_cylinders(cylinders, row_of, lambda sh, attr, row, msg: out.append((attr, row, msg)))
+    return out
+
+
+# Cross-plane 90 deg V8 worked by hand: right bank (bank +45 deg) cylinders 1-4, left bank
+# (-45 deg) 5-8, cylinder k and k+4 on pin k; throws 0/90/270/180 deg from throw 1 in the
+# direction of rotation. A cylinder fires when its throw lies on its own bore axis: throw 3 is
+# 270 deg ahead of (= 90 deg behind) throw 1, so cylinder 3 (same bank) fires 90 deg after
+# cylinder 1; cylinder 5 shares pin 1 but its bank axis lies 90 deg before the right bank in the
+# direction of rotation, so pin 1 reaches it 270 deg later (630 deg: the other crank revolution).
+# Firing order 1-3-4-2-7-8-6-5 at 90 deg intervals.
+V8 = [  # number, throw, firing, bank, pin
+    (1, 0, 0, 45, 1), (2, 90, 270, 45, 2), (3, 270, 90, 45, 3), (4, 180, 180, 45, 4),
+    (5, 0, 630, -45, 1), (6, 90, 540, -45, 2), (7, 270, 360, -45, 3), (8, 180, 450, -45, 4),
+]
+
+
+def test_v8_worked_by_hand_is_consistent_with_the_calculation():
+    assert _run_check(V8) == []
+    phi = np.radians([c[2] for c in V8])
+    bank = np.radians([c[3] for c in V8])
+    pins = np.array([c[4] - 1 for c in V8])
+    gam = throw_angles(phi, bank, pins, 4)  # crank-frame directions used by the loads
+    rel = np.degrees(np.mod(gam - gam[0], 2 * np.pi))
+    np.testing.assert_allclose(rel, [0, 90, 270, 180], atol=1e-9)
+
+
+def test_v8_wrong_throw_angle_names_the_expected_value():
+    bad = [list(c) for c in V8]
+    bad[2][1] = 90  # cylinder 3: throw 90 instead of 270
+    errs = _run_check([tuple(c) for c in bad])
+    assert len(errs) == 1
+    attr, row, msg = errs[0]
+    assert attr == "throw_angle" and row == 2
+    assert "throw angle 90 deg contradicts" in msg and "throw is at 270 deg from throw 1" in msg
+
+
+def test_v8_shared_pin_with_inconsistent_firing_angle():
+    bad = [list(c) for c in V8]
+    bad[4][2] = 600  # cylinder 5 shares pin 1 with cylinder 1: must fire at 270 or 630 deg
+    errs = _run_check([tuple(c) for c in bad])
+    assert len(errs) == 1
+    attr, row, msg = errs[0]
+    assert attr == "firing_angle" and row == 4
+    assert "share crank pin 1" in msg and "expected 270 deg or 630 deg, found 600 deg" in msg
+
+
+def test_pin_without_cylinder_and_cylinder_one_not_at_zero():
+    errs = _run_check([(1, 0, 90, 0, 1), (2, 180, 450, 0, 3)])
+    msgs = " | ".join(m for _, _, m in errs)
+    assert "cylinder 1 fires at 0 deg by definition" in msgs
+    assert "pin 2 carries no cylinder" in msgs
+
+
+def test_example_throw_angle_contradiction_is_an_error_with_cell(tmp_path):
+    cell = {}
+    p = edited(tmp_path, lambda wb: cell.setdefault(
+        "c", set_cell(wb, "Cylinders", "cylinder", 2, "throw angle", 0)))
+    errs = _errors(p)
+    assert len(errs) == 1 and errs[0].startswith(cell["c"] + ":")
+    assert "contradicts" in errs[0] and "throw is at 180 deg from throw 1" in errs[0]
+
+
+def test_both_examples_load_without_warnings(tmp_path):
+    from checker.workbook.example import write_workbook
+    from checker.workbook.example_i6 import i6_content
+
+    i4 = load_engine(example_path(tmp_path))
+    p6 = tmp_path / "i6.xlsx"
+    write_workbook(p6, i6_content())
+    i6 = load_engine(p6)
+    assert i4.warnings == () and i6.warnings == ()
+    assert [round(math.degrees(c.throw_angle)) for c in i6.cylinders] == [0, 240, 120, 120,
+                                                                          240, 0]
+
+
+# ------------------------------------------------------------------ pressure traces
+def _with_trace(tmp_path, angles_deg, name="trace.xlsx"):
+    """The example with a PressureTraces sheet holding one full-load trace at 3000 rpm."""
+    def edit(wb):
+        ws = wb.create_sheet("PressureTraces")
+        ws.append(["load case", "speed", "crank angle", "pressure"])
+        ws.append(["-", "rpm", "deg", "bar"])
+        for a in angles_deg:
+            ws.append(["full", 3000, a, 1.0 + 50.0 * math.exp(-((a - 10) / 30) ** 2)])
+
+    return edited(tmp_path, edit, name)
+
+
+def test_trace_at_exactly_10_deg_passes_and_10_5_fails_with_cell(tmp_path):
+    ok = list(range(-360, 360, 10))  # 72 points, every gap (and the wrap) exactly 10 deg
+    e = load_engine(_with_trace(tmp_path, ok, "ok.xlsx"))
+    assert len(e.pressure_traces) == 72
+    # the calculation accepts it too (it used to reject 10 deg after degree->radian round-off)
+    from checker.calc.kinematics import cycle_grid
+    from checker.calc.pressure import interpolate_trace
+    a = np.array([t[2] for t in e.pressure_traces])
+    pv = np.array([t[3] for t in e.pressure_traces])
+    assert np.all(np.isfinite(interpolate_trace(a, pv, cycle_grid(math.radians(1.0)))))
+    # 10.5 deg: one gap widened (points 100 -> 110.5); the cell of the point after the gap
+    bad = [a for a in ok if a != 110] + [110.5]
+    bad.sort()
+    p = _with_trace(tmp_path, bad, "bad.xlsx")
+    errs = _errors(p)
+    row = 3 + bad.index(110.5)
+    assert len(errs) == 1 and errs[0].startswith(f"PressureTraces!C{row}:"), errs
+    assert "gap of 10.5 deg" in errs[0] and "at most 10 deg" in errs[0]
+
+
+def test_trace_wrap_around_gap(tmp_path):
+    angles = list(range(-350, 360, 10))[:-1]  # -350..340: wrap from 340 to 370 = 30 deg
+    errs = _errors(_with_trace(tmp_path, angles))
+    assert len(errs) == 1 and "gap of 30 deg" in errs[0] and errs[0].startswith(
+        "PressureTraces!C3:")
+
+
+# ------------------------------------------------------------------ speed grid, oil
+def test_speed_grid_too_fine_is_an_error_and_fine_is_a_warning(tmp_path):
+    cell = {}
+    p = edited(tmp_path, lambda wb: cell.setdefault(
+        "c", set_param(wb, "Engine", "Speed step", value=1)))  # 6001 speeds
+    errs = _errors(p)
+    assert len(errs) == 1 and errs[0].startswith(cell["c"]) and "6003 speeds" in errs[0]
+    e = load_engine(edited(tmp_path, lambda wb: set_param(wb, "Engine", "Speed step",
+                                                          value=10), "warn.xlsx"))
+    assert [w.where for w in e.warnings] == [cell["c"]]
+    assert "603 speeds" in e.warnings[0].message
+
+
+def test_oil_datasheet_without_viscosity_curve_and_cold_oil(tmp_path):
+    def edit(wb):  # KV100 above KV40: no viscosity curve
+        wb["Oil"].append(["Kinematic viscosity at 40 °C", 8, "mm^2/s"])
+        wb["Oil"].append(["Kinematic viscosity at 100 °C", 10, "mm^2/s"])
+
+    errs = _errors(edited(tmp_path, edit))
+    assert len(errs) == 1 and errs[0].startswith("Oil!B") and "Vogel" in errs[0]
+    # a 5W30 oil at -35 °C: within the valid range (the curve holds), outside the usual one
+    e = load_engine(edited(tmp_path, lambda wb: set_param(wb, "Oil", "Oil supply temperature",
+                                                          value=-35), "cold.xlsx"))
+    assert any("usual range" in w.message for w in e.warnings)
