@@ -173,6 +173,7 @@ class CheckResult:
                         "skipped": self.outcome.modules_skipped},
             "overrides": [o.__dict__ for o in self.table.overrides],
             "assumptions": self.assumptions,
+            "input_warnings": [str(w) for w in self.engine.warnings],
         }
         if timings:
             d["timings"] = {m: round(t, 6) for m, t in self.outcome.timings.items()}

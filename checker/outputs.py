@@ -30,6 +30,10 @@ def to_text(res: CheckResult) -> str:
         if x[6]:
             line += f"\n{'':{w[0]}}  -> {x[6]}"
         lines.append(line)
+    if res.engine.warnings:
+        lines.append("")
+        lines.append(f"input warnings ({len(res.engine.warnings)}): unusual values, check them")
+        lines += [f"  {w}" for w in res.engine.warnings]
     lines.append("")
     lines.append(f"{res.engine.name}: {res.summary_text()}"
                  + (f" (modules run: {', '.join(res.outcome.modules_run) or 'none'};"
@@ -58,6 +62,8 @@ def to_junit(res: CheckResult) -> str:
            f'      <property name="complete" value="{str(res.complete).lower()}"/>',
            f'      <property name="not_evaluated" value="{c["not_evaluated"]}"/>',
            f'      <property name="fail_on" value={quoteattr(res.fail_on)}/>',
+           *[f'      <property name="input_warning" value={quoteattr(str(w))}/>'
+             for w in res.engine.warnings],
            "    </properties>"]
     for r in res.results:
         name = quoteattr(f"{r.rule} {r.name} [{r.item}]")

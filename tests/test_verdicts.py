@@ -207,3 +207,15 @@ def test_output_to_fifo_writes_and_keeps_the_fifo(example, tmp_path):
     assert stat.S_ISFIFO(os.stat(fifo).st_mode)  # still a FIFO, not replaced by a file
     assert json.loads(got[0].decode())["engine"]
     assert not [p for p in tmp_path.iterdir() if p.name.startswith(".checker-")]
+
+
+# ---------------------------------------------------------------- input warnings shown
+def test_input_warnings_in_every_output(tmp_path):
+    p = edited(tmp_path, lambda wb: set_param(wb, "Engine", "Bore", unit="in"))
+    r = run("check", p, "--select", "JNT", "--format", "json", "--no-timings")
+    d = json.loads(r.stdout)
+    assert any("Engine!B" in w and "Bore" in w for w in d["input_warnings"]), d
+    t = run("check", p, "--select", "JNT")
+    assert "input warnings" in t.stdout and "Bore" in t.stdout
+    j = ET.fromstring(run("check", p, "--select", "JNT", "--format", "junit").stdout)
+    assert any(e.get("name") == "input_warning" for e in j.iter("property"))

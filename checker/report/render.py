@@ -95,6 +95,7 @@ def context(res: CheckResult) -> dict:
         "rule_files": [f.replace("\\", "/").split("/")[-1] for f in res.table.files],
         "overrides": res.table.overrides,
         "assumptions": res.assumptions,
+        "input_warnings": [str(w) for w in res.engine.warnings],
         "modules_run": res.outcome.modules_run,
         "modules_skipped": res.outcome.modules_skipped,
         "timings": timings,
