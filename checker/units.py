@@ -19,6 +19,7 @@ strings carry traps that pint alone gets silently wrong (see ``docs/workbook.md`
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 from dataclasses import dataclass
@@ -140,8 +141,11 @@ def _pressure_reference(unit: str) -> tuple[str, str | None]:
     return u, None
 
 
+@functools.lru_cache(maxsize=4096)
 def parse_unit(unit: str) -> pint.Unit:
-    """Parse a unit string with the project's registry (pint errors become UnitProblem)."""
+    """Parse a unit string with the project's registry (pint errors become UnitProblem).
+
+    Cached: a workbook repeats a few unit strings hundreds of times."""
     try:
         q = Q_(1.0, unit)
     except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError) as exc:
@@ -167,7 +171,33 @@ def _dimension_words(unit: pint.Unit) -> str:
     return known.get(str(dim), str(dim))
 
 
+@functools.lru_cache(maxsize=4096)
+def _scale(unit: str | None, kind: str, percent_formatted: bool) -> float | None:
+    """The SI factor of a purely multiplicative unit (``None`` for offset units such as °C
+    or gauge pressures, and for units :func:`_to_si` rejects)."""
+    try:
+        if _to_si(0.0, unit, kind, percent_formatted) != 0.0:
+            return None
+        return _to_si(1.0, unit, kind, percent_formatted)
+    except UnitProblem:
+        return None
+
+
 def to_si(value: float, unit: str | None, kind: str, percent_formatted: bool = False) -> float:
+    """Convert a spreadsheet value with its unit cell to the SI magnitude of ``kind``.
+
+    Multiplicative units use a cached factor; offset units and problems take the full path
+    (:func:`_to_si`, which has the documentation of the arguments and the messages).
+    """
+    if not math.isfinite(value):
+        raise UnitProblem(f"expected a finite number, found {value!r}")
+    factor = _scale(unit, kind, percent_formatted)
+    if factor is not None:
+        return float(value) * factor
+    return _to_si(value, unit, kind, percent_formatted)
+
+
+def _to_si(value: float, unit: str | None, kind: str, percent_formatted: bool = False) -> float:
     """Convert a spreadsheet value with its unit cell to the SI magnitude of ``kind``.
 
     Parameters
