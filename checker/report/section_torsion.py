@@ -310,23 +310,27 @@ def _joints(res: CheckResult, q: dict) -> list[dict]:
     jt = q.get("tv.joint_torque")
     if jt is None:
         return []
+    app = q.get("joint.applied_torque")
+    src = None if app is None else app.extra.get("source")
     given = {(t.joint, t.point): t for t in res.engine.joint_torques}
     rows = []
     for i, n in enumerate(jt.coords["item"]):
         for k, p in enumerate(jt.coords["point"]):
-            used = "workbook (JointTorques)" if (n, p) in given else "TV module"
+            s = "" if src is None else str(src[i, k])
+            used = ("workbook (JointTorques)" if s.startswith("workbook") else
+                    "TV module" if s else "-")
+            g = fmt(given[(n, p)].torque, 5) if (n, p) in given else "-"
             if np.isfinite(jt.values[i, k]):
                 rows.append([n, p, CASE_TEXT.get(jt.extra["case"][i, k], "-"),
                              f"{jt.extra['speed'][i, k] / RPM:.0f}", fmt(jt.values[i, k], 5),
-                             fmt(given[(n, p)].torque, 5) if (n, p) in given else "-", used])
+                             g, used])
             else:
-                rows.append([n, p, "-", "-", "-",
-                             fmt(given[(n, p)].torque, 5) if (n, p) in given else "-",
-                             used if (n, p) in given else "not available: "
+                rows.append([n, p, "-", "-", "-", g, used if s else "not available: "
                              + "; ".join(jt.missing.get((i, k), []))])
     blocks: list[dict] = [{"type": "table", "caption": (
         "Peak torque through the bolted joints from the TV model (max over the cycle of"
-        " |mean + vibratory|) and the value the joint check uses"),
+        " |mean + vibratory|), the workbook's value and the one the joint check uses (both"
+        " cover factors are in the bolted-joints section)"),
         "columns": ["joint", "operating point", "case", "speed [rpm]", "TV torque [N m]",
                     "workbook [N m]", "used"], "rows": rows}]
     items = [f"{n} at '{p}': {jt.extra['how'][i, k]}"
