@@ -1,4 +1,11 @@
-"""Matplotlib helpers: vector SVG with real text, deterministic bytes."""
+"""Matplotlib helpers: vector SVG with real text, deterministic bytes.
+
+Text from the workbook (bearing, station, element and joint names) is data: matplotlib would
+read ``$...$`` in a label as math markup (and raise on markup it cannot parse), so math
+parsing is off for every text of every figure (``text.parse_math``, set here and re-asserted
+by :func:`figure`; labels, titles, legend entries and tick labels alike). No report figure
+uses math markup of its own: equations are written with Unicode (``σ_eq,a``, ``W/cm³``).
+"""
 
 from __future__ import annotations
 
@@ -22,13 +29,18 @@ plt.rcParams.update({
     "axes.spines.right": False,
     "lines.linewidth": 1.2,
     "figure.dpi": 100,
+    "text.parse_math": False,  # workbook names are literal text, never math markup
+    "text.usetex": False,
 })
 
 LIMIT_STYLE = {"color": "#c0392b", "linestyle": "--", "linewidth": 1.2}
 
 
 def figure(width_mm: float = 170, height_mm: float = 80, **kw):
-    """A new figure sized in millimetres (fits an A4 text column at 170 mm)."""
+    """A new figure sized in millimetres (fits an A4 text column at 170 mm); its texts are
+    literal (see the module docstring)."""
+    plt.rcParams["text.parse_math"] = False
+    plt.rcParams["text.usetex"] = False
     return plt.subplots(figsize=(width_mm / 25.4, height_mm / 25.4), **kw)
 
 
