@@ -6,7 +6,7 @@ import numpy as np
 
 from ..api import CheckResult
 from ..units import from_si
-from .plots import LIMIT_STYLE, figure, to_svg
+from .plots import LIMIT_STYLE, figure, literal, to_svg
 from .sections import fmt, section
 
 
@@ -133,33 +133,42 @@ def _torques(res: CheckResult, cf, tq, comp, comp_cf) -> list[dict]:
                     "cover factor (computed T)"],
         "rows": rows}]
     labels, vals, alt = [], [], []
+    judged = []
     for i, n in enumerate(cf.coords["item"]):
         for k, p in enumerate(cf.coords["point"]):
             if np.isfinite(cf.values[i, k]):
                 labels.append(f"{n}\n{p}")
                 vals.append(cf.values[i, k])
+                judged.append(bool(used_by.get((n, p))))
                 differs = (comp_cf is not None and src is not None
                            and str(src[i, k]).startswith("workbook")
                            and np.isfinite(comp_cf.values[i, k]))
                 alt.append(comp_cf.values[i, k] if differs else np.nan)
     if vals:
-        fig, ax = figure(170, 25 + 12 * len(vals))
+        fig, ax = figure(170, 30 + 12 * len(vals))
         y = np.arange(len(vals))
-        ax.barh(y, vals, color="#34495e", height=0.5, label="at the torque the rules used")
+        jb = np.array(judged)
+        ax.barh(y[jb], np.array(vals)[jb], color="#34495e", height=0.5,
+                label="at the torque the rules used")
+        if (~jb).any():
+            ax.barh(y[~jb], np.array(vals)[~jb], color="#bdc3c7", height=0.5,
+                    label="no rule at this operating point (not judged)")
         if np.isfinite(alt).any():
             ax.plot(alt, y, "D", color="#e67e22", ms=4, ls="none",
                     label="at the torsional model's torque (given torque used)")
-        ax.set_yticks(y, labels)
+        ax.set_yticks(y, [literal(x) for x in labels])
         for lim, lab in ((1.7, "1.7 overspeed"), (1.8, "1.8 minimum"),
                          (2.0, "2.0 preferred / max power")):
             ax.axvline(lim, **LIMIT_STYLE)
-            ax.text(lim, len(vals) - 0.4, lab, rotation=90, va="top", ha="right",
+            ax.text(lim, -0.45, lab, rotation=90, va="top", ha="right",
                     fontsize=6, color=LIMIT_STYLE["color"])
         ax.set_xlabel("Cover factor (slip torque capacity / applied torque)")
-        ax.invert_yaxis()
-        ax.legend(fontsize=6, loc="lower right")
+        ax.set_ylim(len(vals) - 0.5, -0.5)
+        ax.legend(fontsize=6, loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=2,
+                  frameon=False)
         blocks.append({"type": "figure", "svg": to_svg(fig),
-                       "caption": "Joint cover factors against the seed's limits (bars: at the"
-                                  " torque the rules used; diamonds: at the torsional model's"
-                                  " torque where a given torque was used)"})
+                       "caption": "Joint cover factors against the seed's limits (dark bars: at"
+                                  " the torque the rules used; grey bars: operating points no"
+                                  " rule judges; diamonds: at the torsional model's torque"
+                                  " where a given torque was used)"})
     return blocks

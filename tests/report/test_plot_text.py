@@ -59,3 +59,19 @@ def test_names_are_drawn_literally(sections, module, names):
     texts = _svg_texts(sections[module])
     for n in names:
         assert any(n in t for t in texts), (module, n)
+
+
+@pytest.mark.parametrize("text", [
+    "M$1$", r"BE_1^2 $\alpha$", r"$\foo$", "a$^$b", "$x_$", r"a\$b$", "$$", "cost: 5$",
+    "100 %", r"C:\path\$x"])
+def test_literal_round_trips_through_matplotlib(text):
+    from checker.report.plots import figure, literal, to_svg
+
+    fig, ax = figure(60, 30)
+    ax.plot([0, 1], [0, 1], label=literal(text))
+    ax.set_title(literal(text))
+    ax.set_xticks([0.5], [literal(text)])
+    ax.legend()
+    svg = to_svg(fig)
+    texts = _svg_texts({"blocks": [{"type": "figure", "svg": svg}]})
+    assert texts.count(text) == 3, texts
