@@ -47,6 +47,23 @@ COVER = quantity(QuantitySpec(
     "joint.cover_factor", "", ("item", "point"),
     "Joint cover factor (slip capacity / peak applied torque)", "", _FILTERS,
     coords={"point": POINTS}))
+COMPUTED = quantity(QuantitySpec(
+    "joint.computed_torque", "N*m", ("item", "point"),
+    "Peak torque through the joint from the torsional model at the same operating point"
+    " (for comparison with a torque given in JointTorques)", "N*m", _FILTERS,
+    coords={"point": POINTS}))
+COMPUTED_COVER = quantity(QuantitySpec(
+    "joint.computed_cover_factor", "", ("item", "point"),
+    "Joint cover factor at the torsional model's torque (slip capacity / computed torque)", "",
+    _FILTERS, coords={"point": POINTS}))
+TORQUE_RATIO = quantity(QuantitySpec(
+    "joint.computed_torque_ratio", "", ("item", "point"),
+    "Torsional model's joint torque / the design torque the cover-factor rules use (judged"
+    " where the design torque is given in JointTorques)", "", _FILTERS,
+    coords={"point": POINTS}))
+
+GIVEN_SOURCE = "workbook (JointTorques)"
+COMPUTED_SOURCE = "torsional vibration module"
 
 
 def _attrs(j: Joint) -> dict:
@@ -181,11 +198,11 @@ def joint_applied_torque(engine: Engine, inputs: dict) -> dict[str, Quantity]:
             if t is not None:
                 vals[i, k] = t.torque
                 speed[i, k] = np.nan if t.speed is None else t.speed
-                source[i, k] = "workbook (JointTorques)"
+                source[i, k] = GIVEN_SOURCE
             elif tv is not None and np.isfinite(tv.values[i, k]):
                 vals[i, k] = tv.values[i, k]
                 speed[i, k] = tv.extra.get("speed", np.full_like(vals, np.nan))[i, k]
-                source[i, k] = "torsional vibration module"
+                source[i, k] = COMPUTED_SOURCE
             else:
                 reason = (f"JointTorques: peak applied torque of joint '{j.name}' at '{p}'"
                           " (not given in the workbook")
@@ -218,3 +235,112 @@ def joint_cover_factor(engine: Engine, inputs: dict) -> dict[str, Quantity]:
             missing[(i, k)] = list(dict.fromkeys(missing.get((i, k), []) + reasons))
     return {"joint.cover_factor": Quantity(COVER, vals, tq.coords, tq.item_attrs, missing,
                                            extra=dict(tq.extra))}
+
+
+RATIO_APPLIES = ("only torques given in JointTorques are compared with the torsional model;"
+                 " where none is given the cover-factor rules use the computed torque itself")
+
+
+def _computed_needs(engine: Engine) -> tuple[str, ...]:
+    from ..graph import PROVIDER
+
+    tv = ("tv.joint_torque",) if "tv.joint_torque" in PROVIDER else ()
+    return ("joint.applied_torque", "joint.slip_capacity") + tv
+
+
+def _rpm(w: float | None) -> str:
+    return "" if w is None or not np.isfinite(w) else f"{w * 30.0 / np.pi:.0f} rpm"
+
+
+@calculation("joint_computed_torque", "joints",
+             provides=("joint.computed_torque", "joint.computed_cover_factor",
+                       "joint.computed_torque_ratio"),
+             needs=_computed_needs, optional=("tv.joint_torque",))
+def joint_computed_torque(engine: Engine, inputs: dict) -> dict[str, Quantity]:
+    """The torsional model's torque at each joint and operating point next to the design torque.
+
+    The cover-factor rules (JNT-003..007) use the design torque: the value given in sheet
+    JointTorques where there is one (the practice of Ricardo 2013, slides 23-24, where the
+    torque comes from a separate VALDYN run), otherwise the torsional module's. This
+    calculation reports the torsional module's torque at the same named operating point
+    (``joint.computed_torque``; 'tv peak' = the model's own peak speed), the cover factor at
+    that torque (``joint.computed_cover_factor``) and their ratio
+    ``joint.computed_torque_ratio = T_computed / T_design``, judged only where the design
+    torque is given (elsewhere it is 1 by definition). A ratio above 1 means the given torque
+    is below what the model of this engine predicts, so the cover factor it gives is optimistic.
+    """
+    app = inputs["joint.applied_torque"]
+    cap = inputs["joint.slip_capacity"]
+    tv = inputs.get("tv.joint_torque")
+    tv_gone = inputs.get(UNAVAILABLE, {}).get("tv.joint_torque")
+    shape = app.values.shape
+    names = app.coords["item"]
+    comp = np.full(shape, np.nan) if tv is None else np.array(tv.values, dtype=float)
+    if tv is None:
+        why = ["the torsional module could not run: " + "; ".join(tv_gone)] if tv_gone else [
+            "the torsional module did not run"]
+        comp_missing = {(i, k): list(why) for i in range(shape[0]) for k in range(shape[1])}
+        comp_speed = np.full(shape, np.nan)
+        comp_case = np.full(shape, "", dtype=object)
+        comp_findings: dict[tuple, list[str]] = {}
+    else:
+        comp_missing = {key: list(v) for key, v in tv.missing.items()}
+        comp_speed = np.asarray(tv.extra.get("speed", np.full(shape, np.nan)), dtype=float)
+        comp_case = tv.extra.get("case", np.full(shape, "", dtype=object))
+        comp_findings = {key: list(v) for key, v in tv.findings.items()}
+    given = np.asarray(app.extra.get("source", np.full(shape, "", dtype=object)) == GIVEN_SOURCE,
+                       dtype=bool)
+    capv = np.broadcast_to(np.asarray(cap.values, dtype=float)[:, None], shape)
+    ok_cf = np.isfinite(capv) & np.isfinite(comp) & (comp > 0)
+    comp_cf = np.full(shape, np.nan)
+    comp_cf[ok_cf] = bj.cover_factor(capv[ok_cf], comp[ok_cf])
+    cf_missing = {key: list(v) for key, v in comp_missing.items()}
+    for (i,), reasons in cap.missing.items():
+        for k in range(shape[1]):
+            cf_missing[(i, k)] = list(dict.fromkeys(cf_missing.get((i, k), []) + reasons))
+    design = np.asarray(app.values, dtype=float)
+    ratio = np.ones(shape)
+    ratio_missing: dict[tuple, list[str]] = {}
+    ratio_findings: dict[tuple, list[str]] = {}
+    given_speed = np.asarray(app.extra.get("speed", np.full(shape, np.nan)), dtype=float)
+    for i, n in enumerate(names):
+        for k, p in enumerate(POINTS):
+            if not given[i, k]:
+                continue
+            if not np.isfinite(comp[i, k]):
+                ratio[i, k] = np.nan
+                ratio_missing[(i, k)] = [
+                    f"the torsional model's torque of joint '{n}' at '{p}' (to compare with the"
+                    " torque given in JointTorques): "
+                    + "; ".join(comp_missing.get((i, k), ["not computed"]))]
+                continue
+            ratio[i, k] = comp[i, k] / design[i, k]
+            if ratio[i, k] <= 1.0:
+                continue
+            case = {"full": "full load", "no": "no load"}.get(str(comp_case[i, k]),
+                                                              str(comp_case[i, k]))
+            where = ", ".join(x for x in (case, _rpm(comp_speed[i, k])) if x)
+            at_given = _rpm(given_speed[i, k])
+            text = (f"{n} at '{p}': the torsional model gives {comp[i, k]:.0f} N m"
+                    + (f" ({where})" if where else "")
+                    + f", {(ratio[i, k] - 1) * 100:.0f} % above the {design[i, k]:.0f} N m given"
+                    " in JointTorques" + (f" (at {at_given})" if at_given else "")
+                    + " that the cover-factor rules use")
+            if np.isfinite(comp_cf[i, k]):
+                text += (f"; cover factor {comp_cf[i, k]:.4g} at the computed torque instead of"
+                         f" {capv[i, k] / design[i, k]:.4g}")
+            ratio_findings[(i, k)] = [text]
+    coords = {"item": list(names), "point": list(POINTS)}
+    attrs = dict(app.item_attrs)
+    tv_extra = {"speed": comp_speed, "case": comp_case,
+                "how": (tv.extra.get("how") if tv is not None else None)}
+    common = {"given": given, "design": design, "given_speed": given_speed}
+    return {
+        "joint.computed_torque": Quantity(COMPUTED, comp, coords, attrs, comp_missing,
+                                          comp_findings, extra=dict(tv_extra, **common)),
+        "joint.computed_cover_factor": Quantity(COMPUTED_COVER, comp_cf, coords, attrs,
+                                                cf_missing, extra=dict(tv_extra, **common)),
+        "joint.computed_torque_ratio": Quantity(
+            TORQUE_RATIO, ratio, coords, attrs, ratio_missing, ratio_findings,
+            extra=dict(tv_extra, **common, applies_text=RATIO_APPLIES), applies=given),
+    }

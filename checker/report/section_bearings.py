@@ -5,8 +5,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..api import CheckResult
-from .plots import figure, to_svg
-from .section_loads import bearing_speed_figure
+from . import judged as jd
+from .plots import figure, literal, to_svg
+from .section_loads import bearing_speed_figure, shade_caption, worst_table
 from .sections import fmt, section
 
 RPM = 2 * np.pi / 60
@@ -47,25 +48,24 @@ def bearings_section(res: CheckResult) -> dict:
     sp = np.array(q.coords["speed"]) / RPM
     cases = q.coords["case"]
     blocks.append({"type": "figure", "svg": bearing_speed_figure(res, q, 1e6, "MOFT [µm]", "µm"),
-                   "caption": "Minimum oil film thickness against speed, full and no load"})
-    rows = []
-    for i, n in enumerate(names):
-        for ci, c in enumerate(cases):
-            v = q.values[i, ci]
-            if not np.isfinite(v).all():
-                rows.append([n, f"{c} load", "-", "-", "-", "-"])
-                continue
-            k = int(np.argmin(v))
-            rows.append([n, f"{c} load", fmt(v[k] * 1e6, 4), f"{sp[k]:.0f}",
-                         fmt(np.degrees(ex["theta_h_min"][i, ci, k]), 4),
-                         fmt(ex["eps_max"][i, ci, k], 4)])
-    blocks.append({"type": "table", "caption": "Worst MOFT per bearing",
-                   "columns": ["bearing", "case", "MOFT [µm]", "speed [rpm]",
-                               "crank angle [deg]", "max eccentricity"], "rows": rows})
+                   "caption": "Minimum oil film thickness against speed, full and no load."
+                              + shade_caption(q)})
+
+    def more(idx):
+        if idx is None:
+            return ["-", "-"]
+        return [fmt(np.degrees(ex["theta_h_min"][idx]), 4), fmt(ex["eps_max"][idx], 4)]
+
+    blocks.append(worst_table(
+        res, q, lambda v: fmt(v * 1e6, 4), more,
+        "Worst MOFT per bearing and load case: the judged worst first (the value of the rule"
+        " result), then a thinner film at a point the rules do not judge, marked",
+        ["bearing", "case", "MOFT [µm]", "speed [rpm]", "crank angle [deg]",
+         "max eccentricity"]))
     orb = ex.get("orbit") or {}
-    if orb:
-        vals = np.where(np.isfinite(q.values), q.values, np.inf)
-        i, ci, k = np.unravel_index(int(np.argmin(vals)), vals.shape)
+    judged_worst = jd.worst(q, (), jd.direction(res, q.name, "min"))[0]
+    if orb and judged_worst is not None:
+        i, ci, k = judged_worst.index
         a = int(np.where(orb["rows"] == i)[0][0])
         exx, eyy = orb["eps_x"][a, ci, k], orb["eps_y"][a, ci, k]
         th = np.degrees(orb["theta"])
@@ -77,7 +77,7 @@ def bearings_section(res: CheckResult) -> dict:
         ax0.plot(exx, eyy, lw=1.0)
         ax0.set_xlim(-1.05, 1.05)
         ax0.set_ylim(-1.05, 1.05)
-        ax0.set_title(f"Journal orbit ε, {names[i]}, {cases[ci]} load, {sp[k]:.0f} rpm",
+        ax0.set_title(literal(f"Journal orbit ε, {names[i]}, {cases[ci]} load, {sp[k]:.0f} rpm"),
                       fontsize=7)
         ax1 = fig.add_subplot(1, 2, 2)
         c_ = bearings[names[i]].clearance
@@ -93,8 +93,9 @@ def bearings_section(res: CheckResult) -> dict:
         ax1.set_ylabel("h [µm]")
         ax1.set_title("Film thickness and load over the cycle", fontsize=7)
         blocks.append({"type": "figure", "svg": to_svg(fig),
-                       "caption": "Worst case: journal orbit (eccentricity ratio, in the"
-                                  " bearing's frame) and film thickness with the load"})
+                       "caption": "Judged worst case (the thinnest film the rules judge):"
+                                  " journal orbit (eccentricity ratio, in the bearing's frame)"
+                                  " and film thickness with the load"})
     return {"id": "bearings", "title": "Bearing oil film (MOFT)",
             "intro": "Minimum oil film thickness at every main and big-end bearing by Booker's"
                      " mobility method (short bearing, rigid journal, statically determinate"

@@ -8,7 +8,8 @@ from ..api import CheckResult
 from ..calc.fatigue import goodman_line
 from ..calc.scf import VALIDITY
 from ..modules.fatigue import FACTORS_OF, LOCATIONS, SCF_FIELDS
-from .plots import LIMIT_STYLE, figure, to_svg
+from . import judged as jd
+from .plots import LIMIT_STYLE, figure, literal, to_svg
 from .sections import fmt, section
 
 RPM = 2 * np.pi / 60
@@ -174,13 +175,17 @@ def _equations() -> list[dict]:
 
 
 def _governing(q) -> dict[str, int]:
-    """Index of the item with the lowest factor per location type."""
+    """Index of the item with the lowest judged factor per location type."""
     out = {}
     for loc in LOCATIONS:
-        idx = [i for i, n in enumerate(q.coords["item"]) if q.item_attrs[n]["location"] == loc
-               and np.isfinite(q.values[i]).all()]
-        if idx:
-            out[loc] = min(idx, key=lambda i: float(np.min(q.values[i])))
+        worst = {}
+        for i, n in enumerate(q.coords["item"]):
+            if q.item_attrs[n]["location"] == loc and np.isfinite(q.values[i]).all():
+                p = jd.worst(q, (i,), "min")[0]
+                if p is not None:
+                    worst[i] = p.value
+        if worst:
+            out[loc] = min(worst, key=lambda i: worst[i])
     return out
 
 
@@ -189,9 +194,11 @@ def _plots(res: CheckResult, q) -> list[dict]:
     sp = np.array(q.coords["speed"]) / RPM
     cases = q.coords["case"]
     gov = _governing(q)
+    judged = jd.mask(q)
     blocks: list[dict] = []
     if not gov:
         return blocks
+    note = jd.shade_caption([] if judged[list(gov.values())].all() else [jd.reason(q)])
     # max/min equivalent stress vs speed, governing item per location type
     n = len(gov)
     fig, axes = figure(170, 58 * ((n + 1) // 2), nrows=(n + 1) // 2, ncols=2, squeeze=False,
@@ -200,12 +207,12 @@ def _plots(res: CheckResult, q) -> list[dict]:
         ax = axes[a // 2, a % 2]
         for ci, c in enumerate(cases):
             ls = "-" if c == "full" else "--"
-            ax.plot(sp, ex["sigma_eq_max"][i, ci] / 1e6, ls=ls, color="#c0392b",
-                    label=f"max, {CASE_TEXT.get(c, c)}")
-            ax.plot(sp, ex["sigma_eq_min"][i, ci] / 1e6, ls=ls, color="#2980b9",
-                    label=f"min, {CASE_TEXT.get(c, c)}")
+            jd.line(ax, sp, ex["sigma_eq_max"][i, ci] / 1e6, judged[i, ci], ls=ls,
+                    color="#c0392b", label=f"max, {CASE_TEXT.get(c, c)}")
+            jd.line(ax, sp, ex["sigma_eq_min"][i, ci] / 1e6, judged[i, ci], ls=ls,
+                    color="#2980b9", label=f"min, {CASE_TEXT.get(c, c)}")
         ax.axhline(0, color="k", lw=0.5)
-        ax.set_title(f"{q.coords['item'][i]} (lowest SF of the {loc}s)", fontsize=8)
+        ax.set_title(literal(f"{q.coords['item'][i]} (lowest SF of the {loc}s)"), fontsize=8)
         ax.set_ylabel("Equivalent stress [MPa]")
         ax.legend(fontsize=5.5, ncols=2)
     for a in range(n, axes.size):
@@ -214,13 +221,16 @@ def _plots(res: CheckResult, q) -> list[dict]:
         ax.set_xlabel("Engine speed [rpm]")
     blocks.append({"type": "figure", "svg": _svg(fig), "caption": (
         "Maximum and minimum equivalent stress over the cycle against speed (σ_eq,m ± σ_eq,a,"
-        " local stresses with SCFs) at the location of each type with the lowest safety factor")})
+        " local stresses with SCFs) at the location of each type with the lowest judged safety"
+        " factor" + ("" if not note else "; dotted: computed but not judged ("
+                     + jd.reason(q) + ")"))})
     # Goodman SF vs speed with the limit
     lim = _limit(res, "fatigue.goodman_sf")
     fig, axes = figure(170, 65, ncols=len(cases), squeeze=False, sharey=True)
     by_loc = ex["sf_by_location"]
     for ci, c in enumerate(cases):
         ax = axes[0, ci]
+        jd.shade(ax, sp, judged[list(gov.values()), ci].any(axis=0))
         for li, loc in enumerate(LOCATIONS):
             if loc in gov:
                 ax.plot(sp, np.minimum(by_loc[li, ci], SF_PLOT_MAX), color=COLORS[loc],
@@ -236,7 +246,7 @@ def _plots(res: CheckResult, q) -> list[dict]:
     axes[0, 0].set_ylabel("Goodman safety factor [-]")
     blocks.append({"type": "figure", "svg": _svg(fig), "caption": (
         f"Lowest Goodman safety factor of each location type against speed (FAT-001 limit;"
-        f" axis clipped at {SF_PLOT_MAX:g})")})
+        f" axis clipped at {SF_PLOT_MAX:g}).{note}")})
     # normalised Haigh (Goodman) diagram
     fig, ax = figure(170, 85)
     x_max = max(1.05, float(np.nanmax(ex["haigh_x"][list(gov.values())])) * 1.1)
@@ -247,12 +257,19 @@ def _plots(res: CheckResult, q) -> list[dict]:
         ax.plot(xs, goodman_line(xs, 1.0, 1.0, lim), **LIMIT_STYLE,
                 label=f"SF = {lim:g} (FAT-001)")
     step = max(1, sp.size // 31)
+    grey = False
     for loc, i in gov.items():
         for ci, c in enumerate(cases):
-            ax.scatter(ex["haigh_x"][i, ci, ::step], ex["haigh_y"][i, ci, ::step], s=7,
+            j = judged[i, ci, ::step]
+            hx, hy = ex["haigh_x"][i, ci, ::step], ex["haigh_y"][i, ci, ::step]
+            ax.scatter(hx[j], hy[j], s=7,
                        color=COLORS[loc], marker="o" if c == "full" else "^",
                        facecolors=COLORS[loc] if c == "full" else "none", linewidths=0.6,
-                       label=f"{q.coords['item'][i]}, {CASE_TEXT.get(c, c)}")
+                       label=literal(f"{q.coords['item'][i]}, {CASE_TEXT.get(c, c)}"))
+            if (~j).any():
+                ax.scatter(hx[~j], hy[~j], s=9, color="0.55", marker="x", linewidths=0.6,
+                           label=None if grey else "not judged")
+                grey = True
     ax.axvline(0, color="k", lw=0.5)
     ax.set_xlim(xs[0], xs[-1])
     ax.set_ylim(0, max(1.1, float(np.nanmax(ex["haigh_y"][list(gov.values())])) * 1.1))
@@ -263,38 +280,64 @@ def _plots(res: CheckResult, q) -> list[dict]:
         "Normalised Haigh (Goodman) diagram: operating points of the location of each type with"
         " the lowest safety factor (every "
         + ("" if step == 1 else f"{step}th ") + "swept speed; filled: full load, open: no"
-        " load). Compressive means are not credited: the line is flat for σ_m < 0.")})
+        " load). Compressive means are not credited: the line is flat for σ_m < 0."
+        + ("" if not grey else f" Grey crosses: computed but not judged ({jd.reason(q)}).")
+        )})
     return blocks
 
 
-def _worst(q, m53q) -> list[dict]:
+def _worst(res: CheckResult, q, m53q) -> list[dict]:
+    """Lowest Goodman SF and M53 Q per location: the judged worst first (the values of the
+    rule results), then, marked, lower values at points the rules do not judge."""
     ex = q.extra
     sp = np.array(q.coords["speed"]) / RPM
     cases = q.coords["case"]
-    rows = []
+
+    def sf_cells(p):
+        if p is None:
+            return ["-"] * 6
+        i, ci, si = p.index
+        side = ex["candidates"][i][int(ex["governing"][i, ci, si])]
+        return [fmt(p.value, 4), CASE_TEXT.get(cases[ci], cases[ci]), f"{sp[si]:.0f}",
+                fmt(ex["sigma_eq_a"][i, ci, si] / 1e6, 4),
+                fmt(ex["sigma_eq_m"][i, ci, si] / 1e6, 4), side]
+
+    def q_cells(p):
+        if p is None:
+            return ["-", "-"]
+        _, cq, sq = p.index
+        return [fmt(p.value, 4), f"{CASE_TEXT.get(cases[cq], cases[cq])}, {sp[sq]:.0f}"]
+
+    rows, css = [], []
     for i, n in enumerate(q.coords["item"]):
-        v = q.values[i]
-        qrow = ["-", "-"]
+        qj = qu = None
         if m53q is not None and n in m53q.coords["item"]:
             k = m53q.coords["item"].index(n)
             if np.isfinite(m53q.values[k]).all():
-                cq, sq = np.unravel_index(int(np.argmin(m53q.values[k])), m53q.values[k].shape)
-                qrow = [fmt(m53q.values[k][cq, sq], 3),
-                        f"{CASE_TEXT.get(cases[cq], cases[cq])}, {sp[sq]:.0f}"]
-        if not np.isfinite(v).all():
-            rows.append([n, "not evaluated: " + "; ".join(q.missing.get((i,), [])), "-", "-",
-                         "-", "-", "-", *qrow])
+                qj, qu = jd.worst(m53q, (k,), "min")
+        if not np.isfinite(q.values[i]).all():
+            rows.append([n, "not evaluated: " + "; ".join(jd.missing_reasons(q, (i,))),
+                         *["-"] * 5, *q_cells(qj), "-"])
+            css.append("")
             continue
-        ci, si = np.unravel_index(int(np.argmin(v)), v.shape)
-        side = ex["candidates"][i][int(ex["governing"][i, ci, si])]
-        rows.append([n, fmt(v[ci, si], 3), f"{CASE_TEXT.get(cases[ci], cases[ci])}",
-                     f"{sp[si]:.0f}", fmt(ex["sigma_eq_a"][i, ci, si] / 1e6, 4),
-                     fmt(ex["sigma_eq_m"][i, ci, si] / 1e6, 4), side, *qrow])
+        sj, su = jd.worst(q, (i,), "min")
+        ids = (jd.rule_ids(res, q.name, n) if sj is not None else []) + (
+            jd.rule_ids(res, m53q.name, n) if qj is not None else [])
+        rows.append([n, *sf_cells(sj), *q_cells(qj), ", ".join(ids) or "no rule on it"])
+        css.append("")
+        if su is not None or qu is not None:
+            why = [jd.reason(x) for x, p in ((q, su), (m53q, qu)) if p is not None]
+            rows.append([n, *sf_cells(su), *q_cells(qu),
+                         "not judged: " + "; ".join(dict.fromkeys(why))])
+            css.append(jd.NOT_JUDGED_CSS)
     return [{"type": "table", "caption": (
         "Lowest Goodman safety factor per location with its operating point and governing"
-        " fillet/torque (rule FAT-001), and the lowest M53 Q (FAT-002)"),
+        " fillet/torque (rule FAT-001), and the lowest M53 Q (FAT-002): the judged worst first"
+        " (the values of the rule results), then, marked, lower values at points the rules do"
+        " not judge"),
         "columns": ["location", "SF min", "case", "speed [rpm]", "σ_eq,a [MPa]",
-                    "σ_eq,m [MPa]", "governing", "M53 Q min", "Q at"], "rows": rows}]
+                    "σ_eq,m [MPa]", "governing", "M53 Q min", "Q at", "judged by"],
+        "rows": rows, "row_css": css}]
 
 
 @section("fatigue")
@@ -345,7 +388,7 @@ def fatigue_section(res: CheckResult) -> dict:
     if q.name == "fatigue.goodman_sf":
         blocks.append({"type": "heading", "text": "Results"})
         blocks += _plots(res, q)
-        blocks += _worst(q, m53q)
+        blocks += _worst(res, q, m53q)
     found = sorted({f for v in q.findings.values() for f in v}
                    | ({f for v in m53q.findings.values() for f in v} if m53q else set()))
     if found:
@@ -367,15 +410,22 @@ def _nose(res: CheckResult) -> list[dict]:
         return out + [{"type": "text", "text": "Not evaluated: missing " + "; ".join(why)}]
     ex = nq.extra
     sp = np.array(nq.coords["speed"]) * 30 / np.pi
-    rows = []
-    judged = nq.values if nq.applies is None else np.where(nq.applies, nq.values, np.inf)
-    for ci, c in enumerate(nq.coords["case"]):
-        k = int(np.argmin(judged[ci]))
-        rows.append([f"{c} load", f"{sp[k]:.0f}", f"{nq.values[ci, k]:.3g}",
+    rows, css = [], []
+    found = [jd.worst(nq, (ci,), "min") for ci in range(len(nq.coords["case"]))]
+    judged = sorted((j for j, _ in found if j is not None), key=lambda p: p.value)
+    for p in judged + [u for _, u in found if u is not None]:
+        ci, k = p.index
+        c = nq.coords["case"][ci]
+        rows.append([f"{c} load", f"{sp[k]:.0f}", f"{nq.values[ci, k]:.4g}",
                      f"{ex['torque_min'][ci, k]:.0f} / {ex['torque_max'][ci, k]:.0f}",
                      f"{ex['sigma_eq_a'][ci, k] / 1e6:.1f}",
-                     f"{ex['sigma_eq_m'][ci, k] / 1e6:.1f}"])
-    return out + [{"type": "table", "caption": f"Worst crank-nose point (torque of TV element"
-                   f" '{ex['element']}')", "columns": ["case", "speed [rpm]", "Goodman SF",
-                                                       "T min / max [N m]", "σ_eq,a [MPa]",
-                                                       "σ_eq,m [MPa]"], "rows": rows}]
+                     f"{ex['sigma_eq_m'][ci, k] / 1e6:.1f}",
+                     jd.judged_text(res, nq, p, None, c)])
+        css.append(jd.row_css(p))
+    return out + [{"type": "table", "caption": f"Worst crank-nose point per load case (torque"
+                   f" of TV element '{ex['element']}'): the judged points, lowest first (the"
+                   " value of the rule result), then, marked, lower factors at points the"
+                   " rules do not judge",
+                   "columns": ["case", "speed [rpm]", "Goodman SF", "T min / max [N m]",
+                               "σ_eq,a [MPa]", "σ_eq,m [MPa]", "judged by"],
+                   "rows": rows, "row_css": css}]

@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..api import CheckResult
-from .plots import LIMIT_STYLE, figure, to_svg
+from . import judged as jd
+from .plots import LIMIT_STYLE, figure, literal, to_svg
 from .sections import fmt, section
 
 RPM = 2 * np.pi / 60
@@ -91,7 +92,7 @@ def _modes(res: CheckResult, nf, sp: np.ndarray) -> list[dict]:
             phi = modes[:, i] / np.max(np.abs(modes[:, i]))
             ax.plot(x, phi, marker="o", label=f"mode {i + 1}: {f[i]:.0f} Hz")
         ax.axhline(0, color="k", lw=0.6)
-        ax.set_xticks(x, stations, rotation=20, fontsize=6)
+        ax.set_xticks(x, [literal(s) for s in stations], rotation=20, fontsize=6)
         ax.set_ylabel("Relative amplitude [-]")
         ax.legend(fontsize=6)
         blocks.append({"type": "figure", "svg": _svg(fig),
@@ -131,9 +132,28 @@ def _modes(res: CheckResult, nf, sp: np.ndarray) -> list[dict]:
     return blocks
 
 
+def _judged_rows(res: CheckResult, items: list[tuple[str, object, list[tuple], str]],
+                 cells) -> tuple[list[list[str]], list[str]]:
+    """Rows of a 'largest value' table. ``items``: (content, quantity, leads, how) with one
+    lead per load case; per content the judged worst points first, most severe first (so the
+    first equals the rule result over all cases), then the worse points the rules do not
+    judge, marked. ``cells(content, q, point)`` gives a row without the 'judged by' cell."""
+    rows, css = [], []
+    for content, qq, leads, how in items:
+        found = [jd.worst(qq, lead, how) for lead in leads]
+        sign = 1.0 if how == "max" else -1.0
+        judged = sorted((j for j, _ in found if j is not None), key=lambda p: -sign * p.value)
+        for p in judged + [u for _, u in found if u is not None]:
+            case = qq.coords["case"][p.index[qq.spec.dims.index("case")]]
+            rows.append(cells(content, qq, p) + [jd.judged_text(res, qq, p, None, case)])
+            css.append(jd.row_css(p))
+    return rows, css
+
+
 def _nose(res: CheckResult, q: dict) -> list[dict]:
     tot, per = q["tv.nose_amplitude"], q["tv.nose_order_amplitude"]
     cyl = q.get("tv.nose_cylinder_order_amplitude")
+    hi_q = q.get("tv.nose_higher_order_amplitude")
     sp = np.array(tot.coords["speed"]) / RPM
     labels = per.coords["order"]
     orders = per.extra["orders"]
@@ -141,16 +161,29 @@ def _nose(res: CheckResult, q: dict) -> list[dict]:
     n_cyl = len(res.engine.cylinders)
     lim_cyl = _limit(res, "tv.nose_cylinder_order_amplitude", "deg")
     lim_hi = _limit(res, "tv.nose_higher_order_amplitude", "deg")
+    tot_j = jd.mask(tot)
+    hi_labels = list(hi_q.coords["order"]) if hi_q is not None else []
+    k_cyl = int(np.argmin(np.abs(orders - n_cyl)))
     fig, axes = figure(170, 75, ncols=len(cases), sharey=True, squeeze=False)
+    marked = shaded = False
     for ci, c in enumerate(cases):
         ax = axes[0, ci]
+        shaded |= jd.shade(ax, sp, tot_j[ci])
         ax.plot(sp, tot.values[ci] * DEG, color="k", lw=1.6, label="total (synthesis)")
         peak = per.values[:, ci].max(axis=-1)
-        k_cyl = int(np.argmin(np.abs(orders - n_cyl)))
         top = [k for k in np.argsort(-peak) if k != k_cyl][:5]
         for k in [k_cyl] + sorted(top, key=lambda k: orders[k]):
-            ax.plot(sp, per.values[k, ci] * DEG, lw=1.4 if k == k_cyl else 0.9,
-                    label=labels[k])
+            (ln,) = ax.plot(sp, per.values[k, ci] * DEG, lw=1.4 if k == k_cyl else 0.9,
+                            label=literal(labels[k]))
+            jm = None
+            if k == k_cyl and cyl is not None:
+                jm = jd.mask(cyl)[ci]
+            elif labels[k] in hi_labels:
+                jm = jd.mask(hi_q)[hi_labels.index(labels[k]), ci]
+            if jm is not None and jm.any():
+                ax.plot(sp[jm], per.values[k, ci, jm] * DEG, "o", ms=3.5, mfc="none",
+                        color=ln.get_color())
+                marked = True
         for lim, text, va in ((lim_cyl, f"order {n_cyl} limit", "bottom"),
                               (lim_hi, "higher orders limit", "top")):
             if lim is not None:
@@ -161,46 +194,59 @@ def _nose(res: CheckResult, q: dict) -> list[dict]:
         ax.set_ylim(1e-3, None)
         ax.set_title(CASE_TEXT.get(c, c), fontsize=8)
         ax.set_xlabel("Engine speed [rpm]")
+        if marked:
+            ax.plot([], [], "o", ms=3.5, mfc="none", color="0.3", label="judged (TV-001/002)")
         ax.legend(fontsize=5.5, ncols=2)
     axes[0, 0].set_ylabel("Crank-nose amplitude [deg]")
-    blocks: list[dict] = [{"type": "figure", "svg": _svg(fig), "caption": (
+    why = [jd.reason(x) for x in (cyl, hi_q) if x is not None]
+    caption = (
         "Crank-nose TV amplitude against speed (relative to a node rotating at the mean speed,"
         " not twist): total = half peak-to-peak of all orders; orders 0-to-peak (the"
-        f" cylinder-count order {n_cyl} and the five largest others)")}]
-    rows = []
-    hi_q = q.get("tv.nose_higher_order_amplitude")
-    for ci, c in enumerate(cases):
-        k = int(np.argmax(tot.values[ci]))
-        rows.append([CASE_TEXT.get(c, c), "total (half peak-to-peak)",
-                     fmt(tot.values[ci, k] * DEG, 4), f"{sp[k]:.0f}", "-"])
-        if cyl is not None:
-            k = int(np.argmax(cyl.values[ci]))
-            rows.append([CASE_TEXT.get(c, c), f"order {n_cyl}", fmt(cyl.values[ci, k] * DEG, 4),
-                         f"{sp[k]:.0f}", "-" if lim_cyl is None else f"< {lim_cyl:g}"])
-        if hi_q is not None and hi_q.values.size:
-            v = hi_q.values[:, ci]
-            o, k = np.unravel_index(int(np.argmax(v)), v.shape)
-            rows.append([CASE_TEXT.get(c, c), f"worst higher: {hi_q.coords['order'][o]}",
-                         fmt(v[o, k] * DEG, 4), f"{sp[k]:.0f}",
-                         "-" if lim_hi is None else f"< {lim_hi:g}"])
-    blocks.append({"type": "table", "caption": "Largest crank-nose amplitudes",
-                   "columns": ["case", "content", "amplitude [deg]", "speed [rpm]",
-                               "limit [deg]"], "rows": rows})
+        f" cylinder-count order {n_cyl} and the five largest others)."
+        + (" Circles: the points the rules judge; the rest of each order curve is computed"
+           " but not judged (" + "; ".join(dict.fromkeys(why)) + ")." if marked else "")
+        + (jd.shade_caption([jd.reason(tot)]) if shaded else ""))
+    blocks: list[dict] = [{"type": "figure", "svg": _svg(fig), "caption": caption}]
+
+    def cells(content, qq, p):
+        ci, si = p.index[-2], p.index[-1]
+        if qq is hi_q:
+            content = f"higher: {hi_q.coords['order'][p.index[0]]}"
+        lim = lim_cyl if qq is cyl else lim_hi if qq is hi_q else None
+        return [content, CASE_TEXT.get(cases[ci], cases[ci]), fmt(p.value * DEG, 4),
+                f"{sp[si]:.0f}", "-" if lim is None else f"< {lim:g}"]
+
+    items = []
+    if cyl is not None:
+        items.append((f"order {n_cyl}", cyl, [(ci,) for ci in range(len(cases))], "max"))
+    if hi_q is not None and hi_q.values.size:
+        items.append(("higher orders", hi_q,
+                      [(slice(None), ci) for ci in range(len(cases))], "max"))
+    items.append(("total (half peak-to-peak)", tot, [(ci,) for ci in range(len(cases))],
+                  "max"))
+    rows, css = _judged_rows(res, items, cells)
+    blocks.append({"type": "table", "caption": "Largest crank-nose amplitudes: per content the"
+                   " judged worst first (the value of the rule result), then, marked, larger"
+                   " amplitudes at points the rules do not judge",
+                   "columns": ["content", "case", "amplitude [deg]", "speed [rpm]",
+                               "limit [deg]", "judged by"], "rows": rows, "row_css": css})
     return blocks
 
 
-def _elements(q: dict) -> list[dict]:
+def _elements(res: CheckResult, q: dict) -> list[dict]:
     et = q["tv.element_torque"]
     tw = q.get("tv.crank_twist")
     ex = et.extra
     sp = np.array(et.coords["speed"]) / RPM
     cases = et.coords["case"]
     names = et.coords["item"]
+    et_j = jd.mask(et)
     fig, axes = figure(170, 70, ncols=2, squeeze=False)
     ax = axes[0, 0]
     for ci, c in enumerate(cases):
         if tw is not None:
-            ax.plot(sp, tw.values[ci] * DEG, label=f"nose to flywheel, {CASE_TEXT.get(c, c)}")
+            jd.line(ax, sp, tw.values[ci] * DEG, jd.mask(tw)[ci],
+                    label=f"nose to flywheel, {CASE_TEXT.get(c, c)}")
     ax.set_xlabel("Engine speed [rpm]")
     ax.set_ylabel("[deg]")
     ax.set_title("crank twist, half peak-to-peak", fontsize=8)
@@ -208,27 +254,37 @@ def _elements(q: dict) -> list[dict]:
     ax = axes[0, 1]
     ci = cases.index("full") if "full" in cases else 0
     for e, n in enumerate(names):
-        ax.plot(sp, et.values[e, ci], label=n, lw=0.9)
+        jd.line(ax, sp, et.values[e, ci], et_j[e, ci], label=literal(n), lw=0.9)
     ax.set_xlabel("Engine speed [rpm]")
     ax.set_ylabel("[N m]")
     ax.set_title("vibratory torque, half peak-to-peak, full load", fontsize=8)
     ax.legend(fontsize=5.5)
+    dotted = not et_j.all() or (tw is not None and not jd.mask(tw).all())
     blocks: list[dict] = [{"type": "figure", "svg": _svg(fig), "caption": (
         "Crankshaft twist (crank nose to flywheel) and vibratory torque in every element of"
-        " the TV model against speed")}]
-    rows = []
+        " the TV model against speed"
+        + (f"; dotted: computed but not judged ({jd.reason(et)})" if dotted else ""))}]
+    rows, css = [], []
     for e, n in enumerate(names):
         for ci, c in enumerate(cases):
-            k = int(np.argmax(et.values[e, ci]))
-            rows.append([n, CASE_TEXT.get(c, c), fmt(et.values[e, ci, k], 4), f"{sp[k]:.0f}",
-                         fmt(ex["mean"][e, ci, k], 4), fmt(ex["vib_min"][e, ci, k], 4),
-                         fmt(ex["vib_max"][e, ci, k], 4), fmt(ex["twist"][e, ci, k] * DEG, 3)])
+            for p in jd.worst(et, (e, ci), "max"):
+                if p is None:
+                    continue
+                k = p.index[-1]
+                rows.append([n, CASE_TEXT.get(c, c), fmt(p.value, 4), f"{sp[k]:.0f}",
+                             fmt(ex["mean"][e, ci, k], 4), fmt(ex["vib_min"][e, ci, k], 4),
+                             fmt(ex["vib_max"][e, ci, k], 4),
+                             fmt(ex["twist"][e, ci, k] * DEG, 3),
+                             jd.judged_text(res, et, p, n, c)])
+                css.append(jd.row_css(p))
     blocks.append({"type": "table", "caption": (
         "Largest vibratory torque per element (sign: torque of the front part on the rear"
         " part, positive in the direction of rotation; mean = cylinder mean torques from the"
-        " front minus the accessory drive, friction not subtracted)"),
+        " front minus the accessory drive, friction not subtracted); a larger value at a point"
+        " the rules do not judge follows, marked"),
         "columns": ["element", "case", "T half range [N m]", "speed [rpm]", "T mean [N m]",
-                    "T vib min [N m]", "T vib max [N m]", "twist [deg]"], "rows": rows})
+                    "T vib min [N m]", "T vib max [N m]", "twist [deg]", "judged by"],
+        "rows": rows, "row_css": css})
     return blocks
 
 
@@ -247,7 +303,7 @@ def _damper(res: CheckResult, q: dict) -> list[dict]:
     fig, axes = figure(170, 65, ncols=3 if geo else 1, squeeze=False)
     ax = axes[0, 0]
     for ci, c in enumerate(cases):
-        ax.plot(sp, pw.values[ci], label=CASE_TEXT.get(c, c))
+        jd.line(ax, sp, pw.values[ci], jd.mask(pw)[ci], label=CASE_TEXT.get(c, c))
     ax.set_ylabel("[W]")
     ax.set_title("dissipated power", fontsize=8)
     ax.set_xlabel("Engine speed [rpm]")
@@ -255,8 +311,10 @@ def _damper(res: CheckResult, q: dict) -> list[dict]:
     if geo:
         ax = axes[0, 1]
         for ci, c in enumerate(cases):
-            ax.plot(sp, heat.values[ci] / 1e6, label=f"mean, {CASE_TEXT.get(c, c)}")
-            ax.plot(sp, heat_pk.values[ci] / 1e6, ls=":", label=f"peak, {CASE_TEXT.get(c, c)}")
+            jd.line(ax, sp, heat.values[ci] / 1e6, jd.mask(heat)[ci],
+                    label=f"mean, {CASE_TEXT.get(c, c)}")
+            jd.line(ax, sp, heat_pk.values[ci] / 1e6, jd.mask(heat_pk)[ci], ls=":",
+                    label=f"peak, {CASE_TEXT.get(c, c)}")
         if d.get("heat_limit") is not None:
             ax.axhline(d["heat_limit"] / 1e6, **LIMIT_STYLE)
             ax.text(sp[0], d["heat_limit"] / 1e6, " supplier limit", fontsize=6, va="bottom",
@@ -267,7 +325,7 @@ def _damper(res: CheckResult, q: dict) -> list[dict]:
         ax.legend(fontsize=5.5)
         ax = axes[0, 2]
         for ci, c in enumerate(cases):
-            ax.plot(sp, tau.values[ci] / 1e6, label=CASE_TEXT.get(c, c))
+            jd.line(ax, sp, tau.values[ci] / 1e6, jd.mask(tau)[ci], label=CASE_TEXT.get(c, c))
         if d.get("shear_stress_limit") is not None:
             ax.axhline(d["shear_stress_limit"] / 1e6, **LIMIT_STYLE)
             ax.text(sp[0], d["shear_stress_limit"] / 1e6, " supplier limit", fontsize=6,
@@ -276,25 +334,52 @@ def _damper(res: CheckResult, q: dict) -> list[dict]:
         ax.set_title("shear stress at r_i", fontsize=8)
         ax.set_xlabel("Engine speed [rpm]")
         ax.legend(fontsize=6)
+    faint = not jd.mask(pw).all()
     blocks: list[dict] = [{"type": "figure", "svg": _svg(fig), "caption": (
         "TV damper rubber: dissipated power (sum of orders), heat per unit rubber volume (mean"
-        " P/V and peak at the inner radius) and shear-stress amplitude at the inner radius")}]
+        " P/V and peak at the inner radius) and shear-stress amplitude at the inner radius"
+        + (f"; faint dotted: computed but not judged ({jd.reason(pw)})" if faint else ""))}]
     tw, tq = q.get("damper.relative_twist"), q.get("damper.torque")
-    rows = []
+    cols = [(pw, 1.0), (tw, DEG), (tq, 1.0)] + (
+        [(heat, 1e-6), (heat_pk, 1e-6), (tau, 1e-6)] if geo else [])
+    rows, css = [], []
     for ci, c in enumerate(cases):
-        k = int(np.argmax(pw.values[ci]))
-        row = [CASE_TEXT.get(c, c), f"{sp[k]:.0f}", fmt(pw.values[ci, k], 4),
-               fmt(tw.values[ci].max() * DEG, 4), fmt(tq.values[ci].max(), 4)]
-        if geo:
-            row += [fmt(heat.values[ci].max() / 1e6, 4), fmt(heat_pk.values[ci].max() / 1e6, 4),
-                    fmt(tau.values[ci].max() / 1e6, 4)]
-        else:
-            row += ["-", "-", "-"]
-        rows.append(row)
-    blocks.append({"type": "table", "caption": "Damper rubber maxima over the speed range",
+        found = [jd.worst(x, (ci,), "max") if x is not None else (None, None) for x, _ in cols]
+        for which in (0, 1):
+            pts = [f[which] for f in found]
+            if which == 1 and all(p is None for p in pts):
+                continue
+            p0 = pts[0]
+            row = [CASE_TEXT.get(c, c), "-" if p0 is None else f"{sp[p0.index[-1]]:.0f}"]
+            row += ["-" if p is None else fmt(p.value * f, 4) for p, (_, f) in zip(pts, cols)]
+            row += ["-"] * (3 - (len(cols) - 3))
+            row.append("judged points" if which == 0 else "not judged: " + jd.reason(pw))
+            rows.append(row)
+            css.append("" if which == 0 else jd.NOT_JUDGED_CSS)
+    blocks.append({"type": "table", "caption": "Damper rubber maxima over the judged points"
+                   " per load case, then, marked, larger values at points the rules do not"
+                   " judge",
                    "columns": ["case", "speed of max power [rpm]", "P max [W]",
                                "twist [deg]", "torque [N m]", "q mean [W/cm³]",
-                               "q peak [W/cm³]", "τ max [MPa]"], "rows": rows})
+                               "q peak [W/cm³]", "τ max [MPa]", "points"],
+                   "rows": rows, "row_css": css})
+    ratios = [(n, q.get(n)) for n in ("damper.shear_stress_ratio", "damper.heat_ratio",
+                                      "damper.heat_peak_ratio")]
+    items = [(qq.spec.description.split(" / ")[0], qq, [(ci,) for ci in range(len(cases))],
+              jd.direction(res, n, "max"))
+             for n, qq in ratios if qq is not None and np.isfinite(qq.values).all()]
+    if items:
+        def cells(content, qq, p):
+            ci, si = p.index
+            return [content, CASE_TEXT.get(cases[ci], cases[ci]), fmt(p.value, 4),
+                    f"{sp[si]:.0f}"]
+
+        rows, css = _judged_rows(res, items, cells)
+        blocks.append({"type": "table", "caption": "Damper ratios to the supplier's limits"
+                       " (rules DMP-001..003): the judged worst first (the value of the rule"
+                       " result), then, marked, larger ratios at points the rules do not judge",
+                       "columns": ["ratio", "case", "value / limit", "speed [rpm]",
+                                   "judged by"], "rows": rows, "row_css": css})
     if geo:
         ex = heat.extra
         blocks.append({"type": "list", "items": [
@@ -310,23 +395,27 @@ def _joints(res: CheckResult, q: dict) -> list[dict]:
     jt = q.get("tv.joint_torque")
     if jt is None:
         return []
+    app = q.get("joint.applied_torque")
+    src = None if app is None else app.extra.get("source")
     given = {(t.joint, t.point): t for t in res.engine.joint_torques}
     rows = []
     for i, n in enumerate(jt.coords["item"]):
         for k, p in enumerate(jt.coords["point"]):
-            used = "workbook (JointTorques)" if (n, p) in given else "TV module"
+            s = "" if src is None else str(src[i, k])
+            used = ("workbook (JointTorques)" if s.startswith("workbook") else
+                    "TV module" if s else "-")
+            g = fmt(given[(n, p)].torque, 5) if (n, p) in given else "-"
             if np.isfinite(jt.values[i, k]):
                 rows.append([n, p, CASE_TEXT.get(jt.extra["case"][i, k], "-"),
                              f"{jt.extra['speed'][i, k] / RPM:.0f}", fmt(jt.values[i, k], 5),
-                             fmt(given[(n, p)].torque, 5) if (n, p) in given else "-", used])
+                             g, used])
             else:
-                rows.append([n, p, "-", "-", "-",
-                             fmt(given[(n, p)].torque, 5) if (n, p) in given else "-",
-                             used if (n, p) in given else "not available: "
+                rows.append([n, p, "-", "-", "-", g, used if s else "not available: "
                              + "; ".join(jt.missing.get((i, k), []))])
     blocks: list[dict] = [{"type": "table", "caption": (
         "Peak torque through the bolted joints from the TV model (max over the cycle of"
-        " |mean + vibratory|) and the value the joint check uses"),
+        " |mean + vibratory|), the workbook's value and the one the joint check uses (both"
+        " cover factors are in the bolted-joints section)"),
         "columns": ["joint", "operating point", "case", "speed [rpm]", "TV torque [N m]",
                     "workbook [N m]", "used"], "rows": rows}]
     items = [f"{n} at '{p}': {jt.extra['how'][i, k]}"
@@ -375,7 +464,7 @@ def torsion_section(res: CheckResult) -> dict:
         blocks.append({"type": "heading", "text": "Crank-nose amplitude"})
         blocks += _nose(res, q)
         blocks.append({"type": "heading", "text": "Crankshaft twist and element torques"})
-        blocks += _elements(q)
+        blocks += _elements(res, q)
         blocks.append({"type": "heading", "text": "TV damper rubber"})
         blocks += _damper(res, q)
         blocks.append({"type": "heading", "text": "Torques at the bolted joints"})
