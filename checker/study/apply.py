@@ -23,6 +23,7 @@ class Target:
     param: Parameter
     cells: tuple[tuple[int, int, str | None], ...]  # (row, col, unit) 1-based
     labels: tuple[str, ...]  # Sheet!A1 addresses, for messages and the report
+    items: tuple[str, ...] = ()  # row keys (bearing, joint... names) of a table parameter
 
 
 def _text(v: Any) -> str:
@@ -55,6 +56,7 @@ def resolve(study: Study, base: RawWorkbook) -> list[Target]:
             problems.append(f"{pre}: the workbook has no sheet {q.sheet}")
             continue
         cells: list[tuple[int, int, str | None]] = []
+        items: list[str] = []
         if spec.shape == "parameters":
             for r, row in sorted(raw.rows.items()):
                 if r > 1 and row and _text(row[0][0]).lower() in (q.field.label.lower(),
@@ -91,6 +93,7 @@ def resolve(study: Study, base: RawWorkbook) -> list[Target]:
                 if ok:
                     found.add(choice_key(key))
                     cells.append((r, j, unit or None))
+                    items.append(key)
             if wanted is not None and wanted - found:
                 miss = [x for x in q.rows if choice_key(x) not in found]
                 problems.append(f"{pre}: sheet {q.sheet} has no row {', '.join(miss)}"
@@ -101,7 +104,7 @@ def resolve(study: Study, base: RawWorkbook) -> list[Target]:
                                 + ", ".join(f"{a} = {v}" for a, v in q.where))
                 continue
         labels = tuple(f"{q.sheet}!{get_column_letter(c)}{r}" for r, c, _ in cells)
-        out.append(Target(q, tuple(cells), labels))
+        out.append(Target(q, tuple(cells), labels, tuple(items)))
     if problems:
         raise StudyFileError(study.path, problems)
     return out

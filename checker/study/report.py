@@ -28,12 +28,21 @@ def _img(svg: str) -> str:
     return "data:image/svg+xml;base64," + base64.b64encode(svg.encode("utf-8")).decode("ascii")
 
 
-def _margin_figures(vt, run: StudyRun, fams: list[str]) -> list[dict[str, Any]]:
+def _item_margins(df, items: tuple[str, ...], fam: str) -> dict[int, float]:
+    """Smallest error-severity margin per variant over the results of ``items``."""
+    sel = df[(df["rule"].map(lambda r: r.split("-")[0]) == fam) & df["item"].isin(items)
+             & (df["severity"] == "error")]
+    return {int(k): float(g["margin"].min()) for k, g in sel.groupby("variant")
+            if g["margin"].notna().any()}
+
+
+def _margin_figures(vt, run: StudyRun, fams: list[str], df=None) -> list[dict[str, Any]]:
     from ..report.plots import figure, to_svg
 
     params = [q for q in run.study.parameters if q.numeric]
     if not params:
         return []
+    items_of = {t.param.name: t.items for t in run.targets}
     figs = []
     ok = vt[~vt["input_error"]]
     for f in fams:
@@ -46,6 +55,13 @@ def _margin_figures(vt, run: StudyRun, fams: list[str]) -> list[dict[str, Any]]:
             x = ok[q.name].to_numpy(dtype=float)
             y = ok[f"{f} margin"].to_numpy(dtype=float) * 100
             st = ok[f"{f} status"].tolist()
+            own = _item_margins(df, items_of.get(q.name, ()), f) if df is not None and \
+                items_of.get(q.name) else {}
+            if own:
+                ys = np.array([own.get(int(v), np.nan) for v in ok["variant"]]) * 100
+                gy = np.isfinite(x) & np.isfinite(ys)
+                ax.scatter(x[gy], ys[gy], s=22, facecolors="none", edgecolors="#2c3e50",
+                           label=_label("its own items"), zorder=4)
             good = np.isfinite(x) & np.isfinite(y)
             order = np.argsort(x[good], kind="stable")
             if run.study.design == "one-at-a-time":
@@ -73,7 +89,9 @@ def _margin_figures(vt, run: StudyRun, fams: list[str]) -> list[dict[str, Any]]:
         figs.append({"family": f, "src": _img(to_svg(fig)),
                      "caption": f"{f} rules: smallest margin of each variant (error-severity"
                      " results) against each parameter; below 0 % a rule fails. Colour: the"
-                     " family's worst status in that variant."})
+                     " family's worst status in that variant. Open circles: the smallest"
+                     " margin of the items the parameter changes (e.g. the bearings whose"
+                     " clearance varies)."})
     return figs
 
 
@@ -141,7 +159,7 @@ def context(run: StudyRun, df) -> dict[str, Any]:
         "n_errors": len(errors), "errors": errors, "params": params, "pnames": pnames,
         "fams": fams, "rows": rows, "n_feasible": int(vt["feasible"].sum()),
         "sensitivity": sens, "best": best_variant(vt),
-        "figures": _margin_figures(vt, run, fams), "map": _map_figure(vt, run, fams),
+        "figures": _margin_figures(vt, run, fams, df), "map": _map_figure(vt, run, fams),
         "select": ", ".join(run.study.select or ["all rules"]),
         "css": (templates_dir() / "report.css").read_text(encoding="utf-8"),
     }
