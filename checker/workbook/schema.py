@@ -86,6 +86,26 @@ ENGINE = Sheet(
         F("Overspeed", "overspeed", "speed", check=">0", required=False),
         F("Accessory drive torque at crank nose", "fead_torque", "torque", check=">=0",
           required=False, note="FEAD + timing drive torque added at the crank-nose joint."),
+        F("Free force limit, 1st order", "free_force_limit_1", "force", check=">0",
+          required=False, note="Project limit on the 1st-order free force at the rated speed"
+                               " (BAL-001; blank = not judged)."),
+        F("Free force limit, 2nd order", "free_force_limit_2", "force", check=">0",
+          required=False, note="Project limit on the 2nd-order free force at the rated speed"
+                               " (BAL-002; blank = not judged)."),
+        F("Free moment limit, 1st order", "free_moment_limit_1", "torque", check=">0",
+          required=False, note="Project limit on the 1st-order free moment at the rated speed"
+                               " (BAL-003; blank = not judged)."),
+        F("Free moment limit, 2nd order", "free_moment_limit_2", "torque", check=">0",
+          required=False, note="Project limit on the 2nd-order free moment at the rated speed"
+                               " (BAL-004; blank = not judged)."),
+        F("Balance ratio, minimum", "balance_ratio_min", "ratio", check=">=0", required=False,
+          note="Lowest acceptable counterweight balance ratio per throw (counterweight /"
+               " rotating unbalance, e.g. 50 %; BAL-005 needs minimum and maximum)."),
+        F("Balance ratio, maximum", "balance_ratio_max", "ratio", check=">0", required=False,
+          note="Highest acceptable counterweight balance ratio per throw (e.g. 100 %)."),
+        F("Target cyclic irregularity", "target_irregularity", "ratio", check="0..1",
+          required=False, note="(w_max - w_min)/w_avg allowed at the lowest speed, by"
+                               " application (FLY-001; blank = not judged)."),
     ),
 )
 
@@ -128,6 +148,11 @@ DAMPER = Sheet(
           required=False),
         F("Rubber heat per unit volume limit", "heat_limit", "power_density", check=">0",
           required=False),
+        F("Tuning ratio, minimum", "tuning_ratio_min", "ratio", check=">0", required=False,
+          note="Lowest acceptable ring frequency / crank first-mode frequency (DMP-004 needs"
+               " minimum and maximum)."),
+        F("Tuning ratio, maximum", "tuning_ratio_max", "ratio", check=">0", required=False,
+          note="Highest acceptable ring frequency / crank first-mode frequency."),
     ),
 )
 
