@@ -33,8 +33,6 @@ __all__ = ["Irregularity", "cycle_work", "cyclic_irregularity", "minimum_inertia
 
 SPEED_TOLERANCE = 1e-12
 """Relative tolerance on ``omega_min`` of the time-mean-speed condition (safeguarded Newton)."""
-INERTIA_TOLERANCE = 1e-9
-"""Relative tolerance of :func:`minimum_inertia` (fixed point ``J <- J delta(J) / target``)."""
 
 
 def _grid_period(theta: np.ndarray) -> float:
@@ -154,12 +152,12 @@ def cyclic_irregularity(theta: ArrayLike, torque: ArrayLike, inertia: ArrayLike,
 
     lo = np.zeros(shape)
     hi = np.array(wm, dtype=float)  # g(hi) <= 0 since every term <= 1/w there
-    s = hi.copy()
+    # start: one step of s = w mean((1 + q/s^2)^-1/2) from s = w (error of order delta^2)
+    s = wm * np.mean(1.0 / np.sqrt(1.0 + q / (wm * wm)[..., None]), axis=-1)
     for _ in range(100):
-        root = np.sqrt(s[..., None] ** 2 + q)
-        with np.errstate(divide="ignore"):
-            g = np.mean(1.0 / root, axis=-1) - target
-            dg = -s * np.mean(root ** -3, axis=-1)
+        inv = 1.0 / np.sqrt(s[..., None] ** 2 + q)
+        g = np.mean(inv, axis=-1) - target
+        dg = -s * np.mean(inv * inv * inv, axis=-1)
         lo = np.where(g > 0, s, lo)
         hi = np.where(g <= 0, s, hi)
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -180,14 +178,15 @@ def cyclic_irregularity(theta: ArrayLike, torque: ArrayLike, inertia: ArrayLike,
 
 
 def minimum_inertia(theta: ArrayLike, torque: ArrayLike, mean_speed: ArrayLike,
-                    target: ArrayLike, max_iterations: int = 100
-                    ) -> tuple[np.ndarray, np.ndarray]:
+                    target: ArrayLike) -> np.ndarray:
     """Smallest rotating inertia that keeps the cyclic irregularity at ``target``.
 
-    Fixed point ``J <- J delta(J) / target`` from the classical estimate ``J_0 = dE /
-    (target w^2)`` (Agostini 2019, "flywheel dimensioning": ``dE = J delta w^2``);
-    ``delta J`` changes only through ``omega_avg``, so the iteration contracts by a factor of
-    order ``delta``. Converged to :data:`INERTIA_TOLERANCE`.
+    Closed form of the module's model: with ``rho = (2 + delta)/(2 - delta) = omega_max /
+    omega_min`` and ``u_k = (W_k - W_min)/dE`` in ``[0, 1]``, the speed over the cycle is
+    ``omega_k = omega_min sqrt(1 + (rho^2 - 1) u_k)``; the time-mean speed condition gives
+    ``omega_min = w mean_k (1 + (rho^2 - 1) u_k)^(-1/2)`` and the energy equation
+    ``J = 2 dE / (omega_min^2 (rho^2 - 1))``. For small ``delta`` this is the classical
+    flywheel sizing ``J = dE / (delta w^2)`` (Agostini 2019, "flywheel dimensioning").
 
     Parameters
     ----------
@@ -195,15 +194,13 @@ def minimum_inertia(theta: ArrayLike, torque: ArrayLike, mean_speed: ArrayLike,
         As in :func:`cyclic_irregularity`.
     target : array_like, broadcast to ``torque.shape[:-1]`` [-]
         Target irregularity, ``0 < target < 2``.
-    max_iterations : int
 
     Returns
     -------
-    inertia : numpy.ndarray [kg m^2]
+    numpy.ndarray [kg m^2]
         Total inertia needed (subtract the engine's own to size the flywheel); 0 where the
         torque does not fluctuate (fluctuation energy at round-off level, 1e-12 of the cycle's
         torque times angle).
-    converged : numpy.ndarray of bool
     """
     th = finite("theta", theta)
     tq = finite("torque", torque)
@@ -212,15 +209,11 @@ def minimum_inertia(theta: ArrayLike, torque: ArrayLike, mean_speed: ArrayLike,
     if np.any(tgt >= 2.0):
         raise ValueError("target irregularity must be below 2")
     wm = np.broadcast_to(positive("mean_speed", mean_speed), shape)
-    energy = np.ptp(cycle_work(th, tq), axis=-1)
+    w = cycle_work(th, tq)
+    w = w - w.min(axis=-1, keepdims=True)
+    energy = w.max(axis=-1)
     flat = energy <= 1e-12 * np.abs(tq).max(axis=-1) * _grid_period(th)  # round-off level
-    j = np.where(flat, 1.0, energy / (tgt * wm * wm))
-    converged = flat.copy()
-    for _ in range(max_iterations):
-        d = cyclic_irregularity(th, tq, j, wm).irregularity
-        j_new = np.where(flat, 1.0, j * d / tgt)
-        converged = flat | (np.abs(j_new - j) <= INERTIA_TOLERANCE * j)
-        j = j_new
-        if np.all(converged):
-            break
-    return np.where(flat, 0.0, j), converged
+    e_safe = np.where(flat, 1.0, energy)
+    rho2m1 = ((2.0 + tgt) / (2.0 - tgt)) ** 2 - 1.0
+    s = wm * np.mean((1.0 + rho2m1[..., None] * w / e_safe[..., None]) ** -0.5, axis=-1)
+    return np.where(flat, 0.0, 2.0 * energy / (s * s * rho2m1))

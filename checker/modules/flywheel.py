@@ -102,13 +102,8 @@ def flywheel(engine: Engine, inputs: dict) -> dict[str, Quantity]:
             MIN_INERTIA, np.full(res.energy.shape, np.nan), coords,
             missing={(ci,): list(miss) for ci in range(len(cases))}, extra=extra)
     else:
-        j_min, ok = fw.minimum_inertia(theta, torque, speeds[None, :], float(target))
-        findings = {}
-        for ci, si in zip(*np.nonzero(~ok)):
-            findings[(int(ci), int(si))] = [
-                f"minimum inertia at {speeds[si] / RPM:.0f} rpm ({cases[ci]} load) did not"
-                " converge to the stated tolerance; the last iterate is shown"]
+        j_min = fw.minimum_inertia(theta, torque, speeds[None, :], float(target))
         out["flywheel.minimum_inertia"] = Quantity(
-            MIN_INERTIA, j_min - j_rest, coords, findings=findings,
+            MIN_INERTIA, j_min - j_rest, coords,
             extra=dict(extra, total_needed=j_min, inertia_rest=j_rest))
     return out

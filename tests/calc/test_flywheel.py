@@ -82,14 +82,12 @@ def test_minimum_inertia_meets_the_target():
     t = _gas_torque(th)
     w = 800 * np.pi / 30
     for target in (0.01, 0.05, 0.2):
-        j, ok = fw.minimum_inertia(th, t, w, target)
-        assert ok
-        d = fw.cyclic_irregularity(th, t, j, w).irregularity
-        assert d == pytest.approx(target, rel=1e-8)
+        j = fw.minimum_inertia(th, t, w, target)
+        d = fw.cyclic_irregularity(th, t, j, w).irregularity  # independent: Newton solve
+        assert d == pytest.approx(target, rel=1e-9)
         e = np.ptp(fw.cycle_work(th, t))
         assert j == pytest.approx(e / (target * w * w), rel=target)  # classical sizing
-    j0, ok = fw.minimum_inertia(th, np.full(th.size, 100.0), w, 0.01)
-    assert ok and j0 == 0.0
+    assert fw.minimum_inertia(th, np.full(th.size, 100.0), w, 0.01) == 0.0
 
 
 def test_validation():

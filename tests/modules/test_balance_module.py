@@ -130,3 +130,16 @@ def test_inline_six_with_a_symmetric_crank_has_no_free_forces_or_moments(tmp_pat
 def test_skipped_when_no_rule_needs_it(example):
     res = api.check(example, select=["JNT"])
     assert {"balance", "flywheel", "damper"} <= set(res.outcome.modules_skipped)
+
+
+def test_report_section(result):
+    from checker.report.section_balance import balance_section
+
+    sec = balance_section(result)
+    types = [b["type"] for b in sec["blocks"]]
+    assert types.count("figure") == 2 and "equations" in types  # bar chart + polar diagram
+    forces = next(b for b in sec["blocks"] if b["type"] == "table"
+                  and b["caption"].startswith("Free forces"))
+    assert [r[1] for r in forces["rows"]][:4] == ["0", "15998", "0", "445.34"]  # N, 6000 rpm
+    svg = " ".join(b["svg"] for b in sec["blocks"] if b["type"] == "figure")
+    assert "Free force" in svg and "Unbalance per throw" in svg

@@ -84,3 +84,14 @@ def test_band_missing_or_inverted(tmp_path):
     res = api.check(edited(tmp_path, edit), select=["DMP-004"])
     [r] = res.results
     assert r.status == "not_evaluated" and "above the maximum" in r.missing[0]
+
+
+def test_report_section(result):
+    from checker.report.section_damper import damper_section
+
+    sec = damper_section(result)
+    assert "0.708" in sec["intro"] and "0.720" in sec["intro"]  # actual vs optimum tuning
+    peaks = next(b for b in sec["blocks"] if b["type"] == "table"
+                 and b["caption"].startswith("Crank-nose amplitude"))
+    assert peaks["rows"][0][1] == "0.1557" and "4300 rpm" in peaks["rows"][0][2]
+    assert [b["type"] for b in sec["blocks"]].count("figure") == 1

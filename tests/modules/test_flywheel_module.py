@@ -98,3 +98,15 @@ def test_without_target_not_evaluated(tmp_path):
     res = api.check(edited(tmp_path, edit), select=["FLY"])
     [r] = res.results
     assert r.status == "not_evaluated" and cell["c"] in r.missing[0]
+
+
+def test_report_section_states_the_target(result):
+    from checker.report.section_flywheel import flywheel_section
+
+    sec = flywheel_section(result)
+    assert "δ ≤ 10 %" in sec["intro"] and "Engine!B" in sec["intro"]
+    types = [b["type"] for b in sec["blocks"]]
+    assert types.count("figure") == 1 and "equations" in types
+    table = next(b for b in sec["blocks"] if b["type"] == "table"
+                 and b["caption"].startswith("Fluctuation energy"))
+    assert table["rows"][0][:2] == ["full load", "1000"]
