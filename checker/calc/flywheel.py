@@ -214,6 +214,6 @@ def minimum_inertia(theta: ArrayLike, torque: ArrayLike, mean_speed: ArrayLike,
     energy = w.max(axis=-1)
     flat = energy <= 1e-12 * np.abs(tq).max(axis=-1) * _grid_period(th)  # round-off level
     e_safe = np.where(flat, 1.0, energy)
-    rho2m1 = ((2.0 + tgt) / (2.0 - tgt)) ** 2 - 1.0
+    rho2m1 = 8.0 * tgt / (2.0 - tgt) ** 2  # rho^2 - 1 without cancellation
     s = wm * np.mean((1.0 + rho2m1[..., None] * w / e_safe[..., None]) ** -0.5, axis=-1)
     return np.where(flat, 0.0, 2.0 * energy / (s * s * rho2m1))

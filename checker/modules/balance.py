@@ -100,6 +100,11 @@ def reference_speed(engine: Engine) -> tuple[float, str]:
 @calculation("balance", "balance", provides=PROVIDES)
 def balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Free forces and moments by order, balance ratio per throw, internal bending moment."""
+    with np.errstate(over="ignore", invalid="ignore"):  # overflow becomes a missing reason
+        return _overflow_checked(_balance(engine), engine)
+
+
+def _balance(engine: Engine) -> dict[str, Quantity]:
     p = engine.params
     if not engine.cylinders:
         raise MissingInputs(["Cylinders: no cylinders given (sheet Cylinders)"])
@@ -225,7 +230,11 @@ def balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                                    pin_rotating_mass=m_big * n_on,
                                    pin_reciprocating_mass=m_rec * n_on, crank_radius=r)
         except ValueError as exc:
-            raise MissingInputs([f"CrankMass: {exc}"]) from None
+            tb = None
+            out["balance.balance_ratio"] = Quantity(
+                BALANCE_RATIO, np.full(len(b_items), np.nan), {"item": b_items}, b_attrs,
+                {(i,): [f"CrankMass: {exc}"] for i in range(len(b_items))}, extra=dict(common))
+    if crank and tb is not None:
         out["balance.balance_ratio"] = Quantity(
             BALANCE_RATIO, np.append(tb.balance_ratio, tb.crank_ratio), {"item": b_items},
             b_attrs, extra=dict(common, rotating=tb.rotating, counterweight=tb.counterweight,
@@ -255,4 +264,18 @@ def balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
             extra=dict(common, vector=b * w2,
                        without_counterweights=np.hypot(b0[:, 0], b0[:, 1]) * w2,
                        stations=stations + zc))
+    return out
+
+
+def _overflow_checked(out: dict[str, Quantity], engine: Engine) -> dict[str, Quantity]:
+    """Entries that overflowed (absurd speed or masses) become missing with the reason, never
+    NaN/inf for a rule to meet."""
+    why = (f"{engine.cell('Engine', 'rated_speed')}: the balancing numbers overflow with these"
+           " inputs (check the rated speed, masses and lengths)")
+    for q in out.values():
+        bad = ~np.isfinite(q.values)
+        for idx in zip(*np.nonzero(bad)):
+            key = tuple(int(i) for i in idx)
+            if not any(q.missing.get(key[:n]) for n in range(len(key), 0, -1)):
+                q.missing[key] = [why]
     return out
