@@ -14,8 +14,8 @@ hub (:func:`checker.calc.torsional.equivalent_inertia`, Drapal & Novotny 2017, J
 
 Damping is compared as the viscous ratio ``zeta = c/(2 J_d omega_n)``; a hysteretic rubber is
 equivalent at the ring frequency to ``c = eta k_d / omega_d``, i.e. ``zeta = eta f / 2`` and
-``eta_opt = 2 zeta_opt / f_opt`` (shared reference torsion notes, sec. 3.4). The optimum rubber
-is ``k_opt = J_d (f_opt omega_n)^2`` with loss factor ``eta_opt``.
+``eta_opt = 2 zeta_opt / f_opt`` (equal dissipation per cycle at the ring frequency). The
+optimum rubber is ``k_opt = J_d (f_opt omega_n)^2`` with loss factor ``eta_opt``.
 """
 
 from __future__ import annotations
