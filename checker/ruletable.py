@@ -25,7 +25,11 @@ ID_PATTERN = re.compile(r"^[A-Z]{2,5}-\d{3}$")
 CHECKS = (">=", "<=", ">", "<", "between")
 SEVERITIES = ("error", "warning")
 REQUIRED = ("id", "name", "quantity", "check", "unit", "severity", "source", "rationale")
-OPTIONAL = ("limit", "limit_by", "limits", "where", "applies_to", "status")
+OPTIONAL = ("limit", "limit_by", "limits", "limit_from", "where", "applies_to", "status")
+LIMIT_FROM = ("workbook",)
+"""Values of ``limit_from``: ``workbook`` = the limit is the engine's own (a workbook value
+such as a balancing limit or a target), carried by the quantity per item (item attributes
+``limit`` in SI, ``limit_cell``, and ``limit_missing`` when not given)."""
 REL_TOL = 1e-9
 """Values within this relative distance of a limit count as on the limit (float noise)."""
 
@@ -46,11 +50,17 @@ class Rule:
     where: dict[str, tuple[str, ...]] = field(default_factory=dict)
     applies_to: str = ""
     origin: str = ""
+    limit_from: str | None = None  # "workbook": per-engine limit carried by the quantity
 
     def limit_text(self, limit: tuple[float, ...] | None = None) -> str:
         lim = self.limit if limit is None else limit
         u = f" {self.unit}" if self.unit not in ("", "-") else ""
         if lim is None:
+            if self.limit_from == "workbook":
+                if self.check == "between":
+                    return "within the workbook range"
+                sym = {">=": "≥", "<=": "≤", ">": ">", "<": "<"}[self.check]
+                return f"{sym} workbook limit"
             return f"by {self.limit_by}"
         if self.check == "between":
             return f"{lim[0]:g}..{lim[1]:g}{u}"
@@ -163,8 +173,17 @@ def _parse_rule(raw: dict, origin: str, problems: list[str]) -> Rule | None:
                 problems.append(f"{pre}: limits.{k} must be a number or [low, high]")
                 return None
             limits[k.lower()] = t
-    if limit is None and not limits:
-        problems.append(f"{pre}: give 'limit' or 'limit_by' with 'limits'")
+    limit_from = raw.get("limit_from")
+    if limit_from is not None:
+        if limit_from not in LIMIT_FROM:
+            problems.append(f"{pre}: limit_from must be one of {', '.join(LIMIT_FROM)}, found"
+                            f" {limit_from!r}")
+            return None
+        if limit is not None or limits:
+            problems.append(f"{pre}: give either 'limit_from' or a limit, not both")
+            return None
+    elif limit is None and not limits:
+        problems.append(f"{pre}: give 'limit', 'limit_by' with 'limits', or 'limit_from'")
         return None
     where: dict[str, tuple[str, ...]] = {}
     for k, v in (raw.get("where") or {}).items():
@@ -184,7 +203,7 @@ def _parse_rule(raw: dict, origin: str, problems: list[str]) -> Rule | None:
     return Rule(id=rid, name=raw["name"], quantity=spec.name, check=check, unit=unit,
                 severity=raw["severity"], source=raw["source"], rationale=raw["rationale"],
                 limit=limit, limit_by=raw.get("limit_by"), limits=limits, where=where,
-                applies_to=raw.get("applies_to", ""), origin=origin)
+                applies_to=raw.get("applies_to", ""), origin=origin, limit_from=limit_from)
 
 
 def load_rules(path: str | Path | None = None) -> RuleTable:
@@ -278,7 +297,7 @@ def override_problems(table: RuleTable, overrides) -> tuple[list[Rule], list[Ove
             continue
         new = tuple(x * factor for x in lim)
         old_text = r.limit_text()
-        rules[by_id[rid]] = replace(r, limit=new, limit_by=None, limits={})
+        rules[by_id[rid]] = replace(r, limit=new, limit_by=None, limits={}, limit_from=None)
         applied.append(Override(r.id, old_text, rules[by_id[rid]].limit_text(), o.reason,
                                 o.where))
     return rules, applied, errs
@@ -417,7 +436,23 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None
                                           limit_values=None, margin=None, case="",
                                           message="not evaluated: " + why, missing=[why]))
                 continue
+        if rule.limit_from == "workbook":
+            # the engine's own limit, carried by the quantity (SI, converted to the rule unit)
+            given = attrs.get("limit")
+            n_lim = 2 if rule.check == "between" else 1
+            if given is None or len(tuple(given)) != n_lim:
+                why = list(attrs.get("limit_missing") or [
+                    f"no limit for '{item}' given in the workbook"])
+                results.append(RuleResult(**base, item=item, status="not_evaluated",
+                                          value=None, limit=rule.limit_text(),
+                                          limit_values=None, margin=None, case="",
+                                          message="not evaluated: missing " + "; ".join(why),
+                                          missing=why))
+                continue
+            lim = tuple(float(x) * factor for x in given)
         lim_text = rule.limit_text(lim)
+        if rule.limit_from == "workbook" and attrs.get("limit_cell"):
+            lim_text += f" ({attrs['limit_cell']})"
         # missing entries within the selection
         idx_all = np.array(np.meshgrid(*sel_i, indexing="ij")).reshape(len(dims), -1).T
         missing: list[str] = []

@@ -1,9 +1,19 @@
 """Graph calculations, one module per analysis family. Importing registers them."""
 
 from .. import graph
-from . import crank_nose, fatigue, joints, loads, moft, torsion  # noqa: F401
+from . import (  # noqa: F401
+    balance,
+    crank_nose,
+    damper_tuning,
+    fatigue,
+    flywheel,
+    joints,
+    loads,
+    moft,
+    torsion,
+)
 
-ORDER = ("loads", "bearings", "torsion", "joints", "fatigue")
+ORDER = ("loads", "bearings", "torsion", "joints", "fatigue", "balance", "flywheel", "damper")
 """Order of the modules in listings and in the report (each builds on the ones before)."""
 
 _registered = dict(graph.MODULES)

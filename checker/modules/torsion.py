@@ -387,7 +387,9 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
                "omega": w_flex, "critical_speed": w_flex[:, None] / orders[None, :],
                "orders": orders, "rigid_body_mode": bool((~flex).any()),
                "assumptions": assumptions})
-    nose_extra = dict(common, theta=theta[:, :, nose], station=names[nose])
+    nose_extra = dict(common, theta=theta[:, :, nose], station=names[nose],
+                      # model and station excitation (C, S, n, O) for re-solves (damper tuning)
+                      model=model, model_data=data, excitation=force)
     out["tv.nose_amplitude"] = Quantity(NOSE, nose_amp, cs_coords, findings=find_cs,
                                         extra=nose_extra)
     out["tv.nose_order_amplitude"] = Quantity(

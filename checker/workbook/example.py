@@ -44,6 +44,20 @@ ENGINE_ROWS: list[tuple[str, Any, str, str]] = [
     ("Speed step", 100, "rpm", SEED + ": 'in 100 rpm intervals'"),
     ("Overspeed", 7000, "rpm", SEED + ": no-load peak pressure given at 7000 rpm"),
     ("Accessory drive torque at crank nose", 19, "N m", SEED + ": 'typical FEAD torque'"),
+    ("Free force limit, 1st order", 500, "N", ASSUMPTION + ": ILLUSTRATIVE project limit at"
+     " rated speed (no published limit), replace with the project's value"),
+    ("Free force limit, 2nd order", 10, "kN", ASSUMPTION + ": ILLUSTRATIVE project limit at"
+     " rated speed (no published limit; an I4 without balance shafts exceeds it by design)"),
+    ("Free moment limit, 1st order", 100, "N m", ASSUMPTION + ": ILLUSTRATIVE project limit"
+     " at rated speed (no published limit)"),
+    ("Free moment limit, 2nd order", 100, "N m", ASSUMPTION + ": ILLUSTRATIVE project limit"
+     " at rated speed (no published limit)"),
+    ("Balance ratio, minimum", 50, "%", ASSUMPTION + ": ILLUSTRATIVE band for the"
+     " counterweight balance ratio per throw"),
+    ("Balance ratio, maximum", 100, "%", ASSUMPTION + ": ILLUSTRATIVE band (100 % = each"
+     " throw's rotating unbalance fully balanced within the throw)"),
+    ("Target cyclic irregularity", 10, "%", ASSUMPTION + ": ILLUSTRATIVE target at the lowest"
+     " speed, replace with the application's value (Agostini 2019 quotes 1 % as a bound)"),
 ]
 
 OIL_ROWS = [
@@ -62,6 +76,10 @@ DAMPER_ROWS = [
      " the damper supplier's value"),
     ("Rubber heat per unit volume limit", 0.5, "W/cm^3", ASSUMPTION + ": ILLUSTRATIVE limit,"
      " replace with the damper supplier's value"),
+    ("Tuning ratio, minimum", 0.65, "-", ASSUMPTION + ": ILLUSTRATIVE band, about -10 % around"
+     " Den Hartog's optimum 0.72 for this ring/crank inertia ratio"),
+    ("Tuning ratio, maximum", 0.79, "-", ASSUMPTION + ": ILLUSTRATIVE band, about +10 % around"
+     " Den Hartog's optimum"),
 ]
 
 FATIGUE_ROWS = [
@@ -257,7 +275,10 @@ NOTES = [
 ]
 
 ASSUMED = {
-    "Engine": ["Compression ratio", "Intake manifold pressure at full load"],
+    "Engine": ["Compression ratio", "Intake manifold pressure at full load",
+               "Free force limit, 1st order", "Free force limit, 2nd order",
+               "Free moment limit, 1st order", "Free moment limit, 2nd order",
+               "Balance ratio, minimum", "Balance ratio, maximum", "Target cyclic irregularity"],
     "Oil": ["Film temperature rise"],
     "Damper": [r[0] for r in DAMPER_ROWS],
     "Bearings": ["lining"],

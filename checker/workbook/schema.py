@@ -258,6 +258,28 @@ ENGINE = Sheet(
         F("Accessory drive torque at crank nose", "fead_torque", "torque", check=">=0",
           required=False, note="FEAD + timing drive torque added at the crank-nose joint.",
           valid=R(0, 1e8, "N m"), usual=R(0, 1e5, "N m")),
+        F("Free force limit, 1st order", "free_force_limit_1", "force", check=">0",
+          required=False, valid=R(1e-3, 1e9, "N"), usual=R(1, 1e7, "N"), note="Project limit on the 1st-order free force at the rated speed"
+                               " (BAL-001; blank = not judged)."),
+        F("Free force limit, 2nd order", "free_force_limit_2", "force", check=">0",
+          required=False, valid=R(1e-3, 1e9, "N"), usual=R(1, 1e7, "N"), note="Project limit on the 2nd-order free force at the rated speed"
+                               " (BAL-002; blank = not judged)."),
+        F("Free moment limit, 1st order", "free_moment_limit_1", "torque", check=">0",
+          required=False, valid=R(1e-3, 1e9, "N m"), usual=R(1, 1e7, "N m"), note="Project limit on the 1st-order free moment at the rated speed"
+                               " (BAL-003; blank = not judged)."),
+        F("Free moment limit, 2nd order", "free_moment_limit_2", "torque", check=">0",
+          required=False, valid=R(1e-3, 1e9, "N m"), usual=R(1, 1e7, "N m"), note="Project limit on the 2nd-order free moment at the rated speed"
+                               " (BAL-004; blank = not judged)."),
+        F("Balance ratio, minimum", "balance_ratio_min", "ratio", check=">=0", required=False,
+          valid=R(0, 10), usual=R(0, 2),
+          note="Lowest acceptable counterweight balance ratio per throw (counterweight /"
+               " rotating unbalance, e.g. 50 %; BAL-005 needs minimum and maximum)."),
+        F("Balance ratio, maximum", "balance_ratio_max", "ratio", check=">0", required=False,
+          valid=R(0, 10), usual=R(0, 2),
+          note="Highest acceptable counterweight balance ratio per throw (e.g. 100 %)."),
+        F("Target cyclic irregularity", "target_irregularity", "ratio", check="0..1",
+          required=False, valid=R(1e-6, 1), usual=R(1e-4, 0.5), note="(w_max - w_min)/w_avg allowed at the lowest speed, by"
+                               " application (FLY-001; blank = not judged)."),
     ),
 )
 
@@ -316,6 +338,13 @@ DAMPER = Sheet(
         F("Rubber heat per unit volume limit", "heat_limit", "power_density", check=">0",
           required=False,
           valid=R(1e-6, 1e4, "W/cm^3"), usual=R(0.001, 10, "W/cm^3")),
+        F("Tuning ratio, minimum", "tuning_ratio_min", "ratio", check=">0", required=False,
+          valid=R(1e-3, 100), usual=R(0.3, 3),
+          note="Lowest acceptable ring frequency / crank first-mode frequency (DMP-004 needs"
+               " minimum and maximum)."),
+        F("Tuning ratio, maximum", "tuning_ratio_max", "ratio", check=">0", required=False,
+          valid=R(1e-3, 100), usual=R(0.3, 3),
+          note="Highest acceptable ring frequency / crank first-mode frequency."),
     ),
 )
 

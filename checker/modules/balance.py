@@ -1,0 +1,281 @@
+"""Graph calculation for crankshaft balancing: free forces and moments by order, counterweight
+balance ratio per throw and the internal bending moment of the rotating masses.
+
+Inputs: sheet ``Cylinders`` (firing and bank angles, crank pins), ``Engine`` (stroke, rod,
+piston and rod masses, offsets, main journal spacing, rated speed, the project's balancing
+limits) and ``CrankMass`` (webs, counterweights, pins). No load calculation is needed: the
+free forces are inertia forces of the moving parts (:mod:`checker.calc.balance`).
+
+Geometry: crank pin ``j`` (bay ``j``) lies at mid-bay, axial position ``(j - 1/2) L`` from the
+front main (``L`` = main journal spacing, as in the loads module); rods sharing a pin sit at
+its mid-plane. Crank masses are at ``(throw - 1) L + axial position + X`` with their crank-frame
+position (``pin axis`` rows shifted by the pin position). Free moments are taken about the
+crank's mid-plane ``z = n_pins L / 2``.
+
+Values are at the reference speed: the rated speed (Engine 'Rated speed'), else the maximum
+speed; forces scale with the speed squared. The rules compare them with the project's own
+limits from the Engine sheet (``limit_from = "workbook"``); without a limit a rule is not
+evaluated.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..calc import balance as bal
+from ..calc import crank_forces as cf
+from ..engine import Engine
+from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity, register_module
+
+register_module("balance", "Crankshaft balancing")
+
+RPM = 2.0 * np.pi / 60.0
+MAX_ORDER = bal.DEFAULT_MAX_ORDER
+ORDERS = tuple(str(n) for n in range(1, MAX_ORDER + 1))
+
+FREE_FORCE = quantity(QuantitySpec(
+    "balance.free_force", "N", ("item",),
+    "Free (shaking) force per order at the reference speed: largest magnitude over the crank"
+    " angle (rotating and reciprocating masses)", "N", ("order",)))
+FREE_MOMENT = quantity(QuantitySpec(
+    "balance.free_moment", "N*m", ("item",),
+    "Free moment per order about the crank's mid-plane at the reference speed: largest"
+    " magnitude over the crank angle", "N*m", ("order",)))
+BALANCE_RATIO = quantity(QuantitySpec(
+    "balance.balance_ratio", "", ("item",),
+    "Counterweight balance ratio: counterweight unbalance / rotating unbalance (webs, pin, rod"
+    " big ends) along the throw, per throw and for the whole crank", "%", ("kind",)))
+INTERNAL_MOMENT = quantity(QuantitySpec(
+    "balance.internal_moment", "N*m", ("item",),
+    "Bending moment of the rotating masses' centrifugal forces in the crank at each main"
+    " bearing, at the reference speed", "N*m"))
+
+PROVIDES = ("balance.free_force", "balance.free_moment", "balance.balance_ratio",
+            "balance.internal_moment")
+
+_LIMITS = {("force", "1"): "free_force_limit_1", ("force", "2"): "free_force_limit_2",
+           ("moment", "1"): "free_moment_limit_1", ("moment", "2"): "free_moment_limit_2"}
+
+
+def _ordinal(n: int) -> str:
+    return {1: "1st", 2: "2nd", 3: "3rd"}.get(n, f"{n}th")
+
+
+def _limit_attrs(engine: Engine, attr: str, what: str) -> dict:
+    v = engine.params.get(attr)
+    if v is None:
+        return {"limit_missing": [engine.describe_missing(
+            "Engine", attr, what=f"the project (needed to judge the {what}; blank = not"
+            " judged)")]}
+    return {"limit": (float(v),), "limit_cell": engine.cell("Engine", attr)}
+
+
+def _band_attrs(engine: Engine, sheet: str, lo: str, hi: str, what: str) -> dict:
+    params = engine.params if sheet == "Engine" else getattr(engine, sheet.lower())
+    a, b = params.get(lo), params.get(hi)
+    miss = [engine.describe_missing(sheet, n, what=f"the project (needed to judge the {what})")
+            for n, v in ((lo, a), (hi, b)) if v is None]
+    if miss:
+        return {"limit_missing": miss}
+    if a > b:
+        return {"limit_missing": [f"{engine.cell(sheet, lo)} / {engine.cell(sheet, hi)}: the"
+                                  f" minimum ({a:g}) is above the maximum ({b:g})"]}
+    return {"limit": (float(a), float(b)),
+            "limit_cell": f"{engine.cell(sheet, lo)}, {engine.cell(sheet, hi)}"}
+
+
+def reference_speed(engine: Engine) -> tuple[float, str]:
+    """Reference speed [rad/s] and how it was chosen (rated, else maximum speed)."""
+    p = engine.params
+    if p.get("rated_speed") is not None:
+        return float(p["rated_speed"]), f"rated speed ({engine.cell('Engine', 'rated_speed')})"
+    if p.get("speed_max") is not None:
+        return float(p["speed_max"]), (f"maximum speed ({engine.cell('Engine', 'speed_max')});"
+                                       " no rated speed given")
+    raise MissingInputs([engine.describe_missing("Engine", "rated_speed",
+                                                 what="the engine (reference speed of the"
+                                                 " free forces)")])
+
+
+@calculation("balance", "balance", provides=PROVIDES)
+def balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
+    """Free forces and moments by order, balance ratio per throw, internal bending moment."""
+    with np.errstate(over="ignore", invalid="ignore"):  # overflow becomes a missing reason
+        return _overflow_checked(_balance(engine), engine)
+
+
+def _balance(engine: Engine) -> dict[str, Quantity]:
+    p = engine.params
+    if not engine.cylinders:
+        raise MissingInputs(["Cylinders: no cylinders given (sheet Cylinders)"])
+    need = [n for n in ("stroke", "rod_length", "piston_mass", "rod_mass", "rod_com")
+            if p.get(n) is None]
+    if need:
+        raise MissingInputs([engine.describe_missing("Engine", n, what="the engine (needed for"
+                                                     " the inertia forces)") for n in need])
+    omega, speed_text = reference_speed(engine)
+    w2 = omega * omega
+    r = p["stroke"] / 2.0
+    cyls = engine.cylinders
+    firing = np.array([c.firing_angle for c in cyls])
+    bank = np.array([c.bank_angle for c in cyls])
+    pins = np.array([c.pin - 1 for c in cyls])
+    n_pins = int(pins.max()) + 1
+    try:
+        gamma = cf.throw_angles(firing, bank, pins, n_pins)
+    except ValueError as exc:
+        raise MissingInputs([f"Cylinders: {exc}"]) from None
+    # the rods' inertia-correction couple is a roll torque: no free force or moment
+    m_small, m_big, _ = cf.rod_mass_split(p["rod_mass"], p["rod_length"], p["rod_com"],
+                                          p["rod_mass"] * p["rod_com"]
+                                          * (p["rod_length"] - p["rod_com"]))
+    m_rec = p["piston_mass"] + float(m_small)
+    m_big = float(m_big)
+    offset = (p.get("cylinder_offset") or 0.0) + (p.get("pin_offset") or 0.0)
+    try:
+        harm = bal.piston_acceleration_harmonics(r, p["rod_length"], offset, MAX_ORDER)
+    except ValueError as exc:
+        raise MissingInputs([f"{engine.cell('Engine', 'rod_length')}: {exc}"]) from None
+
+    spacing = p.get("main_spacing")
+    assumptions = [
+        "Balancing: rigid crank train at constant speed; con-rod as its two-mass equivalent"
+        " (reciprocating small-end share with the piston, rotating big-end share at the pin);"
+        " free forces and moments are the inertia forces on the engine structure (Taylor 1985,"
+        f" vol. 2, ch. 8), orders 1..{MAX_ORDER} from the exact piston kinematics, at the"
+        f" {speed_text}, {omega / RPM:.0f} rpm."]
+    e_pin = np.stack([np.sin(gamma), np.cos(gamma)], axis=-1)  # (n_pins, 2)
+    crank = engine.crank_mass
+    no_crank = ["CrankMass: crank mass properties are needed for the crank's rotating unbalance"
+                " (sheet CrankMass)"]
+    no_spacing = [engine.describe_missing("Engine", "main_spacing", what="the crank (axial"
+                                          " positions of throws and mains)")]
+    # rotating masses: crank items + rods' big ends at their pins
+    cm = np.array([it.mass for it in crank], dtype=float)
+    cpos = np.array([[it.z, it.y] for it in crank], dtype=float).reshape(-1, 2)
+    cthrow = np.array([it.throw - 1 for it in crank], dtype=int)
+    for k, it in enumerate(crank):
+        if it.reference == "pin axis":
+            cpos[k] += r * e_pin[it.throw - 1]
+    cw = np.array([it.kind == "counterweight" for it in crank], dtype=bool)
+    rod_pos = r * e_pin[pins]
+    L = spacing if spacing is not None else 0.0
+    zc = L * n_pins / 2.0
+    cax = np.array([(it.throw - 1) * L + it.axial + it.x for it in crank], dtype=float) - zc
+    zcyl = (pins + 0.5) * L - zc
+    rm = np.concatenate([cm, np.full(len(cyls), m_big)])
+    rpos = np.concatenate([cpos, rod_pos]) if crank else rod_pos
+    rax = np.concatenate([cax, zcyl])
+    res = bal.shaking_phasors(firing_angle=firing, bank_angle=bank, cylinder_axial=zcyl,
+                              reciprocating_mass=m_rec, acceleration_harmonics=harm,
+                              rotating_mass=rm, rotating_position=rpos, rotating_axial=rax)
+    orders = res.orders
+    f_big, f_small, f_theta, f_dir = bal.order_vector_extremes(res.force, orders)
+    m_big_, m_small_, m_theta, m_dir = bal.order_vector_extremes(res.moment, orders)
+    fr_big = bal.order_vector_extremes(res.force_reciprocating, orders)[0]
+    mr_big = bal.order_vector_extremes(res.moment_reciprocating, orders)[0]
+
+    items = [f"order {n}" for n in orders]
+    f_attrs, m_attrs = {}, {}
+    f_missing, m_missing = {}, {}
+    for i, n in enumerate(orders):
+        lab = str(n)
+        f_attrs[items[i]] = {"order": lab}
+        m_attrs[items[i]] = {"order": lab}
+        if ("force", lab) in _LIMITS:
+            f_attrs[items[i]].update(_limit_attrs(engine, _LIMITS[("force", lab)],
+                                                  f"{_ordinal(n)}-order free force"))
+            m_attrs[items[i]].update(_limit_attrs(engine, _LIMITS[("moment", lab)],
+                                                  f"{_ordinal(n)}-order free moment"))
+    f_vals = f_big * w2
+    m_vals = m_big_ * w2
+    if not crank:
+        f_vals[0] = np.nan
+        m_vals[0] = np.nan
+        f_missing[(0,)] = list(no_crank)
+        m_missing[(0,)] = list(no_crank)
+    if spacing is None:
+        m_vals[:] = np.nan
+        for i in range(orders.size):
+            m_missing[(i,)] = list(no_spacing) + m_missing.get((i,), [])
+    common = {"orders": orders, "omega": omega, "speed_text": speed_text,
+              "reciprocating_mass": m_rec, "rotating_rod_mass": m_big, "crank_radius": r,
+              "harmonics": harm, "assumptions": assumptions, "reference_plane": zc}
+    out: dict[str, Quantity] = {}
+    out["balance.free_force"] = Quantity(
+        FREE_FORCE, f_vals, {"item": items}, f_attrs, f_missing,
+        extra=dict(common, phasors=res.force * w2, smallest=f_small * w2, theta=f_theta,
+                   direction=f_dir, reciprocating=fr_big * w2,
+                   rotating=bal.order_vector_extremes(res.force_rotating, orders)[0] * w2))
+    out["balance.free_moment"] = Quantity(
+        FREE_MOMENT, m_vals, {"item": items}, m_attrs, m_missing,
+        extra=dict(common, phasors=res.moment * w2, smallest=m_small_ * w2, theta=m_theta,
+                   direction=m_dir, reciprocating=mr_big * w2,
+                   rotating=bal.order_vector_extremes(res.moment_rotating, orders)[0] * w2))
+
+    # balance ratio per throw and for the whole crank
+    b_items = [f"throw {j + 1}" for j in range(n_pins)] + ["crank"]
+    band = _band_attrs(engine, "Engine", "balance_ratio_min", "balance_ratio_max",
+                       "balance ratio")
+    b_attrs = {it: dict(band, kind="crank" if it == "crank" else "throw") for it in b_items}
+    if not crank:
+        out["balance.balance_ratio"] = Quantity(
+            BALANCE_RATIO, np.full(len(b_items), np.nan), {"item": b_items}, b_attrs,
+            {(i,): list(no_crank) for i in range(len(b_items))}, extra=dict(common))
+    else:
+        n_on = np.bincount(pins, minlength=n_pins).astype(float)
+        try:
+            tb = bal.throw_balance(throw_angle=gamma, mass=cm, position=cpos,
+                                   throw_of_mass=cthrow, is_counterweight=cw,
+                                   pin_rotating_mass=m_big * n_on,
+                                   pin_reciprocating_mass=m_rec * n_on, crank_radius=r)
+        except ValueError as exc:
+            tb = None
+            out["balance.balance_ratio"] = Quantity(
+                BALANCE_RATIO, np.full(len(b_items), np.nan), {"item": b_items}, b_attrs,
+                {(i,): [f"CrankMass: {exc}"] for i in range(len(b_items))}, extra=dict(common))
+    if crank and tb is not None:
+        out["balance.balance_ratio"] = Quantity(
+            BALANCE_RATIO, np.append(tb.balance_ratio, tb.crank_ratio), {"item": b_items},
+            b_attrs, extra=dict(common, rotating=tb.rotating, counterweight=tb.counterweight,
+                                rotating_along=tb.rotating_along,
+                                counterweight_along=tb.counterweight_along,
+                                reciprocating_factor=tb.reciprocating_factor,
+                                static_unbalance=np.hypot(*rm @ rpos),
+                                couple_unbalance=np.hypot(*((rm * rax) @ rpos)),
+                                throw_angle=gamma))
+
+    # internal bending moment at the mains
+    mains = [b.name for b in engine.bearings if b.type == "main"]
+    if len(mains) != n_pins + 1:
+        mains = [f"main {k + 1}" for k in range(n_pins + 1)]
+    why = (no_crank if not crank else []) + (no_spacing if spacing is None else [])
+    if why:
+        out["balance.internal_moment"] = Quantity(
+            INTERNAL_MOMENT, np.full(n_pins + 1, np.nan), {"item": mains},
+            missing={(k,): list(why) for k in range(n_pins + 1)}, extra=dict(common))
+    else:
+        stations = L * np.arange(n_pins + 1) - zc
+        b = bal.internal_bending_moment(stations, rm, rpos, rax)
+        keep = ~np.concatenate([cw, np.zeros(len(cyls), bool)])
+        b0 = bal.internal_bending_moment(stations, rm[keep], rpos[keep], rax[keep])
+        out["balance.internal_moment"] = Quantity(
+            INTERNAL_MOMENT, np.hypot(b[:, 0], b[:, 1]) * w2, {"item": mains},
+            extra=dict(common, vector=b * w2,
+                       without_counterweights=np.hypot(b0[:, 0], b0[:, 1]) * w2,
+                       stations=stations + zc))
+    return out
+
+
+def _overflow_checked(out: dict[str, Quantity], engine: Engine) -> dict[str, Quantity]:
+    """Entries that overflowed (absurd speed or masses) become missing with the reason, never
+    NaN/inf for a rule to meet."""
+    why = (f"{engine.cell('Engine', 'rated_speed')}: the balancing numbers overflow with these"
+           " inputs (check the rated speed, masses and lengths)")
+    for q in out.values():
+        bad = ~np.isfinite(q.values)
+        for idx in zip(*np.nonzero(bad)):
+            key = tuple(int(i) for i in idx)
+            if not any(q.missing.get(key[:n]) for n in range(len(key), 0, -1)):
+                q.missing[key] = [why]
+    return out

@@ -1,0 +1,192 @@
+"""Report section: crankshaft balancing (free forces and moments, balance ratio, internal
+bending moment)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..api import CheckResult
+from .plots import LIMIT_STYLE, figure, to_svg
+from .sections import fmt, section
+
+RPM = 2 * np.pi / 60
+ROUND_OFF = 1e-9
+"""Magnitudes below this fraction of n_cyl m_rec r w^2 (N m for moments: times the crank
+length) are zero to round-off and shown as 0."""
+
+
+def _value(v: float, scale: float, digits: int = 5) -> str:
+    if not np.isfinite(v):
+        return "-"
+    return "0" if abs(v) < ROUND_OFF * scale else fmt(v, digits)
+
+
+@section("balance")
+def balance_section(res: CheckResult) -> dict:
+    q = res.outcome.quantities
+    ff, fm = q.get("balance.free_force"), q.get("balance.free_moment")
+    title = "Crankshaft balancing"
+    if ff is None:
+        why = "; ".join(res.outcome.unavailable.get("balance.free_force", ["not computed"]))
+        return {"id": "balance", "title": title, "intro": f"Not computed: {why}.", "blocks": []}
+    ex = ff.extra
+    eng = res.engine
+    n_cyl = len(eng.cylinders)
+    w = ex["omega"]
+    r = ex["crank_radius"]
+    f_scale = n_cyl * ex["reciprocating_mass"] * r * w * w
+    spacing = eng.params.get("main_spacing") or 0.0
+    m_scale = f_scale * max(spacing * n_cyl, 1e-3)
+    blocks: list[dict] = []
+    lam = r / eng.params["rod_length"]
+    blocks.append({"type": "table", "caption": "Inputs (sheets Engine, Cylinders, CrankMass)",
+                   "columns": ["parameter", "value", "unit"], "rows": [
+                       ["Reciprocating mass per cylinder (piston + rod small end)",
+                        fmt(ex["reciprocating_mass"], 4), "kg"],
+                       ["Rotating rod mass per cylinder (big end)",
+                        fmt(ex["rotating_rod_mass"], 4), "kg"],
+                       ["Crank radius r", fmt(r * 1e3, 4), "mm"],
+                       ["λ = r / l", fmt(lam, 4), "-"],
+                       ["Reference speed: " + ex["speed_text"], fmt(w / RPM, 5), "rpm"],
+                       ["Main journal spacing (axial positions)",
+                        fmt(spacing * 1e3, 4) if spacing else "-", "mm"]]})
+    blocks.append({"type": "equations", "items": [
+        ("Free force, order n", "F_n = ω² Σ_i m_rec A_n e^(−j n φ_i) c_i + [n = 1] ω² Σ_k m_k ρ_k",
+         "Taylor 1985, vol. 2, ch. 8 (phase-diagram summation); c_i = bore axis, A_n = piston"
+         " acceleration harmonics of the exact kinematics"),
+        ("Piston acceleration", "ẍ/(r ω²) = cos θ + (λ + λ³/4) cos 2θ − (λ³/4) cos 4θ + …",
+         "Heywood 1988, eq. 2.5 expanded in λ = r/l"),
+        ("Free moment, order n", "M_n = Σ z_i F_n,i  about the crank's mid-plane",
+         "Taylor 1985, vol. 2, ch. 8"),
+        ("Balance ratio", "BR_j = −U_cw,j · e_j / U_rot,j · e_j,  U = Σ m ρ",
+         "counterweight / rotating unbalance of throw j (webs, pin, rod big end)"),
+        ("Internal bending moment", "B(Z) = ω² Σ_(z_k < Z) m_k ρ_k (Z − z_k)",
+         "moment of the centrifugal forces in front of main Z (rigid crank)"),
+    ]})
+    orders = ex["orders"]
+
+    def angle(v: float, a: float, scale: float) -> str:
+        if not np.isfinite(v) or v < ROUND_OFF * scale:
+            return "-"
+        return f"{round(float(np.degrees(a)), 1) % 360 + 0.0:.1f}"
+
+    rows = []
+    for i, n in enumerate(orders):
+        rows.append([str(n), _value(ff.values[i], f_scale),
+                     _value(ex["smallest"][i], f_scale),
+                     angle(ff.values[i], ex["theta"][i], f_scale),
+                     angle(ff.values[i], ex["direction"][i], f_scale),
+                     _value(fm.values[i], m_scale),
+                     angle(fm.values[i], fm.extra["theta"][i], m_scale)])
+    blocks.append({"type": "table", "caption": f"Free forces and moments at {w / RPM:.0f} rpm"
+                   " (largest and smallest magnitude over the crank angle: equal for a force"
+                   " rotating with the crank, smallest 0 for a force along a fixed line)",
+                   "columns": ["order", "F max [N]", "F min [N]", "crank angle at max [deg]",
+                               "direction [deg from cylinder axis]", "M max [N m]",
+                               "crank angle at max [deg]"], "rows": rows})
+    # bar chart, log scale, with the project's limits
+    fig, axes = figure(170, 60, ncols=2)
+    for ax, qq, scale, unit, lim_key in ((axes[0], ff, f_scale, "N", "force"),
+                                         (axes[1], fm, m_scale, "N m", "moment")):
+        v = np.where(np.isfinite(qq.values), qq.values, 0.0)
+        shown = np.where(v < ROUND_OFF * scale, np.nan, v)
+        lims = [qq.item_attrs.get(it, {}).get("limit") for it in qq.coords["item"]]
+        if np.isfinite(shown).any():
+            ax.bar(orders, np.nan_to_num(shown, nan=0.0), color="#34495e", width=0.6)
+            ax.set_yscale("log")
+            floor = max(np.nanmin(shown), 1e-3) / 3
+            ax.set_ylim(bottom=floor)
+        else:
+            floor = 0.0
+            ax.set_ylim(0, max([x[0] for x in lims if x is not None] + [1.0]) * 1.2)
+        for i, n in enumerate(orders):
+            if not np.isfinite(shown[i]):
+                ax.text(n, floor * 1.3, "0", ha="center", fontsize=6)
+        for n, lim in zip(orders, lims):
+            if lim is not None:
+                ax.plot([n - 0.4, n + 0.4], [lim[0]] * 2, **LIMIT_STYLE)
+        ax.set_xticks(orders)
+        ax.set_xlabel("Order")
+        ax.set_ylabel(f"Free {lim_key} [{unit}]")
+    fig.subplots_adjust(wspace=0.35)
+    blocks.append({"type": "figure", "svg": to_svg(fig),
+                   "caption": f"Free forces and moments per order at {w / RPM:.0f} rpm (log"
+                              " scale; '0' = zero to round-off; dashed: project limits)"})
+
+    br = q.get("balance.balance_ratio")
+    if br is not None and np.isfinite(br.values).all() and "rotating" in br.extra:
+        bx = br.extra
+        rows = []
+        for j in range(len(bx["rotating_along"])):
+            rows.append([f"throw {j + 1}", fmt(np.degrees(bx["throw_angle"][j]) % 360, 4),
+                         fmt(bx["rotating_along"][j] * 1e3, 5),
+                         fmt(bx["counterweight_along"][j] * 1e3, 5),
+                         fmt(br.values[j] * 100, 4), fmt(bx["reciprocating_factor"][j] * 100, 4)])
+        rows.append(["crank", "-", fmt(bx["rotating_along"].sum() * 1e3, 5),
+                     fmt(bx["counterweight_along"].sum() * 1e3, 5), fmt(br.values[-1] * 100, 4),
+                     "-"])
+        blocks.append({"type": "table", "caption": "Counterweight balance per throw (unbalance"
+                       " along the throw direction)",
+                       "columns": ["throw", "angle [deg]", "U rotating [kg mm]",
+                                   "U counterweights [kg mm]", "balance ratio [%]",
+                                   "reciprocating factor [%]"], "rows": rows})
+        blocks.append({"type": "text", "text":
+                       "Rotating unbalance of the whole crank with the rods' big ends: static"
+                       f" {_value(bx['static_unbalance'] * 1e3, r * 1e3)} kg mm, couple"
+                       f" {_value(bx['couple_unbalance'] * 1e6, r * 1e6 * max(spacing, 1e-3))}"
+                       " kg mm². The reciprocating factor is the share of the reciprocating"
+                       " unbalance m_rec·r the counterweights balance beyond the rotating"
+                       " unbalance (negative: the rotating unbalance itself is not fully"
+                       " balanced)."})
+        # polar plot: per-throw unbalance in the crank frame (seen from the front)
+        fig = figure(90, 90)[0]
+        fig.clf()
+        ax = fig.add_subplot(1, 1, 1, projection="polar")
+        ax.set_theta_zero_location("N")
+        ax.set_theta_direction(-1)
+        net = bx["rotating"] + bx["counterweight"]
+
+        def polar(v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            return np.arctan2(v[..., 0], v[..., 1]), np.hypot(v[..., 0], v[..., 1]) * 1e3
+
+        for vec in net:
+            ang, mag = polar(vec)
+            ax.annotate("", xy=(ang, mag), xytext=(0, 0),
+                        arrowprops={"arrowstyle": "->", "color": "#c0392b", "lw": 1.4})
+        ax.plot([], [], color="#c0392b", label="net (with counterweights)")
+        ax.plot(*polar(bx["rotating"]), "o", mfc="none", color="#7f8c8d",
+                label="rotating without counterweights")
+        ax.plot(*polar(bx["counterweight"]), "x", color="#2c3e50", label="counterweights")
+        groups: dict[float, list[str]] = {}  # throws sharing a direction share a label
+        for j, vec in enumerate(bx["rotating"]):
+            groups.setdefault(round(float(polar(vec)[0]), 6), []).append(str(j + 1))
+        top = max(polar(bx["rotating"])[1].max(), polar(bx["counterweight"])[1].max())
+        for ang, labs in groups.items():
+            ax.text(ang, top * 1.12, "throw " + ", ".join(labs), fontsize=6, ha="center")
+        ax.set_rmax(top * 1.2)
+        ax.set_title("Unbalance per throw [kg mm], crank frame (throw 1 up)", fontsize=7,
+                     pad=14)
+        ax.legend(fontsize=6, loc="lower left", bbox_to_anchor=(-0.2, -0.2))
+        blocks.append({"type": "figure", "svg": to_svg(fig),
+                       "caption": "Polar diagram of each throw's unbalance seen from the front:"
+                                  " net (arrows), without counterweights (circles) and of the"
+                                  " counterweights alone (crosses)"})
+
+    im = q.get("balance.internal_moment")
+    if im is not None and np.isfinite(im.values).all() and "without_counterweights" in im.extra:
+        top = max(float(im.extra["without_counterweights"].max()), float(im.values.max()))
+        rows = [[n, fmt(im.extra["stations"][k] * 1e3, 4), _value(im.values[k], top),
+                 _value(im.extra["without_counterweights"][k], top)]
+                for k, n in enumerate(im.coords["item"])]
+        blocks.append({"type": "table", "caption": f"Internal bending moment of the rotating"
+                       f" masses at the mains, {w / RPM:.0f} rpm (rotates with the crank)",
+                       "columns": ["main", "axial position [mm]", "with counterweights [N m]",
+                                   "without counterweights [N m]"], "rows": rows})
+    return {"id": "balance", "title": title,
+            "intro": "Free (shaking) forces and moments of the crank train by order, from the"
+                     " cylinders' firing and bank angles, the exact piston kinematics and the"
+                     " crank masses; counterweight balance ratio per throw and the internal"
+                     " bending moment that loads the mains (Taylor 1985, vol. 2, ch. 8). Free"
+                     " forces and moments are judged only against the project's own limits"
+                     " (warnings).",
+            "blocks": blocks}

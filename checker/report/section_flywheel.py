@@ -1,0 +1,102 @@
+"""Report section: flywheel sizing and cyclic irregularity."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..api import CheckResult
+from .plots import LIMIT_STYLE, figure, to_svg
+from .sections import fmt, section
+
+RPM = 2 * np.pi / 60
+CASE_TEXT = {"full": "full load", "no": "no load"}
+
+
+@section("flywheel")
+def flywheel_section(res: CheckResult) -> dict:
+    q = res.outcome.quantities
+    ci = q.get("flywheel.cyclic_irregularity")
+    title = "Flywheel and cyclic irregularity"
+    if ci is None:
+        why = "; ".join(res.outcome.unavailable.get("flywheel.cyclic_irregularity",
+                                                    ["not computed"]))
+        return {"id": "flywheel", "title": title, "intro": f"Not computed: {why}.",
+                "blocks": []}
+    ex = ci.extra
+    eng = res.engine
+    sp = np.array(ci.coords["speed"])
+    cases = list(ci.coords["case"])
+    target = ex["target"]
+    j_tot, j_fw = ex["inertia_total"], ex["inertia_flywheel"]
+    blocks: list[dict] = [{"type": "table", "caption": "Inputs (sheets TVModel, Engine)",
+                           "columns": ["parameter", "value", "unit", "cell"], "rows": [
+        ["Total rotating inertia (all TVModel stations)", fmt(j_tot, 5), "kg m²", "TVModel"],
+        ["Flywheel station inertia (" + (", ".join(ex["flywheel_stations"]) or "none") + ")",
+         fmt(j_fw, 5), "kg m²", "TVModel"],
+        ["Target cyclic irregularity", "-" if target is None else fmt(target * 100, 4), "%",
+         eng.cell("Engine", "target_irregularity")],
+        ["Lowest speed (judged)", fmt(ex["lowest_speed"] / RPM, 5), "rpm",
+         eng.cell("Engine", "speed_min")]]}]
+    blocks.append({"type": "equations", "items": [
+        ("Equation of motion", "J ω dω/dθ = T(θ) − T_mean  ⇒  J/2 (ω² − ω_min²) = W(θ) − W_min",
+         "Agostini 2019, Politecnico di Torino, 'Engine degree of irregularity' (shaft dynamic"
+         " equilibrium)"),
+        ("Fluctuation energy", "ΔE = W_max − W_min,  W(θ) = ∫ (T − T_mean) dθ", "ibid."),
+        ("Cyclic irregularity", "δ = (ω_max − ω_min) / ω_avg,  ω_avg = (ω_max + ω_min)/2;"
+         " classical estimate δ ≈ ΔE / (J ω²)", "ibid.; ω_min solved so that the time-mean"
+         " speed is the engine speed"),
+        ("Flywheel sizing", "J_min: δ(J_min) = δ_target (≈ ΔE / (δ_target ω²)); flywheel ="
+         " J_min − J_rest", "ibid. ('flywheel dimensioning')"),
+    ]})
+    k0 = int(np.argmin(sp))
+    jm = q.get("flywheel.minimum_inertia")
+    en = q.get("flywheel.fluctuation_energy")
+    dw = q.get("flywheel.speed_fluctuation")
+    step = max(1, int(round(1000 * RPM / np.median(np.diff(sp))))) if sp.size > 1 else 1
+    picks = sorted(set([k0] + list(range(0, sp.size, step))))
+    rows = []
+    for c_i, c in enumerate(cases):
+        for k in picks:
+            need = "-" if jm is None or not np.isfinite(jm.values[c_i, k]) else fmt(
+                jm.values[c_i, k], 4)
+            rows.append([CASE_TEXT.get(c, c), f"{sp[k] / RPM:.0f}",
+                         fmt(en.values[c_i, k], 4), fmt(dw.values[c_i, k] / RPM, 4),
+                         fmt(ci.values[c_i, k] * 100, 4), fmt(ex["linear"][c_i, k] * 100, 4),
+                         need])
+    blocks.append({"type": "table", "caption": "Fluctuation energy, speed fluctuation, cyclic"
+                   " irregularity (exact and classical estimate) and the minimum flywheel"
+                   " inertia for the target (negative: the rest of the engine suffices)",
+                   "columns": ["case", "speed [rpm]", "ΔE [J]", "Δω [rpm]", "δ [%]",
+                               "ΔE/(Jω²) [%]", "min. flywheel [kg m²]"], "rows": rows})
+    fig, axes = figure(170, 65, ncols=2)
+    ax = axes[0]
+    for c_i, c in enumerate(cases):
+        ax.plot(sp / RPM, ci.values[c_i] * 100, label=CASE_TEXT.get(c, c))
+    if target is not None:
+        ax.axhline(target * 100, **LIMIT_STYLE)
+    ax.set_yscale("log")
+    ax.set_xlabel("Engine speed [rpm]")
+    ax.set_ylabel("Cyclic irregularity δ [%]")
+    ax.legend(fontsize=6)
+    ax = axes[1]
+    th = np.degrees(ex["theta"])
+    for c_i, c in enumerate(cases):
+        ax.plot(th, ex["omega"][c_i, k0] / RPM, label=CASE_TEXT.get(c, c))
+    ax.axhline(sp[k0] / RPM, color="0.5", lw=0.6)
+    ax.set_xlabel("Crank angle [deg]")
+    ax.set_ylabel("Speed [rpm]")
+    ax.set_xticks(np.arange(0, 721, 180))
+    ax.legend(fontsize=6)
+    fig.subplots_adjust(wspace=0.35)
+    blocks.append({"type": "figure", "svg": to_svg(fig),
+                   "caption": "Left: cyclic irregularity against speed (dashed: target)."
+                              f" Right: speed over the cycle at {sp[k0] / RPM:.0f} rpm"})
+    tgt = ("the target is not given (Engine 'Target cyclic irregularity'): FLY-001 is not"
+           " evaluated" if target is None else
+           f"target used: δ ≤ {target * 100:g} % ({eng.cell('Engine', 'target_irregularity')})")
+    return {"id": "flywheel", "title": title,
+            "intro": "Rigid-body speed fluctuation of the engine over the cycle from its total"
+                     " gas + inertia torque (loads module) and the inertias of the torsional"
+                     " model; coefficient of cyclic irregularity at every speed and load case"
+                     f" and the flywheel inertia needed for the target; {tgt}.",
+            "blocks": blocks}
