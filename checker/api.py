@@ -174,10 +174,54 @@ class CheckResult:
             "overrides": [o.__dict__ for o in self.table.overrides],
             "assumptions": self.assumptions,
             "input_warnings": [str(w) for w in self.engine.warnings],
+            "quantities": quantity_summary(self.outcome.quantities),
         }
         if timings:
             d["timings"] = {m: round(t, 6) for m, t in self.outcome.timings.items()}
         return d
+
+
+def _num(v: float) -> float | None:
+    v = float(v)
+    return float(f"{v:.6g}") if np.isfinite(v) else None
+
+
+def quantity_summary(quantities: dict[str, graph.Quantity]) -> dict[str, Any]:
+    """Every computed quantity in the JSON, compactly: the values themselves when the
+    quantity has no speed axis; otherwise, per index of the other axes, the smallest and
+    largest value over speed with the speed (rpm) where each occurs. SI units; the full
+    per-speed arrays are in the API (``outcome.quantities``)."""
+    out: dict[str, Any] = {}
+    for name in sorted(quantities):
+        q = quantities[name]
+        if name == "loads.cycle":
+            continue
+        dims = list(q.spec.dims)
+        coords = {d: [str(c) if d != "speed" else _num(float(c) * 30.0 / np.pi)
+                      for c in q.coords[d]] for d in dims if d != "speed"}
+        entry: dict[str, Any] = {"unit": q.spec.unit, "dims": dims, "coords": coords}
+        v = np.asarray(q.values, dtype=float)
+        if "speed" not in dims:
+            entry["values"] = np.vectorize(_num, otypes=[object])(v).tolist() if v.size else []
+        else:
+            ax = dims.index("speed")
+            rpm = np.asarray(q.coords["speed"], dtype=float) * 30.0 / np.pi
+            moved = np.moveaxis(v, ax, -1)
+            lead = moved.reshape(-1, moved.shape[-1]) if moved.size else moved.reshape(0, 0)
+            rows = []
+            for r in lead:
+                ok = np.isfinite(r)
+                if not ok.any():
+                    rows.append(None)
+                    continue
+                i_max = int(np.nanargmax(np.where(ok, r, -np.inf)))
+                i_min = int(np.nanargmin(np.where(ok, r, np.inf)))
+                rows.append({"max": _num(r[i_max]), "max_at_rpm": _num(rpm[i_max]),
+                             "min": _num(r[i_min]), "min_at_rpm": _num(rpm[i_min])})
+            entry["over_speed"] = rows
+            entry["over_speed_index"] = [d for d in dims if d != "speed"]
+        out[name] = entry
+    return out
 
 
 def _assumptions(engine: Engine, outcome: graph.RunOutcome) -> list[str]:

@@ -219,3 +219,14 @@ def test_input_warnings_in_every_output(tmp_path):
     assert "input warnings" in t.stdout and "Bore" in t.stdout
     j = ET.fromstring(run("check", p, "--select", "JNT", "--format", "junit").stdout)
     assert any(e.get("name") == "input_warning" for e in j.iter("property"))
+
+
+def test_json_carries_every_computed_quantity(example):
+    d = json.loads(run("check", example, "--format", "json", "--no-timings").stdout)
+    q = d["quantities"]
+    assert {"balance.free_force", "flywheel.minimum_inertia", "damper.tuning_ratio",
+            "bearing.moft", "tv.nose_amplitude"} <= set(q)
+    ff = q["balance.free_force"]
+    assert ff["coords"]["item"][1] == "order 2" and ff["values"][1] > 1000
+    mi = q["flywheel.minimum_inertia"]["over_speed"]
+    assert mi[0]["max"] > 0 and mi[0]["max_at_rpm"] > 0
