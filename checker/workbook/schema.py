@@ -732,6 +732,8 @@ NOTES = Sheet("Notes", "notes", note="Free text; not read.")
 #: example); more than :data:`USUAL_SPEEDS` is a warning.
 MAX_SPEEDS = 1000
 USUAL_SPEEDS = 300
+#: Speed step used when the Engine sheet gives none [rpm] (as checker.modules.loads).
+DEFAULT_SPEED_STEP_RPM = 100.0
 
 SHEETS: dict[str, Sheet] = {
     s.name: s
