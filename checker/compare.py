@@ -63,24 +63,27 @@ def input_changes(base_raw, var_raw) -> list[dict[str, Any]]:
             def rows_by_label(raw):
                 d = {}
                 for r, row in raw.rows.items():
-                    if r > 1 and row and _text(row[0][0]):
-                        d[_text(row[0][0]).lower()] = (r, row)
+                    label = _text(row.get(1, (None, None))[0])
+                    if r > 1 and label:
+                        d[label.lower()] = (r, [_text(row.get(c, (None, None))[0])
+                                                for c in (1, 2, 3)])
                 return d
             ra, rb = rows_by_label(a), rows_by_label(b)
             for label in sorted(set(ra) | set(rb), key=lambda k: (ra.get(k, rb.get(k))[0])):
-                (r1, x), (r2, y) = ra.get(label, (None, ())), rb.get(label, (None, ()))
-                va = (_text(x[1][0]) if len(x) > 1 else "", _text(x[2][0]) if len(x) > 2 else "")
-                vb = (_text(y[1][0]) if len(y) > 1 else "", _text(y[2][0]) if len(y) > 2 else "")
+                (r1, x), (r2, y) = ra.get(label, (None, None)), rb.get(label, (None, None))
+                va = (x[1], x[2]) if x else ("", "")
+                vb = (y[1], y[2]) if y else ("", "")
                 if va != vb:
-                    nm = _text((x or y)[0][0])
+                    nm = (x or y)[0]
                     out.append({"sheet": name, "cell": f"{name}!B{r2 or r1}", "what": nm,
                                 "baseline": " ".join(t for t in va if t) or "(blank)",
                                 "variant": " ".join(t for t in vb if t) or "(blank)"})
             continue
-        ha = [_text(v) for v, _ in a.rows.get(1, ())]
-        hb = [_text(v) for v, _ in b.rows.get(1, ())]
-        ua = [_text(v) for v, _ in a.rows.get(2, ())]
-        ub = [_text(v) for v, _ in b.rows.get(2, ())]
+        def line(raw, r):
+            row = raw.rows.get(r, {})
+            n = max(row, default=0)
+            return [_text(row.get(c, (None, None))[0]) for c in range(1, n + 1)]
+        ha, hb, ua, ub = line(a, 1), line(b, 1), line(a, 2), line(b, 2)
         cols = [c for c in ha if c] + [c for c in hb if c and c not in ha]
         key = None
         if spec.key:
@@ -90,11 +93,12 @@ def input_changes(base_raw, var_raw) -> list[dict[str, Any]]:
         def keyed(raw, hdr, key=key):
             j = hdr.index(key) if key in hdr else None
             d = {}
-            for r, row in sorted(raw.rows.items()):
+            for r in sorted(raw.rows):
                 if r < 3:
                     continue
-                k = _text(row[j][0]).lower() if j is not None and j < len(row) else f"row {r}"
-                d[k] = (r, {hdr[i]: _text(v) for i, (v, _) in enumerate(row) if i < len(hdr)})
+                vals = line(raw, r)
+                k = vals[j].lower() if j is not None and j < len(vals) else f"row {r}"
+                d[k] = (r, {hdr[i]: v for i, v in enumerate(vals) if i < len(hdr) and hdr[i]})
             return d
         da, db = keyed(a, ha), keyed(b, hb)
         for c in cols:

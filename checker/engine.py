@@ -314,13 +314,12 @@ def check_speed_grid(p: Params, peak_pressure: list[tuple[str, float, float]],
                      err: Callable[[str, str, int | None, str], None],
                      warn: Callable[[str, str, int | None, str], None]) -> None:
     """Number of swept speeds (as :func:`checker.modules.loads.speed_sweep` builds them)."""
-    from .modules.loads import DEFAULT_SPEED_STEP
-    from .workbook.schema import MAX_SPEEDS, USUAL_SPEEDS
+    from .workbook.schema import DEFAULT_SPEED_STEP_RPM, MAX_SPEEDS, USUAL_SPEEDS
 
     full = sorted(s for c, s, _ in peak_pressure if c == "full")
     lo = p.get("speed_min") or (full[0] if full else None)
     hi = p.get("speed_max") or (full[-1] if full else None)
-    step = p.get("speed_step") or DEFAULT_SPEED_STEP
+    step = p.get("speed_step") or DEFAULT_SPEED_STEP_RPM * _TWO_PI / 60.0
     if lo is None or hi is None or hi <= lo:
         return
     n = math.floor((hi - lo) / step + 1e-9) + 3  # grid, maximum speed, overspeed

@@ -223,12 +223,40 @@ def _to_si(value: float, unit: str | None, kind: str, percent_formatted: bool = 
     ------
     UnitProblem
         With a message naming what was expected and what was found.
+
+    Notes
+    -----
+    Every conversion is affine in the value (a factor, plus an offset for temperatures and
+    gauge/absolute pressures), so the unit string is parsed once per (unit, kind) and the
+    factor and offset are cached: a workbook of 100,000 values converts in well under a
+    second instead of minutes of pint parsing.
     """
-    k = KINDS[kind]
-    u = "" if unit is None else str(unit).strip()
-    expected = f"a {k.name.replace('_', ' ')} (e.g. {k.example})"
     if not math.isfinite(value):
         raise UnitProblem(f"expected a finite number, found {value!r}")
+    u = "" if unit is None else str(unit).strip()
+    conv = _affine(u, kind, bool(percent_formatted))
+    if isinstance(conv, str):
+        raise UnitProblem(conv)
+    scale, offset = conv
+    return float(value) * scale + offset
+
+
+@functools.lru_cache(maxsize=4096)
+def _affine(unit: str, kind: str, percent_formatted: bool) -> tuple[float, float] | str:
+    """(scale, offset) of the conversion of ``unit`` to SI for ``kind``, or the problem text."""
+    try:
+        offset = _to_si_pint(0.0, unit, kind, percent_formatted)
+        scale = _to_si_pint(1.0, unit, kind, percent_formatted) - offset
+    except UnitProblem as exc:
+        return str(exc)
+    return scale, offset
+
+
+def _to_si_pint(value: float, unit: str, kind: str, percent_formatted: bool) -> float:
+    """The conversion itself (pint); :func:`to_si` caches it as a factor and an offset."""
+    k = KINDS[kind]
+    u = unit
+    expected = f"a {k.name.replace('_', ' ')} (e.g. {k.example})"
 
     if percent_formatted:
         if kind not in ("dimensionless", "ratio") or u.lower() not in _DIMENSIONLESS_SPELLINGS | {

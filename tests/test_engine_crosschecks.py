@@ -155,6 +155,13 @@ def test_speed_grid_too_fine_is_an_error_and_fine_is_a_warning(tmp_path):
     assert "603 speeds" in e.warnings[0].message
 
 
+def test_default_speed_step_agrees_with_the_loads_module():
+    from checker.modules.loads import DEFAULT_SPEED_STEP
+    from checker.workbook.schema import DEFAULT_SPEED_STEP_RPM
+
+    assert DEFAULT_SPEED_STEP == pytest.approx(DEFAULT_SPEED_STEP_RPM * 2 * math.pi / 60)
+
+
 def test_oil_datasheet_without_viscosity_curve_and_cold_oil(tmp_path):
     def edit(wb):  # KV100 above KV40: no viscosity curve
         wb["Oil"].append(["Kinematic viscosity at 40 °C", 8, "mm^2/s"])

@@ -30,10 +30,15 @@ def _text(v: Any) -> str:
     return "" if v is None else (f"{v:g}" if isinstance(v, float) else str(v)).strip()
 
 
+def _cell(raw, r: int, c: int) -> Any:
+    """Value of cell (row, column) of a sheet's cells (None when empty)."""
+    return raw.rows.get(r, {}).get(c, (None, None))[0]
+
+
 def _header(raw, spec) -> dict[str, int]:
-    hdr = raw.rows.get(1, ())
+    hdr = raw.rows.get(1, {})
     out = {}
-    for j, (v, _) in enumerate(hdr, start=1):
+    for j, (v, _) in sorted(hdr.items()):
         t = _text(v).lower()
         for f in spec.fields:
             if t in (f.label.lower(), f.attr.lower()):
@@ -58,10 +63,10 @@ def resolve(study: Study, base: RawWorkbook) -> list[Target]:
         cells: list[tuple[int, int, str | None]] = []
         items: list[str] = []
         if spec.shape == "parameters":
-            for r, row in sorted(raw.rows.items()):
-                if r > 1 and row and _text(row[0][0]).lower() in (q.field.label.lower(),
-                                                                  q.field.attr.lower()):
-                    unit = _text(row[2][0]) if len(row) > 2 else ""
+            for r in sorted(raw.rows):
+                if r > 1 and _text(_cell(raw, r, 1)).lower() in (q.field.label.lower(),
+                                                                 q.field.attr.lower()):
+                    unit = _text(_cell(raw, r, 3))
                     cells.append((r, 2, unit or None))
                     break
             if not cells:
@@ -74,21 +79,20 @@ def resolve(study: Study, base: RawWorkbook) -> list[Target]:
             if j is None:
                 problems.append(f"{pre}: sheet {q.sheet} has no column '{q.field.label}'")
                 continue
-            unit_row = raw.rows.get(2, ())
-            unit = _text(unit_row[j - 1][0]) if j - 1 < len(unit_row) else ""
+            unit = _text(_cell(raw, 2, j))
             kj = cols.get(spec.key) if spec.key else None
             wanted = {choice_key(x) for x in q.rows} if q.rows else None
             found: set[str] = set()
-            for r, row in sorted(raw.rows.items()):
+            for r in sorted(raw.rows):
                 if r < 3:
                     continue
-                key = _text(row[kj - 1][0]) if kj and kj - 1 < len(row) else str(r)
+                key = _text(_cell(raw, r, kj)) if kj else str(r)
                 if wanted is not None and choice_key(key) not in wanted:
                     continue
                 ok = True
                 for attr, val in q.where:
                     wj = cols.get(attr)
-                    cell = _text(row[wj - 1][0]) if wj and wj - 1 < len(row) else ""
+                    cell = _text(_cell(raw, r, wj)) if wj else ""
                     ok &= choice_key(cell) == choice_key(val)
                 if ok:
                     found.add(choice_key(key))
@@ -145,6 +149,6 @@ def apply_variant(base: RawWorkbook, targets: list[Target], values: dict[str, An
             continue
         raw = base.sheets[t.param.sheet]
         for r, c, unit in t.cells:
-            fmt = raw.rows[r][c - 1][1] if c - 1 < len(raw.rows[r]) else None
+            fmt = raw.rows.get(r, {}).get(c, (None, None))[1]
             changes[(t.param.sheet, r, c)] = cell_value(t, unit, v, fmt)
     return base.with_values(changes)

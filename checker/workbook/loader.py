@@ -1,15 +1,16 @@
 """Read an engine workbook defensively: every problem found, each with its sheet and cell.
 
-The workbook is streamed read-only twice with openpyxl: once for the stored values and once
-for formulas (to find formula cells that have no stored result, which pandas/openpyxl would
-silently read as empty). Only rows that hold something are kept, so a sheet whose used range
-reaches row 1,048,576 through empty formatted cells costs no more than its data. Everything
-openpyxl, zipfile or the XML parser raises while opening or reading is a file-level input
-error naming the file (a damaged, encrypted or non-workbook file), never an internal error.
-Values are converted to SI through :func:`checker.units.to_si`, choices through
-:func:`checker.workbook.schema.resolve_choice`, and checked against the fields' declared
-ranges (``valid``: error, ``usual``: warning). Nothing is written and the file is never
-modified.
+The cells are streamed by :mod:`checker.workbook.xlsx` (openpyxl for the package, one expat
+pass per sheet): stored values, number formats, formulas (a formula cell without a stored
+result, which pandas/openpyxl would silently read as empty, is an error) and merged ranges.
+Only cells that hold something are kept, so a sheet whose used range reaches row 1,048,576
+through empty formatted cells costs no more than its data, and the cost is linear in the cells
+and the problems (problem cells are looked up in a set). Everything zipfile, openpyxl or the XML
+parser raise while opening or reading is a file-level input error naming the file (a damaged,
+encrypted or non-workbook file), never an internal error. Values are converted to SI through
+:func:`checker.units.to_si`, choices through :func:`checker.workbook.schema.resolve_choice`,
+and checked against the fields' declared ranges (``valid``: error, ``usual``: warning).
+Nothing is written and the file is never modified.
 """
 
 from __future__ import annotations
@@ -26,9 +27,9 @@ from openpyxl.utils import get_column_letter
 from ..errors import InputError, InputErrors
 from ..units import KINDS, UnitProblem, from_si, to_si
 from .schema import SHEETS, ChoiceProblem, Field, Sheet, expected_choices, resolve_choice
+from .xlsx import LAST_COLUMN, PackageProblem, SheetCells, open_package
 
 _PARAM_HEADER = ("parameter", "value", "unit")
-_LAST_ROW = 1_048_576  # last row of an .xlsx sheet
 _PARAM_COLUMNS = 4  # parameter | value | unit | note
 _OLE_MAGIC = b"\xd0\xcf\x11\xe0\xa1\xb1\x1a\xe1"  # encrypted .xlsx and old .xls files
 
@@ -59,28 +60,23 @@ class WorkbookData:
         return self.where.get(key, f"{sheet}")
 
 
-@dataclass
-class _RawSheet:
-    """The cells of one sheet that hold something: plain values, no openpyxl objects.
-
-    ``rows`` maps a 1-based row number to ``(value, number_format)`` per column (1-based
-    column ``j`` at index ``j - 1``); ``formulas`` maps ``(row, column)`` to the formula text
-    of formula cells.
-    """
-
-    rows: dict[int, tuple[tuple[Any, str | None], ...]]
-    formulas: dict[tuple[int, int], str]
-    merged: list[str]
-    ncols: int
-
-
 def _norm(s: Any) -> str:
     return re.sub(r"\s+", " ", str(s)).strip().lower()
 
 
 def _addr(sheet: str, row: int, col: int) -> str:
     """``Sheet!B4`` for 1-based row and column numbers."""
-    return f"{sheet}!{get_column_letter(col)}{row}"
+    return f"{sheet}!{_letter(col)}{row}"
+
+
+_LETTERS: dict[int, str] = {}
+
+
+def _letter(col: int) -> str:
+    got = _LETTERS.get(col)
+    if got is None:
+        got = _LETTERS[col] = get_column_letter(col)
+    return got
 
 
 def _describe(v: Any) -> str:
@@ -151,18 +147,36 @@ def _shown(f: Field, num: float, unit: str | None, si: float) -> str:
     return f"{text} (= {conv:.4g} {span.unit})"
 
 
-def _range_problem(f: Field, si: float, shown: str, unit: str | None
+_BOUNDS: dict[int, tuple[float, float, float, float]] = {}
+
+
+def _bounds(f: Field) -> tuple[float, float, float, float]:
+    """SI ends of the field's valid and usual ranges (open ends infinite), cached per field."""
+    got = _BOUNDS.get(id(f))
+    if got is None:
+        inf = float("inf")
+        vlo, vhi = f.valid.si(f.kind) if f.valid is not None else (-inf, inf)
+        ulo, uhi = f.usual.si(f.kind) if f.usual is not None else (-inf, inf)
+        got = _BOUNDS[id(f)] = (vlo, vhi, ulo, uhi)
+    return got
+
+
+def _range_problem(f: Field, num: float, si: float, unit: str | None
                    ) -> tuple[str | None, str | None]:
     """(error, warning) texts for a value outside the field's ``valid`` / ``usual`` range."""
+    vlo, vhi, ulo, uhi = _bounds(f)
+    valid = vlo <= si <= vhi
+    usual = ulo <= si <= uhi
+    if valid and usual:
+        return None, None
+    shown = _shown(f, num, unit, si)
     hint = f"; check the value and its unit ('{unit}')" if unit and unit != "-" else \
         "; check the value"
-    if f.valid is not None and not f.valid.contains(si, f.kind):
+    if not valid:
         return (f"{f.label} {shown} is outside {f.valid.text()}, the range the calculations"
                 f" can handle{hint}"), None
-    if f.usual is not None and not f.usual.contains(si, f.kind):
-        return None, (f"{f.label} {shown} is outside the usual range {f.usual.text()} of"
-                      f" crank-train engines{hint}")
-    return None, None
+    return None, (f"{f.label} {shown} is outside the usual range {f.usual.text()} of"
+                  f" crank-train engines{hint}")
 
 
 def _short(exc: BaseException) -> str:
@@ -183,6 +197,7 @@ class _Reader:
         self.errors: list[InputError] = []
         self.warnings: list[InputError] = []
         self._error_cells: set[str] = set()
+        self._choices: dict[tuple, str | ChoiceProblem] = {}  # resolved spellings per field
 
     def err(self, where: str, msg: str) -> None:
         self.errors.append(InputError(where, msg))
@@ -208,11 +223,17 @@ class _Reader:
         if f.kind == "text":
             return str(raw).strip() if not isinstance(raw, float) else f"{raw:g}"
         if f.kind == "choice":
-            try:
-                return resolve_choice(f, raw)
-            except ChoiceProblem as exc:
-                self.err(where, f"{f.label}: {exc}")
+            ck = (id(f), type(raw), raw if isinstance(raw, (str, float, int)) else repr(raw))
+            got = self._choices.get(ck)
+            if got is None:
+                try:
+                    got = self._choices[ck] = resolve_choice(f, raw)
+                except ChoiceProblem as exc:
+                    got = self._choices[ck] = ChoiceProblem(f"{f.label}: {exc}")
+            if isinstance(got, ChoiceProblem):
+                self.err(where, str(got))
                 return None
+            return got
         num = _number(raw)
         if num is None:
             hint = " (use a decimal point, not a comma)" if isinstance(raw, str) and re.match(
@@ -230,7 +251,7 @@ class _Reader:
             if problem:
                 self.err(where, f"{f.label} {problem}, found {num:g}")
                 return None
-            error, warning = _range_problem(f, num, f"{num:g}", None)
+            error, warning = _range_problem(f, num, num, None)
             if error:
                 self.err(where, error)
                 return None
@@ -248,7 +269,7 @@ class _Reader:
             shown = f"{num:g}" + (f" {unit}" if unit else "")
             self.err(where, f"{f.label} {problem}, found {shown}")
             return None
-        error, warning = _range_problem(f, si, _shown(f, num, unit, si), unit)
+        error, warning = _range_problem(f, num, si, unit)
         if error:
             self.err(where, error)
             return None
@@ -257,12 +278,12 @@ class _Reader:
         data.units[key] = unit or ""
         return si
 
-    def merged(self, sheet: str, raw: _RawSheet) -> None:
+    def merged(self, sheet: str, raw: SheetCells) -> None:
         for ref in raw.merged:
             self.err(f"{sheet}!{ref}", "merged cells are not allowed in the input area;"
                      " unmerge them and fill every cell")
 
-    def parameters(self, spec: Sheet, raw: _RawSheet, data: WorkbookData) -> None:
+    def parameters(self, spec: Sheet, raw: SheetCells, data: WorkbookData) -> None:
         name = spec.name
         by_label = {_norm(f.label): f for f in spec.fields}
         by_label.update({_norm(f.attr): f for f in spec.fields})
@@ -274,10 +295,9 @@ class _Reader:
             self.err(name, "sheet is empty; expected the header 'parameter | value | unit |"
                      " note' in row 1")
             return
-        empty = ((None, None),) * _PARAM_COLUMNS
-
-        def cells(r: int) -> tuple[tuple[Any, str | None], ...]:
-            return (raw.rows.get(r, empty) + empty)[:_PARAM_COLUMNS]
+        def cells(r: int) -> list[tuple[Any, str | None]]:
+            row = raw.rows.get(r, {})
+            return [row.get(j, (None, None)) for j in range(1, _PARAM_COLUMNS + 1)]
 
         header = tuple(_norm(v) if v is not None else "" for v, _ in cells(1)[:3])
         if header != _PARAM_HEADER:
@@ -318,20 +338,20 @@ class _Reader:
                 self.err(name, f"required parameter '{f.label}' is missing: add a row with"
                          f" {_expected(f)}")
 
-    def table(self, spec: Sheet, raw: _RawSheet, data: WorkbookData) -> None:
+    def table(self, spec: Sheet, raw: SheetCells, data: WorkbookData) -> None:
         name = spec.name
         out: list[dict[str, Any]] = []
         data.tables[name] = out
         if not raw.rows and not raw.formulas:
             self.err(name, "sheet is empty; expected column names in row 1 and units in row 2")
             return
-        header = raw.rows.get(1, ())
-        units_row = raw.rows.get(2, ())
+        header = raw.rows.get(1, {})
+        units_row = raw.rows.get(2, {})
         col_of: dict[str, int] = {}  # attr -> 1-based column
         by_label = {_norm(f.label): f for f in spec.fields}
         by_label.update({_norm(f.attr): f for f in spec.fields})
         note_col = None
-        for j, (v, _) in enumerate(header, start=1):
+        for j, (v, _) in sorted(header.items()):
             if _blank(v):
                 continue
             label = _norm(v)
@@ -353,7 +373,7 @@ class _Reader:
                 self.err(f"{name}!1:1", f"required column '{f.label}' is missing")
         unit_of: dict[str, str | None] = {}
         for attr, j in col_of.items():
-            u = units_row[j - 1][0] if j <= len(units_row) else None
+            u = units_row.get(j, (None, None))[0]
             unit_of[attr] = None if u is None else str(u).strip()
         keys_seen: dict[Any, str] = {}
         notes: dict[str, list[int]] = {}
@@ -361,8 +381,8 @@ class _Reader:
         for r in sorted(set(raw.rows) | formula_rows):
             if r <= 2:
                 continue
-            row = raw.rows.get(r, ())
-            if r not in formula_rows and all(_blank(v) for v, _ in row):
+            row = raw.rows.get(r, {})
+            if r not in formula_rows and all(_blank(v) for v, _ in row.values()):
                 continue
             rec: dict[str, Any] = {"_row": r}
             idx = len(out)
@@ -371,7 +391,7 @@ class _Reader:
                 if j is None:
                     rec[f.attr] = None
                     continue
-                v, fmt = row[j - 1] if j <= len(row) else (None, None)
+                v, fmt = row.get(j, (None, None))
                 where = _addr(name, r, j)
                 val = self.value(where, f, v, fmt, raw.formulas.get((r, j)), unit_of.get(f.attr),
                                  data, (name, idx, f.attr))
@@ -388,8 +408,8 @@ class _Reader:
                 else:
                     keys_seen[kk] = where
             out.append(rec)
-            if note_col is not None and note_col <= len(row):
-                note = row[note_col - 1][0]
+            if note_col is not None:
+                note = row.get(note_col, (None, None))[0]
                 if note and "assumption" in str(note).lower():
                     notes.setdefault(str(note), []).append(r)
         if spec.max_rows is not None and len(out) > spec.max_rows:
@@ -400,102 +420,24 @@ class _Reader:
             data.assumptions.append(f"{name} {rr}: {text}")
 
 
-def _merged_ranges(ws) -> list[str]:
-    """``A3:A4`` refs of the merged ranges of a read-only sheet (streamed, rows discarded)."""
-    import xml.etree.ElementTree as ET
-
-    refs: list[str] = []
-    sheet_data = None
-    source = getattr(ws, "_get_source", None)  # openpyxl's read-only sheet XML stream
-    if source is None:  # pragma: no cover - other openpyxl versions
-        return refs
-    with source() as src:
-        for event, el in ET.iterparse(src, events=("start", "end")):
-            tag = el.tag.rsplit("}", 1)[-1]
-            if event == "start":
-                if tag == "sheetData":
-                    sheet_data = el
-                continue
-            if tag == "mergeCell":
-                refs.append(str(el.get("ref", "?")))
-            elif tag == "row" and sheet_data is not None:
-                try:
-                    sheet_data.remove(el)
-                except ValueError:  # pragma: no cover - a row outside sheetData
-                    el.clear()
-    return refs
-
-
-def _declared_sheets(p: Path) -> list[str]:
-    """Sheet names the workbook part declares (openpyxl silently drops a sheet whose part is
-    missing from the archive; a damaged file must not lose a sheet unnoticed)."""
-    import xml.etree.ElementTree as ET
-    import zipfile
-
-    with zipfile.ZipFile(p) as z:
-        types = ET.fromstring(z.read("[Content_Types].xml"))
-        part = next((el.get("PartName", "") for el in types
-                     if el.tag.rsplit("}", 1)[-1] == "Override"
-                     and el.get("ContentType", "").endswith(".main+xml")), "")
-        book = ET.fromstring(z.read(part.lstrip("/")))
-    return [str(el.get("name")) for el in book.iter() if el.tag.rsplit("}", 1)[-1] == "sheet"]
-
-
-def _sheet_width(ws) -> int:
-    """Last column of row 1 that holds a value (the table's width)."""
-    for row in ws.iter_rows(min_row=1, max_row=1):
-        return max((j for j, c in enumerate(row, start=1) if not _blank(c.value)), default=0)
-    return 0
-
-
-def _read_raw(ws_values, ws_formulas, ncols: int) -> _RawSheet:
-    """Stream both passes of one sheet, keeping only the rows that hold something."""
-    rows: dict[int, tuple[tuple[Any, str | None], ...]] = {}
-    formulas: dict[tuple[int, int], str] = {}
-    if ncols > 0:
-        last_empty = None
-        for r, row in enumerate(ws_values.iter_rows(min_row=1, max_row=_LAST_ROW,
-                                                    max_col=ncols), start=1):
-            if row is last_empty:  # openpyxl repeats one tuple for missing rows
-                continue
-            if all(c.value is None for c in row):
-                last_empty = row
-                continue
-            rows[r] = tuple((c.value, c.number_format if c.value is not None else None)
-                            for c in row)
-        last_empty = None
-        for r, row in enumerate(ws_formulas.iter_rows(min_row=1, max_row=_LAST_ROW,
-                                                      max_col=ncols), start=1):
-            if row is last_empty:
-                continue
-            found = False
-            for j, c in enumerate(row, start=1):
-                if c.data_type == "f" and c.value is not None:
-                    formulas[(r, j)] = str(c.value)
-                    found = True
-            if not found and all(c.value is None for c in row):
-                last_empty = row
-    return _RawSheet(rows, formulas, _merged_ranges(ws_values), ncols)
-
-
 @dataclass(frozen=True)
 class RawWorkbook:
-    """The cells of a workbook that hold something, read once (plain values, no openpyxl
-    objects; picklable). :func:`convert_raw` turns it into :class:`WorkbookData`; a
-    parametric study changes cells in memory with :meth:`with_values` and converts again,
-    without touching the file."""
+    """The cells of a workbook that hold something, read once (plain values; picklable).
+
+    :func:`convert_raw` turns it into :class:`WorkbookData`; a parametric study changes cells
+    in memory with :meth:`with_values` and converts again, without touching the file."""
 
     path: str
     sha256: str
     sheetnames: tuple[str, ...]
-    sheets: dict[str, _RawSheet]  # schema sheet name -> its cells
+    sheets: dict[str, SheetCells]  # schema sheet name -> its cells
     problems: tuple[InputError, ...] = ()  # sheet-level problems (unknown, duplicate...)
     present: tuple[str, ...] = ()  # schema sheet names found in the file
 
     def with_values(self, changes: dict[tuple[str, int, int], Any]) -> RawWorkbook:
         """A copy with cell values replaced: ``{(sheet, row, column): value}`` (1-based);
-        only the changed rows are copied, the number formats are kept. The sha256 of the
-        copy identifies the base and the changes."""
+        only the changed rows are copied, number formats are kept. The sha256 of the copy
+        identifies the base and the changes."""
         if not changes:
             return self
         sheets = dict(self.sheets)
@@ -506,12 +448,11 @@ class RawWorkbook:
             raw = sheets[sh]
             rows = dict(raw.rows)
             for (r, c), v in cells.items():
-                row = list(rows.get(r, ()))
-                row += [(None, None)] * (c - len(row))
-                row[c - 1] = (v, row[c - 1][1])
-                rows[r] = tuple(row)
-            sheets[sh] = _RawSheet(rows, {k: f for k, f in raw.formulas.items()
-                                          if k not in cells}, raw.merged, raw.ncols)
+                row = dict(rows.get(r, {}))
+                row[c] = (v, row.get(c, (None, None))[1])
+                rows[r] = row
+            sheets[sh] = SheetCells(rows, {k: f for k, f in raw.formulas.items()
+                                           if k not in cells}, list(raw.merged))
         h = hashlib.sha256(self.sha256.encode())
         h.update(repr(sorted(changes.items())).encode())
         return RawWorkbook(self.path, h.hexdigest(), self.sheetnames, sheets, self.problems,
@@ -524,8 +465,6 @@ def read_raw_workbook(path: str | Path) -> RawWorkbook:
     A file that is not a readable workbook raises :class:`InputErrors` at once, with one
     file-level error naming the file.
     """
-    import openpyxl
-
     p = Path(path)
     if not p.is_file():
         raise InputErrors([InputError(str(p), "file not found")])
@@ -538,49 +477,40 @@ def read_raw_workbook(path: str | Path) -> RawWorkbook:
         raise _unreadable(p, "it is an encrypted (password-protected) workbook or an old .xls"
                           " file")
     reader = _Reader(p)
-    raws: dict[str, _RawSheet] = {}
-    wbs = []
+    raws: dict[str, SheetCells] = {}
     present: dict[str, str] = {}
     try:
-        # everything that touches the file: open, stream the sheets, scan merged cells
-        wb_values = openpyxl.load_workbook(p, data_only=True, read_only=True)
-        wbs.append(wb_values)
-        wb_formulas = openpyxl.load_workbook(p, data_only=False, read_only=True)
-        wbs.append(wb_formulas)
-        sheetnames = tuple(wb_values.sheetnames)
-        lost = [n for n in _declared_sheets(p) if n not in sheetnames]
-        if lost:
-            raise _unreadable(p, f"the content of sheet '{lost[0]}' is missing")
-        known = {_norm(s): s for s in SHEETS}
-        for sn in sheetnames:
-            key = known.get(_norm(sn))
-            if key is None:
-                reader.err(sn, f"unknown sheet '{sn}'; known sheets: {', '.join(SHEETS)}")
-                continue
-            if key in present:
-                reader.err(sn, f"duplicate sheet '{sn}'")
-                continue
-            present[key] = sn
-        for name, spec in SHEETS.items():
-            if name not in present or spec.shape == "notes":
-                continue
-            ws, wsf = wb_values[present[name]], wb_formulas[present[name]]
-            if not hasattr(ws, "iter_rows") or not hasattr(wsf, "iter_rows"):
-                reader.err(name, f"sheet '{present[name]}' is a chart sheet; expected a"
-                           " worksheet")
-                continue
-            ncols = _PARAM_COLUMNS if spec.shape == "parameters" else _sheet_width(ws)
-            raws[name] = _read_raw(ws, wsf, ncols)
-    except InputErrors:
-        raise
+        # everything that touches the file: open the package, stream the sheets
+        pkg = open_package(p)
+        try:
+            sheetnames = tuple(name for name, _, _ in pkg.sheets)
+            known = {_norm(s): s for s in SHEETS}
+            for sn in sheetnames:
+                key = known.get(_norm(sn))
+                if key is None:
+                    reader.err(sn, f"unknown sheet '{sn}'; known sheets: {', '.join(SHEETS)}")
+                    continue
+                if key in present:
+                    reader.err(sn, f"duplicate sheet '{sn}'")
+                    continue
+                present[key] = sn
+            parts = {name: (part, kind) for name, part, kind in pkg.sheets}
+            for name, spec in SHEETS.items():
+                if name not in present or spec.shape == "notes":
+                    continue
+                part, kind = parts[present[name]]
+                if kind != "worksheet":
+                    reader.err(name, f"sheet '{present[name]}' is a chart sheet; expected a"
+                               " worksheet")
+                    continue
+                ncols = _PARAM_COLUMNS if spec.shape == "parameters" else LAST_COLUMN
+                raws[name] = pkg.cells(part, ncols)
+        finally:
+            pkg.close()
+    except PackageProblem as exc:
+        raise _unreadable(p, str(exc)) from None
     except Exception as exc:  # noqa: BLE001 - any failure of the file is a file-level error
         raise _unreadable(p, _short(exc)) from None
-    finally:
-        for wb in wbs:
-            try:
-                wb.close()
-            except Exception:  # noqa: BLE001, S110 - closing a damaged archive
-                pass
     return RawWorkbook(str(p), sha, sheetnames, raws, tuple(reader.errors), tuple(present))
 
 

@@ -259,16 +259,20 @@ ENGINE = Sheet(
           required=False, note="FEAD + timing drive torque added at the crank-nose joint.",
           valid=R(0, 1e8, "N m"), usual=R(0, 1e5, "N m")),
         F("Free force limit, 1st order", "free_force_limit_1", "force", check=">0",
-          required=False, valid=R(1e-3, 1e9, "N"), usual=R(1, 1e7, "N"), note="Project limit on the 1st-order free force at the rated speed"
+          required=False, valid=R(1e-3, 1e9, "N"), usual=R(1, 1e7, "N"),
+          note="Project limit on the 1st-order free force at the rated speed"
                                " (BAL-001; blank = not judged)."),
         F("Free force limit, 2nd order", "free_force_limit_2", "force", check=">0",
-          required=False, valid=R(1e-3, 1e9, "N"), usual=R(1, 1e7, "N"), note="Project limit on the 2nd-order free force at the rated speed"
+          required=False, valid=R(1e-3, 1e9, "N"), usual=R(1, 1e7, "N"),
+          note="Project limit on the 2nd-order free force at the rated speed"
                                " (BAL-002; blank = not judged)."),
         F("Free moment limit, 1st order", "free_moment_limit_1", "torque", check=">0",
-          required=False, valid=R(1e-3, 1e9, "N m"), usual=R(1, 1e7, "N m"), note="Project limit on the 1st-order free moment at the rated speed"
+          required=False, valid=R(1e-3, 1e9, "N m"), usual=R(1, 1e7, "N m"),
+          note="Project limit on the 1st-order free moment at the rated speed"
                                " (BAL-003; blank = not judged)."),
         F("Free moment limit, 2nd order", "free_moment_limit_2", "torque", check=">0",
-          required=False, valid=R(1e-3, 1e9, "N m"), usual=R(1, 1e7, "N m"), note="Project limit on the 2nd-order free moment at the rated speed"
+          required=False, valid=R(1e-3, 1e9, "N m"), usual=R(1, 1e7, "N m"),
+          note="Project limit on the 2nd-order free moment at the rated speed"
                                " (BAL-004; blank = not judged)."),
         F("Balance ratio, minimum", "balance_ratio_min", "ratio", check=">=0", required=False,
           valid=R(0, 10), usual=R(0, 2),
@@ -278,7 +282,8 @@ ENGINE = Sheet(
           valid=R(0, 10), usual=R(0, 2),
           note="Highest acceptable counterweight balance ratio per throw (e.g. 100 %)."),
         F("Target cyclic irregularity", "target_irregularity", "ratio", check="0..1",
-          required=False, valid=R(1e-6, 1), usual=R(1e-4, 0.5), note="(w_max - w_min)/w_avg allowed at the lowest speed, by"
+          required=False, valid=R(1e-6, 1), usual=R(1e-4, 0.5),
+          note="(w_max - w_min)/w_avg allowed at the lowest speed, by"
                                " application (FLY-001; blank = not judged)."),
     ),
 )
@@ -761,6 +766,8 @@ NOTES = Sheet("Notes", "notes", note="Free text; not read.")
 #: example); more than :data:`USUAL_SPEEDS` is a warning.
 MAX_SPEEDS = 1000
 USUAL_SPEEDS = 300
+#: Speed step used when the Engine sheet gives none [rpm] (as checker.modules.loads).
+DEFAULT_SPEED_STEP_RPM = 100.0
 
 SHEETS: dict[str, Sheet] = {
     s.name: s
