@@ -152,6 +152,20 @@ class Engine:
     def name(self) -> str:
         return str(self.params.get("name") or "engine")
 
+    @property
+    def offsets(self) -> dict[str, float]:
+        """Cylinder and pin offsets [m] in the sign convention of the kinematics.
+
+        The workbook gives the pin offset "towards the major thrust side positive" (the usual
+        reference; Agostini, *Powertrain Components Design*, Politecnico di Torino, 2019,
+        ch. 1, moves the pin towards the major thrust side). In the kinematics' cylinder frame
+        (:mod:`checker.calc.kinematics`) the major thrust side during expansion is ``-t``, so
+        the workbook value changes sign here, in one place for every calculation.
+        """
+        p = self.params
+        return {"cylinder_offset": float(p.get("cylinder_offset") or 0.0),
+                "pin_offset": -float(p.get("pin_offset") or 0.0)}
+
     def cell(self, sheet: str, attr: str, row: int | None = None) -> str:
         """Cell address of an input (for messages), or the sheet name when unknown."""
         key = (sheet, attr) if row is None else (sheet, row, attr)

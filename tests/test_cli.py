@@ -149,8 +149,10 @@ def test_whole_check_is_deterministic_and_exit_1(example):
     b = run("check", example, "--format", "json", "--no-timings")
     assert a.exit_code == 1 and a.stdout == b.stdout
     d = json.loads(a.stdout)
-    assert set(d["modules"]["run"]) == {"joints", "loads", "torsion", "fatigue", "bearings"}
-    assert {r["rule"].split("-")[0] for r in d["results"]} == {"JNT", "BRG", "TV", "DMP", "FAT"}
+    assert set(d["modules"]["run"]) == {"joints", "loads", "torsion", "fatigue", "bearings",
+                                        "balance", "flywheel", "damper"}
+    assert {r["rule"].split("-")[0] for r in d["results"]} == {"JNT", "BRG", "TV", "DMP", "FAT",
+                                                               "BAL", "FLY"}
 
 
 def test_report_figures_use_display_units(example, tmp_path):

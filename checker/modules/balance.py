@@ -131,7 +131,7 @@ def _balance(engine: Engine) -> dict[str, Quantity]:
                                           * (p["rod_length"] - p["rod_com"]))
     m_rec = p["piston_mass"] + float(m_small)
     m_big = float(m_big)
-    offset = (p.get("cylinder_offset") or 0.0) + (p.get("pin_offset") or 0.0)
+    offset = sum(engine.offsets.values())
     try:
         harm = bal.piston_acceleration_harmonics(r, p["rod_length"], offset, MAX_ORDER)
     except ValueError as exc:

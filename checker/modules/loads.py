@@ -147,8 +147,7 @@ def build_cycle(engine: Engine, step: float | None = None) -> Cycle:
         intake = p.get("intake_pressure") or DEFAULT_INTAKE
         kw = dict(bore=p["bore"], crank_radius=r, rod_length=p["rod_length"],
                   compression_ratio=p["compression_ratio"],
-                  cylinder_offset=p.get("cylinder_offset") or 0.0,
-                  pin_offset=p.get("pin_offset") or 0.0, intake_pressure=intake,
+                  **engine.offsets, intake_pressure=intake,
                   resolution=SYNTHESIS_RESOLUTION)
         tgt = None
         if case == "full" and engine.brake_torque:
@@ -184,11 +183,12 @@ def build_cycle(engine: Engine, step: float | None = None) -> Cycle:
             motored[ci] = tr.motored
     if missing:
         raise MissingInputs(missing)
+    off = engine.offsets
     vol = pr.cylinder_volume(theta, p["bore"], r, p["rod_length"],
                              p.get("compression_ratio") or 10.0,
-                             p.get("cylinder_offset") or 0.0, p.get("pin_offset") or 0.0)
-    vd1 = pr.swept_volume(p["bore"], r, p["rod_length"], p.get("cylinder_offset") or 0.0,
-                          p.get("pin_offset") or 0.0)
+                             off["cylinder_offset"], off["pin_offset"])
+    vd1 = pr.swept_volume(p["bore"], r, p["rod_length"], off["cylinder_offset"],
+                          off["pin_offset"])
     imep = pr.indicated_mean_effective_pressure(pressure, vol, vd1)
     for ci, case in enumerate(CASES):
         if extrap[ci].any():
@@ -294,8 +294,7 @@ def bearing_loads(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         cyc.theta, omega, cyc.pressure[:, :, None, :], bore=p["bore"], crank_radius=r,
         rod_length=p["rod_length"], piston_mass=p["piston_mass"], rod_mass=p["rod_mass"],
         rod_cg_from_big_end=p["rod_com"], rod_inertia=p["rod_inertia"], firing_angle=firing,
-        bank_angle=bank, cylinder_offset=p.get("cylinder_offset") or 0.0,
-        pin_offset=p.get("pin_offset") or 0.0)
+        bank_angle=bank, **engine.offsets)
     names, fx, fy, wj, wb, dia, length = [], [], [], [], [], [], []
     missing: dict[tuple, list[str]] = {}
     attrs = {}

@@ -240,7 +240,7 @@ def _excitation(engine: Engine, cyc) -> tuple[np.ndarray, np.ndarray, np.ndarray
         crank_radius=p["stroke"] / 2.0, rod_length=p["rod_length"],
         piston_mass=p["piston_mass"], rod_mass=p["rod_mass"], rod_cg_from_big_end=p["rod_com"],
         rod_inertia=p["rod_inertia"], firing_angle=np.zeros(1),
-        cylinder_offset=p.get("cylinder_offset") or 0.0, pin_offset=p.get("pin_offset") or 0.0)
+        **engine.offsets)
     torque = loads.torque[:, :, 0, :]  # (C, S, N)
     orders, coeffs = exc.torque_harmonics(torque, MAX_ORDER)
     firing = np.array([c.firing_angle for c in engine.cylinders])

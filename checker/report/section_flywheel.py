@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..api import CheckResult
+from . import judged as jd
 from .plots import LIMIT_STYLE, figure, to_svg
 from .sections import fmt, section
 
@@ -48,6 +49,25 @@ def flywheel_section(res: CheckResult) -> dict:
         ("Flywheel sizing", "J_min: δ(J_min) = δ_target (≈ ΔE / (δ_target ω²)); flywheel ="
          " J_min − J_rest", "ibid. ('flywheel dimensioning')"),
     ]})
+    # judged worst first (equal to FLY-001), then worse points the rule does not judge
+    judged_rows, other_rows, css_j, css_o = [], [], [], []
+    for c_i, c in enumerate(cases):
+        for p in jd.worst(ci, (c_i,), "max"):
+            if p is None:
+                continue
+            row = ["cyclic irregularity", CASE_TEXT.get(c, c), fmt(p.value * 100, 4),
+                   CASE_TEXT.get(c, c), f"{sp[p.index[1]] / RPM:.0f}",
+                   jd.judged_text(res, ci, p, case=c)]
+            (judged_rows if p.judged else other_rows).append((p.value, row))
+            (css_j if p.judged else css_o).append(jd.row_css(p))
+    order = sorted(range(len(judged_rows)), key=lambda i: -judged_rows[i][0])
+    blocks.append({"type": "table", "caption": "Judged worst cyclic irregularity per load case"
+                   " (first row: the value FLY-001 judges); greyed rows are computed but not"
+                   " judged, with the reason",
+                   "columns": ["quantity", "load", "δ [%]", "case", "speed [rpm]",
+                               "judged by"],
+                   "rows": [judged_rows[i][1] for i in order] + [r for _, r in other_rows],
+                   "row_css": [css_j[i] for i in order] + css_o})
     k0 = int(np.argmin(sp))
     jm = q.get("flywheel.minimum_inertia")
     en = q.get("flywheel.fluctuation_energy")
