@@ -425,9 +425,18 @@ def build_engine(data: WorkbookData) -> Engine:
     if smin is not None and smax is not None and smin >= smax:
         err("Engine", "speed_max", None, "maximum speed must be above the minimum speed")
     if p.get("stroke") is not None and p.get("rod_length") is not None:
+        offsets = abs(p.get("cylinder_offset") or 0.0) + abs(p.get("pin_offset") or 0.0)
         if p["rod_length"] <= p["stroke"] / 2:
             err("Engine", "rod_length", None, "connecting rod length must exceed half the"
                 " stroke (crank radius)")
+        elif p["stroke"] / 2 + offsets >= p["rod_length"]:
+            # the slider geometry (checker.calc.kinematics) needs r + |offsets| < l
+            worst = "cylinder_offset" if abs(p.get("cylinder_offset") or 0.0) >= abs(
+                p.get("pin_offset") or 0.0) else "pin_offset"
+            err("Engine", worst, None, f"crank radius {p['stroke'] / 2 * 1e3:g} mm plus the"
+                f" cylinder and pin offsets ({offsets * 1e3:g} mm together) must be less than"
+                f" the connecting rod length {p['rod_length'] * 1e3:g} mm, or the rod cannot"
+                " reach the piston pin at every crank angle")
     if p.get("rod_com") is not None and p.get("rod_length") is not None:
         if p["rod_com"] >= p["rod_length"]:
             err("Engine", "rod_com", None, "rod centre of mass must lie between big end and"
