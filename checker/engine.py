@@ -181,6 +181,8 @@ def _firing_order(text: str) -> list[int] | None:
         return None
 
 
+_LD_VALID = (0.02, 5.0)  # bearing effective length / diameter: error outside
+_LD_USUAL = (0.1, 1.5)  # warning outside (engine bearings are about 0.2..0.6)
 _PIN_TOL = 1e-6  # [rad] cylinders on one pin: as checker.calc.crank_forces.throw_angles
 _THROW_TOL = math.radians(0.05)  # [rad] throw angle vs firing/bank angles (rounded entries)
 _TWO_PI = 2.0 * math.pi
@@ -450,6 +452,15 @@ def build_engine(data: WorkbookData) -> Engine:
         counts[r["type"]] += 1
         if r["journal_length"] is not None and r["length"] > r["journal_length"]:
             err("Bearings", "length", i, "effective length exceeds the journal length")
+        ld = r["length"] / r["diameter"]
+        if not _LD_VALID[0] <= ld <= _LD_VALID[1]:
+            err("Bearings", "length", i, f"effective length / diameter = {ld:.3g} is outside"
+                f" {_LD_VALID[0]:g}..{_LD_VALID[1]:g}, where the film calculation is"
+                " meaningful (a narrower bearing also takes minutes to solve): check the"
+                " length, the diameter and their units")
+        elif not _LD_USUAL[0] <= ld <= _LD_USUAL[1]:
+            warn("Bearings", "length", i, f"effective length / diameter = {ld:.3g} is outside"
+                 f" the usual {_LD_USUAL[0]:g}..{_LD_USUAL[1]:g} of crank-train bearings")
         if r["clearance"] >= 0.01 * r["diameter"]:
             err("Bearings", "clearance", i, f"radial clearance {r['clearance'] * 1e3:g} mm is"
                 " 1 % of the diameter or more: check the unit (radial clearance in mm or um)")

@@ -197,3 +197,14 @@ def test_offsets_the_rod_cannot_reach_are_an_input_error(tmp_path):
         wb, "Engine", "Cylinder offset", value=110)))  # r 47.3 + 110 + 0.8 > l 145.7 mm
     errs = _errors(p)
     assert len(errs) == 1 and errs[0].startswith(cell["c"]) and "cannot reach" in errs[0]
+
+
+def test_bearing_length_to_diameter(tmp_path):
+    cell = {}
+    p = edited(tmp_path, lambda wb: cell.setdefault("c", set_cell(
+        wb, "Bearings", "name", "M1", "effective length", 0.5)))  # L/D 0.009
+    errs = _errors(p)
+    assert len(errs) == 1 and errs[0].startswith(cell["c"]) and "0.00909" in errs[0]
+    e = load_engine(edited(tmp_path, lambda wb: set_cell(
+        wb, "Bearings", "name", "M1", "effective length", 3), "narrow.xlsx"))  # L/D 0.055
+    assert [w.where for w in e.warnings] == [cell["c"]]
