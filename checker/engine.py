@@ -195,6 +195,8 @@ def _firing_order(text: str) -> list[int] | None:
         return None
 
 
+_LD_VALID = (0.02, 5.0)  # bearing effective length / diameter: error outside
+_LD_USUAL = (0.1, 1.5)  # warning outside (engine bearings are about 0.2..0.6)
 _PIN_TOL = 1e-6  # [rad] cylinders on one pin: as checker.calc.crank_forces.throw_angles
 _THROW_TOL = math.radians(0.05)  # [rad] throw angle vs firing/bank angles (rounded entries)
 _TWO_PI = 2.0 * math.pi
@@ -445,9 +447,18 @@ def build_engine(data: WorkbookData,
     if smin is not None and smax is not None and smin >= smax:
         err("Engine", "speed_max", None, "maximum speed must be above the minimum speed")
     if p.get("stroke") is not None and p.get("rod_length") is not None:
+        offsets = abs(p.get("cylinder_offset") or 0.0) + abs(p.get("pin_offset") or 0.0)
         if p["rod_length"] <= p["stroke"] / 2:
             err("Engine", "rod_length", None, "connecting rod length must exceed half the"
                 " stroke (crank radius)")
+        elif p["stroke"] / 2 + offsets >= p["rod_length"]:
+            # the slider geometry (checker.calc.kinematics) needs r + |offsets| < l
+            worst = "cylinder_offset" if abs(p.get("cylinder_offset") or 0.0) >= abs(
+                p.get("pin_offset") or 0.0) else "pin_offset"
+            err("Engine", worst, None, f"crank radius {p['stroke'] / 2 * 1e3:g} mm plus the"
+                f" cylinder and pin offsets ({offsets * 1e3:g} mm together) must be less than"
+                f" the connecting rod length {p['rod_length'] * 1e3:g} mm, or the rod cannot"
+                " reach the piston pin at every crank angle")
     if p.get("rod_com") is not None and p.get("rod_length") is not None:
         if p["rod_com"] >= p["rod_length"]:
             err("Engine", "rod_com", None, "rod centre of mass must lie between big end and"
@@ -461,6 +472,15 @@ def build_engine(data: WorkbookData,
         counts[r["type"]] += 1
         if r["journal_length"] is not None and r["length"] > r["journal_length"]:
             err("Bearings", "length", i, "effective length exceeds the journal length")
+        ld = r["length"] / r["diameter"]
+        if not _LD_VALID[0] <= ld <= _LD_VALID[1]:
+            err("Bearings", "length", i, f"effective length / diameter = {ld:.3g} is outside"
+                f" {_LD_VALID[0]:g}..{_LD_VALID[1]:g}, where the film calculation is"
+                " meaningful (a narrower bearing also takes minutes to solve): check the"
+                " length, the diameter and their units")
+        elif not _LD_USUAL[0] <= ld <= _LD_USUAL[1]:
+            warn("Bearings", "length", i, f"effective length / diameter = {ld:.3g} is outside"
+                 f" the usual {_LD_USUAL[0]:g}..{_LD_USUAL[1]:g} of crank-train bearings")
         if r["clearance"] >= 0.01 * r["diameter"]:
             err("Bearings", "clearance", i, f"radial clearance {r['clearance'] * 1e3:g} mm is"
                 " 1 % of the diameter or more: check the unit (radial clearance in mm or um)")

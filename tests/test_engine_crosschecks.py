@@ -173,3 +173,38 @@ def test_oil_datasheet_without_viscosity_curve_and_cold_oil(tmp_path):
     e = load_engine(edited(tmp_path, lambda wb: set_param(wb, "Oil", "Oil supply temperature",
                                                           value=-35), "cold.xlsx"))
     assert any("usual range" in w.message for w in e.warnings)
+
+
+def test_loader_and_cross_check_problems_are_reported_together(tmp_path):
+    cells = {}
+
+    def edit(wb):
+        cells["lining"] = set_cell(wb, "Bearings", "name", "M1", "lining", "AS61")  # loader
+        cells["throw"] = set_cell(wb, "Cylinders", "cylinder", 3, "throw angle", 90)  # engine
+        cells["step"] = set_param(wb, "Engine", "Speed step", value=2)  # engine: grid
+        cells["temp"] = set_param(wb, "Oil", "Oil supply temperature", value=-300)  # loader
+
+    errs = _errors(edited(tmp_path, edit))
+    where = sorted(e.split(":")[0] for e in errs)
+    assert where == sorted(cells.values()), errs
+
+
+def test_offsets_the_rod_cannot_reach_are_an_input_error(tmp_path):
+    """r + |cylinder offset| + |pin offset| < l (checker.calc.kinematics); both are within
+    their valid ranges, the combination is not."""
+    cell = {}
+    p = edited(tmp_path, lambda wb: cell.setdefault("c", set_param(
+        wb, "Engine", "Cylinder offset", value=110)))  # r 47.3 + 110 + 0.8 > l 145.7 mm
+    errs = _errors(p)
+    assert len(errs) == 1 and errs[0].startswith(cell["c"]) and "cannot reach" in errs[0]
+
+
+def test_bearing_length_to_diameter(tmp_path):
+    cell = {}
+    p = edited(tmp_path, lambda wb: cell.setdefault("c", set_cell(
+        wb, "Bearings", "name", "M1", "effective length", 0.5)))  # L/D 0.009
+    errs = _errors(p)
+    assert len(errs) == 1 and errs[0].startswith(cell["c"]) and "0.00909" in errs[0]
+    e = load_engine(edited(tmp_path, lambda wb: set_cell(
+        wb, "Bearings", "name", "M1", "effective length", 3), "narrow.xlsx"))  # L/D 0.055
+    assert [w.where for w in e.warnings] == [cell["c"]]

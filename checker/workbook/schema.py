@@ -411,9 +411,11 @@ FATIGUE = Sheet(
         F("Main journal bore diameter", "main_bore", "length", check=">=0", required=False,
           valid=R(0, 5000, "mm"), usual=R(0, 1000, "mm")),
         F("Base material UTS", "uts", "stress", check=">0", required=False,
-          valid=R(1, 20000, "MPa"), usual=R(20, 3000, "MPa")),
+          note="Valid up to 3000 MPa: the IACS UR M53 fatigue-strength fit turns negative"
+               " above about 3400 MPa.",
+          valid=R(1, 3000, "MPa"), usual=R(300, 2000, "MPa")),
         F("Fillet UTS", "fillet_uts", "stress", check=">0", required=False,
-          valid=R(1, 20000, "MPa"), usual=R(20, 3000, "MPa")),
+          valid=R(1, 3000, "MPa"), usual=R(300, 2000, "MPa")),
         F("Base tensile yield strength", "yield_strength", "stress", check=">0", required=False,
           valid=R(1, 20000, "MPa"), usual=R(20, 3000, "MPa")),
         F("Base compressive yield strength", "compressive_yield", "stress", check=">0",
