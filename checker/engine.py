@@ -72,13 +72,21 @@ class MassItem:
 
 @dataclass(frozen=True)
 class TVStation:
+    """One station of the torsional chain; ``cylinders`` are the cylinders whose excitation
+    acts on it (one for an in-line engine, both of a crank pin in the usual V model)."""
+
     station: str
     role: str
     inertia: float
-    cylinder: int | None = None
+    cylinders: tuple[int, ...] = ()
     absolute_damping: float = 0.0
     stiffness: float | None = None
     relative_damping: float = 0.0
+
+    @property
+    def cylinder(self) -> int | None:
+        """The first cylinder on the station (``None`` without one)."""
+        return self.cylinders[0] if self.cylinders else None
 
 
 @dataclass(frozen=True)
@@ -479,6 +487,7 @@ def build_engine(data: WorkbookData,
 
     tv_rows = _rows(data, "TVModel")
     tv = []
+    station_of_cyl: dict[int, int] = {}
     for i, r in enumerate(tv_rows):
         if r["station"] is None or r["inertia"] is None or r["role"] is None:
             continue
@@ -489,11 +498,21 @@ def build_engine(data: WorkbookData,
         if last and r["stiffness"] is not None:
             err("TVModel", "stiffness", i, "the last station has no next station; leave its"
                 " stiffness blank")
-        if r["role"] == "cylinder" and r["cylinder"] is None:
-            err("TVModel", "cylinder", i, "a cylinder station needs its cylinder number")
-        if r["cylinder"] is not None and n_cyl is not None and r["cylinder"] > n_cyl:
-            err("TVModel", "cylinder", i, f"cylinder {r['cylinder']} does not exist")
-        tv.append(TVStation(r["station"], r["role"], r["inertia"], r["cylinder"],
+        cyls_here = tuple(r["cylinder"] or ())
+        if r["role"] == "cylinder" and not cyls_here:
+            err("TVModel", "cylinder", i, "a cylinder station needs its cylinder number(s)"
+                " (e.g. 3, or 1, 2 for both cylinders of a V-engine crank pin)")
+        for c in cyls_here:
+            if n_cyl is not None and c > n_cyl:
+                err("TVModel", "cylinder", i, f"cylinder {c} does not exist (the engine has"
+                    f" {n_cyl} cylinders)")
+            elif c in station_of_cyl:
+                first = tv_rows[station_of_cyl[c]]["station"]
+                err("TVModel", "cylinder", i, f"cylinder {c} is already on station '{first}';"
+                    " each cylinder's excitation acts on one station")
+            else:
+                station_of_cyl[c] = i
+        tv.append(TVStation(r["station"], r["role"], r["inertia"], cyls_here,
                             r["absolute_damping"] or 0.0, r["stiffness"],
                             r["relative_damping"] or 0.0))
 

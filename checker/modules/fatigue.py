@@ -203,7 +203,7 @@ def _pin_oil_hole(engine: Engine, bigs: list) -> tuple[dict | None, list[str]]:
 
 def _station_elements(engine: Engine, n_pins: int, n_el: int) -> tuple[np.ndarray, list[str]]:
     """Front and rear TV element of each throw, shape (n_pins, 2); ``n_el`` = none (free end)."""
-    station_of = {s.cylinder: i for i, s in enumerate(engine.tv_model) if s.cylinder is not None}
+    station_of = {c: i for i, s in enumerate(engine.tv_model) for c in s.cylinders}
     out = np.full((n_pins, 2), n_el, dtype=int)
     missing = []
     for j in range(n_pins):

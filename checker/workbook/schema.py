@@ -67,7 +67,7 @@ class Span:
 
 @functools.cache
 def _span_si(span: Span, kind: str) -> tuple[float, float]:
-    if kind == "int":
+    if kind in ("int", "int_list"):
         conv = float
     else:
         from ..units import to_si
@@ -647,7 +647,11 @@ TV_MODEL = Sheet(
           choices=("damper ring", "crank nose", "cylinder", "flywheel", "other"),
           aliases=(("ring", "damper ring"), ("damper inertia ring", "damper ring"),
                    ("nose", "crank nose"), ("cyl", "cylinder"))),
-        F("cylinder", "cylinder", "int", check=">0", required=False,
+        F("cylinder", "cylinder", "int_list", check=">0", required=False,
+          note="Cylinder(s) whose gas and inertia torque acts on this station: one number, or"
+               " several separated by commas, e.g. '1, 2' for the two cylinders of a V-engine"
+               " crank pin (the usual V model: one station per throw). Each cylinder on one"
+               " station only.",
           valid=R(1, 64)),
         F("inertia", "inertia", "inertia", check=">0",
           valid=R(1e-9, 1e7, "kg m^2"), usual=R(1e-5, 1e6, "kg m^2")),
