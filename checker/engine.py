@@ -350,18 +350,17 @@ usual web (webs are 15-30 % of the spacing; the examples: 22.3/96 and 25/130 mm)
 
 
 def check_mass_planes(rows: list[dict[str, Any]], p: Params, fatigue: Params,
-                      bearings: list[Bearing], cylinders: list[Cylinder],
-                      where: dict[tuple, str],
+                      bearings: list[Bearing], where: dict[tuple, str],
                       warn: Callable[[str, str, int | None, str], None]) -> None:
     """Warn where a CrankMass centre of mass lies axially outside its component.
 
     ``X`` is the axial offset of the centre of mass from the component's plane (a web's
     mid-plane); a web or counterweight cannot have it beyond half its thickness (Fatigue 'Web
     full thickness', else 'Web reduced thickness', else :data:`MASS_PLANE_FRACTION` of the main
-    journal spacing), a crank pin not beyond half the pin length (the big-end journal length
-    times the rods on the pin, else a quarter of the spacing). A lateral coordinate entered in
-    X instead of Z is the usual cause: the centrifugal force then acts in the wrong direction
-    and off its plane.
+    journal spacing), a crank pin not beyond half the pin length (the big-end journal length,
+    the whole pin also when it carries two rods; else a quarter of the spacing). A lateral
+    coordinate entered in X instead of Z is the usual cause: the centrifugal force then acts in
+    the wrong direction and off its plane.
     """
     spacing = p.get("main_spacing")
     t = fatigue.get("web_full_thickness") or fatigue.get("web_thickness")
@@ -377,20 +376,14 @@ def check_mass_planes(rows: list[dict[str, Any]], p: Params, fatigue: Params,
     else:
         web_bound, web_why = None, ""
     lengths = [b.journal_length for b in bearings if b.type == "big end" and b.journal_length]
-    rods = {}
-    for c in cylinders:
-        rods[c.pin] = rods.get(c.pin, 0) + 1
     for i, r in enumerate(rows):
         x, kind = r.get("x"), r.get("kind")
         if x is None or kind is None:
             continue
         if kind == "pin":
-            n = rods.get(r.get("throw"), 1)
             if lengths:
-                bound = 0.5 * min(lengths) * n
-                why = (f"half the crank pin length ({n} x the big-end journal length"
-                       f" {min(lengths) * 1e3:.4g} mm)" if n > 1 else
-                       f"half the big-end journal length {min(lengths) * 1e3:.4g} mm")
+                bound = 0.5 * max(lengths)
+                why = f"half the crank pin (big-end journal) length {max(lengths) * 1e3:.4g} mm"
             elif spacing is not None:
                 bound, why = 0.25 * spacing, "a quarter of the main journal spacing"
             else:
@@ -550,7 +543,7 @@ def build_engine(data: WorkbookData,
                 " (main journal spacing)")
 
     check_mass_planes(_rows(data, "CrankMass"), p, Params(data.params.get("Fatigue", {})),
-                      bearings, cylinders, data.where, warn)
+                      bearings, data.where, warn)
 
     tv_rows = _rows(data, "TVModel")
     tv = []

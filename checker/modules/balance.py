@@ -9,8 +9,9 @@ free forces are inertia forces of the moving parts (:mod:`checker.calc.balance`)
 Geometry: crank pin ``j`` (bay ``j``) lies at mid-bay, axial position ``(j - 1/2) L`` from the
 front main (``L`` = main journal spacing, as in the loads module); rods sharing a pin sit at
 its mid-plane. Crank masses are at ``(throw - 1) L + axial position + X`` with their crank-frame
-position (``pin axis`` rows shifted by the pin position). Free moments are taken about the
-crank's mid-plane ``z = n_pins L / 2``.
+position (the sheet's Z, Y are in the throw-1 frame, turned by throw 1's angle; ``pin axis``
+rows shifted by the pin position: :func:`checker.calc.crank_forces.mass_positions`). Free
+moments are taken about the crank's mid-plane ``z = n_pins L / 2``.
 
 Values are at the reference speed: the rated speed (Engine 'Rated speed'), else the maximum
 speed; forces scale with the speed squared. The rules compare them with the project's own
@@ -167,11 +168,9 @@ def _balance(engine: Engine) -> dict[str, Quantity]:
                                           " positions of throws and mains)")]
     # rotating masses: crank items + rods' big ends at their pins
     cm = np.array([it.mass for it in crank], dtype=float)
-    cpos = np.array([[it.z, it.y] for it in crank], dtype=float).reshape(-1, 2)
     cthrow = np.array([it.throw - 1 for it in crank], dtype=int)
-    for k, it in enumerate(crank):
-        if it.reference == "pin axis":
-            cpos[k] += r * e_pin[it.throw - 1]
+    cpos = cf.mass_positions([it.z for it in crank], [it.y for it in crank], cthrow,
+                             [it.reference == "pin axis" for it in crank], gamma, r)
     cw = np.array([it.kind == "counterweight" for it in crank], dtype=bool)
     rod_pos = r * e_pin[pins]
     L = spacing if spacing is not None else 0.0

@@ -325,11 +325,9 @@ def bearing_loads(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                 raise MissingInputs([engine.describe_missing("Engine", "main_spacing")])
             gamma = cf.throw_angles(firing, bank, pins, n_pins)
             m = engine.crank_mass
-            pos = np.array([[it.z, it.y] for it in m], dtype=float)
-            for k, it in enumerate(m):
-                if it.reference == "pin axis":
-                    g = gamma[it.throw - 1]
-                    pos[k] += r * np.array([np.sin(g), np.cos(g)])
+            pos = cf.mass_positions([it.z for it in m], [it.y for it in m],
+                                    [it.throw - 1 for it in m],
+                                    [it.reference == "pin axis" for it in m], gamma, r)
             mains_load = cf.main_bearing_loads(
                 cyc.theta, omega, loads.big_end_block, pin_index=pins,
                 rod_axial_position=p["main_spacing"] / 2.0,

@@ -567,6 +567,8 @@ BEARINGS = Sheet(
         F("journal diameter", "diameter", "length", check=">0",
           valid=R(1, 10000, "mm"), usual=R(15, 1500, "mm")),
         F("journal length", "journal_length", "length", check=">0", required=False,
+          note="Journal length between the webs (fillet geometry); a crank pin carrying two"
+               " rods (V engine): the whole pin.",
           valid=R(0.1, 5000, "mm"), usual=R(3, 1000, "mm")),
         F("effective length", "length", "length", check=">0",
           note="Shell land length carrying load (excluding chamfers and grooves).",
@@ -619,7 +621,8 @@ CRANK_MASS = Sheet(
                " (seed 000 convention: mirrored webs have opposite signs).",
           valid=R(-20000, 20000, "mm"), usual=R(-3000, 3000, "mm")),
         F("Y", "y", "length",
-          note="Radial position in the crank frame, along throw 1 (throw 1 pin at +Y).",
+          note="Radial position in the crank frame, along throw 1 (throw 1 pin at +Y; for a V"
+               " engine throw 1 is the pin of cylinder 1, not the vertical).",
           valid=R(-20000, 20000, "mm"), usual=R(-3000, 3000, "mm")),
         F("Z", "z", "length", required=False,
           note="Lateral position in the crank frame, +90 deg from Y in the direction of"
