@@ -589,7 +589,7 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                            " bending moment is zero at the journal centre), γ_T of M53's"
                            " crank-pin oil bore with d_O = D_O/D_G (M53 has no journal oil-bore"
                            " factor); evaluated at every main journal.")
-    assumptions += notes
+    assumptions += notes + loads.shared_pins_text(engine)
     sf_by_loc = np.full((len(LOCATIONS), C, S), np.nan)
     for li, lname in enumerate(LOCATIONS):
         rows_i = np.nonzero(loc_arr == lname)[0]

@@ -140,12 +140,43 @@ def _check(f: Field, v: float) -> str | None:
     return None
 
 
+def _int_list(f: Field, raw: Any) -> tuple[tuple[int, ...] | None, str | None, list[str]]:
+    """A cell of whole numbers (kind ``int_list``): one number, or several separated by
+    commas or semicolons (``1, 5``; ``1;5``), each checked like an ``int`` field against the
+    field's sign check and ``valid``/``usual`` ranges. Returns (tuple without repeats or None,
+    error text or None, warning texts)."""
+    parts = re.split(r"[,;]", raw.strip()) if isinstance(raw, str) else [raw]
+    out: list[int] = []
+    warnings: list[str] = []
+    for part in parts:
+        num = _number(part.strip() if isinstance(part, str) else part)
+        if num is None or not math.isfinite(num) or not float(num).is_integer():
+            hint = ""
+            if isinstance(raw, float) and not float(raw).is_integer():
+                hint = (" (a cell typed as 1,5 in a decimal-comma locale is stored as the"
+                        " number 1.5: write '1; 5' or format the cell as text)")
+            return None, f"{f.label}: expected {_expected(f)}, found {_describe(raw)}{hint}", []
+        n = int(num)
+        problem = _check(f, n)
+        if problem:
+            return None, f"{f.label} {problem}, found {n}", []
+        if f.valid is not None and not f.valid.contains(n, f.kind):
+            return None, (f"{f.label} {n} is outside {f.valid.text()}, the range the"
+                          " calculations can handle; check the value"), []
+        if f.usual is not None and not f.usual.contains(n, f.kind):
+            warnings.append(f"{f.label} {n} is outside the usual range {f.usual.text()} of"
+                            " crank-train engines; check the value")
+        if n in out:
+            return None, f"{f.label}: {n} is listed twice in '{raw}'", []
+        out.append(n)
+    return tuple(out), None, warnings
+
+
 def _shown(f: Field, num: float, unit: str | None, si: float) -> str:
     """The value as entered, plus its value in the unit of the field's ranges when different."""
     text = f"{num:g}" + (f" {unit}" if unit and unit != "-" else "")
     span = f.valid or f.usual
-    if f.kind in ("int", "int_list") or span is None or span.unit in ("", "-") or \
-            span.unit == (unit or ""):
+    if f.kind == "int" or span is None or span.unit in ("", "-") or span.unit == (unit or ""):
         return text
     try:
         conv = float(from_si(si, KINDS[f.kind].si, span.unit))
@@ -208,6 +239,13 @@ class _Reader:
         data.where[key] = where
         if _blank(raw):
             return None
+        if f.kind == "int_list":
+            got, error, warnings = _int_list(f, raw)
+            if error:
+                self.err(where, error)
+            for w in warnings:
+                self.warn(where, w)
+            return got
         if f.kind == "text":
             return str(raw).strip() if not isinstance(raw, float) else f"{raw:g}"
         if f.kind == "choice":
@@ -216,8 +254,6 @@ class _Reader:
             except ChoiceProblem as exc:
                 self.err(where, f"{f.label}: {exc}")
                 return None
-        if f.kind == "int_list":
-            return self.int_list(where, f, raw)
         num = _number(raw)
         if num is None:
             hint = " (use a decimal point, not a comma)" if isinstance(raw, str) and re.match(
@@ -261,39 +297,6 @@ class _Reader:
             self.warn(where, warning)
         data.units[key] = unit or ""
         return si
-
-    def int_list(self, where: str, f: Field, raw: Any) -> tuple[int, ...] | None:
-        """A cell of whole numbers: one number, or several separated by commas or semicolons
-        (``1, 5``; ``1;5``), each checked like an ``int`` field; a tuple without repeats."""
-        parts = [raw] if not isinstance(raw, str) else [
-            p for p in re.split(r"[,;]", raw.strip())]
-        out: list[int] = []
-        for part in parts:
-            num = _number(part.strip() if isinstance(part, str) else part)
-            if num is None or not math.isfinite(num) or not float(num).is_integer():
-                hint = ""
-                if isinstance(raw, float) and not float(raw).is_integer():
-                    hint = (" (a cell typed as 1,5 in a decimal-comma locale is stored as the"
-                            " number 1.5: write '1; 5' or format the cell as text)")
-                self.err(where, f"{f.label}: expected {_expected(f)}, found"
-                         f" {_describe(raw)}{hint}")
-                return None
-            num = int(num)
-            problem = _check(f, num)
-            if problem:
-                self.err(where, f"{f.label} {problem}, found {num:g}")
-                return None
-            error, warning = _range_problem(f, num, f"{num:g}", None)
-            if error:
-                self.err(where, error)
-                return None
-            if warning:
-                self.warn(where, warning)
-            if num in out:
-                self.err(where, f"{f.label}: {num} is listed twice in '{raw}'")
-                return None
-            out.append(num)
-        return tuple(out)
 
     def merged(self, sheet: str, raw: _RawSheet) -> None:
         for ref in raw.merged:
