@@ -126,21 +126,24 @@ def main() -> None:
 @main.command()
 @click.argument("path", type=click.Path(dir_okay=False), required=False)
 @click.option("--force", is_flag=True, help="Overwrite an existing file.")
-@click.option("--engine", "which", type=click.Choice(["i4", "i6"]), default="i4",
+@click.option("--engine", "which", type=click.Choice(["i4", "i6", "v8"]), default="i4",
               show_default=True, help="i4: the seed's gasoline engine (Ricardo 2013); i6: a"
-              " truck diesel from Mendes et al. 2008 with labelled assumptions.")
+              " truck diesel from Mendes et al. 2008; v8: a 90-degree cross-plane V8 from GM"
+              " LS1 service data; assumptions labelled in each.")
 def template(path: str, force: bool, which: str) -> None:
     """Write an example workbook to PATH (default: engine.xlsx for the I4, engine-i6.xlsx for
-    the I6)."""
+    the I6, engine-v8.xlsx for the V8)."""
     from .workbook.example import example_content, write_workbook
     from .workbook.example_i6 import i6_content
+    from .workbook.example_v8 import v8_content
 
     p = Path(path or ("engine.xlsx" if which == "i4" else f"engine-{which}.xlsx"))
     if p.exists() and not force:
         raise click.UsageError(f"{p} exists; use --force to overwrite it")
+    content = {"i4": example_content, "i6": i6_content, "v8": v8_content}[which]()
     with tempfile.TemporaryDirectory() as d:
         tmp = Path(d) / "engine.xlsx"
-        write_workbook(tmp, example_content() if which == "i4" else i6_content())
+        write_workbook(tmp, content)
         _atomic_write(p, tmp.read_bytes())
     click.echo(f"wrote {p}", err=True)
 

@@ -72,13 +72,21 @@ class MassItem:
 
 @dataclass(frozen=True)
 class TVStation:
+    """One station of the torsional chain; ``cylinders`` are the cylinders whose excitation
+    acts on it (one for an in-line engine, both of a crank pin in the usual V model)."""
+
     station: str
     role: str
     inertia: float
-    cylinder: int | None = None
+    cylinders: tuple[int, ...] = ()
     absolute_damping: float = 0.0
     stiffness: float | None = None
     relative_damping: float = 0.0
+
+    @property
+    def cylinder(self) -> int | None:
+        """The first cylinder on the station (``None`` without one)."""
+        return self.cylinders[0] if self.cylinders else None
 
 
 @dataclass(frozen=True)
@@ -350,6 +358,63 @@ def check_speed_grid(p: Params, peak_pressure: list[tuple[str, float, float]],
              " check takes correspondingly longer")
 
 
+MASS_PLANE_FRACTION = 0.15
+"""Without a web thickness (sheet Fatigue), a web's or counterweight's centre of mass more than
+15 % of the main journal spacing from its plane is taken as outside it: half the thickest
+usual web (webs are 15-30 % of the spacing; the examples: 22.3/96 and 25/130 mm)."""
+
+
+def check_mass_planes(rows: list[dict[str, Any]], p: Params, fatigue: Params,
+                      bearings: list[Bearing], where: dict[tuple, str],
+                      warn: Callable[[str, str, int | None, str], None]) -> None:
+    """Warn where a CrankMass centre of mass lies axially outside its component.
+
+    ``X`` is the axial offset of the centre of mass from the component's plane (a web's
+    mid-plane); a web or counterweight cannot have it beyond half its thickness (Fatigue 'Web
+    full thickness', else 'Web reduced thickness', else :data:`MASS_PLANE_FRACTION` of the main
+    journal spacing), a crank pin not beyond half the pin length (the big-end journal length,
+    the whole pin also when it carries two rods; else a quarter of the spacing). A lateral
+    coordinate entered in X instead of Z is the usual cause: the centrifugal force then acts in
+    the wrong direction and off its plane.
+    """
+    spacing = p.get("main_spacing")
+    t = fatigue.get("web_full_thickness") or fatigue.get("web_thickness")
+    t_attr = "web_full_thickness" if fatigue.get("web_full_thickness") else "web_thickness"
+    if t is not None:
+        web_bound = t / 2.0
+        web_why = (f"half the web thickness {t * 1e3:.4g} mm"
+                   f" ({where.get(('Fatigue', t_attr), 'Fatigue')})")
+    elif spacing is not None:
+        web_bound = MASS_PLANE_FRACTION * spacing
+        web_why = (f"{MASS_PLANE_FRACTION * 100:.0f} % of the main journal spacing, half the"
+                   " thickest usual web (no web thickness on sheet Fatigue)")
+    else:
+        web_bound, web_why = None, ""
+    lengths = [b.journal_length for b in bearings if b.type == "big end" and b.journal_length]
+    for i, r in enumerate(rows):
+        x, kind = r.get("x"), r.get("kind")
+        if x is None or kind is None:
+            continue
+        if kind == "pin":
+            if lengths:
+                bound = 0.5 * max(lengths)
+                why = f"half the crank pin (big-end journal) length {max(lengths) * 1e3:.4g} mm"
+            elif spacing is not None:
+                bound, why = 0.25 * spacing, "a quarter of the main journal spacing"
+            else:
+                continue
+        else:
+            if web_bound is None:
+                continue
+            bound, why = web_bound, web_why
+        if abs(x) > bound * (1.0 + 1e-9):
+            what = {"web": "web", "counterweight": "counterweight", "pin": "crank pin"}[kind]
+            warn("CrankMass", "x", i, f"X = {x * 1e3:.4g} mm puts the centre of mass of"
+                 f" '{r.get('location')}' axially outside the {what} (|X| above {why}); X is"
+                 " the axial offset of the centre of mass from the component's plane: a"
+                 " lateral position in the crank frame belongs in Z")
+
+
 def check_oil(oil: Params, err: Callable[[str, str, int | None, str], None]) -> None:
     """The oil data must give a viscosity curve that holds at the film temperature."""
     from .calc import viscosity as vs
@@ -510,8 +575,12 @@ def build_engine(data: WorkbookData,
             err("CrankMass", "axial", i, "axial position lies beyond the next main bearing"
                 " (main journal spacing)")
 
+    check_mass_planes(_rows(data, "CrankMass"), p, Params(data.params.get("Fatigue", {})),
+                      bearings, data.where, warn)
+
     tv_rows = _rows(data, "TVModel")
     tv = []
+    station_of_cyl: dict[int, int] = {}
     for i, r in enumerate(tv_rows):
         if r["station"] is None or r["inertia"] is None or r["role"] is None:
             continue
@@ -522,11 +591,21 @@ def build_engine(data: WorkbookData,
         if last and r["stiffness"] is not None:
             err("TVModel", "stiffness", i, "the last station has no next station; leave its"
                 " stiffness blank")
-        if r["role"] == "cylinder" and r["cylinder"] is None:
-            err("TVModel", "cylinder", i, "a cylinder station needs its cylinder number")
-        if r["cylinder"] is not None and n_cyl is not None and r["cylinder"] > n_cyl:
-            err("TVModel", "cylinder", i, f"cylinder {r['cylinder']} does not exist")
-        tv.append(TVStation(r["station"], r["role"], r["inertia"], r["cylinder"],
+        cyls_here = tuple(r["cylinder"] or ())
+        if r["role"] == "cylinder" and not cyls_here:
+            err("TVModel", "cylinder", i, "a cylinder station needs its cylinder number(s)"
+                " (e.g. 3, or 1, 2 for both cylinders of a V-engine crank pin)")
+        for c in cyls_here:
+            if n_cyl is not None and c > n_cyl:
+                err("TVModel", "cylinder", i, f"cylinder {c} does not exist (the engine has"
+                    f" {n_cyl} cylinders)")
+            elif c in station_of_cyl:
+                first = tv_rows[station_of_cyl[c]]["station"]
+                err("TVModel", "cylinder", i, f"cylinder {c} is already on station '{first}';"
+                    " each cylinder's excitation acts on one station")
+            else:
+                station_of_cyl[c] = i
+        tv.append(TVStation(r["station"], r["role"], r["inertia"], cyls_here,
                             r["absolute_damping"] or 0.0, r["stiffness"],
                             r["relative_damping"] or 0.0))
 

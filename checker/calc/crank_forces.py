@@ -43,6 +43,7 @@ __all__ = [
     "crankpin_force",
     "cylinder_loads",
     "main_bearing_loads",
+    "mass_positions",
     "rod_mass_split",
     "rotate_frame",
     "throw_angles",
@@ -437,6 +438,56 @@ def throw_angles(
                 f"{np.rad2deg(g)} deg: check firing and bank angles"
             )
         out[j] = g[0]
+    return out
+
+
+def mass_positions(
+    lateral: ArrayLike, radial: ArrayLike, throw_index: ArrayLike, pin_axis: ArrayLike,
+    throw_angle: ArrayLike, crank_radius: float,
+) -> np.ndarray:
+    """Crank-frame centres of mass of crank components given in the throw-1 frame.
+
+    The workbook (sheet CrankMass) gives each centre of mass as ``Y`` along throw 1 and ``Z``
+    +90 deg from it in the direction of rotation, from the main axis or from its own crank
+    pin's axis. Throw 1 points at crank-frame angle ``gamma_1`` (:func:`throw_angles`; 0 for an
+    in-line engine whose cylinder 1 is upright, the bank angle of cylinder 1 for a V engine),
+    so the point is turned by ``gamma_1``; a pin-axis point is then moved by the pin position
+    ``r (sin gamma_j, cos gamma_j)`` of its throw ``j``::
+
+        x = Z cos g1 + Y sin g1,   y = Y cos g1 - Z sin g1   (+ r e_j for pin-axis points)
+
+    Parameters
+    ----------
+    lateral, radial : array_like, shape (n_m,) [m]
+        ``Z`` and ``Y`` of each component.
+    throw_index : array_like of int, shape (n_m,)
+        Throw ``0..n_pins-1`` of each component.
+    pin_axis : array_like of bool, shape (n_m,)
+        True where the coordinates are relative to the pin axis.
+    throw_angle : array_like, shape (n_pins,) [rad]
+        ``gamma_j`` of every throw.
+    crank_radius : float [m]
+
+    Returns
+    -------
+    numpy.ndarray, shape (n_m, 2) [m]
+        ``(x, y)`` in the crank frame, from the main axis.
+    """
+    zl = np.asarray(lateral, dtype=float).ravel()
+    yr = np.asarray(radial, dtype=float).ravel()
+    j = np.asarray(throw_index, dtype=int).ravel()
+    pa = np.asarray(pin_axis, dtype=bool).ravel()
+    gam = np.asarray(throw_angle, dtype=float).ravel()
+    if not (zl.size == yr.size == j.size == pa.size):
+        raise ValueError("lateral, radial, throw_index and pin_axis must match")
+    if j.size and (j.min() < 0 or j.max() >= gam.size):
+        raise ValueError(f"throw_index must lie in 0..{gam.size - 1}")
+    g1 = gam[0] if gam.size else 0.0
+    c, s = np.cos(g1), np.sin(g1)
+    out = np.stack([zl * c + yr * s, yr * c - zl * s], axis=-1)
+    if j.size:
+        e = np.stack([np.sin(gam[j]), np.cos(gam[j])], axis=-1)
+        out = out + np.where(pa[:, None], float(crank_radius) * e, 0.0)
     return out
 
 

@@ -9,8 +9,9 @@ free forces are inertia forces of the moving parts (:mod:`checker.calc.balance`)
 Geometry: crank pin ``j`` (bay ``j``) lies at mid-bay, axial position ``(j - 1/2) L`` from the
 front main (``L`` = main journal spacing, as in the loads module); rods sharing a pin sit at
 its mid-plane. Crank masses are at ``(throw - 1) L + axial position + X`` with their crank-frame
-position (``pin axis`` rows shifted by the pin position). Free moments are taken about the
-crank's mid-plane ``z = n_pins L / 2``.
+position (the sheet's Z, Y are in the throw-1 frame, turned by throw 1's angle; ``pin axis``
+rows shifted by the pin position: :func:`checker.calc.crank_forces.mass_positions`). Free
+moments are taken about the crank's mid-plane ``z = n_pins L / 2``.
 
 Values are at the reference speed: the rated speed (Engine 'Rated speed'), else the maximum
 speed; forces scale with the speed squared. The rules compare them with the project's own
@@ -50,8 +51,23 @@ INTERNAL_MOMENT = quantity(QuantitySpec(
     "Bending moment of the rotating masses' centrifugal forces in the crank at each main"
     " bearing, at the reference speed", "N*m"))
 
+CRANK_UNBALANCE = quantity(QuantitySpec(
+    "balance.crank_unbalance", "", ("item",),
+    "Resultant unbalance of the crank's rotating masses (CrankMass rows and the rods' big"
+    " ends) in a layout whose throws balance each other: static = |sum m rho| / one throw's"
+    " rotating unbalance U; dynamic = |sum m rho z| / (U x main journal spacing)", "%",
+    ("kind",)))
+
 PROVIDES = ("balance.free_force", "balance.free_moment", "balance.balance_ratio",
-            "balance.internal_moment")
+            "balance.internal_moment", "balance.crank_unbalance")
+
+UNBALANCE_FRACTION = 0.05
+"""Unbalance of the crank's rotating masses, as a fraction of one throw's rotating unbalance
+(static) or of that unbalance times the main journal spacing (dynamic), above which a layout
+that is inherently balanced gets a finding (rule BAL-006 uses the same 5 % as its limit).
+Rounding of entered coordinates leaves far less (~1e-5), a misplaced counterweight or a
+coordinate in the wrong column far more (one web's counterweight is ~40 % of a throw)."""
+_INHERENT_TOL = 1e-9
 
 _LIMITS = {("force", "1"): "free_force_limit_1", ("force", "2"): "free_force_limit_2",
            ("moment", "1"): "free_moment_limit_1", ("moment", "2"): "free_moment_limit_2"}
@@ -152,11 +168,9 @@ def _balance(engine: Engine) -> dict[str, Quantity]:
                                           " positions of throws and mains)")]
     # rotating masses: crank items + rods' big ends at their pins
     cm = np.array([it.mass for it in crank], dtype=float)
-    cpos = np.array([[it.z, it.y] for it in crank], dtype=float).reshape(-1, 2)
     cthrow = np.array([it.throw - 1 for it in crank], dtype=int)
-    for k, it in enumerate(crank):
-        if it.reference == "pin axis":
-            cpos[k] += r * e_pin[it.throw - 1]
+    cpos = cf.mass_positions([it.z for it in crank], [it.y for it in crank], cthrow,
+                             [it.reference == "pin axis" for it in crank], gamma, r)
     cw = np.array([it.kind == "counterweight" for it in crank], dtype=bool)
     rod_pos = r * e_pin[pins]
     L = spacing if spacing is not None else 0.0
@@ -245,6 +259,12 @@ def _balance(engine: Engine) -> dict[str, Quantity]:
                                 couple_unbalance=np.hypot(*((rm * rax) @ rpos)),
                                 throw_angle=gamma))
 
+    out["balance.crank_unbalance"] = _crank_unbalance(
+        engine, common, crank=bool(crank), spacing=spacing, gamma=gamma, pins=pins,
+        rm=rm, rpos=rpos, rax=rax, is_cw=np.concatenate([cw, np.zeros(len(cyls), bool)]),
+        throw_of=np.concatenate([cthrow, pins]), w2=w2, speed_text=speed_text, omega=omega,
+        force=out["balance.free_force"], moment=out["balance.free_moment"])
+
     # internal bending moment at the mains
     mains = [b.name for b in engine.bearings if b.type == "main"]
     if len(mains) != n_pins + 1:
@@ -265,6 +285,91 @@ def _balance(engine: Engine) -> dict[str, Quantity]:
                        without_counterweights=np.hypot(b0[:, 0], b0[:, 1]) * w2,
                        stations=stations + zc))
     return out
+
+
+def _crank_unbalance(engine: Engine, common: dict, *, crank: bool, spacing: float | None,
+                     gamma: np.ndarray, pins: np.ndarray, rm: np.ndarray, rpos: np.ndarray,
+                     rax: np.ndarray, is_cw: np.ndarray, throw_of: np.ndarray, w2: float,
+                     speed_text: str, omega: float, force: Quantity, moment: Quantity
+                     ) -> Quantity:
+    """Static and dynamic unbalance of the crank's rotating masses where the layout is
+    inherently balanced (findings on this quantity and on the 1st-order free force/moment).
+
+    A layout is inherently balanced statically when equal throws cancel, ``sum_j e_j = 0``
+    (``e_j`` the unit vector of throw ``j``, each pin carrying the same number of rods), and
+    dynamically when also ``sum_j z_j e_j = 0`` (Taylor 1985, vol. 2, ch. 8: in-line four and
+    six, flat-plane V8; not the in-line three or the cross-plane V8, whose rotating couple the
+    counterweights cancel by design). There, any resultant of the rotating masses comes from
+    the crank data (a counterweight missing or misplaced, a coordinate in the wrong column).
+    """
+    n_pins = gamma.size
+    e = np.stack([np.sin(gamma), np.cos(gamma)], axis=-1)
+    n_on = np.bincount(pins, minlength=n_pins)
+    z_pin = (np.arange(n_pins) + 0.5) - n_pins / 2.0  # in units of the main spacing
+    same = bool(np.all(n_on == n_on[0]))
+    static_ok = same and np.hypot(*e.sum(0)) < _INHERENT_TOL * n_pins
+    dynamic_ok = static_ok and np.hypot(*(z_pin[:, None] * e).sum(0)) < _INHERENT_TOL * n_pins**2
+    items = ["static", "dynamic"]
+    attrs = {it: {"kind": it} for it in items}
+    vals = np.full(2, np.nan)
+    missing: dict[tuple, list[str]] = {}
+    findings: dict[tuple, list[str]] = {}
+    applies = np.array([static_ok, dynamic_ok])
+    if dynamic_ok:
+        why = "the layout is inherently balanced (equal throws cancel, forces and couples)"
+    elif static_ok:
+        why = ("judged statically only: equal throws of this layout cancel as forces but leave"
+               " a rotating couple, which the counterweights cancel by design (cross-plane V8,"
+               " in-line three)")
+    else:
+        why = ("not judged: equal throws of this layout do not cancel (single throw, uneven"
+               " layouts), so the counterweights balance the crank by design, not by symmetry")
+    extra = dict(common, static_inherent=static_ok, dynamic_inherent=dynamic_ok,
+                 fraction=UNBALANCE_FRACTION, applies_text=why)
+    if not crank:
+        reason = ["CrankMass: crank mass properties are needed for the crank's rotating"
+                  " unbalance (sheet CrankMass)"]
+        return Quantity(CRANK_UNBALANCE, vals, {"item": items}, attrs,
+                        {(0,): list(reason), (1,): list(reason)}, applies=applies, extra=extra)
+    per_throw = np.zeros((n_pins, 2))
+    keep = ~is_cw
+    np.add.at(per_throw, throw_of[keep], rm[keep, None] * rpos[keep])
+    u_throw = float(np.mean(np.hypot(per_throw[:, 0], per_throw[:, 1])))
+    s_vec = rm @ rpos
+    c_vec = (rm * rax) @ rpos
+    extra.update(throw_unbalance=u_throw, static_vector=s_vec, couple_vector=c_vec)
+    if not u_throw > 0:
+        reason = ["CrankMass: the throws have no rotating unbalance without counterweights (webs,"
+                  " pin and rods); check the crank masses and positions"]
+        return Quantity(CRANK_UNBALANCE, vals, {"item": items}, attrs,
+                        {(0,): list(reason), (1,): list(reason)}, applies=applies, extra=extra)
+    vals[0] = np.hypot(*s_vec) / u_throw
+    if spacing is None:
+        missing[(1,)] = [engine.describe_missing("Engine", "main_spacing", what="the crank"
+                                                 " (lever of the rotating couple)")]
+    else:
+        vals[1] = np.hypot(*c_vec) / (u_throw * spacing)
+    rpm = omega / RPM
+    check = (" Check the CrankMass rows: the lateral position belongs in Z (X is the axial"
+             " offset of the centre of mass), and the counterweights must balance the crank as"
+             " a whole.")
+    if static_ok and vals[0] > UNBALANCE_FRACTION:
+        text = (f"the crank's rotating masses leave a static unbalance of"
+                f" {np.hypot(*s_vec):.4g} kg m ({np.hypot(*s_vec) * w2 / 1e3:.3g} kN at"
+                f" {rpm:.0f} rpm), {100 * vals[0]:.0f} % of one throw's rotating unbalance"
+                f" {u_throw:.4g} kg m, in a layout whose equal throws cancel." + check)
+        findings[(0,)] = [text]
+        force.findings.setdefault((0,), []).append(text)
+    if dynamic_ok and np.isfinite(vals[1]) and vals[1] > UNBALANCE_FRACTION:
+        text = (f"the crank's rotating masses leave a rotating couple of"
+                f" {np.hypot(*c_vec):.4g} kg m^2 ({np.hypot(*c_vec) * w2:.4g} N m at"
+                f" {rpm:.0f} rpm), {100 * vals[1]:.0f} % of one throw's rotating unbalance x"
+                f" the main journal spacing, in a layout whose equal throws cancel dynamically."
+                + check)
+        findings[(1,)] = [text]
+        moment.findings.setdefault((0,), []).append(text)
+    return Quantity(CRANK_UNBALANCE, vals, {"item": items}, attrs, missing, findings,
+                    applies=applies, extra=extra)
 
 
 def _overflow_checked(out: dict[str, Quantity], engine: Engine) -> dict[str, Quantity]:

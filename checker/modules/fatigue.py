@@ -203,7 +203,7 @@ def _pin_oil_hole(engine: Engine, bigs: list) -> tuple[dict | None, list[str]]:
 
 def _station_elements(engine: Engine, n_pins: int, n_el: int) -> tuple[np.ndarray, list[str]]:
     """Front and rear TV element of each throw, shape (n_pins, 2); ``n_el`` = none (free end)."""
-    station_of = {s.cylinder: i for i, s in enumerate(engine.tv_model) if s.cylinder is not None}
+    station_of = {c: i for i, s in enumerate(engine.tv_model) for c in s.cylinders}
     out = np.full((n_pins, 2), n_el, dtype=int)
     missing = []
     for j in range(n_pins):
@@ -589,7 +589,7 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                            " bending moment is zero at the journal centre), γ_T of M53's"
                            " crank-pin oil bore with d_O = D_O/D_G (M53 has no journal oil-bore"
                            " factor); evaluated at every main journal.")
-    assumptions += notes
+    assumptions += notes + loads.shared_pins_text(engine)
     sf_by_loc = np.full((len(LOCATIONS), C, S), np.nan)
     for li, lname in enumerate(LOCATIONS):
         rows_i = np.nonzero(loc_arr == lname)[0]

@@ -272,6 +272,21 @@ def _bearing_sets(engine: Engine, n_pins: int, n_cyl: int) -> tuple[list[Bearing
     return mains, bigs
 
 
+def shared_pins_text(engine: Engine) -> list[str]:
+    """One line naming the cylinders that share a crank pin (V engines), or nothing."""
+    by_pin: dict[int, list[int]] = {}
+    for c in engine.cylinders:
+        by_pin.setdefault(c.pin, []).append(c.number)
+    shared = {j: cs for j, cs in sorted(by_pin.items()) if len(cs) > 1}
+    if not shared:
+        return []
+    pins = "; ".join(f"pin {j}: cylinders {', '.join(map(str, cs))}" for j, cs in shared.items())
+    return [f"Crank pins carrying two or more rods ({pins}): each pin's load, the main bearing"
+            " loads and the pin fillet bending use the vector sum of the forces of the rods on"
+            " the pin, both at the pin's mid-plane; big-end loads stay per rod, each in its own"
+            " rod frame."]
+
+
 @calculation("bearing_loads", "loads", provides=("loads.bearing_load",),
              needs=("loads.cycle",),
              reads=("params", "cylinders", "crank_mass", "bearings.name", "bearings.type",
@@ -324,11 +339,9 @@ def bearing_loads(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                 raise MissingInputs([engine.describe_missing("Engine", "main_spacing")])
             gamma = cf.throw_angles(firing, bank, pins, n_pins)
             m = engine.crank_mass
-            pos = np.array([[it.z, it.y] for it in m], dtype=float)
-            for k, it in enumerate(m):
-                if it.reference == "pin axis":
-                    g = gamma[it.throw - 1]
-                    pos[k] += r * np.array([np.sin(g), np.cos(g)])
+            pos = cf.mass_positions([it.z for it in m], [it.y for it in m],
+                                    [it.throw - 1 for it in m],
+                                    [it.reference == "pin axis" for it in m], gamma, r)
             mains_load = cf.main_bearing_loads(
                 cyc.theta, omega, loads.big_end_block, pin_index=pins,
                 rod_axial_position=p["main_spacing"] / 2.0,
@@ -371,7 +384,8 @@ def bearing_loads(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                  "Main bearing loads by the statically determinate method: rigid crank pinned"
                  " at each main, each main carries only the adjacent throws (seed 000).",
                  "Con-rod as two masses plus an inertia-correction couple (exact rigid-body"
-                 " dynamics of the slider crank); constant crank speed; gravity neglected."]}
+                 " dynamics of the slider crank); constant crank speed; gravity neglected."]
+             + shared_pins_text(engine)}
     q = Quantity(BEARING_LOAD, peak, {"item": order, "case": list(cyc.cases),
                                       "speed": list(cyc.speeds)}, attrs, missing, extra=extra)
     return {"loads.bearing_load": q}

@@ -15,8 +15,11 @@ Model (seed 000, Ricardo's concept-level VALDYN practice)
   included) from the loads module's pressure traces (quantity ``loads.cycle``), its harmonics
   (:func:`checker.calc.excitation.torque_harmonics`, orders 0.5..24), phased by the firing
   angles (sheet ``Cylinders``) and applied at the cylinder stations (``TVModel`` column
-  ``cylinder``). All cylinders have the same geometry, so cylinder ``i`` is cylinder 1 shifted by
-  its firing angle (exact in the frequency domain).
+  ``cylinder``; a station may carry several cylinders, e.g. both of a V-engine crank pin, and
+  then takes the sum of their phased torques). All cylinders have the same geometry, so
+  cylinder ``i`` is cylinder 1 shifted by its firing angle (exact in the frequency domain); the
+  bank angle does not enter, since a cylinder's crank torque depends only on its own kinematic
+  crank angle ``theta - phi_i``.
 * Steady-state forced response per order and speed at full and no load in one batched solve
   (:func:`checker.calc.torsional.forced_response`); totals are synthesised over 720 deg and
   given as half peak-to-peak ("half range").
@@ -199,7 +202,7 @@ def _tv_inputs(engine: Engine) -> dict:
             problems.append(engine.describe_missing("Engine", name, what="the engine (needed"
                                                     " for the inertia torque of the TV"
                                                     " excitation)"))
-    station_of = {s.cylinder: i for i, s in enumerate(st) if s.cylinder is not None}
+    station_of = {c: i for i, s in enumerate(st) for c in s.cylinders}
     for c in engine.cylinders:
         if c.number not in station_of:
             problems.append(f"TVModel: no station for cylinder {c.number} (column 'cylinder')")

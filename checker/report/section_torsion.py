@@ -33,7 +33,7 @@ def _inputs(res: CheckResult) -> list[dict]:
     eng = res.engine
     rows = []
     for s in eng.tv_model:
-        rows.append([s.station, s.role, "-" if s.cylinder is None else str(s.cylinder),
+        rows.append([s.station, s.role, ", ".join(map(str, s.cylinders)) or "-",
                      fmt(s.inertia * 1e3, 5), fmt(s.absolute_damping, 3),
                      "-" if s.stiffness is None else fmt(s.stiffness / 1e3, 6),
                      fmt(s.relative_damping, 3)])

@@ -95,7 +95,7 @@ class Parameter:
 
     @property
     def numeric(self) -> bool:
-        return self.field.kind not in ("text", "choice")
+        return self.field.kind not in ("text", "choice", "int_list")
 
 
 @dataclass
@@ -318,7 +318,7 @@ def _parameter(rp: Any, i: int, at, problems: list[str], design: str) -> Paramet
         if r is not None and str(r).lower() != "all":
             rows = tuple(str(x) for x in (r if isinstance(r, list) else [r]))
     unit = str(rp.get("unit", "")).strip()
-    numeric = f.kind not in ("text", "choice")
+    numeric = f.kind not in ("text", "choice", "int_list")
     if numeric and f.kind != "int":
         try:
             to_si(1.0, unit or None, f.kind)

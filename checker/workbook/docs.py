@@ -7,8 +7,9 @@ from .schema import MAX_SPEEDS, SHEETS, USUAL_SPEEDS, choice_key
 
 
 def _kind(kind: str) -> str:
-    if kind in ("int", "text", "choice"):
-        return {"int": "whole number", "text": "text", "choice": "choice"}[kind]
+    if kind in ("int", "int_list", "text", "choice"):
+        return {"int": "whole number", "int_list": "whole number(s), comma-separated",
+                "text": "text", "choice": "choice"}[kind]
     k = KINDS[kind]
     return f"{k.name.replace('_', ' ')} (e.g. {k.example})"
 

@@ -293,46 +293,79 @@ BEARINGS = (
 # on throws 2 and 5 (2 x 1.65 kg x (58^2 + 30^2) mm^2 = 0.0141 kg m^2). With webs, pin, journal,
 # rod and piston the point-mass estimate of a throw's inertia is ~0.048 (0.034 without
 # counterweights) kg m^2 against the published 0.0467 (0.0327).
+#
+# Crank frame: Y along throw 1, Z +90 deg from Y in the direction of rotation (the lateral
+# coordinate), X the axial offset of the centre of mass from the component's plane (0 for
+# these symmetric webs). Each throw's own unbalance without counterweights (two webs and the
+# pin) is U = 2 x 2.2 kg x 37.7 mm + 1.0 kg x 68.5 mm = 0.234 kg m along the throw.
+#
+# Counterweights: an in-line six's rotating masses are balanced (forces and couples) only when
+# every throw carries the same unbalance (Taylor 1985, vol. 2, ch. 8); with counterweights on
+# throws 1, 3, 4 and 6 only, counterweights directly opposite their own throws would leave
+# 4 x 1.65 kg x 58 mm x |e(0) + e(120)| = 0.38 kg m of static unbalance. So, as the
+# counterweights of a crank with counterweights on some throws only are laid out, the
+# counterweight on each web next to an uncounterweighted throw (webs 2, 5, 8, 11, next to
+# throws 2 and 5) also balances half of that neighbour throw: its unbalance vector is
+# -c (e_own + e_neighbour) with c = 1.65 kg x 58 mm (the same magnitude, since the two throws
+# are 120 deg apart: |e_own + e_neighbour| = 1), i.e. it is turned 60 deg toward the opposite
+# of the neighbour throw. Each throw j then sees -c e_j from the two counterweights
+# symmetric about its own plane (webs 2 and 5 about throw 2, 8 and 11 about throw 5), so every
+# throw is balanced to the same fraction 2c/U = 82 % of its own unbalance, and the whole crank
+# is statically and dynamically balanced.
 _W_MASS, _W_R = 2.2, 37.7  # web arm: 110 x 100 x 25 mm steel, centre of mass 0.55 r
-_CW_MASS, _CW_R = 1.65, 58.0  # counterweight: centre of mass 0.85 r opposite the pin
+_CW_MASS, _CW_R = 1.65, 58.0  # counterweight: centre of mass 0.85 r
 _PIN_MASS = 1.00  # pi/4 x 62.97^2 x 41 mm x 7850 kg/m^3
 _CW_THROWS = (1, 3, 4, 6)
+#: Web -> uncounterweighted neighbour throw whose half its counterweight also balances.
+_CW_SHARED = {2: 2, 5: 2, 8: 5, 11: 5}
 _W_FRONT = _MAIN_L / 2 + _WEB_T / 2
 _W_REAR = _SPACING - _W_FRONT
 _AX_NOTE = (ASSUMPTION + ": web centre at half main journal + half web (19 + 12.5 mm) from its"
             " main, pin at mid-bay")
 
 
-def _xy(rho: float, gamma_deg: float) -> tuple[float, float]:
-    """Crank-frame (x, y) of a point at radius ``rho`` along throw angle ``gamma``."""
+def _zy(rho: float, gamma_deg: float) -> tuple[float, float]:
+    """Crank-frame lateral and radial coordinates (Z, Y) of a point at radius ``rho`` along
+    the direction ``gamma`` (from Y, in the direction of rotation)."""
     g = math.radians(gamma_deg)
     return round(rho * math.sin(g), 3) + 0.0, round(rho * math.cos(g), 3) + 0.0
+
+
+def _cw_direction(web: int, throw: int) -> float:
+    """Direction [deg] of a counterweight's centre of mass: opposite its throw, or opposite
+    the bisector of its throw and the uncounterweighted neighbour throw (webs 2, 5, 8, 11)."""
+    g = math.radians(THROW_ANGLES[throw])
+    ex, ey = math.sin(g), math.cos(g)
+    if web in _CW_SHARED:
+        h = math.radians(THROW_ANGLES[_CW_SHARED[web]])
+        ex, ey = ex + math.sin(h), ey + math.cos(h)
+    return (math.degrees(math.atan2(-ex, -ey))) % 360
 
 
 CRANK_MASS_ROWS: list[list[Any]] = []
 for _t in range(1, 7):
     _g = THROW_ANGLES[_t]
-    _wx, _wy = _xy(_W_R, _g)
-    _cx, _cy = _xy(-_CW_R, _g)
-    _a, _b = 2 * _t - 1, 2 * _t
-    _cw = _t in _CW_THROWS
+    _wz, _wy = _zy(_W_R, _g)
     _wn = ASSUMPTION + f": 2.2 kg web arm, centre of mass {_W_R} mm along throw {_t}" \
-                       f" ({_g} deg); {_AX_NOTE}"
-    _cn = ASSUMPTION + ": 8-counterweight crank (published inertias of throws 2 and 5 are"\
-                       f" 0.014 kg m^2 lower); 1.65 kg at {_CW_R} mm opposite the pin; {_AX_NOTE}"
-    CRANK_MASS_ROWS.append([f"Web{_a}", _t, "web", _W_MASS, _wx, _wy, 0, _W_FRONT, "main axis",
-                            _wn])
-    if _cw:
-        CRANK_MASS_ROWS.append([f"Web{_a} c/w", _t, "counterweight", _CW_MASS, _cx, _cy, 0,
-                                _W_FRONT, "main axis", _cn])
-    CRANK_MASS_ROWS.append([f"Crankpin{_t}", _t, "pin", _PIN_MASS, 0, 0, 0, _SPACING / 2,
-                            "pin axis", ASSUMPTION + ": solid 62.97 x 41 mm steel pin; "
-                            + _AX_NOTE])
-    CRANK_MASS_ROWS.append([f"Web{_b}", _t, "web", _W_MASS, _wx, _wy, 0, _W_REAR, "main axis",
-                            _wn])
-    if _cw:
-        CRANK_MASS_ROWS.append([f"Web{_b} c/w", _t, "counterweight", _CW_MASS, _cx, _cy, 0,
-                                _W_REAR, "main axis", _cn])
+                       f" ({_g} deg): Z = r sin, Y = r cos of the throw angle; {_AX_NOTE}"
+    for _web, _ax in ((2 * _t - 1, _W_FRONT), (2 * _t, _W_REAR)):
+        CRANK_MASS_ROWS.append([f"Web{_web}", _t, "web", _W_MASS, 0, _wy, _wz, _ax,
+                                "main axis", _wn])
+        if _t in _CW_THROWS:
+            _d = _cw_direction(_web, _t)
+            _cz, _cy = _zy(_CW_R, _d)
+            _why = (f"turned to {_d:.0f} deg so that it also balances half of the"
+                    f" uncounterweighted throw {_CW_SHARED[_web]}" if _web in _CW_SHARED
+                    else f"opposite throw {_t} ({_d:.0f} deg)")
+            CRANK_MASS_ROWS.append([
+                f"Web{_web} c/w", _t, "counterweight", _CW_MASS, 0, _cy, _cz, _ax, "main axis",
+                ASSUMPTION + ": 8-counterweight crank (published inertias of throws 2 and 5"
+                f" are 0.014 kg m^2 lower); 1.65 kg at {_CW_R} mm, {_why}; the whole crank"
+                f" statically and dynamically balanced; {_AX_NOTE}"])
+        if _web % 2:
+            CRANK_MASS_ROWS.append([f"Crankpin{_t}", _t, "pin", _PIN_MASS, 0, 0, 0,
+                                    _SPACING / 2, "pin axis",
+                                    ASSUMPTION + ": solid 62.97 x 41 mm steel pin; " + _AX_NOTE])
 CRANK_MASS = (
     CRANK_MASS_COLUMNS,
     CRANK_MASS_ROWS,

@@ -106,6 +106,8 @@ def _number(value: Any) -> float | None:
 def _expected(f: Field) -> str:
     if f.kind == "int":
         return "a whole number"
+    if f.kind == "int_list":
+        return "a whole number, or whole numbers separated by commas (e.g. 1, 5)"
     if f.kind == "text":
         return "text"
     if f.kind == "choice":
@@ -132,6 +134,38 @@ def _check(f: Field, v: float) -> str | None:
     if c == "0..1" and not 0 < v <= 1:
         return "must be between 0 and 1"
     return None
+
+
+def _int_list(f: Field, raw: Any) -> tuple[tuple[int, ...] | None, str | None, list[str]]:
+    """A cell of whole numbers (kind ``int_list``): one number, or several separated by
+    commas or semicolons (``1, 5``; ``1;5``), each checked like an ``int`` field against the
+    field's sign check and ``valid``/``usual`` ranges. Returns (tuple without repeats or None,
+    error text or None, warning texts)."""
+    parts = re.split(r"[,;]", raw.strip()) if isinstance(raw, str) else [raw]
+    out: list[int] = []
+    warnings: list[str] = []
+    for part in parts:
+        num = _number(part.strip() if isinstance(part, str) else part)
+        if num is None or not math.isfinite(num) or not float(num).is_integer():
+            hint = ""
+            if isinstance(raw, float) and not float(raw).is_integer():
+                hint = (" (a cell typed as 1,5 in a decimal-comma locale is stored as the"
+                        " number 1.5: write '1; 5' or format the cell as text)")
+            return None, f"{f.label}: expected {_expected(f)}, found {_describe(raw)}{hint}", []
+        n = int(num)
+        problem = _check(f, n)
+        if problem:
+            return None, f"{f.label} {problem}, found {n}", []
+        if f.valid is not None and not f.valid.contains(n, f.kind):
+            return None, (f"{f.label} {n} is outside {f.valid.text()}, the range the"
+                          " calculations can handle; check the value"), []
+        if f.usual is not None and not f.usual.contains(n, f.kind):
+            warnings.append(f"{f.label} {n} is outside the usual range {f.usual.text()} of"
+                            " crank-train engines; check the value")
+        if n in out:
+            return None, f"{f.label}: {n} is listed twice in '{raw}'", []
+        out.append(n)
+    return tuple(out), None, warnings
 
 
 def _shown(f: Field, num: float, unit: str | None, si: float) -> str:
@@ -220,6 +254,13 @@ class _Reader:
         data.where[key] = where
         if _blank(raw):
             return None
+        if f.kind == "int_list":
+            got, error, warnings = _int_list(f, raw)
+            if error:
+                self.err(where, error)
+            for w in warnings:
+                self.warn(where, w)
+            return got
         if f.kind == "text":
             return str(raw).strip() if not isinstance(raw, float) else f"{raw:g}"
         if f.kind == "choice":

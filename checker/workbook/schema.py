@@ -67,7 +67,7 @@ class Span:
 
 @functools.cache
 def _span_si(span: Span, kind: str) -> tuple[float, float]:
-    if kind == "int":
+    if kind in ("int", "int_list"):
         conv = float
     else:
         from ..units import to_si
@@ -574,6 +574,8 @@ BEARINGS = Sheet(
         F("journal diameter", "diameter", "length", check=">0",
           valid=R(1, 10000, "mm"), usual=R(15, 1500, "mm")),
         F("journal length", "journal_length", "length", check=">0", required=False,
+          note="Journal length between the webs (fillet geometry); a crank pin carrying two"
+               " rods (V engine): the whole pin.",
           valid=R(0.1, 5000, "mm"), usual=R(3, 1000, "mm")),
         F("effective length", "length", "length", check=">0",
           note="Shell land length carrying load (excluding chamfers and grooves).",
@@ -626,7 +628,8 @@ CRANK_MASS = Sheet(
                " (seed 000 convention: mirrored webs have opposite signs).",
           valid=R(-20000, 20000, "mm"), usual=R(-3000, 3000, "mm")),
         F("Y", "y", "length",
-          note="Radial position in the crank frame, along throw 1 (throw 1 pin at +Y).",
+          note="Radial position in the crank frame, along throw 1 (throw 1 pin at +Y; for a V"
+               " engine throw 1 is the pin of cylinder 1, not the vertical).",
           valid=R(-20000, 20000, "mm"), usual=R(-3000, 3000, "mm")),
         F("Z", "z", "length", required=False,
           note="Lateral position in the crank frame, +90 deg from Y in the direction of"
@@ -654,7 +657,11 @@ TV_MODEL = Sheet(
           choices=("damper ring", "crank nose", "cylinder", "flywheel", "other"),
           aliases=(("ring", "damper ring"), ("damper inertia ring", "damper ring"),
                    ("nose", "crank nose"), ("cyl", "cylinder"))),
-        F("cylinder", "cylinder", "int", check=">0", required=False,
+        F("cylinder", "cylinder", "int_list", check=">0", required=False,
+          note="Cylinder(s) whose gas and inertia torque acts on this station: one number, or"
+               " several separated by commas, e.g. '1, 2' for the two cylinders of a V-engine"
+               " crank pin (the usual V model: one station per throw). Each cylinder on one"
+               " station only.",
           valid=R(1, 64)),
         F("inertia", "inertia", "inertia", check=">0",
           valid=R(1e-9, 1e7, "kg m^2"), usual=R(1e-5, 1e6, "kg m^2")),

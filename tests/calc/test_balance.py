@@ -205,3 +205,136 @@ def test_validation():
         bal.throw_balance(throw_angle=[0.0], mass=[1.0], position=[[0.0, -0.01]],
                           throw_of_mass=[0], is_counterweight=[False], pin_rotating_mass=[0.0],
                           pin_reciprocating_mass=[0.5], crank_radius=R)
+
+
+# ------------------------------------------------------------------------------ V engines
+# Hand formulas by the rotating-vector method (Norton, Design of Machinery, secs. 14.5-14.7;
+# Taylor 1985 vol. 2 ch. 8): a reciprocating order-n force m A_n cos(n(theta + gamma - alpha))
+# along the bore axis alpha is half a vector rotating forward, m A_n / 2 at angle
+# n(theta + gamma) - (n - 1) alpha, and half a vector rotating backward, m A_n / 2 at
+# (n + 1) alpha - n(theta + gamma) (angles from y in the direction of rotation; gamma the
+# throw). A forward first-order vector is fixed in the crank frame, so crank counterweights can
+# cancel it; a backward one cannot.
+def _v_engine(bank_deg, gamma_deg, z, rotating=None):
+    """shaking_phasors of cylinders given by bank and throw angles (firing = bank - throw)."""
+    alpha = np.radians(np.asarray(bank_deg, float))
+    gam = np.radians(np.asarray(gamma_deg, float))
+    phi = np.mod(alpha - gam, 4 * np.pi)
+    a = bal.piston_acceleration_harmonics(R, L, 0.0, 8)
+    m, pos, zm = rotating if rotating is not None else (np.zeros(0), np.zeros((0, 2)),
+                                                        np.zeros(0))
+    res = bal.shaking_phasors(firing_angle=phi, bank_angle=alpha, cylinder_axial=z,
+                              reciprocating_mass=M_REC, acceleration_harmonics=a,
+                              rotating_mass=m, rotating_position=pos, rotating_axial=zm)
+    return res, a
+
+
+def _cancelling_counterweights(couple, z_end):
+    """Two counterweights at -z_end and +z_end whose couple is -couple (and no force)."""
+    c = np.asarray(couple, float)
+    return (np.array([1.0, 1.0]), np.array([c / (2 * z_end), -c / (2 * z_end)]),
+            np.array([-z_end, z_end]))
+
+
+def test_cross_plane_v8_free_forces_zero_primary_couple_cancelled_by_counterweights():
+    # 90 deg cross-plane V8, GM numbering and firing order 1-8-7-2-6-5-4-3: odd cylinders on
+    # the bank at +45 deg, even at -45 deg, cylinders 2k-1 and 2k on pin k; throws at 45, 135,
+    # 315, 225 deg (0/90/270/180 from throw 1), pins at z = (k - 2.5) s.
+    s = 0.1118
+    fo = [1, 8, 7, 2, 6, 5, 4, 3]
+    phi = np.zeros(8)
+    for k, c in enumerate(fo):
+        phi[c - 1] = np.pi / 2 * k
+    alpha = np.radians([45.0 if c % 2 else -45.0 for c in range(1, 9)])
+    pins = np.arange(8) // 2
+    gam_pin = np.radians([45.0, 135.0, 315.0, 225.0])
+    np.testing.assert_allclose(np.mod(alpha - phi, 2 * np.pi), gam_pin[pins], atol=1e-12)
+    z = (pins - 1.5) * s
+    res, a = _v_engine(np.degrees(alpha), np.degrees(gam_pin[pins]), z)
+    big, small, *_ = bal.order_vector_extremes(res.force, res.orders)
+    mbig, msmall, *_ = bal.order_vector_extremes(res.moment, res.orders)
+    scale = M_REC * R
+    # free forces: none of orders 1-3 (per pin the backward halves of the two banks cancel,
+    # the forward halves sum over the four throws to zero); 4th order: both banks' four
+    # cylinders in phase, 4 m A_4 along each bank axis, resultant 4 sqrt(2) m |A_4| vertical
+    assert np.all(big[:3] < 1e-14 * scale)
+    assert big[3] == pytest.approx(4 * np.sqrt(2) * M_REC * abs(a[4]), rel=1e-9)
+    assert small[3] < 1e-14 * scale
+    # primary couple: forward only, m r per pin (the two halves of both banks), moment
+    # m r s |sum (k - 2.5) e_k| = m r s |(-1, -3)| = sqrt(10) m r s, constant magnitude
+    assert mbig[0] == pytest.approx(np.sqrt(10) * M_REC * R * s, rel=1e-12)
+    assert msmall[0] == pytest.approx(mbig[0], rel=1e-12)
+    assert mbig[1] < 1e-14 * scale * s  # no secondary couple
+    # ... equal to the couple of a mass m_rec at each crank pin (crank frame), so two
+    # counterweights at the crank ends cancel it: no 1st-order force or moment remains
+    e = np.stack([np.sin(gam_pin), np.cos(gam_pin)], axis=-1)
+    couple = (M_REC * R * (np.arange(4) - 1.5)[:, None] * s * e).sum(0)
+    cw = _cancelling_counterweights(couple, 2.2 * s)
+    res_cw, _ = _v_engine(np.degrees(alpha), np.degrees(gam_pin[pins]), z, cw)
+    assert np.abs(res_cw.force[0]).max() < 1e-14 * scale
+    assert np.abs(res_cw.moment[0]).max() < 1e-14 * scale * s
+
+
+def test_ninety_degree_v6_common_pins():
+    # 90 deg V6, three common pins at 120 deg (banks +-45 deg), pins at z = -s, 0, s:
+    # primary: forces cancel; couple forward only, m r s |e_3 - e_1| = sqrt(3) m r s;
+    # secondary: forward halves sqrt(2)/2 m A_2 e(2 gamma) per pin, backward halves likewise,
+    # both couples sqrt(3/2) m A_2 s, so the secondary couple is planar with
+    # maximum sqrt(6) m |A_2| s and minimum 0; no secondary force.
+    s = 0.12
+    gam = np.repeat([0.0, 120.0, 240.0], 2)
+    bank = np.tile([45.0, -45.0], 3)
+    z = np.repeat([-s, 0.0, s], 2)
+    res, a = _v_engine(bank, gam, z)
+    big, *_ = bal.order_vector_extremes(res.force, res.orders)
+    mbig, msmall, *_ = bal.order_vector_extremes(res.moment, res.orders)
+    scale = M_REC * R
+    assert big[0] < 1e-14 * scale and big[1] < 1e-14 * scale
+    assert mbig[0] == pytest.approx(np.sqrt(3) * M_REC * R * s, rel=1e-12)
+    assert msmall[0] == pytest.approx(mbig[0], rel=1e-12)
+    assert mbig[1] == pytest.approx(np.sqrt(6) * M_REC * abs(a[2]) * s, rel=1e-12)
+    assert msmall[1] < 1e-12 * mbig[1]
+    # the primary couple is that of m_rec at each pin: end counterweights cancel it
+    g = np.radians([0.0, 120.0, 240.0])
+    e = np.stack([np.sin(g), np.cos(g)], axis=-1)
+    couple = (M_REC * R * np.array([-s, 0.0, s])[:, None] * e).sum(0)
+    res_cw, _ = _v_engine(bank, gam, z, _cancelling_counterweights(couple, 1.6 * s))
+    assert np.abs(res_cw.moment[0]).max() < 1e-14 * scale * s
+
+
+def test_sixty_degree_v6_split_pins():
+    # 60 deg V6 with split pins for even firing (1-2-3-4-5-6 every 120 deg; odd cylinders on
+    # the bank at -30 deg, even at +30 deg): throws gamma = alpha - phi = -30, -90, 90, 30, 210,
+    # 150 deg, one per cylinder at z_i = (i - 3.5) s. Primary and secondary forces cancel;
+    # primary couple: forward halves (m r / 2) s |sum (i - 3.5) e(gamma_i)| = 3 m r s, backward
+    # halves cancel, so a rotating couple 3 m r s that counterweights cancel; secondary couple:
+    # forward halves cancel, backward (m A_2 / 2) s x 6 = 3 m |A_2| s, a couple of constant
+    # magnitude turning against the crank (a balance shaft, not a counterweight, removes it).
+    s = 0.06
+    bank = np.tile([-30.0, 30.0], 3)
+    phi = np.radians(120.0 * np.arange(6))
+    gam = np.degrees(np.mod(np.radians(bank) - phi, 2 * np.pi))
+    np.testing.assert_allclose(gam, [330, 270, 90, 30, 210, 150], atol=1e-9)
+    z = (np.arange(6) - 2.5) * s
+    res, a = _v_engine(bank, gam, z)
+    big, *_ = bal.order_vector_extremes(res.force, res.orders)
+    mbig, msmall, *_ = bal.order_vector_extremes(res.moment, res.orders)
+    scale = M_REC * R
+    assert big[0] < 1e-14 * scale and big[1] < 1e-14 * scale
+    assert mbig[0] == pytest.approx(3 * M_REC * R * s, rel=1e-12)
+    assert msmall[0] == pytest.approx(mbig[0], rel=1e-12)
+    assert mbig[1] == pytest.approx(3 * M_REC * abs(a[2]) * s, rel=1e-12)
+    assert msmall[1] == pytest.approx(mbig[1], rel=1e-12)
+    # forward primary couple = (m r / 2) sum z_i e(gamma_i): two end counterweights cancel it
+    gr = np.radians(gam)
+    e = np.stack([np.sin(gr), np.cos(gr)], axis=-1)
+    couple = (0.5 * M_REC * R * z[:, None] * e).sum(0)
+    res_cw, _ = _v_engine(bank, gam, z, _cancelling_counterweights(couple, 3.5 * s))
+    assert np.abs(res_cw.moment[0]).max() < 1e-14 * scale * s
+    # direction of turning from the phasors: a forward vector (fixed in the crank frame,
+    # crank_vector_phasor) has P_y = j P_x, a backward one P_y = -j P_x
+    p1, p2 = res.moment[0], res.moment[1]
+    assert abs(p1[1] - 1j * p1[0]) < 1e-14 * scale * s
+    assert abs(p2[1] + 1j * p2[0]) < 1e-14 * scale * s
+    # the secondary couple turns backward: the same counterweights leave it unchanged
+    assert np.abs(res_cw.moment[1] - res.moment[1]).max() < 1e-16

@@ -379,3 +379,24 @@ def test_input_validation():
         cylinder_loads(th, 100.0, p, firing_angle=FIRING_I4, **{**ROD, "rod_cg_from_big_end": L})
     with pytest.raises(ValueError, match="pin_index"):
         crankpin_force(Vector2(np.zeros((2, 4)), np.zeros((2, 4))), np.array([0, 3]), 2)
+
+
+def test_mass_positions_turn_the_throw1_frame_into_the_crank_frame():
+    # V engine: throw 1 at gamma_1 = 45 deg (bank 45 deg, cylinder 1 fires at 0). A web along
+    # throw 1 in the sheet (Y = rho, Z = 0) lies at 45 deg in the crank frame; a counterweight
+    # opposite throw 3 (throw at 45 + 270 = 315 deg: sheet direction 270 + 180 = 90 deg from
+    # throw 1, Z = rho) at 45 + 90 = 135 deg; a pin-axis point at the pin of throw 2 (135 deg)
+    # plus its offset (Y = -0.1 mm, turned by 45 deg).
+    from checker.calc.crank_forces import mass_positions
+
+    r, rho = 0.046, 0.023
+    gam = np.radians([45.0, 135.0, 315.0, 225.0])
+    pos = mass_positions([0.0, rho, 0.0], [rho, 0.0, -1e-4], [0, 2, 1], [False, False, True],
+                         gam, r)
+    s = np.sqrt(0.5)
+    np.testing.assert_allclose(pos[0], [rho * s, rho * s], atol=1e-15)
+    np.testing.assert_allclose(pos[1], [rho * s, -rho * s], atol=1e-15)
+    np.testing.assert_allclose(pos[2], [r * s - 1e-4 * s, -r * s - 1e-4 * s], atol=1e-15)
+    # in-line engine (gamma_1 = 0): the sheet's (Z, Y) are the crank frame's (x, y)
+    pos0 = mass_positions([0.01], [0.02], [0], [False], [0.0, np.pi], r)
+    np.testing.assert_allclose(pos0, [[0.01, 0.02]], atol=1e-15)

@@ -97,7 +97,7 @@ def test_every_number_has_a_valid_range_and_usual_lies_inside():
         if f.usual is not None:
             ulo, uhi = f.usual.si(f.kind)
             assert lo <= ulo <= uhi <= hi, (sheet, f.label)
-        if f.kind not in ("int", "dimensionless", "ratio"):
+        if f.kind not in ("int", "int_list", "dimensionless", "ratio"):
             assert f.valid.unit, (sheet, f.label)
             # the range's unit is one a user would write for this kind (it converts)
             to_si(1.0, f.valid.unit, f.kind)
