@@ -394,13 +394,17 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
         NOSE_ORDER, np.moveaxis(nose_ord, -1, 0), {"order": order_labels, **cs_coords},
         findings=find_ocs, extra=common)
     cyl_find = {(ci, si): v for (oi, ci, si), v in find_ocs.items() if oi == k_cyl}
-    peaks_text = ("resonant peaks only: interior local maxima of the amplitude against speed,"
-                  " and the top speed if still rising; the rolling-mode motion that falls from"
-                  " the lowest speed is shown, not judged")
+    env = cyc.envelope  # (C, S) operating envelope of each load case (None = every speed)
+    peaks_text = ("judged at resonant peaks within each load case's operating envelope only"
+                  " (full load: the full-load data range; no load: every speed up to the"
+                  " overspeed): interior local maxima of the amplitude against speed, and the"
+                  " envelope's top speed when the curve still rises into it; the rolling-mode"
+                  " motion that falls from the lowest speed and points outside the envelope"
+                  " are shown, not judged")
     out["tv.nose_cylinder_order_amplitude"] = Quantity(
         NOSE_CYL, nose_ord[:, :, k_cyl], cs_coords, findings=cyl_find,
         extra=dict(common, order=float(orders[k_cyl]), applies_text=peaks_text),
-        applies=resonant_peaks(nose_ord[:, :, k_cyl], axis=-1))
+        applies=resonant_peaks(nose_ord[:, :, k_cyl], axis=-1, envelope=env))
     pos = {int(o): i for i, o in enumerate(higher)}
     hi_find = {(pos[oi], ci, si): v for (oi, ci, si), v in find_ocs.items() if oi in pos}
     hi_vals = np.moveaxis(nose_ord[:, :, higher], -1, 0)
@@ -408,7 +412,7 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
         NOSE_HIGH, hi_vals,
         {"order": [order_labels[i] for i in higher], **cs_coords}, findings=hi_find,
         extra=dict(common, orders_checked=orders[higher], applies_text=peaks_text),
-        applies=resonant_peaks(hi_vals, axis=-1))
+        applies=resonant_peaks(hi_vals, axis=-1, envelope=env))
     out["tv.crank_twist"] = Quantity(TWIST, crank_twist, cs_coords, findings=find_cs,
                                      extra=dict(common, stations=(names[nose], names[rear])))
 
