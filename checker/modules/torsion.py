@@ -42,6 +42,12 @@ Sign conventions
   torque (mean + vibratory) through the joint: crank nose ``|T_FEAD - T_rubber(t)|`` (the
   crank drives the pulley and the damper ring), flywheel ``|T_brake + T_e,flywheel(t)|``.
 
+Findings (undamped modes): an order exactly on the natural frequency of a mode without damping
+(regularised solve, :data:`checker.calc.torsional.RESONANCE_TOLERANCE`), and an order near one:
+undamped amplification >= 10 or a crossing between two swept speeds, where the response is
+unbounded although every swept amplitude is finite
+(:func:`checker.calc.torsional.undamped_resonance_band`).
+
 Damper limits: the supplier's limits are per engine (sheet ``Damper``), so the rules compare
 *ratios* (value / supplier limit) with 1 (``damper.*_ratio``); without the limit the ratio is
 missing and the rule is ``not evaluated`` naming the Damper cell.
@@ -158,6 +164,10 @@ PROVIDES = ("tv.natural_frequency", "tv.nose_amplitude", "tv.nose_order_amplitud
 
 def _rpm_text(w: float) -> str:
     return f"{w / RPM:.0f} rpm"
+
+
+def _speeds_text(w: np.ndarray) -> str:
+    return ", ".join(f"{x / RPM:.0f}" for x in np.sort(w)) + " rpm"
 
 
 def _extremes(orders: np.ndarray, coeffs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -370,6 +380,32 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
                 " relative damping, Damper loss factor)")
         res_text.setdefault((ci, si), []).append(text)
         find_ocs[(oi, ci, si)] = [text]
+    # near (not exactly on) a resonance of an undamped mode: amplification band or a crossing
+    # between two swept speeds (checker.calc.torsional.undamped_resonance_band)
+    band = tv.undamped_resonance_band(model, speeds, orders)
+    groups: dict[tuple[int, str], list[int]] = {}  # (order, natural frequency) -> speeds
+    for si, oi in zip(*np.nonzero(band.near)):
+        key = (int(oi), f"{band.natural_frequency[si, oi]:.6g}")  # same mode, rounding aside
+        groups.setdefault(key, []).append(int(si))
+    for (oi, _), sis in groups.items():
+        w_r = float(np.mean(band.natural_frequency[sis, oi]))
+        crit = band.critical_speed[sis, oi]
+        crossed = bool(np.isfinite(crit).any())
+        w_c = float(np.nanmean(crit)) if crossed else w_r / orders[oi]
+        where = (" between two swept speeds" if crossed else
+                 " (outside the swept speeds)" if not speeds[0] <= w_c <= speeds[-1] else "")
+        text = (f"undamped resonance near the sweep: order {orders[oi]:g} meets the natural"
+                f" frequency {w_r / (2 * np.pi):.1f} Hz of a mode without damping at"
+                f" {_rpm_text(w_c)}{where}; swept speeds next to it or within the band of"
+                f" undamped amplification >= {tv.NEAR_RESONANCE_AMPLIFICATION:g} (about"
+                f" +-5 %): {_speeds_text(speeds[sis])}. The response at that speed is unbounded"
+                " while the swept amplitudes stay finite - add damping (TVModel absolute or"
+                " relative damping, Damper loss factor)")
+        for si in sis:
+            for ci in range(C):
+                if not reson[ci, si, oi]:  # exactly on it: the finding above
+                    res_text.setdefault((ci, si), []).append(text)
+                    find_ocs.setdefault((oi, ci, si), []).append(text)
     find_cs = dict(res_text)
 
     # ---------------------------------------------------------------- quantities
@@ -379,7 +415,7 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
     k_cyl = int(np.argmin(np.abs(orders - n_cyl)))
     higher = np.nonzero(orders > n_cyl + 1e-9)[0]
     common = {"orders": orders, "speeds": speeds, "resonance": reson,
-              "assumptions": assumptions}
+              "near_resonance": band.near, "assumptions": assumptions}
     out: dict[str, Quantity] = {}
     out["tv.natural_frequency"] = Quantity(
         NATURAL, w_flex / (2 * np.pi), {"mode": mode_labels},

@@ -144,6 +144,41 @@ def test_undamped_resonance_is_a_finding_not_nan(tmp_path):
     assert qs["damper.power"].values.max() == 0.0  # no loss in the rubber
 
 
+def test_undamped_resonance_between_swept_speeds_is_a_finding(tmp_path, tv_result):
+    """No damping at all and the sweep (every 100 rpm from 1000 rpm) does not hit the 4th-order
+    resonance of mode 1 exactly: the critical speed w1 / 4 (hand eigensolve of the workbook
+    chain) lies between two swept speeds. The swept amplitudes are finite there, so without a
+    finding the unbounded response would go unnoticed; the damped example has none."""
+    mmat, kmat = _workbook_chain()
+    w1 = np.sqrt(scipy.linalg.eigh(kmat, mmat, eigvals_only=True)[1])
+    crit_rpm = w1 / 4 / RPM
+    assert abs(crit_rpm / 100 - round(crit_rpm / 100)) > 0.1  # not on a swept speed
+
+    def edit(wb):
+        set_param(wb, "Damper", "Rubber loss factor", 0)
+        ws = wb["TVModel"]
+        for r in range(3, ws.max_row + 1):
+            ws.cell(r, column(ws, "absolute damping")).value = None
+
+    res = api.check(edited(tmp_path, edit), select=["TV-001"])
+    q = res.outcome.quantities["tv.nose_cylinder_order_amplitude"]
+    assert not q.extra["resonance"].any()  # not exactly on it: no exact-resonance flag
+    assert np.isfinite(q.values).all()
+    [r] = res.results
+    text = f"order 4 meets the natural frequency {w1 / (2 * np.pi):.1f} Hz"
+    found = [f for f in r.findings if text in f]
+    assert len(found) == 1 and f"at {crit_rpm:.0f} rpm between two swept speeds" in found[0]
+    lo, hi = int(crit_rpm // 100 * 100), int(crit_rpm // 100 * 100 + 100)
+    assert f"{lo}, {hi}" in found[0]  # the bracketing speeds are named
+    # the finding sits on the bracketing points of both load cases
+    speeds = np.array(q.coords["speed"]) / RPM
+    for ci in range(2):
+        for rpm in (lo, hi):
+            si = int(np.flatnonzero(np.isclose(speeds, rpm))[0])
+            assert found[0] in q.findings[(ci, si)]
+    assert not any("undamped" in f for r0 in tv_result.results for f in r0.findings)
+
+
 def test_damper_rule_not_evaluated_without_supplier_limit(tmp_path):
     def edit(wb):
         ws = wb["Damper"]
