@@ -162,17 +162,12 @@ class Engine:
 
     @property
     def offsets(self) -> dict[str, float]:
-        """Cylinder and pin offsets [m] in the sign convention of the kinematics.
-
-        The workbook gives the pin offset "towards the major thrust side positive" (the usual
-        reference; Agostini, *Powertrain Components Design*, Politecnico di Torino, 2019,
-        ch. 1, moves the pin towards the major thrust side). In the kinematics' cylinder frame
-        (:mod:`checker.calc.kinematics`) the major thrust side during expansion is ``-t``, so
-        the workbook value changes sign here, in one place for every calculation.
-        """
+        """Cylinder and pin offsets [m] as the kinematics take them: the cylinder offset
+        along ``+t`` and the pin offset towards the major thrust side positive (the
+        workbook's documented convention; :mod:`checker.calc.kinematics`)."""
         p = self.params
         return {"cylinder_offset": float(p.get("cylinder_offset") or 0.0),
-                "pin_offset": -float(p.get("pin_offset") or 0.0)}
+                "pin_offset": float(p.get("pin_offset") or 0.0)}
 
     def cell(self, sheet: str, attr: str, row: int | None = None) -> str:
         """Cell address of an input (for messages), or the sheet name when unknown."""

@@ -76,18 +76,55 @@ class Quantity:
             self.applies = np.broadcast_to(np.asarray(self.applies, dtype=bool), shape)
 
 
-def resonant_peaks(values: np.ndarray, axis: int = -1) -> np.ndarray:
-    """Mask of resonant peaks along ``axis`` (the speed axis): interior local maxima, and the
-    last point when the curve still rises there. The first point is excluded: a curve that
-    falls from the lowest speed is the rigid-body (rolling-mode) motion, not a resonance.
+def resonant_peaks(values: np.ndarray, axis: int = -1, envelope: np.ndarray | None = None
+                   ) -> np.ndarray:
+    """Mask of the resonant peaks to judge along ``axis`` (the speed axis), within an envelope.
+
+    ``envelope`` (bool, broadcastable to ``values``; ``None`` = every speed) marks the speeds
+    each curve is judged at, for example the full-load data range of the full-load case; each
+    contiguous run of judged speeds is a range of its own. A point is a resonant peak when
+
+    * it is an interior local maximum of the whole curve (strictly above one neighbour) inside
+      the envelope;
+    * it is the top speed of an envelope range and the curve still rises into it: a resonance
+      flank leaving the range is judged at the range's top (not at a higher speed outside the
+      range, nor missed because the curve's maximum lies outside);
+    * it is the bottom speed of an envelope range above the sweep's lowest speed, the curve
+      falls from it, and a resonant peak lies below the range: the falling flank of that
+      resonance is judged at the range's bottom.
+
+    The sweep's first speed is never a peak by itself: a curve that falls from the lowest speed
+    is the rigid-body (rolling-mode) motion, not a resonance. Plateaus count once at most.
     """
     a = np.moveaxis(np.asarray(values, dtype=float), axis, -1)
-    m = np.zeros(a.shape, dtype=bool)
-    if a.shape[-1] >= 3:
-        m[..., 1:-1] = (a[..., 1:-1] >= a[..., :-2]) & (a[..., 1:-1] >= a[..., 2:]) & (
+    n = a.shape[-1]
+    if envelope is None:
+        env = np.ones(a.shape, dtype=bool)
+    else:
+        env = np.moveaxis(np.broadcast_to(np.asarray(envelope, dtype=bool),
+                                          np.shape(values)), axis, -1)
+    interior = np.zeros(a.shape, dtype=bool)
+    if n >= 3:
+        interior[..., 1:-1] = (a[..., 1:-1] >= a[..., :-2]) & (a[..., 1:-1] >= a[..., 2:]) & (
             a[..., 1:-1] > np.minimum(a[..., :-2], a[..., 2:]))
-    if a.shape[-1] >= 2:
-        m[..., -1] = a[..., -1] > a[..., -2]
+    m = interior & env
+    if n >= 2:
+        # top of each envelope range (the sweep's last speed included): rising into it
+        top = env.copy()
+        top[..., :-1] &= ~env[..., 1:]
+        rising = np.zeros(a.shape, dtype=bool)
+        rising[..., 1:] = a[..., 1:] > a[..., :-1]
+        m |= top & rising
+        # bottom of an envelope range above the lowest speed: falling out of it with a
+        # resonant peak below
+        bottom = env.copy()
+        bottom[..., 1:] &= ~env[..., :-1]
+        bottom[..., 0] = False
+        falling = np.zeros(a.shape, dtype=bool)
+        falling[..., :-1] = a[..., :-1] > a[..., 1:]
+        below = np.zeros(a.shape, dtype=bool)
+        below[..., 1:] = np.cumsum(interior, axis=-1)[..., :-1] > 0
+        m |= bottom & falling & below
     return np.moveaxis(m, -1, axis)
 
 

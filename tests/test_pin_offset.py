@@ -40,6 +40,6 @@ def test_workbook_pin_offset_towards_major_thrust_side(tmp_path):
     assert np.all(s0[expansion] < 0)  # the major thrust side is -t
     assert np.all(s_thrust[expansion] < s0[expansion])  # more load on the thrust side
     assert np.all(s_anti[expansion] > s0[expansion])
-    # the sign reaches the kinematics in one place
+    # every calculation takes the offsets from one place, in the documented convention
     eng = dataclasses.replace(base, params=Params({**p, "pin_offset": 0.8e-3}))
-    assert eng.offsets["pin_offset"] == -0.8e-3
+    assert eng.offsets["pin_offset"] == 0.8e-3

@@ -74,7 +74,8 @@ def piston_acceleration_harmonics(
     crank_radius : float [m]
     rod_length : float [m]
     offset : float [m]
-        Total offset ``e`` = cylinder offset + pin offset (``r + |e| < l``).
+        Total offset ``e`` = cylinder offset - pin offset (pin offset towards the major thrust
+        side positive; :mod:`checker.calc.kinematics`), ``r + |e| < l``.
     max_order : int
         Highest order ``>= 1``.
 

@@ -13,17 +13,26 @@ crank angle, measured from the line through the crank axis parallel to the cylin
 in the direction of rotation. The piston pin (small end) moves on the line ``t = e`` with the
 **total offset**
 
-    e = cylinder_offset + pin_offset
+    e = cylinder_offset - pin_offset
 
 * ``cylinder_offset`` [m]: position of the cylinder (bore) axis relative to the crank axis,
-  measured along ``+t``;
-* ``pin_offset`` [m]: position of the piston-pin axis relative to the bore axis, along ``+t``.
+  measured along ``+t`` (Agostini's ``z_o,c``);
+* ``pin_offset`` [m]: offset of the piston-pin axis from the bore axis **towards the major thrust
+  side positive** (the workbook's documented convention, "towards the thrust side positive").
 
-(With clockwise rotation seen from the front and the head up, ``+t`` points to the right; the
-major thrust side of the liner during expansion is then ``-t``, so a pin offset "toward the major
-thrust side" is negative here.) Only the sum ``e`` enters the kinematics and the forces on the
-crank train. With ``lam = r/l`` and ``delta = e/l`` (Agostini 2019, *Powertrain Components
-Design*, Politecnico di Torino, ch. 1 "Offset layout"; seed 004):
+The major thrust side is the side of the liner the piston bears on during expansion: the gas
+force pushes the piston toward the crank, the rod then leans with its big end on the ``+t``
+side (``beta > 0``), its compression pushes the piston toward ``-t`` and the liner reacts
+toward ``+t``, so the piston presses on the ``-t`` side (``CylinderLoads.side_force < 0`` in
+:mod:`checker.calc.crank_forces`). A pin offset towards the major thrust side therefore moves the
+pin to ``-t``: Agostini's ``z_o,wp = -pin_offset``. Because ``t`` is defined by the direction of
+rotation, this holds for either rotation (clockwise seen from the front with the head up: ``+t``
+points right and the major thrust side is on the left). Such an offset (seed 004 "Methods to
+decrease slap": the pin "moved towards the major thrust side") brings the piston's crossover from
+the minor to the major thrust side (``beta = 0``, ``sin(phi) = e/r``) ahead of the top dead centre,
+which itself comes early: ``phi_TDC = asin(e/(l + r)) < 0``. Only ``e`` enters the kinematics and
+the forces on the crank train. With ``lam = r/l`` and ``delta = e/l`` (Agostini 2019,
+*Powertrain Components Design*, Politecnico di Torino, ch. 1 "Offset layout"; seed 004):
 
     sin(beta) = lam sin(phi) - delta                       (con-rod obliquity beta)
     y_P       = r cos(phi) + l cos(beta)                   (piston pin along c)
@@ -40,8 +49,9 @@ With an offset the piston's dead centres are not at ``phi = 0, pi`` but at
 ``phi_TDC = asin(e/(l + r))`` and ``phi_BDC = pi + asin(e/(l - r))`` and the stroke is slightly
 longer than ``2 r`` (:func:`dead_centres`). Crank angles in this package keep the geometric
 reference ``phi = 0`` (pin on the line parallel to the bore through the crank axis); a measured
-pressure trace referenced to the true TDC may be shifted by ``phi_TDC`` if that matters (0.24 deg
-for the example engine's 0.8 mm pin offset).
+pressure trace referenced to the true TDC may be shifted by ``phi_TDC`` if that matters (-0.24 deg,
+TDC before the reference, for the example engine's 0.8 mm pin offset towards the major thrust
+side).
 
 The crank speed ``omega`` is constant (no cyclic speed fluctuation).
 """
@@ -131,7 +141,7 @@ def _check_geometry(
         raise ValueError(f"crank_radius must be > 0 m, got {crank_radius!r}")
     if np.any(r + np.abs(e) >= l):
         raise ValueError(
-            "crank_radius + |cylinder_offset + pin_offset| must be < rod_length "
+            "crank_radius + |cylinder_offset - pin_offset| must be < rod_length "
             "(otherwise the con-rod cannot reach the piston pin at every crank angle)"
         )
     return r, l, e
@@ -177,7 +187,8 @@ def slider_kinematics(
     cylinder_offset : array_like [m]
         Bore axis relative to the crank axis along ``+t`` (module docstring).
     pin_offset : array_like [m]
-        Piston-pin axis relative to the bore axis along ``+t``.
+        Piston-pin axis offset from the bore axis, towards the major thrust side positive
+        (i.e. along ``-t``; module docstring).
 
     Returns
     -------
@@ -189,7 +200,7 @@ def slider_kinematics(
     Valid for ``0 < r`` and ``r + |e| < l`` (``ValueError`` otherwise), rigid links, constant
     ``omega``. No small-``lam`` approximation is made.
     """
-    r, l, e = _check_geometry(crank_radius, rod_length, np.add(cylinder_offset, pin_offset))
+    r, l, e = _check_geometry(crank_radius, rod_length, np.subtract(cylinder_offset, pin_offset))
     th = np.asarray(theta, dtype=float)
     w = np.asarray(omega, dtype=float)
     if not np.all(np.isfinite(th)):
@@ -251,7 +262,7 @@ def dead_centres(
     -----
     Geometry of Agostini (2019, seed 004, "Offset layout"); valid for ``r + |e| < l``.
     """
-    r, l, e = _check_geometry(crank_radius, rod_length, np.add(cylinder_offset, pin_offset))
+    r, l, e = _check_geometry(crank_radius, rod_length, np.subtract(cylinder_offset, pin_offset))
     tdc = np.arcsin(e / (l + r))
     bdc = np.pi + np.arcsin(e / (l - r))
     stroke = np.sqrt((l + r) ** 2 - e * e) - np.sqrt((l - r) ** 2 - e * e)

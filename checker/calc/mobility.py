@@ -270,12 +270,7 @@ def squeeze_load_radial(eps: ArrayLike) -> np.ndarray:
     e = np.asarray(eps, dtype=float)
     if np.any(np.abs(e) >= 1.0) or not np.all(np.isfinite(e)):
         raise ValueError("|eps| must be < 1")
-    q2 = 1.0 - e * e
-    return (
-        2.0
-        * ((0.5 * np.pi - 0.5 * np.arccos(e)) * (1.0 + 2.0 * e * e) + 1.5 * e * np.sqrt(q2))
-        / q2**2.5
-    )
+    return 2.0 * _squeeze_bracket(e) / _one_minus_sq(e) ** 2.5
 
 
 def _solve_alpha(eps: np.ndarray, chi: np.ndarray, alpha0: np.ndarray) -> np.ndarray:
@@ -451,6 +446,54 @@ def mobility_exact_table(
 
 
 # --------------------------------------------------------------------------------------------
+# squeeze bracket without cancellation (shared by the short-bearing and Butenschoen squeeze)
+# --------------------------------------------------------------------------------------------
+_G_SERIES_SWITCH = 1.0
+"""Angle [rad] below which :func:`_bracket_of_angle` sums its Taylor series (direct formula
+above: its two terms are then at most 7 times the result, so no significant cancellation)."""
+_G_SERIES = np.array([(-1.0) ** k * (2 * k - 2) * 2.0 ** (2 * k + 1) / 4.0
+                      / float(np.prod(np.arange(1, 2 * k + 2, dtype=float)))
+                      for k in range(2, 13)])
+"""Coefficients ``c_k`` of ``g(phi) = phi^5 sum_k c_k phi^(2k-4)``, k = 2..12 (see
+:func:`_squeeze_bracket`); truncation error below 1e-16 relative for phi < 1."""
+_G_POWERS = np.arange(_G_SERIES.size, dtype=float)
+
+
+def _one_minus_sq(e: np.ndarray) -> np.ndarray:
+    """``1 - e**2`` as ``(1 - e)(1 + e)``: exact to rounding also for ``|e| -> 1``."""
+    return (1.0 - e) * (1.0 + e)
+
+
+def _squeeze_bracket(es: np.ndarray) -> np.ndarray:
+    """The squeeze-load bracket ``(pi/2 - acos(es)/2)(1 + 2 es^2) + 3/2 es sqrt(1 - es^2)``
+    for signed ``es`` in (-1, 1), evaluated without cancellation.
+
+    With ``phi = acos(-es)`` (``es = -cos(phi)``, ``sqrt(1 - es^2) = sin(phi)``) the bracket
+    is ``g(phi) = phi/2 (1 + 2 cos^2 phi) - 3/2 cos(phi) sin(phi)
+    = [2u + u cos(u) - 3 sin(u)] / 4`` with ``u = 2 phi`` (trigonometric identities). For the
+    receding case ``es -> -1`` (``phi -> 0``) the two terms cancel to ``(2/15) phi^5``, so the
+    direct formula loses all digits below ``1 - |es|`` of about 1e-4 (and returned 0, NaN or
+    the wrong sign beyond 1e-8). Below ``phi = 1`` the Taylor series of the bracket in ``u`` is
+    summed instead: ``g = 1/4 sum_{k>=2} (-1)^k (2k - 2) u^(2k+1) / (2k+1)!`` (term by term
+    from the series of ``sin`` and ``cos``; the ``u`` and ``u^3`` terms vanish).
+    """
+    return _bracket_of_angle(np.arccos(-es))
+
+
+def _bracket_of_angle(phi: np.ndarray) -> np.ndarray:
+    """``g(phi)`` of :func:`_squeeze_bracket` for ``0 <= phi <= pi``."""
+    c, sn = np.cos(phi), np.sin(phi)
+    direct = 0.5 * phi * (1.0 + 2.0 * c * c) - 1.5 * c * sn
+    return np.where(phi < _G_SERIES_SWITCH, _bracket_series(phi), direct)
+
+
+def _bracket_series(phi: np.ndarray) -> np.ndarray:
+    """Taylor series of ``g(phi)`` (accurate for ``phi < _G_SERIES_SWITCH``)."""
+    p2 = phi * phi
+    return (p2[..., None] ** _G_POWERS) @ _G_SERIES * (p2 * p2 * phi)
+
+
+# --------------------------------------------------------------------------------------------
 # Butenschoen finite-length fits
 # --------------------------------------------------------------------------------------------
 def _butenschoen_coefficients(x: np.ndarray) -> np.ndarray:
@@ -473,10 +516,11 @@ def _butenschoen_coefficients(x: np.ndarray) -> np.ndarray:
 
 def _bt_so_rot_over_eps(e: np.ndarray, x: np.ndarray, a: np.ndarray) -> np.ndarray:
     """Butenschoen rotation Sommerfeld number divided by |eps| (finite at eps = 0)."""
-    q2 = 1.0 - e * e
+    # x^2 / (2 (1-e^2)^2) ... a1 (e - 1) / (a2 + e) with one factor (1 - e) cancelled by hand
+    q2 = _one_minus_sq(e)
     return (
-        x * x / (2.0 * q2 * q2) * np.sqrt(np.pi**2 * q2 + 16.0 * e * e) * a[0] * (e - 1.0)
-        / (a[1] + e)
+        -x * x / (2.0 * (1.0 - e) * (1.0 + e) ** 2) * np.sqrt(np.pi**2 * q2 + 16.0 * e * e)
+        * a[0] / (a[1] + e)
     )
 
 
@@ -484,29 +528,37 @@ def _bt_beta(e: np.ndarray, a: np.ndarray) -> np.ndarray:
     """Butenschoen attitude angle; below eps = 0.1 linear from the fit at 0.1 to pi/2 at 0."""
     ep = np.maximum(e, 0.1)
     poly = a[2] + ep * (a[3] + ep * (a[4] + ep * (a[5] + ep * a[6])))
-    beta = np.arctan2(np.pi * np.sqrt(1.0 - ep * ep), 2.0 * ep) * poly
+    beta = np.arctan2(np.pi * np.sqrt(_one_minus_sq(ep)), 2.0 * ep) * poly
     return np.where(e < 0.1, 0.5 * np.pi + (beta - 0.5 * np.pi) * (e / 0.1), beta)
 
 
 def _bt_so_sq(es: np.ndarray, x: np.ndarray, a: np.ndarray) -> np.ndarray:
     """Butenschoen squeeze Sommerfeld number at signed eps (sign of d eps/dt)."""
-    q2 = 1.0 - es * es
-    br = (0.5 * np.pi - 0.5 * np.arccos(es)) * (1.0 + 2.0 * es * es) + 1.5 * es * np.sqrt(q2)
-    return 4.0 * x * x * br / q2**2.5 * a[7] * (1.0 - es) / (-a[8] - es)
+    br = _squeeze_bracket(es)
+    return 4.0 * x * x * br / _one_minus_sq(es) ** 2.5 * a[7] * (1.0 - es) / (-a[8] - es)
 
 
 def _bt_inv_so_sq_pair(e: np.ndarray, x: np.ndarray, a: np.ndarray):
-    """1/So_V at +eps and -eps (eps >= 0) with shared terms (same as :func:`_bt_so_sq`)."""
-    e2 = e * e
-    q2 = 1.0 - e2
+    """1/So_V at +eps and -eps (eps >= 0) (same as :func:`_bt_so_sq`, without cancellation).
+
+    ``1/So_V(+-eps) = (1 - eps^2)^(5/2) (-a9 -+ eps) / (4 x^2 a8 g(acos(-+eps)) (1 -+ eps))``
+    with the bracket ``g`` of :func:`_squeeze_bracket`; at ``-eps`` the ratio
+    ``sin(phi)^5 / g(phi)`` (``phi = acos(eps)``) is evaluated as such: both factors vanish
+    like ``phi^5`` as eps -> 1, the ratio tends to 15/2.
+    """
+    ome, ope = 1.0 - e, 1.0 + e
+    q2 = ome * ope
     sq = np.sqrt(q2)
-    h_asin = 0.5 * np.arcsin(e)  # pi/2 - acos(e)/2 = pi/4 + asin(e)/2
-    c1 = 1.0 + 2.0 * e2
-    t1 = 0.25 * np.pi * c1
-    t2 = h_asin * c1 + 1.5 * e * sq
-    pre = q2 * q2 * sq / (4.0 * x * x * a[7])
-    return (pre * (-a[8] - e) / ((t1 + t2) * (1.0 - e)),
-            pre * (-a[8] + e) / ((t1 - t2) * (1.0 + e)))
+    phi = np.arccos(e)  # recession: g(phi) with cos(phi) = eps, sin(phi) = sqrt(1 - eps^2)
+    half_c1 = 0.5 + e * e  # (1 + 2 eps^2) / 2
+    b = 1.5 * e * sq
+    g_m = np.where(phi < _G_SERIES_SWITCH, _bracket_series(phi), phi * half_c1 - b)
+    g_p = (np.pi - phi) * half_c1 + b  # approach: no cancellation (g -> 3 pi / 2)
+    pre = 1.0 / (4.0 * x * x * a[7])
+    # (1 - eps^2)^2 / (1 - eps) = (1 - eps)(1 + eps)^2, cancelled by hand
+    inv_p = pre * (ome * ope * ope * sq) * (-a[8] - e) / g_p
+    inv_m = pre * (q2 * q2 * sq / g_m) * (-a[8] + e) / ope
+    return inv_p, inv_m
 
 
 def butenschoen_sommerfeld_rotation(eps: ArrayLike, b_over_d: ArrayLike) -> np.ndarray:
@@ -679,7 +731,11 @@ def mobility_butenschoen(
     branch ``So_V(-eps)`` is spread over ``-0.1 < F_V/|F| < 0`` with a C1 smoothstep (the
     approach side and all steady states are unchanged), and beta is taken linearly to 90 deg
     between eps = 0.1 and 0 (:func:`butenschoen_attitude_angle`). The model is stiff near the
-    wall; :func:`checker.calc.orbit.solve_orbit` integrates it with ROS2.
+    wall; :func:`checker.calc.orbit.solve_orbit` integrates it with ROS2. Finite for every
+    ``eps < 1``: the receding squeeze bracket, a difference that cancels to ``(2/15) phi^5``
+    as eps -> 1, is summed as its Taylor series there (:func:`_squeeze_bracket`; the direct
+    difference returned NaN beyond 1 - eps ~ 1e-8), and ``1 - eps^2`` is formed as
+    ``(1 - eps)(1 + eps)``.
     """
     z, k, lod = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (zeta, kappa, l_over_d)))
     _check_in_disk(z, k)

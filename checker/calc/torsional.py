@@ -43,6 +43,7 @@ import scipy.linalg
 from numpy.typing import ArrayLike
 
 __all__ = [
+    "NEAR_RESONANCE_AMPLIFICATION",
     "RESONANCE_TOLERANCE",
     "SYNTHESIS_SAMPLES_PER_PERIOD",
     "ComplexStiffnessTable",
@@ -60,6 +61,8 @@ __all__ = [
     "station_excitation",
     "stiffness_matrix",
     "synthesize",
+    "undamped_resonance_band",
+    "UndampedBand",
 ]
 
 #: A (speed, order) point is flagged as an unbounded resonance when, for some undamped mode r of
@@ -67,6 +70,15 @@ __all__ = [
 #: the modal damping term), i.e. the dynamic magnification would exceed 1e6. Real crank trains
 #: have magnifications below ~1e4 (steel loss factor ~1e-4), so only (nearly) undamped modes hit.
 RESONANCE_TOLERANCE = 1e-6
+
+#: Near-resonance band of an undamped mode (:func:`undamped_resonance_band`): a (speed, order)
+#: point is *near* an undamped resonance when the undamped amplification of a mode,
+#: ``omega_r^2 / |omega_r^2 - Omega^2|`` (force-excited single degree of freedom, e.g. Den Hartog
+#: 1956, *Mechanical Vibrations*, ch. 2), reaches this value, i.e. ``|1 - (Omega/omega_r)^2| <=
+#: 0.1``, Omega within about -5 %/+5 % of omega_r. 10 is the resonant amplification
+#: ``Q = 1/(2 zeta)`` of a damped crank mode with zeta = 0.05: an undamped mode this close to an
+#: order is amplified more than a damped crank resonance at its peak.
+NEAR_RESONANCE_AMPLIFICATION = 10.0
 
 #: Samples per period of the highest order used by :func:`synthesize` by default. The samples
 #: only locate the extremes for :func:`half_peak_to_peak`, which polishes them by Newton steps on
@@ -533,13 +545,10 @@ def forced_response(
     )
 
 
-def _undamped_resonance(model: TorsionalModel, om: np.ndarray, dmat: np.ndarray) -> np.ndarray:
-    """Flag (speed, order) points where D has an (almost) undamped null vector.
-
-    For passive damping (Im D positive semidefinite) ``D x = 0`` iff ``Re D x = 0`` and
-    ``Im D x = 0``: the excitation frequency is an undamped natural frequency whose mode is not
-    damped at all. Test, in the M^-1/2-scaled eigenbasis of Re D, ``|a_r + j b_r| < tol Omega^2``
-    with ``a_r`` the eigenvalue of Re D and ``b_r = v_r^T Im D v_r``.
+def _modal_terms(model: TorsionalModel, om: np.ndarray, dmat: np.ndarray
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """Eigenvalues ``a_r`` of ``M^-1/2 Re D M^-1/2`` (``omega_r^2 - Omega^2`` for constant
+    stiffness) and modal damping terms ``b_r = v_r^T M^-1/2 Im D M^-1/2 v_r``, (..., n) each.
     """
     minv = 1.0 / np.sqrt(model.inertia)
     if model.dynamic_stiffness:
@@ -551,8 +560,121 @@ def _undamped_resonance(model: TorsionalModel, om: np.ndarray, dmat: np.ndarray)
         lam = lam0 - om[..., None] ** 2
     b_s = dmat.imag * minv[:, None] * minv
     b_r = np.einsum("...ir,...ij,...jr->...r", vec, b_s, vec)
+    return lam, b_r
+
+
+def _undamped_resonance(model: TorsionalModel, om: np.ndarray, dmat: np.ndarray) -> np.ndarray:
+    """Flag (speed, order) points where D has an (almost) undamped null vector.
+
+    For passive damping (Im D positive semidefinite) ``D x = 0`` iff ``Re D x = 0`` and
+    ``Im D x = 0``: the excitation frequency is an undamped natural frequency whose mode is not
+    damped at all. Test, in the M^-1/2-scaled eigenbasis of Re D, ``|a_r + j b_r| < tol Omega^2``
+    with ``a_r`` the eigenvalue of Re D and ``b_r = v_r^T Im D v_r``.
+    """
+    lam, b_r = _modal_terms(model, om, dmat)
     mag = np.hypot(lam, b_r)
     return np.any(mag < RESONANCE_TOLERANCE * om[..., None] ** 2, axis=-1)
+
+
+@dataclass(frozen=True)
+class UndampedBand:
+    """Points of a speed sweep near a resonance of an undamped mode (all (n_speed, n_order)).
+
+    Attributes
+    ----------
+    near : numpy.ndarray of bool
+        Near an undamped resonance: within the amplification band, or next to a crossing.
+    amplification : numpy.ndarray [-]
+        Largest undamped amplification ``omega_r^2 / |omega_r^2 - Omega^2|`` over the undamped
+        modes (0 where no mode is undamped; inf exactly on a natural frequency).
+    natural_frequency : numpy.ndarray [rad/s]
+        Natural frequency of the undamped mode the point is near (nan where not near).
+    critical_speed : numpy.ndarray [rad/s]
+        Speed at which the order crosses that natural frequency between this swept speed and
+        a neighbour (nan where no crossing is next to the point).
+    """
+
+    near: np.ndarray
+    amplification: np.ndarray
+    natural_frequency: np.ndarray
+    critical_speed: np.ndarray
+
+
+def undamped_resonance_band(
+    model: TorsionalModel,
+    speeds: ArrayLike,
+    orders: ArrayLike,
+    amplification: float = NEAR_RESONANCE_AMPLIFICATION,
+) -> UndampedBand:
+    """Speed-sweep points near a resonance of an undamped mode, missed or not by the sweep.
+
+    A mode ``r`` is *undamped* at ``Omega`` when its modal damping term ``b_r`` (the imaginary
+    part of ``D`` in the mass-scaled eigenbasis of ``Re D``, as in :func:`forced_response`)
+    cannot bound the resonant magnification ``Omega^2 / b_r`` below ``1 / RESONANCE_TOLERANCE``
+    (1e6). A swept point ``(speed, order)`` is *near* such a mode when
+
+    * the undamped amplification ``omega_r^2 / |omega_r^2 - Omega^2|`` is at least
+      ``amplification`` (:data:`NEAR_RESONANCE_AMPLIFICATION`), or
+    * the order crosses ``omega_r`` between this speed and the previous or next swept speed
+      (``omega_r^2 - Omega^2`` changes sign): the response at the crossing is unbounded while
+      the swept points, however far from it, show finite amplitudes. The crossing speed is
+      interpolated linearly in ``speed^2`` (exact for constant stiffness, where
+      ``omega_r^2 - Omega^2 = omega_r^2 - n^2 w^2``).
+
+    Parameters
+    ----------
+    model : TorsionalModel
+    speeds : array_like, shape (n_speed,) [rad/s]
+        Strictly increasing mean crank speeds (> 0).
+    orders : array_like, shape (n_order,) [-]
+        Harmonic orders (> 0).
+    amplification : float [-]
+        Amplification threshold of the band (> 1).
+
+    Returns
+    -------
+    UndampedBand
+
+    Notes
+    -----
+    With frequency-dependent element stiffness the modes are followed by their rank (sorted
+    eigenvalues), which is exact as long as two modes do not exchange order between adjacent
+    speeds.
+    """
+    w = np.asarray(speeds, dtype=float).ravel()
+    n_ord = np.asarray(orders, dtype=float).ravel()
+    if w.size == 0 or np.any(~np.isfinite(w)) or np.any(w <= 0) or np.any(np.diff(w) <= 0):
+        raise ValueError("speeds must be finite, > 0 rad/s and strictly increasing")
+    if n_ord.size == 0 or np.any(~np.isfinite(n_ord)) or np.any(n_ord <= 0):
+        raise ValueError("orders must be finite and > 0")
+    if not (np.isfinite(amplification) and amplification > 1.0):
+        raise ValueError("amplification must be finite and > 1")
+    om = w[:, None] * n_ord  # (S, O)
+    lam, b_r = _modal_terms(model, om, _assemble(model, om, element_impedance(model, om)))
+    undamped = b_r < RESONANCE_TOLERANCE * om[..., None] ** 2  # (S, O, n)
+    w_r2 = lam + om[..., None] ** 2  # natural frequency squared of each mode
+    with np.errstate(divide="ignore", invalid="ignore"):
+        amp = np.where(undamped & (w_r2 > 0), w_r2 / np.abs(lam), 0.0)
+    in_band = amp >= amplification
+    # crossings between adjacent speeds, the mode undamped at both ends
+    cross = (np.sign(lam[:-1]) != np.sign(lam[1:])) & undamped[:-1] & undamped[1:] & (
+        w_r2[:-1] > 0)  # (S-1, O, n)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        frac = np.clip(lam[:-1] / (lam[:-1] - lam[1:]), 0.0, 1.0)
+    w2 = w**2
+    w_cross = np.sqrt(w2[:-1, None, None] + (w2[1:] - w2[:-1])[:, None, None] * frac)
+    crit = np.full(lam.shape, np.nan)  # (S, O, n)
+    crit[:-1] = np.where(cross, w_cross, np.nan)  # crossing above this speed
+    crit[1:] = np.where(cross, w_cross, crit[1:])  # crossing below this speed
+    near_r = in_band | np.isfinite(crit)
+    near = near_r.any(axis=-1)
+    # the mode each near point refers to: the most amplified near mode
+    score = np.where(near_r, np.where(np.isfinite(crit), np.inf, amp), -1.0)
+    r = np.argmax(score, axis=-1)[..., None]
+    nat = np.where(near, np.sqrt(np.take_along_axis(w_r2, r, -1)[..., 0].clip(0.0)), np.nan)
+    crit_r = np.where(near, np.take_along_axis(crit, r, -1)[..., 0], np.nan)
+    return UndampedBand(near=near, amplification=amp.max(axis=-1, initial=0.0),
+                        natural_frequency=nat, critical_speed=crit_r)
 
 
 def _check_orders(orders: np.ndarray) -> np.ndarray:

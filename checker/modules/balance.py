@@ -147,7 +147,8 @@ def _balance(engine: Engine) -> dict[str, Quantity]:
                                           * (p["rod_length"] - p["rod_com"]))
     m_rec = p["piston_mass"] + float(m_small)
     m_big = float(m_big)
-    offset = sum(engine.offsets.values())
+    off = engine.offsets  # total offset of the slider line (checker.calc.kinematics)
+    offset = off["cylinder_offset"] - off["pin_offset"]
     try:
         harm = bal.piston_acceleration_harmonics(r, p["rod_length"], offset, MAX_ORDER)
     except ValueError as exc:

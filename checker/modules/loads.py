@@ -152,12 +152,25 @@ def build_cycle(engine: Engine, step: float | None = None) -> Cycle:
         tgt = None
         if case == "full" and engine.brake_torque:
             bt = np.array(engine.brake_torque)
-            inside = (speeds >= bt[0, 0] - 1e-9) & (speeds <= bt[-1, 0] + 1e-9)
             vd = pr.swept_volume(p["bore"], r, p["rod_length"], kw["cylinder_offset"],
                                  kw["pin_offset"]) * len(engine.cylinders)
-            torque = np.interp(speeds, bt[:, 0], bt[:, 1])
-            tgt = np.where(inside, pr.implied_imep(torque, vd, pr.fmep_barnes_moss(speeds)),
-                           np.nan)
+            # outside the BrakeTorque range the target IMEP is held at its value at the
+            # nearest BrakeTorque speed (never above it): evaluated at the clipped speed
+            held = np.clip(speeds, bt[0, 0], bt[-1, 0])
+            torque = np.interp(held, bt[:, 0], bt[:, 1])
+            tgt = pr.implied_imep(torque, vd, pr.fmep_barnes_moss(held))
+            out = np.abs(held - speeds) > 1e-9
+            if out.any():
+                sides = [f"{tgt[out & (held == s_)][0] / 1e5:.1f} bar at {s_ / RPM:.0f} rpm"
+                         for s_ in (bt[0, 0], bt[-1, 0]) if np.any(out & (held == s_))]
+                notes.append(
+                    "Full load outside the BrakeTorque speeds (at"
+                    f" {_speeds_text(speeds[out] / RPM)}): IMEP held at its value at the nearest"
+                    f" BrakeTorque speed ({'; '.join(sides)}), never above it, and the peak"
+                    " pressure held at the nearest PeakPressure speed: the synthesized trace"
+                    " there is the trace of that speed (above the range the brake torque then"
+                    " falls with the rising friction) instead of an uncalibrated, more severe"
+                    " one.")
         elif case == "no":
             # no load: brake torque zero, the indicated work only overcomes friction
             tgt = np.asarray(pr.fmep_barnes_moss(speeds), dtype=float)

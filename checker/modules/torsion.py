@@ -45,6 +45,12 @@ Sign conventions
   torque (mean + vibratory) through the joint: crank nose ``|T_FEAD - T_rubber(t)|`` (the
   crank drives the pulley and the damper ring), flywheel ``|T_brake + T_e,flywheel(t)|``.
 
+Findings (undamped modes): an order exactly on the natural frequency of a mode without damping
+(regularised solve, :data:`checker.calc.torsional.RESONANCE_TOLERANCE`), and an order near one:
+undamped amplification >= 10 or a crossing between two swept speeds, where the response is
+unbounded although every swept amplitude is finite
+(:func:`checker.calc.torsional.undamped_resonance_band`).
+
 Damper limits: the supplier's limits are per engine (sheet ``Damper``), so the rules compare
 *ratios* (value / supplier limit) with 1 (``damper.*_ratio``); without the limit the ratio is
 missing and the rule is ``not evaluated`` naming the Damper cell.
@@ -161,6 +167,10 @@ PROVIDES = ("tv.natural_frequency", "tv.nose_amplitude", "tv.nose_order_amplitud
 
 def _rpm_text(w: float) -> str:
     return f"{w / RPM:.0f} rpm"
+
+
+def _speeds_text(w: np.ndarray) -> str:
+    return ", ".join(f"{x / RPM:.0f}" for x in np.sort(w)) + " rpm"
 
 
 def _extremes(orders: np.ndarray, coeffs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -373,6 +383,32 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
                 " relative damping, Damper loss factor)")
         res_text.setdefault((ci, si), []).append(text)
         find_ocs[(oi, ci, si)] = [text]
+    # near (not exactly on) a resonance of an undamped mode: amplification band or a crossing
+    # between two swept speeds (checker.calc.torsional.undamped_resonance_band)
+    band = tv.undamped_resonance_band(model, speeds, orders)
+    groups: dict[tuple[int, str], list[int]] = {}  # (order, natural frequency) -> speeds
+    for si, oi in zip(*np.nonzero(band.near)):
+        key = (int(oi), f"{band.natural_frequency[si, oi]:.6g}")  # same mode, rounding aside
+        groups.setdefault(key, []).append(int(si))
+    for (oi, _), sis in groups.items():
+        w_r = float(np.mean(band.natural_frequency[sis, oi]))
+        crit = band.critical_speed[sis, oi]
+        crossed = bool(np.isfinite(crit).any())
+        w_c = float(np.nanmean(crit)) if crossed else w_r / orders[oi]
+        where = (" between two swept speeds" if crossed else
+                 " (outside the swept speeds)" if not speeds[0] <= w_c <= speeds[-1] else "")
+        text = (f"undamped resonance near the sweep: order {orders[oi]:g} meets the natural"
+                f" frequency {w_r / (2 * np.pi):.1f} Hz of a mode without damping at"
+                f" {_rpm_text(w_c)}{where}; swept speeds next to it or within the band of"
+                f" undamped amplification >= {tv.NEAR_RESONANCE_AMPLIFICATION:g} (about"
+                f" +-5 %): {_speeds_text(speeds[sis])}. The response at that speed is unbounded"
+                " while the swept amplitudes stay finite - add damping (TVModel absolute or"
+                " relative damping, Damper loss factor)")
+        for si in sis:
+            for ci in range(C):
+                if not reson[ci, si, oi]:  # exactly on it: the finding above
+                    res_text.setdefault((ci, si), []).append(text)
+                    find_ocs.setdefault((oi, ci, si), []).append(text)
     find_cs = dict(res_text)
 
     # ---------------------------------------------------------------- quantities
@@ -382,7 +418,7 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
     k_cyl = int(np.argmin(np.abs(orders - n_cyl)))
     higher = np.nonzero(orders > n_cyl + 1e-9)[0]
     common = {"orders": orders, "speeds": speeds, "resonance": reson,
-              "assumptions": assumptions}
+              "near_resonance": band.near, "assumptions": assumptions}
     out: dict[str, Quantity] = {}
     out["tv.natural_frequency"] = Quantity(
         NATURAL, w_flex / (2 * np.pi), {"mode": mode_labels},
@@ -399,13 +435,17 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
         NOSE_ORDER, np.moveaxis(nose_ord, -1, 0), {"order": order_labels, **cs_coords},
         findings=find_ocs, extra=common)
     cyl_find = {(ci, si): v for (oi, ci, si), v in find_ocs.items() if oi == k_cyl}
-    peaks_text = ("resonant peaks only: interior local maxima of the amplitude against speed,"
-                  " and the top speed if still rising; the rolling-mode motion that falls from"
-                  " the lowest speed is shown, not judged")
+    env = cyc.envelope  # (C, S) operating envelope of each load case (None = every speed)
+    peaks_text = ("judged at resonant peaks within each load case's operating envelope only"
+                  " (full load: the full-load data range; no load: every speed up to the"
+                  " overspeed): interior local maxima of the amplitude against speed, and the"
+                  " envelope's top speed when the curve still rises into it; the rolling-mode"
+                  " motion that falls from the lowest speed and points outside the envelope"
+                  " are shown, not judged")
     out["tv.nose_cylinder_order_amplitude"] = Quantity(
         NOSE_CYL, nose_ord[:, :, k_cyl], cs_coords, findings=cyl_find,
         extra=dict(common, order=float(orders[k_cyl]), applies_text=peaks_text),
-        applies=resonant_peaks(nose_ord[:, :, k_cyl], axis=-1))
+        applies=resonant_peaks(nose_ord[:, :, k_cyl], axis=-1, envelope=env))
     pos = {int(o): i for i, o in enumerate(higher)}
     hi_find = {(pos[oi], ci, si): v for (oi, ci, si), v in find_ocs.items() if oi in pos}
     hi_vals = np.moveaxis(nose_ord[:, :, higher], -1, 0)
@@ -413,7 +453,7 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
         NOSE_HIGH, hi_vals,
         {"order": [order_labels[i] for i in higher], **cs_coords}, findings=hi_find,
         extra=dict(common, orders_checked=orders[higher], applies_text=peaks_text),
-        applies=resonant_peaks(hi_vals, axis=-1))
+        applies=resonant_peaks(hi_vals, axis=-1, envelope=env))
     out["tv.crank_twist"] = Quantity(TWIST, crank_twist, cs_coords, findings=find_cs,
                                      extra=dict(common, stations=(names[nose], names[rear])))
 

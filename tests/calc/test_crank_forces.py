@@ -109,7 +109,7 @@ def test_big_end_load_matches_rigid_body_newton_euler(e_cyl, e_pin, bank):
     # and the bank rotation. Tolerance: 1e-6 of the peak load.
     th = cycle_grid(2.0 * DEG)
     w = 6000 * RPM
-    e = e_cyl + e_pin
+    e = e_cyl - e_pin  # pin offset towards the major thrust side = -t
     p = 1e5 + 60e5 * np.exp(-(((np.mod(th + 2 * np.pi, 4 * np.pi) - 2 * np.pi - 0.3) / 0.4) ** 2))
     res = _single(th, w, p, cylinder_offset=e_cyl, pin_offset=e_pin, bank_angle=bank)
     area = np.pi / 4 * BORE**2
@@ -165,8 +165,8 @@ def test_inertia_torque_equals_kinetic_energy_rate():
     # Tolerance 1e-6 of the peak torque (difference error).
     th = cycle_grid(1.0 * DEG)
     w = 5000 * RPM
-    e = 0.8 * MM
-    res = _single(th, w, np.full(th.size, P_CC), pin_offset=e)
+    e = -0.8 * MM  # pin 0.8 mm towards the major thrust side (-t)
+    res = _single(th, w, np.full(th.size, P_CC), pin_offset=-e)
     h = 1e-4
 
     def ke(phi):
@@ -215,7 +215,7 @@ def test_pure_gas_torque_conserves_work(e_cyl, e_pin, bank):
     res = _single(th, 0.0, p, piston_mass=0.0, rod_mass=0.0, rod_inertia=0.0,
                   cylinder_offset=e_cyl, pin_offset=e_pin, bank_angle=bank)
     area = np.pi / 4 * BORE**2
-    _, pin = _linkage(th, e_cyl + e_pin)
+    _, pin = _linkage(th, e_cyl - e_pin)
     vol = -area * pin[1]  # volume change = -A * d(pin height)
     t = np.append(res.torque[0], res.torque[0, 0])
     pp = np.append(p - P_CC, p[0] - P_CC)
@@ -238,7 +238,7 @@ def test_frames_are_consistent():
     np.testing.assert_allclose(res.big_end_rod.magnitude, mag, rtol=1e-12)
     back = crank_to_block(res.big_end_crank, th)
     np.testing.assert_allclose(back.x, res.big_end_block.x, atol=1e-9 * mag.max())
-    b, q = _linkage(th, 0.8 * MM)
+    b, q = _linkage(th, -0.8 * MM)  # pin towards the major thrust side
     u = (q - b) / L
     proj = res.big_end_block.x[0] * u[0] + res.big_end_block.y[0] * u[1]
     np.testing.assert_allclose(res.big_end_rod.y[0], proj, atol=1e-9 * mag.max())
@@ -400,3 +400,38 @@ def test_mass_positions_turn_the_throw1_frame_into_the_crank_frame():
     # in-line engine (gamma_1 = 0): the sheet's (Z, Y) are the crank frame's (x, y)
     pos0 = mass_positions([0.01], [0.02], [0], [False], [0.0, np.pi], r)
     np.testing.assert_allclose(pos0, [[0.01, 0.02]], atol=1e-15)
+
+
+def test_side_force_direction_and_pin_offset_crossover_by_hand():
+    # By hand, gas force only (omega = 0, constant 50 bar): the rod in compression pushes the
+    # piston along the rod towards the small end, u = (-sin b, cos b); axial balance gives the
+    # rod force F/cos(b) and the piston presses on the liner with N = -F tan(b) along +t.
+    # Zero offset, expansion (0 < phi < pi): b > 0 -> N < 0, the piston bears on -t, the
+    # major thrust side. With the pin offset a towards the major thrust side (workbook
+    # convention) the pin runs on t = -a: sin(b) = (r sin(phi) + a)/l, so N changes sign (the
+    # crossover from the minor to the major thrust side) at phi_x = -asin(a/r) = -0.969 deg,
+    # before TDC (-0.2375 deg): at TDC the piston already bears on the major thrust side,
+    # which relaxes piston slap (seed 004, "Methods to decrease slap": the pin "moved towards
+    # the major thrust side"). The mirror offset crosses over at +0.969 deg, after TDC, under
+    # gas load. Exact relation N = -F tan(b): tolerance 1e-12 of F.
+    th = cycle_grid(0.01 * DEG)
+    p = np.full(th.size, 50 * BAR)
+    f_gas = (50 * BAR - P_CC) * np.pi / 4 * BORE**2
+    a = 0.8 * MM
+    phi = np.where(th > 2 * np.pi, th - 4 * np.pi, th)  # (-2 pi, 2 pi], 0 = firing TDC
+
+    def side(offset, deg):
+        k = int(np.argmin(np.abs(phi - np.radians(deg))))
+        return res[offset].side_force[0, k]
+
+    res = {o: _single(th, 0.0, p, pin_offset=o) for o in (0.0, a, -a)}
+    expansion = (phi > 0.05) & (phi < np.pi - 0.05)
+    assert np.all(res[0.0].side_force[0, expansion] < 0)  # major thrust side = -t
+    b = np.arcsin((R * np.sin(phi) + a) / L)
+    np.testing.assert_allclose(res[a].side_force[0], -f_gas * np.tan(b), atol=1e-12 * f_gas)
+    x_deg = np.degrees(np.arcsin(a / R))
+    assert x_deg == pytest.approx(0.969, abs=1e-3)
+    tdc_deg = -np.degrees(np.arcsin(a / (L + R)))
+    assert side(a, -x_deg - 0.03) > 0 and side(a, -x_deg + 0.03) < 0  # crossover at -0.969
+    assert side(a, tdc_deg) < 0 and side(a, 0.0) < 0  # on the major thrust side at TDC
+    assert side(-a, -tdc_deg) > 0 and side(-a, x_deg - 0.03) > 0 and side(-a, x_deg + 0.03) < 0

@@ -56,7 +56,7 @@ def test_position_and_rod_angle_match_vector_construction(e_cyl, e_pin):
     # intersection); TDC height found by brute force over a 0.001 deg grid. Tolerance: 1e-12 m for
     # the pin height / rod angle (rounding), 1e-9 m for the TDC height (grid resolution,
     # curvature r (1+lam) * (0.5 * 1.7e-5 rad)^2 ~ 5e-12 m).
-    e = e_cyl + e_pin
+    e = e_cyl - e_pin  # pin offset towards the major thrust side = -t
     phi = np.linspace(0, 2 * np.pi, 360001)
     c_p, beta = _vector_construction(phi, R, L, e)
     w = 300.0
@@ -96,7 +96,7 @@ def test_zero_offset_matches_published_closed_forms():
 def test_dead_centres_and_stroke(e_cyl, e_pin):
     # Rod and crank collinear at the dead centres: velocity zero, x = 0 at TDC and x = stroke at
     # BDC; brute-force extremes of the independent vector construction agree to 1e-9 m.
-    e = e_cyl + e_pin
+    e = e_cyl - e_pin  # pin offset towards the major thrust side = -t
     tdc, bdc, stroke = dead_centres(R, L, e_cyl, e_pin)
     kin = slider_kinematics(np.array([tdc, bdc]), R, L, 1.0, e_cyl, e_pin)
     np.testing.assert_allclose(kin.dx_dtheta, 0.0, atol=1e-15)
@@ -140,3 +140,26 @@ def test_cycle_grid_and_default_step():
     np.testing.assert_allclose(DEFAULT_STEP, np.deg2rad(DEFAULT_STEP_DEG))
     with pytest.raises(ValueError, match="integer"):
         cycle_grid(np.deg2rad(0.7))
+
+
+def test_pin_offset_towards_the_major_thrust_side_advances_tdc():
+    # Workbook convention: pin offset towards the major thrust side positive. By hand: the
+    # major thrust side is -t (module docstring), so a pin offset a > 0 puts the piston pin on
+    # the line t = -a. TDC is where crank and rod are in line, the crank pointing at the pin:
+    # sin(phi_TDC) = -a/(l + r), i.e. -0.2375 deg for a = 0.8 mm on the example engine (TDC
+    # before the geometric reference); BDC: the crank points away from the pin,
+    # phi_BDC = pi - asin(a/(l - r)). At phi = 0 the crank pin is on the bore-parallel line,
+    # the pin at -a: the rod leans with sin(beta) = a/l > 0 (big end on the +t side of the
+    # pin). Exact relations, tolerance 1e-12.
+    a = 0.8 * MM
+    tdc, bdc, _ = dead_centres(R, L, 0.0, a)
+    assert tdc < 0 and np.degrees(tdc) == pytest.approx(-0.2375, abs=5e-5)
+    assert tdc == pytest.approx(-np.arcsin(a / (L + R)), rel=1e-12)
+    assert bdc == pytest.approx(np.pi - np.arcsin(a / (L - R)), rel=1e-12)
+    kin = slider_kinematics(np.array([0.0]), R, L, 1.0, 0.0, a)
+    assert kin.beta[0] == pytest.approx(np.arcsin(a / L), rel=1e-12)
+    # towards the minor thrust side (negative): the mirror image, TDC after the reference
+    tdc_minor, _, _ = dead_centres(R, L, 0.0, -a)
+    assert tdc_minor == pytest.approx(-tdc, rel=1e-12)
+    # a cylinder offset along +t equal to the pin offset cancels it (e = c - a = 0)
+    np.testing.assert_allclose(dead_centres(R, L, a, a), (0.0, np.pi, 2 * R), atol=1e-15)

@@ -274,6 +274,73 @@ def test_butenschoen_mobility_pure_squeeze_matches_table(i_eps):
 
 
 # ------------------------------------------------------------------------------------------
+# Butenschoen and squeeze kernels near the wall (eps -> 1): finite, continuous, monotone
+# ------------------------------------------------------------------------------------------
+WALL = 1.0 - np.logspace(-1, -15, 57)  # 1 - eps from 0.1 down to 1e-15, 4 points a decade
+
+
+def test_squeeze_bracket_without_cancellation():
+    # g(phi) = phi/2 (1 + 2 cos^2 phi) - 3/2 cos(phi) sin(phi) with es = -cos(phi). Oracles:
+    # (a) the direct formula where it does not cancel (phi >= 0.5: terms within a factor 30 of
+    # g, rounding < 1e-14), tolerance 1e-13; (b) the two-term expansion derived by hand from
+    # the sine and cosine series, g = 2/15 phi^5 - 8/315 phi^7 + O(phi^9), for phi <= 1e-3
+    # (neglected term < 1e-12 relative), tolerance 1e-12.
+    phi = np.linspace(0.5, 3.1, 200)
+    direct = 0.5 * phi * (1 + 2 * np.cos(phi) ** 2) - 1.5 * np.cos(phi) * np.sin(phi)
+    assert np.allclose(mb._bracket_of_angle(phi), direct, rtol=1e-13, atol=0)
+    phi = np.logspace(-7, -3, 30)
+    assert np.allclose(mb._bracket_of_angle(phi),
+                       2 / 15 * phi**5 - 8 / 315 * phi**7, rtol=1e-12, atol=0)
+    # g' = 2 sin(phi) (sin(phi) - phi cos(phi)) > 0 on (0, pi): increasing in es everywhere
+    es = np.concatenate([-WALL[::-1], np.linspace(-0.89, 0.89, 179), WALL])
+    g = mb._squeeze_bracket(es)
+    assert np.all(np.isfinite(g)) and np.all(g > 0) and np.all(np.diff(g) > 0)
+
+
+@pytest.mark.parametrize("x", [0.125, 1 / 3, 1.0])
+def test_butenschoen_squeeze_finite_and_monotone_up_to_the_wall(x):
+    # So_V(es) grows monotonically from recession (es -> -1) to approach (es -> +1) and stays
+    # finite. Receding limit by hand: (1 - es^2)^(5/2) -> phi^5 and the bracket -> 2/15 phi^5,
+    # so So_V(-1) = 16 x^2 a8 / (15 (1 - a9)); tolerance 1e-9 at 1 - |es| = 1e-15.
+    # Before the fix the bracket cancelled: NaN, 0 or the wrong sign beyond 1 - |es| ~ 1e-8.
+    es = np.concatenate([-WALL[::-1], np.linspace(-0.89, 0.89, 179), WALL])
+    so = mb.butenschoen_sommerfeld_squeeze(es, x)
+    assert np.all(np.isfinite(so)) and np.all(so > 0) and np.all(np.diff(so) > 0)
+    a = mb._butenschoen_coefficients(np.asarray(x))
+    assert so[0] == pytest.approx(16 * x**2 * a[7] / (15 * (1 - a[8])), rel=1e-9)
+    # the shared inverse pair of the mobility agrees with 1/So_V on both branches
+    inv_p, inv_m = mb._bt_inv_so_sq_pair(WALL, np.full(WALL.shape, x), a[:, None])
+    assert np.allclose(inv_p * mb.butenschoen_sommerfeld_squeeze(WALL, x), 1, rtol=1e-12)
+    assert np.allclose(inv_m * mb.butenschoen_sommerfeld_squeeze(-WALL, x), 1, rtol=1e-12)
+    # rotation: So_D finite and increasing towards the wall
+    so_d = mb.butenschoen_sommerfeld_rotation(WALL, x)
+    assert np.all(np.isfinite(so_d)) and np.all(np.diff(so_d) > 0)
+
+
+@pytest.mark.parametrize("angle", [0.0, 0.3, np.pi / 2, 2.5, np.pi])
+def test_butenschoen_mobility_finite_and_continuous_near_the_wall(angle):
+    # the orbit solver's contract: never NaN. Mobility at eccentricity angle `angle` from the
+    # load, 1 - eps = 0.1 .. 1e-12 (below the orbit's clamp 1e-7 and beyond): finite, and a
+    # relative step of 1e-3 in (1 - eps) changes M by less than 1 % (continuity; the largest
+    # growth rate of M is (1 - eps)^(-1/2), i.e. 0.05 % per such step).
+    x = 0.35
+    gap = np.logspace(-1, -12, 45)
+    e = 1.0 - gap
+    m = np.array(mb.mobility_butenschoen(e * np.cos(angle), e * np.sin(angle), x))
+    e2 = 1.0 - gap * (1 + 1e-3)
+    m2 = np.array(mb.mobility_butenschoen(e2 * np.cos(angle), e2 * np.sin(angle), x))
+    assert np.all(np.isfinite(m)) and np.all(np.isfinite(m2))
+    mag = np.hypot(*m)
+    assert np.all(np.hypot(*(m - m2)) < 1e-2 * mag)
+    if angle == 0.0:  # pure approach: M = 1 / So_V(+eps) > 0, falls monotonically to 0
+        assert np.all(m[0] > 0) and np.all(np.diff(m[0]) < 0) and np.allclose(m[1], 0)
+    if angle == np.pi:  # load towards the centre: M = 1/So_V(-eps) grows to 1/So_V(-1)
+        assert np.all(m[0] > 0) and np.all(np.diff(m[0]) >= 0)
+        a = mb._butenschoen_coefficients(np.asarray(x))
+        assert m[0, -1] == pytest.approx(15 * (1 - a[8]) / (16 * x**2 * a[7]), rel=1e-6)
+
+
+# ------------------------------------------------------------------------------------------
 # peak pressure, symmetry, validation
 # ------------------------------------------------------------------------------------------
 @pytest.mark.parametrize("eps", [0.2, 0.6, 0.9, 0.98])

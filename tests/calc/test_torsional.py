@@ -175,6 +175,40 @@ def test_resonance_of_a_mode_the_damping_cannot_reach_is_flagged():
     assert r.resonance[0, 0] and np.all(np.isfinite(r.theta))
 
 
+def test_undamped_resonance_between_swept_speeds_is_flagged():
+    # Two inertias J1, J2 joined by k (free-free): w1^2 = k (J1 + J2) / (J1 J2) (closed form).
+    # Order 2 crosses w1 at the speed w1 / 2, which lies between two swept speeds (not on one):
+    # the sweep shows finite amplitudes, the band must flag the crossing and the points where
+    # the undamped amplification w1^2 / |w1^2 - Omega^2| >= 10 (|Omega / w1 - 1| <~ 5 %).
+    j1, j2, k = 0.01, 0.04, 2.0e4
+    w1 = np.sqrt(k * (j1 + j2) / (j1 * j2))
+    model = tv.TorsionalModel([j1, j2], [k])
+    orders = np.array([1.0, 2.0])
+    speeds = w1 / 2 * np.array([0.80, 0.90, 0.96, 0.99, 1.02, 1.05, 1.20])
+    band = tv.undamped_resonance_band(model, speeds, orders)
+    om = speeds[:, None] * orders
+    amp_hand = w1**2 / np.abs(w1**2 - om**2)
+    np.testing.assert_allclose(band.amplification, amp_hand, rtol=1e-9)
+    # order 2: in the band at 0.96, 0.99, 1.02 (amplification 12.8, 50.3, 24.8), next to the
+    # crossing at 0.99 and 1.02; 0.90 (5.3) and 1.05 (9.8) are neither; order 1 never near
+    assert band.near[:, 1].tolist() == [False, False, True, True, True, False, False]
+    assert not band.near[:, 0].any()
+    np.testing.assert_allclose(band.critical_speed[[3, 4], 1], w1 / 2, rtol=1e-12)
+    assert np.isnan(band.critical_speed[2, 1])  # in the band, but no crossing next to it
+    np.testing.assert_allclose(band.natural_frequency[2:5, 1], w1, rtol=1e-12)
+    # a coarse sweep that jumps the whole band (0.8 -> 1.2) still flags the crossing
+    coarse = tv.undamped_resonance_band(model, w1 / 2 * np.array([0.8, 1.2]), orders)
+    assert coarse.near[:, 1].all() and np.allclose(coarse.critical_speed[:, 1], w1 / 2)
+    # no exact hit: forced_response flags nothing, its amplitudes are finite
+    f = np.array([[1.0, 1.0], [0.0, 0.0]], complex)
+    assert not tv.forced_response(model, speeds, orders, f).resonance.any()
+    # damping bounds the magnification (loss factor 0.1: Q = 10): nothing is flagged
+    damped = tv.TorsionalModel([j1, j2], [k], loss_factor=0.1)
+    assert not tv.undamped_resonance_band(damped, speeds, orders).near.any()
+    with pytest.raises(ValueError):
+        tv.undamped_resonance_band(model, speeds[::-1], orders)
+
+
 def _exact_solve(j, k, eta, c_rel, d_abs, omega, f):
     """Exact rational solve of the chain system (as a real 2n x 2n system) with Fractions."""
     n = len(j)

@@ -205,3 +205,34 @@ def test_v8_report_says_which_cylinders_share_a_pin(v8_run):
     assert len(text) == 1
     assert "pin 1: cylinders 1, 2; pin 2: cylinders 3, 4; pin 3: cylinders 5, 6; pin 4:" \
         " cylinders 7, 8" in text[0]
+
+
+def test_full_load_beyond_the_data_is_bounded_by_the_last_data_point(example_result, tmp_path):
+    """Full load above the last BrakeTorque/PeakPressure speed (6500 rpm on the example): the
+    stated rule holds the IMEP and the peak pressure of the last data speed, so the synthesized
+    trace there can never be more severe than at 6500 rpm (it was 17.4 bar IMEP at 7000 rpm
+    against 14.9 bar at 6500 rpm, from an uncalibrated trace). The same holds below the first
+    data speed (sweep from 800 rpm against data from 1000 rpm)."""
+    cyc = example_result.outcome.quantities["loads.cycle"].extra["cycle"]
+    sp = cyc.speeds / RPM
+    last = int(np.flatnonzero(np.isclose(sp, 6500))[0])
+    beyond = sp > 6500 + 1e-6
+    assert beyond.sum() == 5
+    imep, peak = cyc.imep[0], cyc.pressure[0].max(axis=-1)
+    assert np.all(imep[beyond] <= imep[last]) and np.all(peak[beyond] <= peak[last])
+    assert imep[last] / 1e5 == pytest.approx(14.92, abs=0.01)  # brake torque 190 N m + FMEP
+    np.testing.assert_allclose(cyc.pressure[0, beyond], cyc.pressure[0, last][None].repeat(
+        beyond.sum(), axis=0), rtol=1e-12)  # the trace of the last data speed
+    text = " ".join(example_result.assumptions)
+    assert "IMEP held at its value at the nearest BrakeTorque speed (14.9 bar at 6500 rpm)" in text
+    # below the data: the sweep starts at 800 rpm, the data at 1000 rpm
+    res = api.check(edited(tmp_path, lambda wb: set_param(wb, "Engine", "Minimum speed", 800)),
+                    select=["BRG-001"])
+    c2 = res.outcome.quantities["loads.cycle"].extra["cycle"]
+    s2 = c2.speeds / RPM
+    first = int(np.flatnonzero(np.isclose(s2, 1000))[0])
+    below = s2 < 1000 - 1e-6
+    assert below.sum() == 2
+    assert np.all(c2.imep[0, below] <= c2.imep[0, first])
+    assert np.all(c2.pressure[0, below].max(-1) <= c2.pressure[0, first].max() * (1 + 1e-12))
+    assert any("at 800, 900, 6600" in a and "11.2 bar at 1000 rpm" in a for a in res.assumptions)

@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import copy
 import dataclasses
+import functools
 
 import numpy as np
 import pytest
 
 from checker import api, graph
+from checker.calc import orbit as ob
 from checker.engine import Params, load_engine
 from checker.modules import moft as moft_module
 from tests.helpers import example_path
@@ -103,3 +105,33 @@ def test_finite_length_option_is_stated(engine):
     assert "Butenschoen" in q.extra["model_text"]
     # finite-length theory gives thinner films than the optimistic short bearing (notes 1.5)
     assert np.median(q.values) < np.median(_moft(coarse).values)
+
+
+def test_finite_length_film_collapse_is_finite_and_reported(engine, monkeypatch):
+    """A collapsed film with the finite-length (Butenschoen) mobility: the kernel's receding
+    squeeze term cancelled as eps -> 1 and made the orbit NaN (MOFT NaN, no collapse finding,
+    the rule then read 'not evaluated'); now the MOFT is finite and flagged. Big ends at the
+    smallest width of the fits (B/D 0.13) with a 0.3 mm clearance, 4 x the peak pressures and
+    a 5 kg piston, one speed; two orbit cycles without extra ROS2 sub-steps keep the (stiff)
+    collapse cheap: the orbit reaches the wall clamp either way."""
+    w = 1000 * np.pi / 30
+    e = copy.copy(engine)
+    e.bearings = tuple(dataclasses.replace(b, length=0.13 * b.diameter, clearance=0.3e-3)
+                       for b in engine.bearings if b.type == "big end")
+    e.params = Params({**engine.params, "speed_min": w, "speed_max": w, "overspeed": w,
+                       "piston_mass": 5.0})
+    e.peak_pressure = tuple((c, s, 4 * p) for c, s, p in engine.peak_pressure)
+    e.oil = Params({**engine.oil, "mobility_model": "finite length"})
+    monkeypatch.setattr(ob, "solve_orbit",
+                        functools.partial(ob.solve_orbit, max_cycles=2, max_substeps=2))
+    res = api.check(e, select=["BRG-003", "BRG-004"])
+    q = res.outcome.quantities["bearing.moft"]
+    assert q.extra["model"] == "butenschoen"
+    assert np.isfinite(q.values).all() and (q.values > 0).all()
+    c = 0.3e-3
+    assert (q.values <= c * (1 - ob.COLLAPSE_EPS)).all()  # eps >= 0.999: collapsed
+    assert (q.values >= c * (1 - ob.EPS_CAP) * (1 - 1e-9)).all()
+    assert all(any("film collapse" in f for f in q.findings[idx])
+               for idx in np.ndindex(q.values.shape))
+    for r in res.results:
+        assert r.status == "fail" and any("film collapse" in f for f in r.findings)

@@ -14,7 +14,7 @@ from checker import api
 from checker.calc import torsional as tv
 from checker.engine import load_engine
 from checker.workbook.example import TV_MODEL
-from tests.helpers import column, edited, example_path, param_row, set_param
+from tests.helpers import column, edited, example_path, param_row, set_param, table_row
 
 RPM = 2 * np.pi / 60
 
@@ -142,6 +142,41 @@ def test_undamped_resonance_is_a_finding_not_nan(tmp_path):
     tv2 = next(r for r in res.results if r.rule == "TV-002")
     assert tv2.status == "fail" and any("undamped resonance" in f for f in tv2.findings)
     assert qs["damper.power"].values.max() == 0.0  # no loss in the rubber
+
+
+def test_undamped_resonance_between_swept_speeds_is_a_finding(tmp_path, tv_result):
+    """No damping at all and the sweep (every 100 rpm from 1000 rpm) does not hit the 4th-order
+    resonance of mode 1 exactly: the critical speed w1 / 4 (hand eigensolve of the workbook
+    chain) lies between two swept speeds. The swept amplitudes are finite there, so without a
+    finding the unbounded response would go unnoticed; the damped example has none."""
+    mmat, kmat = _workbook_chain()
+    w1 = np.sqrt(scipy.linalg.eigh(kmat, mmat, eigvals_only=True)[1])
+    crit_rpm = w1 / 4 / RPM
+    assert abs(crit_rpm / 100 - round(crit_rpm / 100)) > 0.1  # not on a swept speed
+
+    def edit(wb):
+        set_param(wb, "Damper", "Rubber loss factor", 0)
+        ws = wb["TVModel"]
+        for r in range(3, ws.max_row + 1):
+            ws.cell(r, column(ws, "absolute damping")).value = None
+
+    res = api.check(edited(tmp_path, edit), select=["TV-001"])
+    q = res.outcome.quantities["tv.nose_cylinder_order_amplitude"]
+    assert not q.extra["resonance"].any()  # not exactly on it: no exact-resonance flag
+    assert np.isfinite(q.values).all()
+    [r] = res.results
+    text = f"order 4 meets the natural frequency {w1 / (2 * np.pi):.1f} Hz"
+    found = [f for f in r.findings if text in f]
+    assert len(found) == 1 and f"at {crit_rpm:.0f} rpm between two swept speeds" in found[0]
+    lo, hi = int(crit_rpm // 100 * 100), int(crit_rpm // 100 * 100 + 100)
+    assert f"{lo}, {hi}" in found[0]  # the bracketing speeds are named
+    # the finding sits on the bracketing points of both load cases
+    speeds = np.array(q.coords["speed"]) / RPM
+    for ci in range(2):
+        for rpm in (lo, hi):
+            si = int(np.flatnonzero(np.isclose(speeds, rpm))[0])
+            assert found[0] in q.findings[(ci, si)]
+    assert not any("undamped" in f for r0 in tv_result.results for f in r0.findings)
 
 
 def test_damper_rule_not_evaluated_without_supplier_limit(tmp_path):
@@ -292,3 +327,58 @@ def test_v8_station_takes_both_cylinders_phased_by_their_own_firing_angles(v8_mo
         np.testing.assert_allclose(f3, f2 * phase(n, 630, 540) / den, atol=1e-12 * top)
     o2, o4 = (int(np.argmin(np.abs(orders - n))) for n in (2.0, 4.0))
     assert np.abs(force[:, :, 2, o2]).max() < 1e-9 * np.abs(force[:, :, 2, o4]).max()
+
+
+def _remove_damper_ring(wb, stiffness_factor: float = 1.0) -> None:
+    """The example without its damper ring (TVModel row removed), crank stiffness scaled."""
+    ws = wb["TVModel"]
+    k = column(ws, "stiffness to next")
+    for r in range(3, ws.max_row + 1):
+        if isinstance(ws.cell(r, k).value, (int, float)):
+            ws.cell(r, k).value *= stiffness_factor
+    ws.delete_rows(table_row(ws, "role", "damper ring"))
+
+
+def _judged_maximum(values: np.ndarray, envelope: np.ndarray) -> float:
+    """Independent reference: the largest amplitude inside the envelope once the rolling-mode
+    fall from the lowest swept speed has ended (from the first local minimum of the curve on)."""
+    rise = np.flatnonzero(np.diff(values) > 0)
+    start = rise[0] if rise.size else values.size - 1
+    inside = envelope.copy()
+    inside[:start] = False
+    return float(values[inside].max()) if inside.any() else -np.inf
+
+
+@pytest.mark.parametrize("factor, speed_rpm", [(1.0, 6500), (1.1, 6500)])
+def test_tv001_judges_each_load_case_within_its_own_envelope(tmp_path, factor, speed_rpm):
+    """Without the damper ring the 4th-order crank-mode resonance lies above the full-load
+    data range (1000-6500 rpm): the full-load curve still rises at 6500 rpm, the last speed
+    judged at full load, while no load is judged up to the 7000 rpm overspeed. Each case must
+    be judged at its own top speed: TV-001 reports the full-load 6500 rpm amplitude (before
+    this was fixed it reported the smaller no-load 7000 rpm value: 0.103 deg instead of
+    0.161 deg without the ring; with the crank 10 % stiffer 0.051 deg, a PASS, instead of
+    0.106 deg > 0.06 deg)."""
+    res = api.check(edited(tmp_path, lambda wb: _remove_damper_ring(wb, factor)),
+                    select=["TV-001"])
+    q = res.outcome.quantities["tv.nose_cylinder_order_amplitude"]
+    env = res.outcome.quantities["loads.cycle"].extra["cycle"].envelope
+    speeds = np.array(q.coords["speed"]) / RPM
+    full, no = q.coords["case"].index("full"), q.coords["case"].index("no")
+    top = int(np.flatnonzero(speeds == speed_rpm)[0])
+    assert env[full, top] and not env[full, top + 1:].any() and env[no].all()
+    assert q.values[full, top] > q.values[full, top - 1]  # the flank still rises into the top
+    # judged points: never outside the envelope; the top speed of each rising case is judged
+    assert not (q.applies & ~env).any()
+    assert q.applies[full, top] and q.applies[no, -1]
+    assert "envelope" in q.extra["applies_text"]
+    # per case: the judged maximum is the true maximum within the envelope (rolling mode aside)
+    for ci in (full, no):
+        assert q.values[ci][q.applies[ci]].max() == pytest.approx(
+            _judged_maximum(q.values[ci], env[ci]), rel=1e-12)
+    [r] = res.results
+    assert r.case == f"full load, {speed_rpm} rpm"
+    assert r.value == pytest.approx(np.degrees(q.values[full, top]), rel=1e-9)
+    assert np.degrees(q.values[no, -1]) < r.value
+    assert r.status == "fail" and r.value > 0.06
+    if factor == 1.1:  # the no-load top alone would pass: the variant discriminates
+        assert np.degrees(q.values[no, -1]) < 0.06
