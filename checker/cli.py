@@ -159,8 +159,9 @@ def main() -> None:
 @click.argument("path", type=click.Path(dir_okay=False), required=False)
 @click.option("--force", is_flag=True, help="Overwrite an existing file.")
 @click.option("--engine", "which", type=click.Choice(["i4", "i6"]), default="i4",
-              show_default=True, help="i4: the seed's gasoline engine (Ricardo 2013); i6: a"
-              " truck diesel from Mendes et al. 2008 with labelled assumptions.")
+              show_default=True, help="i4: the gasoline engine of Bell, Ricardo 2013; i6: a"
+              " truck diesel from Mendes et al. 2008 with an assumed rubber damper and other"
+              " labelled assumptions.")
 def template(path: str, force: bool, which: str) -> None:
     """Write an example workbook to PATH (default: engine.xlsx for the I4, engine-i6.xlsx for
     the I6)."""
@@ -172,7 +173,8 @@ def template(path: str, force: bool, which: str) -> None:
         raise click.UsageError(f"{p} exists; use --force to overwrite it")
     with tempfile.TemporaryDirectory() as d:
         tmp = Path(d) / "engine.xlsx"
-        write_workbook(tmp, example_content() if which == "i4" else i6_content())
+        write_workbook(tmp, example_content() if which == "i4"
+                       else i6_content(damper_ring=True))
         _atomic_write(p, tmp.read_bytes())
     click.echo(f"wrote {p}", err=True)
 
