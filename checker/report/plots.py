@@ -139,13 +139,88 @@ def legend_below(fig, axes=None, ncols: int = 6, handles=None, labels=None) -> N
                borderaxespad=0.2)
 
 
+def every(n_points: int, step: int = 4) -> slice:
+    """Slice that thins a crank-angle curve for plotting (a 1° grid drawn every ``step``°
+    looks the same at report size and costs a quarter of the PDF drawing)."""
+    return slice(None, None, step if n_points > 200 else 1)
+
+
 def to_svg(fig) -> str:
     """Serialize and close a figure; returns inline SVG markup without the XML prolog."""
     buf = io.StringIO()
     fig.savefig(buf, format="svg", metadata={"Date": None})
     pyplot().close(fig)
-    svg = buf.getvalue()
-    svg = svg[svg.find("<svg"):]
+    svg = lean_svg(buf.getvalue())
     # make the SVG scale to the column width
     svg = re.sub(r'width="[\d.]+pt" height="[\d.]+pt"', 'width="100%"', svg, count=1)
     return svg
+
+
+_SVG_NS = "http://www.w3.org/2000/svg"
+_XLINK = "http://www.w3.org/1999/xlink"
+
+
+def lean_svg(svg: str) -> str:
+    """The same drawing in an SVG that WeasyPrint draws faster (about half the time of the
+    report's PDF output goes into its SVG interpreter, which is pure Python): ``style``
+    attributes become presentation attributes (no CSS parsing per element), the global
+    ``<style>`` becomes root attributes, ``<metadata>`` goes, and groups that only carry an
+    unreferenced id are dissolved into their parent."""
+    import xml.etree.ElementTree as ET
+
+    ET.register_namespace("", _SVG_NS)
+    ET.register_namespace("xlink", _XLINK)
+    root = ET.fromstring(svg)
+    q = f"{{{_SVG_NS}}}"
+    href = f"{{{_XLINK}}}href"
+    referenced: set[str] = set()
+    for el in root.iter():
+        h = el.get(href)
+        if h and h.startswith("#"):
+            referenced.add(h[1:])
+        for v in el.attrib.values():
+            for m in re.finditer(r"url\(#([^)]+)\)", v):
+                referenced.add(m.group(1))
+    for el in list(root):
+        if el.tag == q + "metadata":
+            root.remove(el)
+    for defs in root.iter(q + "defs"):
+        for st in list(defs):
+            if st.tag == q + "style":
+                for k, v in _declarations(re.sub(r"^[^{]*\{|\}.*$", "", (st.text or "").strip(),
+                                                 flags=re.S)):
+                    root.set(k, v)
+                defs.remove(st)
+    for el in root.iter():
+        st = el.attrib.pop("style", None)
+        if st:
+            for k, v in _declarations(st):
+                el.set(k, v)
+
+    def flatten(parent) -> None:
+        out = []
+        for ch in list(parent):
+            flatten(ch)
+            if ch.tag == q + "g" and set(ch.attrib) <= {"id"} and \
+                    ch.get("id") not in referenced:
+                out.extend(list(ch))
+            else:
+                out.append(ch)
+        if len(out) != len(parent) or any(a is not b for a, b in zip(out, parent)):
+            parent[:] = out
+
+    flatten(root)
+    for el in root.iter():
+        i = el.get("id")
+        if i is not None and i not in referenced:
+            del el.attrib["id"]
+    return ET.tostring(root, encoding="unicode")
+
+
+def _declarations(text: str) -> list[tuple[str, str]]:
+    out = []
+    for part in text.split(";"):
+        if ":" in part:
+            k, v = part.split(":", 1)
+            out.append((k.strip(), v.strip()))
+    return out

@@ -129,9 +129,11 @@ def _split_details(sections: list[dict]) -> tuple[list[dict], list[dict]]:
         keep = []
         for b in s["blocks"]:
             if b["type"] == "table" and b.get("detail"):
-                extra.append({"sheet": b.get("sheet") or f"{s['id']} table",
-                              "title": b.get("caption", ""), "columns": b["columns"],
-                              "rows": b["rows"]})
+                sheet = results_book.sheet_name(b.get("sheet") or f"{s['id']} table")
+                extra.append({"sheet": sheet, "title": b.get("caption", ""),
+                              "columns": b["columns"], "rows": b["rows"]})
+                keep.append({"type": "text", "text": (b.get("caption") or "Table").rstrip(".")
+                             + f": in {results_book.ATTACHMENT_NAME}, sheet {sheet}."})
                 continue
             if b["type"] == "figure":
                 extra += [d for d in b.get("data") or [] if isinstance(d, dict)]

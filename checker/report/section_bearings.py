@@ -6,7 +6,7 @@ import numpy as np
 
 from ..api import CheckResult
 from . import judged as jd
-from .plots import figure, to_svg
+from .plots import every, figure, to_svg
 from .section_loads import bearing_speed_figure, shade_caption, worst_table
 from .sections import fmt, merge_items, section
 
@@ -78,19 +78,20 @@ def bearings_section(res: CheckResult) -> dict:
         th = np.degrees(orb["theta"])
         fig = figure(170, 72, ncols=2)[0]
         fig.clf()
-        ax0 = fig.add_axes((0.07, 0.16, 0.3, 0.72), aspect="equal")
+        ax0 = fig.add_axes((0.11, 0.16, 0.28, 0.72), aspect="equal")
         t = np.linspace(0, 2 * np.pi, 181)
         ax0.plot(np.cos(t), np.sin(t), color="0.5", lw=0.8, label="clearance circle")
-        ax0.plot(exx, eyy, lw=1.0, color="#1f77b4", label="journal centre")
+        ev = every(exx.size, 2)
+        ax0.plot(exx[ev], eyy[ev], lw=1.0, color="#1f77b4", label="journal centre")
         ax0.set_xlim(-1.05, 1.05)
         ax0.set_ylim(-1.05, 1.05)
         ax0.set_xlabel("ε_x (eccentricity / clearance) [-]")
         ax0.set_ylabel("ε_y [-]")
         ax0.set_title("Journal orbit")
-        ax1 = fig.add_axes((0.5, 0.16, 0.4, 0.72))
+        ax1 = fig.add_axes((0.52, 0.16, 0.38, 0.72))
         c_ = bearings[names[i]].clearance
         h = c_ * (1 - np.hypot(exx, eyy)) * 1e6
-        ax1.plot(th, h, color="#1f77b4", label="film thickness h")
+        ax1.plot(th[ev], h[ev], color="#1f77b4", label="film thickness h")
         ax1.set_xlim(0, 720)
         ax1.set_xticks(np.arange(0, 721, 180))
         bl = res.outcome.quantities.get("loads.bearing_load")
@@ -99,7 +100,8 @@ def bearings_section(res: CheckResult) -> dict:
             le = bl.extra
             f = np.hypot(le["fx"][i, ci, k], le["fy"][i, ci, k]) / 1e3
             ax2 = ax1.twinx()
-            ax2.plot(np.degrees(le["theta"]), f, color="#c0392b", lw=0.8)
+            fv = every(f.size)
+            ax2.plot(np.degrees(le["theta"])[fv], f[fv], color="#c0392b", lw=0.8)
             ax2.set_ylabel("Bearing load |F| [kN]", color="#c0392b")
             ax2.tick_params(axis="y", colors="#c0392b")
             ax2.spines["right"].set_visible(True)

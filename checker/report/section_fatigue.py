@@ -232,21 +232,26 @@ def _plots(res: CheckResult, q) -> list[dict]:
     if lim is not None:
         ax.plot(xs, goodman_line(xs, 1.0, 1.0, lim), **LIMIT_STYLE,
                 label=f"SF = {lim:g} (FAT-001)")
-    step = max(1, sp.size // 31)
     grey = False
     cols: dict[str, list] = {}
     for loc, i in gov.items():
         for ci, c in enumerate(cases):
-            j = judged[i, ci, ::step]
-            hx, hy = ex["haigh_x"][i, ci, ::step], ex["haigh_y"][i, ci, ::step]
-            ax.scatter(hx[j], hy[j], s=7,
-                       color=COLORS[loc], marker="o" if c == "full" else "^",
-                       facecolors=COLORS[loc] if c == "full" else "none", linewidths=0.6,
-                       label=literal(f"{q.coords['item'][i]}, {CASE_TEXT.get(c, c)}"))
+            j = judged[i, ci]
+            hx, hy = ex["haigh_x"][i, ci], ex["haigh_y"][i, ci]
+            # the operating points as a path over speed (one line per location and case),
+            # the judged lowest safety factor marked
+            ax.plot(np.where(j, hx, np.nan), np.where(j, hy, np.nan), color=COLORS[loc],
+                    ls="-" if c == "full" else "--", lw=0.9,
+                    label=literal(f"{q.coords['item'][i]}, {CASE_TEXT.get(c, c)}"))
             if (~j).any():
-                ax.scatter(hx[~j], hy[~j], s=9, color="0.55", marker="x", linewidths=0.6,
-                           label=None if grey else "not judged")
+                ax.plot(np.where(j, np.nan, hx), np.where(j, np.nan, hy), color="0.55",
+                        ls=":", lw=0.9, label=None if grey else "not judged")
                 grey = True
+            p = jd.worst(q, (i, ci), "min")[0]
+            if p is not None:
+                k = p.index[-1]
+                ax.plot([hx[k]], [hy[k]], "o" if c == "full" else "^", ms=4,
+                        color=COLORS[loc], mfc=COLORS[loc] if c == "full" else "white")
             name = f"{q.coords['item'][i]}, {CASE_TEXT.get(c, c)}"
             cols[f"{name}: mean / S_u"] = list(ex["haigh_x"][i, ci])
             cols[f"{name}: alternating / S_e"] = list(ex["haigh_y"][i, ci])
@@ -262,11 +267,11 @@ def _plots(res: CheckResult, q) -> list[dict]:
             "rows": [[float(sp[k]), *[float(cols[n][k]) for n in names]]
                      for k in range(sp.size)]}
     blocks.append({"type": "figure", "svg": _svg(fig), "data": [data], "caption": (
-        "Normalised Haigh (Goodman) diagram: operating points of the location of each type with"
-        " the lowest safety factor (every "
-        + ("" if step == 1 else f"{step}th ") + "swept speed; filled: full load, open: no"
-        " load). Compressive means are not credited: the line is flat for σ_m < 0."
-        + ("" if not grey else f" Grey crosses: computed but not judged ({jd.reason(q)}).")
+        "Normalised Haigh (Goodman) diagram: the operating points over the speed range of the"
+        " location of each type with the lowest safety factor (solid: full load, dashed: no"
+        " load; marker: the judged lowest factor). Compressive means are not credited: the"
+        " line is flat for σ_m < 0."
+        + ("" if not grey else f" Grey dotted: computed but not judged ({jd.reason(q)}).")
         )})
     return blocks
 

@@ -7,7 +7,7 @@ import numpy as np
 from ..api import CheckResult
 from ..display import unit_text
 from . import judged as jd
-from .plots import figure, legend_below, limit_line, literal, to_svg
+from .plots import every, figure, legend_below, limit_line, literal, to_svg
 from .sections import fmt, merge_items, param_table, section
 
 RPM = 2 * np.pi / 60
@@ -56,7 +56,12 @@ def bearing_speed_figure(res: CheckResult, q, scale: float, ylabel: str, unit: s
             ax.set_title(f"{typ} bearings, {c} load")
             if ci == 0:
                 ax.set_ylabel(ylabel)
-            ax.set_ylim(bottom=0)
+    for row in axes:  # shared y per row: from 0 to the highest curve or limit of the row
+        top = max(max((float(np.nanmax(np.asarray(ln.get_ydata(), float)))
+                       for ln in ax.get_lines() if np.isfinite(
+                           np.asarray(ln.get_ydata(), float)).any()), default=1.0)
+                  for ax in row)
+        row[0].set_ylim(0, top * 1.08)
     for ax in axes[-1]:
         ax.set_xlabel("Engine speed [rpm]")
     legend_below(fig, ncols=7)
@@ -214,12 +219,13 @@ ATTACHMENT = "results.xlsx"
 def _pressure_figure(cyc, sp, cs_judged, ref) -> dict:
     fig, axes = figure(170, 62, ncols=len(cyc.cases), wgap=14, legend_rows=1)
     deg = np.degrees(cyc.theta)
+    th = every(deg.size)
     pick = sorted({0, int(np.argmin(abs(sp - 0.5 * (sp[0] + sp[-1])))), sp.size - 1})
     cols = {"crank angle [°]": deg}
     for ci, (ax, c) in enumerate(zip(np.atleast_1d(axes), cyc.cases)):
         for n, i in enumerate(pick):
             lab = f"{sp[i]:.0f} rpm" + ("" if cs_judged[ci, i] else " (not judged)")
-            ax.plot(deg, cyc.pressure[ci, i] / 1e5, ls="-" if cs_judged[ci, i] else ":",
+            ax.plot(deg[th], cyc.pressure[ci, i, th] / 1e5, ls="-" if cs_judged[ci, i] else ":",
                     color=CURVE_COLORS[n], label=lab)
             cols[f"{c} load, {sp[i]:.0f} rpm [bar]"] = cyc.pressure[ci, i] / 1e5
         ax.set_xlim(0, 720)
@@ -267,7 +273,8 @@ def _polar(res: CheckResult, sl, bl) -> list[dict]:
             for k in speeds_pick:
                 fx, fy = ex["fx"][i, ci, k], ex["fy"][i, ci, k]
                 judged = sl_judged[i, ci, k]
-                ax.plot(np.arctan2(fx, fy), np.hypot(fx, fy) / 1e3, lw=0.8,
+                th = every(fx.size)
+                ax.plot(np.arctan2(fx, fy)[th], np.hypot(fx, fy)[th] / 1e3, lw=0.8,
                         color=CURVE_COLORS[k_col], ls="-" if judged else ":",
                         label=f"{c} load, {sp[k]:.0f} rpm" + ("" if judged else
                                                              " (not judged)"))

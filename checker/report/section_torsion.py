@@ -124,8 +124,11 @@ def _modes(res: CheckResult, nf, sp: np.ndarray) -> list[dict]:
     for i, fi in enumerate(f_show):
         ax.axhline(fi, color="#c0392b", lw=0.8, ls="--",
                    label="natural frequencies" if i == 0 else None)
-        ax.annotate(f"mode {i + 1}: {fi:.0f} Hz", (0, fi), xytext=(2, 1.5),
-                    textcoords="offset points", fontsize=5.5, va="bottom", color="#c0392b",
+        # a label above its line, or below it when the next mode's line is close above
+        close = i + 1 < f_show.size and f_show[i + 1] - fi < 0.07 * y_max
+        ax.annotate(f"mode {i + 1}: {fi:.0f} Hz", (0, fi), xytext=(2, -1.5 if close else 1.5),
+                    textcoords="offset points", fontsize=5.5, va="top" if close else "bottom",
+                    color="#c0392b",
                     bbox={"boxstyle": "square,pad=0.1", "fc": "white", "ec": "none",
                           "alpha": 0.85})
         crit = ex["critical_speed"][i] / RPM
@@ -306,7 +309,8 @@ def _elements(res: CheckResult, q: dict) -> list[dict]:
         " the rules do not judge follows, marked"),
         "columns": ["element", "case", "T half range [N·m]", "speed [rpm]", "T mean [N·m]",
                     "T vib min [N·m]", "T vib max [N·m]", "twist [°]", "judged by"],
-        "rows": rows, "row_css": css, "widths": [20, 9, 11, 9, 10, 10, 10, 8, 13]})
+        "rows": rows, "row_css": css, "widths": [20, 9, 11, 9, 10, 10, 10, 8, 13],
+        "detail": True, "sheet": "element torque maxima"})
     return blocks
 
 
@@ -382,7 +386,8 @@ def _damper(res: CheckResult, q: dict) -> list[dict]:
                    "columns": ["case", "speed of max power [rpm]", "P max [W]",
                                "twist [°]", "torque [N·m]", "q mean [W/cm³]",
                                "q peak [W/cm³]", "τ max [MPa]", "points"],
-                   "rows": rows, "row_css": css, "widths": [9, 11, 9, 8, 9, 10, 10, 9, 25]})
+                   "rows": rows, "row_css": css, "widths": [9, 11, 9, 8, 9, 10, 10, 9, 25],
+                   "detail": True, "sheet": "damper maxima"})
     ratios = [(n, q.get(n)) for n in ("damper.shear_stress_ratio", "damper.heat_ratio",
                                       "damper.heat_peak_ratio")]
     items = [(qq.spec.description.split(" / ")[0], qq, [(ci,) for ci in range(len(cases))],

@@ -61,11 +61,13 @@ def kind(r: RuleResult) -> str:
 
 
 def _note(r: RuleResult) -> str:
+    """The note under a row: why a result is not evaluated or an internal error, or the
+    first finding of a failed result (passes carry their findings in the module section)."""
     if r.status == "not_evaluated" or r.internal_error:
         return r.message
-    if not r.findings:
+    if not r.findings or r.status == "pass":
         return ""
-    first = r.findings[0] if len(r.findings[0]) <= 200 else r.findings[0][:197] + "..."
+    first = r.findings[0]
     more = len(r.findings) - 1
     return first + (f" (and {more} more finding{'s' if more > 1 else ''} in the module"
                     " section)" if more else "")
