@@ -92,14 +92,20 @@ KEEP_ROWS = 14
 
 def _groups(blocks: list[dict]) -> list[list[dict]]:
     """Blocks in page-layout groups: a heading travels with the block after it (a figure,
-    text or a short table), so that no heading is left at the bottom of a page."""
+    text or a short table), or becomes the header row of a long table, so that no heading
+    is left at the bottom of a page."""
     out: list[list[dict]] = []
     k = 0
     while k < len(blocks):
         b = blocks[k]
         nxt = blocks[k + 1] if k + 1 < len(blocks) else None
-        if b["type"] == "heading" and nxt is not None and not (
-                nxt["type"] == "table" and len(nxt["rows"]) > KEEP_ROWS):
+        if b["type"] == "heading" and nxt is not None and nxt["type"] == "table" and len(
+                nxt["rows"]) > KEEP_ROWS:
+            # before a long table the heading is the table's first header row: it repeats
+            # on the continuation pages and can never be left alone at a page bottom
+            out.append([dict(nxt, title=b["text"])])
+            k += 2
+        elif b["type"] == "heading" and nxt is not None:
             out.append([b, nxt])
             k += 2
         else:
@@ -278,6 +284,8 @@ class Report:
     cpu: dict[str, float] = field(default_factory=dict)
     """Processor time of each stage [s] (this process; "figures": the drawing processes),
     which a busy machine inflates far less than the wall time."""
+    document: object = None
+    """The laid-out WeasyPrint document (page boxes), for layout checks."""
 
 
 def build_report(res: CheckResult, progress: Progress | None = None,
@@ -326,7 +334,7 @@ def build_report(res: CheckResult, progress: Progress | None = None,
                                   " data of this report")])
     clock.stage("PDF write")
     return Report(pdf, standalone_html(html, figures) if want_html else "", book,
-                  len(doc.pages), clock.wall, clock.cpu)
+                  len(doc.pages), clock.wall, clock.cpu, doc)
 
 
 def _children_cpu() -> float:

@@ -106,6 +106,7 @@ def _modes(res: CheckResult, nf, sp: np.ndarray) -> list[dict]:
     y_max = (f_show.max() if f_show.size else f.min()) * 1.15
     ax.axvspan(lo / RPM, hi / RPM, color="#3498db", alpha=0.08, label="speed range")
     first = True
+    placed: list[tuple[str, float]] = []  # order labels already placed (edge, position)
     for o in [o for o in orders if float(o).is_integer() and o <= 2 * n_cyl + 4]:
         is_major = o in major
         ax.plot([0, x_max], [0, o * x_max / 60], color="#2c3e50" if is_major else "#95a5a6",
@@ -114,7 +115,14 @@ def _modes(res: CheckResult, nf, sp: np.ndarray) -> list[dict]:
                     is_major and o == min(major)) else None)
         first = False
         y_end = o * x_max / 60
-        if y_end > y_max:
+        # the order number where its line leaves the axes; labels too close to a placed one
+        # are left out (the lines are in order, every other one is enough to read them)
+        edge, pos = ("top", y_max * 60 / o / x_max) if y_end > y_max else (
+            "right", y_end / y_max)
+        if any(e == edge and abs(pos - p) < 0.035 for e, p in placed):
+            continue
+        placed.append((edge, pos))
+        if edge == "top":
             ax.annotate(f"{o:g}", (y_max * 60 / o, y_max), xytext=(0, 2),
                         textcoords="offset points", fontsize=6, ha="center", va="bottom",
                         annotation_clip=False)
