@@ -234,6 +234,17 @@ def _assumptions(engine: Engine, outcome: graph.RunOutcome) -> list[str]:
     return out
 
 
+def _mark_overrides(results: list[RuleResult], table: RuleTable) -> None:
+    """Every result of a rule whose limit the workbook overrode says so where it is shown
+    (summary rows, text output, JSON), not only in the report's appendix."""
+    by_rule = {o.rule: o for o in table.overrides}
+    for r in results:
+        o = by_rule.get(r.rule)
+        if o is not None:
+            r.override = (f"limit overridden by the workbook ({o.where}): {o.old} → {o.new}"
+                          + (f"; reason: {o.reason}" if o.reason else ""))
+
+
 def _apply_envelope(outcome: graph.RunOutcome) -> None:
     """Restrict rules on (case, speed) quantities to the engine's operating envelope (full load
     only within its data range; see :func:`checker.modules.loads.build_cycle`)."""
@@ -309,6 +320,7 @@ def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = No
     for r in chosen:
         results += evaluate_rule(r, outcome.quantities.get(r.quantity),
                                  outcome.unavailable.get(r.quantity))
+    _mark_overrides(results, table)
     return CheckResult(engine, table, chosen, results, outcome, fail_on,
                        _assumptions(engine, outcome))
 

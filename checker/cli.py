@@ -7,6 +7,7 @@ error. Problems are printed without a traceback (set ``CHECKER_DEBUG=1`` to see 
 from __future__ import annotations
 
 import os
+import re
 import sys
 import tempfile
 from pathlib import Path
@@ -23,14 +24,45 @@ def _split(values: tuple[str, ...]) -> list[str] | None:
 
 
 class _Progress:
-    """Stage lines on stderr (only when stderr is a terminal, or when asked)."""
+    """Progress in words on stderr (by default only when stderr is a terminal). Page
+    counters ("Laying out the PDF, page 12") overwrite each other on a terminal."""
+
+    COUNTER = "Laying out the PDF, page "
+
+    STEP = re.compile(r"^([a-z_]+): ([a-z_]+)$")
 
     def __init__(self, enabled: bool):
         self.enabled = enabled
+        self.tty = sys.stderr.isatty()
+        self.open_line = False
+        self.page = 0
 
     def __call__(self, text: str) -> None:
-        if self.enabled:
-            click.echo(f"checker: {text}", err=True)
+        if not self.enabled:
+            return
+        m = self.STEP.match(text)
+        if m:  # a calculation of the graph ("loads: pressure_traces")
+            text = f"Computing the {m.group(2).replace('_', ' ')} ({m.group(1)})"
+        if text.startswith(self.COUNTER):
+            n = int(text[len(self.COUNTER):].split()[0])
+            if n <= self.page:  # a page laid out again (page references): no news
+                return
+            self.page = n
+            if self.tty:
+                click.echo(f"\rchecker: {text}", err=True, nl=False)
+                self.open_line = True
+                return
+            if n % 10:
+                return
+        if self.open_line:
+            click.echo("", err=True)
+            self.open_line = False
+        click.echo(f"checker: {text}", err=True)
+
+    def done(self) -> None:
+        if self.open_line:
+            click.echo("", err=True)
+            self.open_line = False
 
 
 def _short(exc: BaseException, limit: int = 300) -> str:
@@ -127,9 +159,9 @@ def main() -> None:
 @click.argument("path", type=click.Path(dir_okay=False), required=False)
 @click.option("--force", is_flag=True, help="Overwrite an existing file.")
 @click.option("--engine", "which", type=click.Choice(["i4", "i6", "v8"]), default="i4",
-              show_default=True, help="i4: the seed's gasoline engine (Ricardo 2013); i6: a"
-              " truck diesel from Mendes et al. 2008; v8: a 90-degree cross-plane V8 from GM"
-              " LS1 service data; assumptions labelled in each.")
+              show_default=True, help="i4: the gasoline engine of Bell, Ricardo 2013; i6: a"
+              " truck diesel from Mendes et al. 2008 with an assumed rubber damper; v8: a"
+              " 90-degree cross-plane V8 from GM LS1 service data; assumptions labelled in each.")
 def template(path: str, force: bool, which: str) -> None:
     """Write an example workbook to PATH (default: engine.xlsx for the I4, engine-i6.xlsx for
     the I6, engine-v8.xlsx for the V8)."""
@@ -140,7 +172,8 @@ def template(path: str, force: bool, which: str) -> None:
     p = Path(path or ("engine.xlsx" if which == "i4" else f"engine-{which}.xlsx"))
     if p.exists() and not force:
         raise click.UsageError(f"{p} exists; use --force to overwrite it")
-    content = {"i4": example_content, "i6": i6_content, "v8": v8_content}[which]()
+    content = {"i4": example_content, "i6": lambda: i6_content(damper_ring=True),
+               "v8": v8_content}[which]()
     with tempfile.TemporaryDirectory() as d:
         tmp = Path(d) / "engine.xlsx"
         write_workbook(tmp, content)
@@ -186,27 +219,46 @@ def check(workbook, rules, select, ignore, fail_on, fmt, no_timings, output, pro
               help="PDF file (default: the workbook name with .pdf).")
 @click.option("--html", "html_out", type=click.Path(dir_okay=False),
               help="Also write the report as HTML.")
-@click.option("--progress/--no-progress", default=True, help="Stage lines on stderr.")
-def report(workbook, rules, select, ignore, fail_on, output, html_out, progress) -> None:
+@click.option("--results", "results_out", type=click.Path(dir_okay=False),
+              help="Also write the results workbook (every quantity, item, case and speed;"
+              " it is attached to the PDF in any case), e.g. results.xlsx.")
+@click.option("-q", "--quiet", is_flag=True, help="No progress lines (only the final line"
+              " and errors).")
+@click.option("--progress/--no-progress", default=None,
+              help="Progress in words on stderr (default: when stderr is a terminal).")
+def report(workbook, rules, select, ignore, fail_on, output, html_out, results_out, quiet,
+           progress) -> None:
     """Render the pass/fail PDF report for the design-review pack."""
-    prog = _Progress(progress)
+    prog = _Progress(False if quiet else sys.stderr.isatty() if progress is None
+                     else progress)
     pdf_path = Path(output) if output else Path(workbook).with_suffix(".pdf")
-    for p in [pdf_path] + ([Path(html_out)] if html_out else []):
+    outs = [pdf_path] + [Path(x) for x in (html_out, results_out) if x]
+    for p in outs:
         if p.resolve() == Path(workbook).resolve():
             raise click.UsageError(f"output {p} would overwrite the input workbook")
+    if len({p.resolve() for p in outs}) < len(outs):
+        raise click.UsageError("the PDF, HTML and results files must be different files")
+    prog("Reading the workbook and running the analyses")
     res = _run_check(workbook, rules, select, ignore, fail_on, prog)
     try:
-        from .report.render import render_html, render_pdf
+        from .report.render import build_report
 
-        prog("rendering report")
-        html = render_html(res)
-        pdf = render_pdf(html, res)
+        rep = build_report(res, progress=prog, want_html=bool(html_out),
+                           results_file=Path(results_out).name if results_out else None)
     except Exception as exc:  # noqa: BLE001
+        prog.done()
         _fail(exc)
-    _atomic_write(pdf_path, pdf)
+    prog.done()
+    written = [str(pdf_path)]
+    _atomic_write(pdf_path, rep.pdf)
     if html_out:
-        _atomic_write(Path(html_out), html.encode("utf-8"))
-    click.echo(f"{pdf_path}: {res.summary_text()}", err=True)
+        _atomic_write(Path(html_out), rep.html.encode("utf-8"))
+        written.append(str(html_out))
+    if results_out:
+        _atomic_write(Path(results_out), rep.results)
+        written.append(str(results_out))
+    click.echo(f"wrote {', '.join(written)} ({rep.pages} pages): {res.summary_text()}",
+               err=True)
     sys.exit(res.exit_code)
 
 

@@ -17,18 +17,24 @@ def status_label(status: str, severity: str) -> str:
 
 
 def to_text(res: CheckResult) -> str:
-    """One aligned line per rule result, then a summary line."""
+    """One aligned line per rule result (rule, status, item, value, limit, case, margin in
+    words), the not-evaluated reasons and limit overrides below their line, then a summary."""
     rows = []
     for r in res.results:
-        value = "-" if r.value is None else f"{r.value:.4g}" + (f" {r.unit}" if r.unit else "")
+        value = "-" if r.value is None else r.value_text
+        notes = []
+        if r.status == "not_evaluated" or r.internal_error:
+            notes.append(r.message)
+        if r.override:
+            notes.append(r.override)
         rows.append((r.rule, status_label(r.status, r.severity), r.item, value, r.limit,
-                     r.case, r.message if r.status == "not_evaluated" else ""))
-    w = [max([len(x[i]) for x in rows] + [1]) for i in range(6)]
+                     r.case, r.margin_text if r.status != "not_evaluated" else "", notes))
+    w = [max([len(x[i]) for x in rows] + [1]) for i in range(7)]
     lines = []
     for x in rows:
-        line = "  ".join(x[i].ljust(w[i]) for i in range(6)).rstrip()
-        if x[6]:
-            line += f"\n{'':{w[0]}}  -> {x[6]}"
+        line = "  ".join(x[i].ljust(w[i]) for i in range(7)).rstrip()
+        for n in x[7]:
+            line += f"\n{'':{w[0]}}  -> {n}"
         lines.append(line)
     if res.engine.warnings:
         lines.append("")

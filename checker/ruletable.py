@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from . import display
 from .engine import Engine
 from .errors import InputError, InputErrors, RuleFileError, UsageProblem
 from .graph import QUANTITIES, Quantity, ensure_registered
@@ -53,19 +54,16 @@ class Rule:
     limit_from: str | None = None  # "workbook": per-engine limit carried by the quantity
 
     def limit_text(self, limit: tuple[float, ...] | None = None) -> str:
+        """The limit as displayed (``≤ 48 MPa``, ``≥ 1.2 µm``, ``70..75 %``)."""
         lim = self.limit if limit is None else limit
-        u = f" {self.unit}" if self.unit not in ("", "-") else ""
         if lim is None:
             if self.limit_from == "workbook":
                 if self.check == "between":
                     return "within the workbook range"
                 sym = {">=": "≥", "<=": "≤", ">": ">", "<": "<"}[self.check]
                 return f"{sym} workbook limit"
-            return f"by {self.limit_by}"
-        if self.check == "between":
-            return f"{lim[0]:g}..{lim[1]:g}{u}"
-        sym = {">=": "≥", "<=": "≤", ">": ">", "<": "<"}[self.check]
-        return f"{sym} {lim[0]:g}{u}"
+            return f"by {self.limit_by.replace('_', ' ')}" if self.limit_by else "-"
+        return display.limit_text(self.check, lim, self.unit)
 
 
 @dataclass(frozen=True)
@@ -349,6 +347,22 @@ class RuleResult:
     missing: list[str] = field(default_factory=list)
     findings: list[str] = field(default_factory=list)
     internal_error: bool = False  # the calculation ran but produced no number (NaN/inf)
+    check: str = ""  # the rule's comparison (">=", "<=", ">", "<", "between")
+    override: str = ""  # how the workbook's RuleOverrides changed the limit ("" if not)
+
+    @property
+    def value_text(self) -> str:
+        """The value with its unit as displayed (digits enough to differ from the limit)."""
+        near = self.limit_values[0] if self.limit_values else None
+        if self.limit_values and len(self.limit_values) == 2 and self.value is not None:
+            near = min(self.limit_values, key=lambda x: abs(x - self.value))
+        return display.with_unit(self.value, self.unit, distinct_from=near)
+
+    @property
+    def margin_text(self) -> str:
+        """The distance to the limit in words ("limit exceeded by 11 %")."""
+        return display.margin_words(self.check, self.value, self.limit_values, self.margin,
+                                    self.status == "pass")
 
     def as_dict(self) -> dict[str, Any]:
         return {
@@ -360,7 +374,35 @@ class RuleResult:
             "case": self.case, "message": self.message, "source": self.source,
             "missing": self.missing, "findings": self.findings,
             "internal_error": self.internal_error,
+            "margin_text": self.margin_text if self.status != "not_evaluated" else "",
+            "override": self.override or None,
         }
+
+
+def _collect(by_index: dict[tuple, list[str]], sel: list[np.ndarray]) -> list[str]:
+    """The texts of ``by_index`` (keys: leading index tuples) whose key lies in the selection
+    ``sel`` (one index array per dimension), without repeats, in the order of a C-order walk
+    over the selected points with the longest key first at each point."""
+    if not by_index:
+        return []
+    first = [int(x[0]) if len(x) else 0 for x in sel]
+    pos = [{int(v): k for k, v in enumerate(x)} for x in sel]
+    keyed = []
+    for key, texts in by_index.items():
+        if not texts or len(key) > len(sel):
+            continue
+        try:
+            order = tuple(pos[j][int(v)] for j, v in enumerate(key))
+        except KeyError:  # outside the selection
+            continue
+        # the first selected point below this key, then longer keys first
+        keyed.append((order + tuple(0 for _ in first[len(key):]), -len(key), texts))
+    out: list[str] = []
+    for _, _, texts in sorted(keyed, key=lambda x: (x[0], x[1])):
+        for t in texts:
+            if t not in out:
+                out.append(t)
+    return out
 
 
 def _coord_text(dim: str, label: Any) -> str:
@@ -393,7 +435,7 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None
     """Evaluate one rule on its quantity: one result per item it applies to."""
     spec = QUANTITIES[rule.quantity]
     base = dict(rule=rule.id, name=rule.name, severity=rule.severity, unit=rule.unit,
-                source=rule.source)
+                source=rule.source, check=rule.check)
     if q is None:
         reasons = unavailable or ["quantity was not computed"]
         return [RuleResult(**base, item="all", status="not_evaluated", value=None,
@@ -453,19 +495,9 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None
         lim_text = rule.limit_text(lim)
         if rule.limit_from == "workbook" and attrs.get("limit_cell"):
             lim_text += f" ({attrs['limit_cell']})"
-        # missing entries within the selection
-        idx_all = np.array(np.meshgrid(*sel_i, indexing="ij")).reshape(len(dims), -1).T
-        missing: list[str] = []
-        findings: list[str] = []
-        for idx in idx_all:
-            t = tuple(int(x) for x in idx)
-            for n in range(len(t), 0, -1):
-                for r in q.missing.get(t[:n], []):
-                    if r not in missing:
-                        missing.append(r)
-                for f in q.findings.get(t[:n], []):
-                    if f not in findings:
-                        findings.append(f)
+        # missing entries and findings within the selection
+        missing = _collect(q.missing, sel_i)
+        findings = _collect(q.findings, sel_i)
         if sub.size == 0:
             continue
         bad = ~np.isfinite(sub)
@@ -522,9 +554,10 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None
                       for j, d in enumerate(dims) if d != "item"]
         ok = _passes(rule.check, margin)
         status = "pass" if ok else "fail"
-        u = f" {rule.unit}" if rule.unit else ""
         verb = "meets" if ok else "violates"
-        msg = f"{rule.name}: {value:.4g}{u} {verb} {lim_text}"
+        near = min(lim, key=lambda x: abs(x - value))
+        msg = (f"{rule.name}: {display.with_unit(value, rule.unit, distinct_from=near)} {verb}"
+               f" {lim_text}")
         if case_parts:
             msg += f" (worst at {', '.join(case_parts)})"
         results.append(RuleResult(**base, item=item, status=status, value=value,

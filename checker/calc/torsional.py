@@ -38,8 +38,6 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.fft
-import scipy.linalg
 from numpy.typing import ArrayLike
 
 __all__ = [
@@ -323,15 +321,19 @@ def natural_frequencies(
 
     Notes
     -----
-    Symmetric-definite generalized eigenproblem, ``scipy.linalg.eigh`` (Friswell et al. 2010,
-    sec. 2.4). Valid for any connected or unconnected model with ``J > 0``.
+    Symmetric-definite generalized eigenproblem (Friswell et al. 2010, sec. 2.4); with the
+    diagonal ``M`` it is the standard symmetric problem of ``M^-1/2 K M^-1/2`` (NumPy
+    ``eigh``; no SciPy import on the check's path). Valid for any connected or unconnected
+    model with ``J > 0``.
     """
     kmat = stiffness_matrix(model)
     if omega is not None and model.dynamic_stiffness:
         z = element_impedance(model, np.asarray(float(omega)))
         bmat = model.incidence
         kmat = bmat.T @ (z.real[:, None] * bmat) + np.diag(model.stiffness_ground)
-    lam, modes = scipy.linalg.eigh(kmat, mass_matrix(model))
+    s = 1.0 / np.sqrt(np.asarray(model.inertia, dtype=float))
+    lam, y = np.linalg.eigh(s[:, None] * kmat * s[None, :])
+    modes = s[:, None] * y
     return np.sqrt(np.clip(lam, 0.0, None)), modes
 
 
@@ -684,9 +686,26 @@ def _check_orders(orders: np.ndarray) -> np.ndarray:
     return m.astype(int)
 
 
+def _next_fast_len(n: int) -> int:
+    """The smallest 5-smooth number (2^a 3^b 5^c) >= ``n``: a fast FFT length (as
+    ``scipy.fft.next_fast_len(n, real=True)``)."""
+    best = 1 << max(0, int(n - 1).bit_length())
+    p5 = 1
+    while p5 < best:
+        p35 = p5
+        while p35 < best:
+            p2 = p35
+            while p2 < n:
+                p2 *= 2
+            best = min(best, p2)
+            p35 *= 3
+        p5 *= 5
+    return best
+
+
 def _synthesis_points(m_max: int, n_points: int | None) -> int:
     if n_points is None:
-        return max(64, scipy.fft.next_fast_len(SYNTHESIS_SAMPLES_PER_PERIOD * m_max, real=True))
+        return max(64, _next_fast_len(SYNTHESIS_SAMPLES_PER_PERIOD * m_max))
     if n_points <= 2 * m_max:
         raise ValueError(f"n_points must exceed {2 * m_max} to represent the highest order")
     return int(n_points)

@@ -1,20 +1,36 @@
-"""Render the report: jinja2 HTML -> WeasyPrint PDF (deterministic bytes for the same input)."""
+"""Render the report: sections (figures drawn in worker processes) -> jinja2 HTML -> WeasyPrint
+PDF with the results workbook attached (deterministic bytes for the same input on the same
+day).
+
+:func:`build_report` runs the stages and times them (``Report.stages``, shown by
+``benchmarks/bench_report.py``): figures are drawn in forked workers while this process
+imports the PDF engine and writes the results workbook; then the HTML, the PDF layout and the
+PDF file.
+"""
 
 from __future__ import annotations
 
+import base64
 import datetime as _dt
 import hashlib
+import logging
+import re
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
 
 from .. import __version__
 from ..api import CheckResult
-from ..outputs import status_label
 from ..resources import templates_dir
-from .sections import build_sections
+from . import results_book, summary
+from .sections import SectionJob
 
 WEASYPRINT_HELP = (
     "WeasyPrint could not load its system libraries (Pango). Install them, e.g. on Debian/"
     "Ubuntu: apt-get install libpango-1.0-0 libpangoft2-1.0-0 fonts-dejavu-core"
 )
+
+Progress = Callable[[str], None]
 
 
 def _environment():
@@ -24,57 +40,155 @@ def _environment():
                        autoescape=select_autoescape(["html"]), undefined=StrictUndefined)
 
 
-def _with_image_sources(sections: list[dict]) -> list[dict]:
-    """Figures as SVG data-URI images: WeasyPrint draws an SVG image about 40 % faster than
-    the same SVG inline, and its text stays text (searchable) either way."""
-    import base64
+FIGURE_SCHEME = "checker-figure:"
 
+
+def _figure_sources(sections: list[dict], figures: dict[str, bytes] | None = None
+                    ) -> list[dict]:
+    """Figures as SVG images. With ``figures`` (the PDF), each image is a short
+    ``checker-figure:N`` URL served from that dict by :class:`_Fetcher`: the HTML parser then
+    never reads the ~1 MB of base64 text that data URIs would add. Without it (the
+    standalone HTML file), data URIs. WeasyPrint draws an SVG image about 40 % faster than
+    the same SVG inline, and its text stays text (searchable) either way."""
+    n = 0
     for s in sections:
         for b in s["blocks"]:
-            if b["type"] == "figure" and "src" not in b:
-                b["src"] = "data:image/svg+xml;base64," + base64.b64encode(
-                    b["svg"].encode("utf-8")).decode("ascii")
+            if b["type"] == "figure" and b.get("svg"):
+                data = b["svg"].encode("utf-8")
+                if figures is not None:
+                    n += 1
+                    figures[f"{FIGURE_SCHEME}{n}"] = data
+                    b["src"] = f"{FIGURE_SCHEME}{n}"
+                else:
+                    b["src"] = "data:image/svg+xml;base64," + base64.b64encode(data).decode(
+                        "ascii")
     return sections
 
 
-def _findings_text(findings: list[str]) -> str:
-    """The first finding of a result (the module section lists all of them)."""
-    if not findings:
+def standalone_html(html: str, figures: dict[str, bytes]) -> str:
+    """The PDF's HTML with its figure URLs replaced by data URIs (a self-contained file)."""
+    for url, data in figures.items():
+        html = html.replace(f'src="{url}"', 'src="data:image/svg+xml;base64,'
+                            + base64.b64encode(data).decode("ascii") + '"')
+    return html
+
+
+def _fetcher(wp, figures: dict[str, bytes]):
+    """A WeasyPrint URL fetcher that serves the report's figures from memory."""
+
+    class Fetcher(wp.urls.URLFetcher):
+        def fetch(self, url, headers=None):
+            if url.startswith(FIGURE_SCHEME):
+                return wp.urls.URLFetcherResponse(url, body=figures[url],
+                                                  headers={"Content-Type": "image/svg+xml"})
+            return super().fetch(url, headers)
+
+    return Fetcher()
+
+
+KEEP_ROWS = 14
+"""Tables up to this many rows are never split across pages (nor from their heading)."""
+
+
+def _groups(blocks: list[dict]) -> list[list[dict]]:
+    """Blocks in page-layout groups: a heading travels with the block after it (a figure,
+    text or a short table), or becomes the header row of a long table, so that no heading
+    is left at the bottom of a page."""
+    out: list[list[dict]] = []
+    k = 0
+    while k < len(blocks):
+        b = blocks[k]
+        nxt = blocks[k + 1] if k + 1 < len(blocks) else None
+        if b["type"] == "heading" and nxt is not None and nxt["type"] == "table" and len(
+                nxt["rows"]) > KEEP_ROWS:
+            # before a long table the heading is the table's first header row: it repeats
+            # on the continuation pages and can never be left alone at a page bottom
+            out.append([dict(nxt, title=b["text"])])
+            k += 2
+        elif b["type"] == "heading" and nxt is not None:
+            out.append([b, nxt])
+            k += 2
+        else:
+            out.append([b])
+            k += 1
+    return out
+
+
+def _data_text(data, sheets: set[str]) -> str:
+    """Where the numbers behind a plot are (the results workbook's sheets)."""
+    names = []
+    for d in data or []:
+        name = results_book.sheet_name(d["sheet"] if isinstance(d, dict) else str(d))
+        if name in sheets and name not in names:
+            names.append(name)
+    if not names:
         return ""
-    first = findings[0] if len(findings[0]) <= 160 else findings[0][:157] + "..."
-    more = len(findings) - 1
-    return first + (f" (+{more} more finding{'s' if more > 1 else ''}, see the module"
-                    " section)" if more else "")
+    return (f"Data: {results_book.ATTACHMENT_NAME}, sheet{'s' if len(names) > 1 else ''} "
+            + ", ".join(names) + ".")
 
 
-def _margin_text(m: float | None) -> str:
-    return "-" if m is None else f"{m * 100:+.1f} %"
+def _split_details(sections: list[dict]) -> tuple[list[dict], list[dict]]:
+    """Tables marked ``detail`` leave the body for the results workbook; figure ``data``
+    sheets that are not quantities are collected for it too."""
+    extra: list[dict] = []
+    for s in sections:
+        keep = []
+        for b in s["blocks"]:
+            if b["type"] == "table" and b.get("detail"):
+                sheet = results_book.sheet_name(b.get("sheet") or f"{s['id']} table")
+                extra.append({"sheet": sheet, "title": b.get("caption", ""),
+                              "columns": b["columns"], "rows": b["rows"]})
+                keep.append({"type": "text", "text": (b.get("caption") or "Table").rstrip(".")
+                             + f": in {results_book.ATTACHMENT_NAME}, sheet {sheet}."})
+                continue
+            if b["type"] == "figure":
+                extra += [d for d in b.get("data") or [] if isinstance(d, dict)]
+            keep.append(b)
+        s["blocks"] = keep
+    return sections, extra
 
 
-def context(res: CheckResult) -> dict:
-    """Everything the template shows (formatting only)."""
-    rows = []
-    for r in res.results:
-        value = "-" if r.value is None else f"{r.value:.4g}"
-        rows.append({
-            "rule": r.rule, "name": r.name, "item": r.item, "case": r.case or "-",
-            "value": value + (f" {r.unit}" if r.unit and r.value is not None else ""),
-            "limit": r.limit, "margin": _margin_text(r.margin),
-            "status": status_label(r.status, r.severity),
-            "css": {"PASS": "pass", "FAIL": "fail", "WARN": "warn"}.get(
-                status_label(r.status, r.severity), "ne"),
-            "note": r.message if r.status == "not_evaluated" else _findings_text(r.findings),
-            "severity": r.severity,
-        })
+def _fail_on_text(fail_on: str) -> str:
+    modes = fail_on.split(",")
+    parts = ["failed errors"]
+    if "warning" in modes:
+        parts.append("failed warnings")
+    if "not-evaluated" in modes:
+        parts.append("results that could not be evaluated")
+    return ", ".join(parts[:-1]) + (" and " if len(parts) > 1 else "") + parts[-1]
+
+
+def _verdict_words(res: CheckResult) -> str:
+    c = res.counts()
+    if res.verdict == "fail":
+        n = len(res.failed)
+        head = f"{n} result{'s' if n != 1 else ''} fail{'s' if n == 1 else ''} the check."
+    else:
+        head = "No result fails the check."
+    if res.complete:
+        return head + " Complete: every selected result was evaluated."
+    ne = c["not_evaluated"]
+    return (head + f" Incomplete: {ne} result{'s' if ne != 1 else ''} could not be evaluated"
+            " (missing inputs, listed below); they are not passes.")
+
+
+def context(res: CheckResult, sections: list[dict] | None = None,
+            results_file: str | None = None, figures: dict[str, bytes] | None = None) -> dict:
+    """Everything the template shows (formatting only). ``sections``: built sections
+    (default: built here); ``figures``: collects the figures served by URL (see
+    :func:`_figure_sources`; default: data URIs)."""
+    if sections is None:
+        sections = SectionJob(res).result()
+    groups = summary.groups(res)
     selected = {r.id for r in res.rules}
     rule_rows = [{"id": r.id, "name": r.name, "quantity": r.quantity,
                   "applies": r.applies_to or "-", "limit": r.limit_text()
                   + ("" if not r.limits else " (" + "; ".join(
                       f"{k} {'..'.join(f'{x:g}' for x in v)}" for k, v in r.limits.items())
-                      + f" {r.unit})"),
+                      + ")"),
                   "severity": r.severity, "source": r.source, "rationale": r.rationale,
                   "selected": r.id in selected} for r in res.table.rules]
-    timings = [{"module": m, "seconds": f"{res.outcome.timings.get(m, 0.0) * 1e3:.1f} ms"}
+    timings = [{"module": m, "seconds": f"{res.outcome.timings.get(m, 0.0) * 1e3:.0f} ms"}
                for m in res.outcome.modules_run]
     return {
         "title": f"Crank-train design-rule check: {res.engine.name}",
@@ -85,12 +199,17 @@ def context(res: CheckResult) -> dict:
         "version": __version__,
         "verdict": res.verdict_text,
         "verdict_css": res.verdict + ("" if res.complete else " incomplete"),
+        "verdict_words": _verdict_words(res),
         "complete": res.complete,
         "fail_on": res.fail_on,
+        "fail_on_text": _fail_on_text(res.fail_on),
         "counts": res.counts(),
-        "rows": rows,
-        "failed": [r for r in rows if r["status"] == "FAIL"],
-        "sections": _with_image_sources(build_sections(res)),
+        "groups": groups,
+        "cover_groups": [g for g in groups if g["kind"] != "pass"],
+        "look_first": summary.look_first(res),
+        "failed": [r for g in groups if g["kind"] == "fail" for r in g["rows"]],
+        "sections": [dict(x, groups=_groups(x["blocks"]))
+                     for x in _figure_sources(sections, figures)],
         "rule_rows": rule_rows,
         "rule_files": [f.replace("\\", "/").split("/")[-1] for f in res.table.files],
         "overrides": res.table.overrides,
@@ -99,6 +218,8 @@ def context(res: CheckResult) -> dict:
         "modules_run": res.outcome.modules_run,
         "modules_skipped": res.outcome.modules_skipped,
         "timings": timings,
+        "attachment": results_book.ATTACHMENT_NAME,
+        "results_file": results_file,
         "css": (templates_dir() / "report.css").read_text(encoding="utf-8"),
     }
 
@@ -108,11 +229,135 @@ def render_html(res: CheckResult) -> str:
     return _environment().get_template("report.html").render(**context(res))
 
 
-def render_pdf(html: str, res: CheckResult) -> bytes:
-    """The report as PDF bytes (same input -> same bytes on the same day)."""
+def _weasyprint():
     try:
-        from weasyprint import HTML
+        import weasyprint
     except OSError as exc:  # missing Pango
         raise RuntimeError(WEASYPRINT_HELP + f" ({exc})") from None
+    return weasyprint
+
+
+def render_pdf(html: str, res: CheckResult, attachments: list[tuple[str, bytes, str]] = ()
+               ) -> bytes:
+    """The report as PDF bytes (same input -> same bytes on the same day); ``attachments``:
+    ``(name, bytes, description)`` embedded files."""
+    wp = _weasyprint()
+    doc = wp.HTML(string=html, base_url=str(templates_dir())).render()
+    return _write(wp, doc, html, attachments)
+
+
+def _write(wp, doc, html: str, attachments) -> bytes:
+    import io
+
+    day = _dt.datetime.combine(_dt.date.today(), _dt.time())
+    files = [wp.Attachment(file_obj=io.BytesIO(data), name=name, description=desc,
+                           created=day, modified=day) for name, data, desc in attachments]
     ident = hashlib.sha256(html.encode("utf-8")).hexdigest()[:32].encode()
-    return HTML(string=html, base_url=str(templates_dir())).write_pdf(pdf_identifier=ident)
+    return doc.write_pdf(pdf_identifier=ident, attachments=files)
+
+
+class _PageProgress(logging.Handler):
+    """WeasyPrint's progress log ("Step 5 - Creating layout - Page 12") as progress lines."""
+
+    PAGE = re.compile(r"Creating layout - Page (\d+)$")
+
+    def __init__(self, progress: Progress):
+        super().__init__(logging.INFO)
+        self.progress = progress
+
+    def emit(self, record: logging.LogRecord) -> None:
+        m = self.PAGE.search(record.getMessage())
+        if m:
+            self.progress(f"Laying out the PDF, page {m.group(1)}")
+
+
+@dataclass
+class Report:
+    """A rendered report: the PDF, the HTML (if asked), the results workbook, the page count
+    and the time of each stage [s]."""
+
+    pdf: bytes
+    html: str
+    results: bytes
+    pages: int
+    stages: dict[str, float] = field(default_factory=dict)
+    cpu: dict[str, float] = field(default_factory=dict)
+    """Processor time of each stage [s] (this process; "figures": the drawing processes),
+    which a busy machine inflates far less than the wall time."""
+    document: object = None
+    """The laid-out WeasyPrint document (page boxes), for layout checks."""
+
+
+def build_report(res: CheckResult, progress: Progress | None = None,
+                 results_file: str | None = None, want_html: bool = True) -> Report:
+    """Figures, HTML, PDF layout and file, with the results workbook attached; the
+    standalone HTML (figures as data URIs) when ``want_html``."""
+    say = progress or (lambda _text: None)
+    clock = _Clock()
+    job = SectionJob(res, progress)  # workers draw while this process does the rest
+    wp = _weasyprint()
+    env = _environment()
+    clock.stage("PDF engine import")
+    children = _children_cpu()
+    sections = job.result()
+    clock.stage("figures", extra_cpu=_children_cpu() - children)
+    sections, extra = _split_details(sections)
+    say("Writing the results workbook")
+    book = results_book.build(res, extra)
+    clock.stage("results workbook")
+    from .results_book import sheet_names
+
+    sheets = sheet_names(res, extra)
+    for s in sections:
+        for b in s["blocks"]:
+            if b["type"] == "figure" and "data_text" not in b:
+                b["data_text"] = _data_text(b.get("data"), sheets)
+    figures: dict[str, bytes] = {}
+    html = env.get_template("report.html").render(**context(res, sections, results_file,
+                                                            figures))
+    clock.stage("HTML")
+    logger = logging.getLogger("weasyprint.progress")
+    handler = _PageProgress(say)
+    old_level = logger.level
+    logger.addHandler(handler)
+    logger.setLevel(logging.INFO)
+    try:
+        doc = wp.HTML(string=html, base_url=str(templates_dir()),
+                      url_fetcher=_fetcher(wp, figures)).render()
+    finally:
+        logger.removeHandler(handler)
+        logger.setLevel(old_level)
+    clock.stage("PDF layout")
+    say(f"Writing the PDF ({len(doc.pages)} pages)")
+    pdf = _write(wp, doc, html, [(results_book.ATTACHMENT_NAME, book,
+                                  "Every computed quantity, the rule results and the plot"
+                                  " data of this report")])
+    clock.stage("PDF write")
+    return Report(pdf, standalone_html(html, figures) if want_html else "", book,
+                  len(doc.pages), clock.wall, clock.cpu, doc)
+
+
+def _children_cpu() -> float:
+    """Processor time of the finished child processes [s] (0 where unknown)."""
+    try:
+        import resource
+
+        r = resource.getrusage(resource.RUSAGE_CHILDREN)
+        return r.ru_utime + r.ru_stime
+    except (ImportError, OSError):
+        return 0.0
+
+
+class _Clock:
+    """Wall and processor time per stage."""
+
+    def __init__(self):
+        self.wall: dict[str, float] = {}
+        self.cpu: dict[str, float] = {}
+        self._t, self._c = time.perf_counter(), time.process_time()
+
+    def stage(self, name: str, extra_cpu: float = 0.0) -> None:
+        t, c = time.perf_counter(), time.process_time()
+        self.wall[name] = t - self._t
+        self.cpu[name] = c - self._c + extra_cpu
+        self._t, self._c = t, c

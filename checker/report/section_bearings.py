@@ -6,14 +6,14 @@ import numpy as np
 
 from ..api import CheckResult
 from . import judged as jd
-from .plots import figure, literal, to_svg
+from .plots import every, figure, to_svg
 from .section_loads import bearing_speed_figure, shade_caption, worst_table
-from .sections import fmt, section
+from .sections import fmt, merge_items, section
 
 RPM = 2 * np.pi / 60
 
 
-@section("bearings")
+@section("bearings", label="bearing oil film")
 def bearings_section(res: CheckResult) -> dict:
     q = res.outcome.quantities.get("bearing.moft")
     blocks: list[dict] = []
@@ -28,40 +28,47 @@ def bearings_section(res: CheckResult) -> dict:
     for n in names:
         b = bearings[n]
         rows.append([n, b.type, fmt(b.diameter * 1e3), fmt(b.length * 1e3),
-                     fmt(b.clearance * 1e6), fmt(ex["l_over_d"][n], 3), b.groove,
+                     fmt(b.clearance * 1e6), fmt(ex["l_over_d"][n]), b.groove,
                      str(b.oil_holes or 0), b.lining or "-"])
-    blocks.append({"type": "table", "caption": "Bearings (sheet Bearings)",
+    rows, _ = merge_items(rows, [""] * len(rows))
+    blocks.append({"type": "table", "caption": "Bearings (sheet Bearings; bearings with equal"
+                   " data share a row)",
                    "columns": ["bearing", "type", "D [mm]", "L_eff [mm]", "c [µm]", "L/D",
-                               "groove", "oil holes", "lining"], "rows": rows})
+                               "groove", "oil holes", "lining"], "rows": rows,
+                   "widths": [22, 9, 9, 10, 8, 8, 12, 10, 12]})
     blocks.append({"type": "text", "text": f"Model: {ex['model_text']}. Film temperature"
                    f" {ex['film_temperature'] - 273.15:.0f} °C, dynamic viscosity"
-                   f" {ex['viscosity'] * 1e3:.3f} mPa s."})
+                   f" {ex['viscosity'] * 1e3:.3f} mPa·s."})
     blocks.append({"type": "equations", "items": [
         ("Journal motion", "dε/dt = |F| ψ² /(μ L D) · M(ε, F̂) + ω̄ ẑ × ε,  ψ = c/R",
-         "Booker 1965 mobility method; bearings.md 1.2"),
+         "Booker, Dynamically loaded journal bearings: mobility method of solution, J. Basic"
+         " Eng. 87, 1965"),
         ("Mean angular velocity", "ω̄ = (ω_J + ω_B)/2: main ω/2; big end (ω − ω_rod)/2 in the"
-         " con-rod frame", "bearings.md 1.1"),
+         " con-rod frame", "Booker 1965"),
         ("Short-bearing mobility", "M_ζ = (1 − ζ)^2.5 / (π (L/D)²),  M_κ = −4κ(1 − ζ)^1.5 /"
-         " (π² (L/D)²)", "Booker's closed form (Flores et al. 2006); bearings.md 1.3"),
-        ("MOFT", "h_min = c (1 − max ε) over the periodic cycle", "bearings.md 1.6"),
+         " (π² (L/D)²)", "Booker 1965 closed form, as given by Flores et al., Nonlinear"
+         " Dynamics 2006"),
+        ("MOFT", "h_min = c (1 − max ε) over the periodic cycle", "Booker 1965"),
     ]})
     sp = np.array(q.coords["speed"]) / RPM
     cases = q.coords["case"]
-    blocks.append({"type": "figure", "svg": bearing_speed_figure(res, q, 1e6, "MOFT [µm]", "µm"),
-                   "caption": "Minimum oil film thickness against speed, full and no load."
-                              + shade_caption(q)})
 
     def more(idx):
         if idx is None:
             return ["-", "-"]
-        return [fmt(np.degrees(ex["theta_h_min"][idx]), 4), fmt(ex["eps_max"][idx], 4)]
+        return [fmt(np.degrees(ex["theta_h_min"][idx])), fmt(ex["eps_max"][idx])]
 
+    blocks.append({"type": "heading", "text": "Judged worst cases"})
     blocks.append(worst_table(
-        res, q, lambda v: fmt(v * 1e6, 4), more,
-        "Worst MOFT per bearing and load case: the judged worst first (the value of the rule"
-        " result), then a thinner film at a point the rules do not judge, marked",
-        ["bearing", "case", "MOFT [µm]", "speed [rpm]", "crank angle [deg]",
+        res, q, lambda v: fmt(v * 1e6), more,
+        "Thinnest film per bearing and load case: the judged worst first (the value of the rule"
+        " result), then, marked, a thinner film at a point the rules do not judge",
+        ["bearing", "case", "MOFT [µm]", "speed [rpm]", "crank angle [°]",
          "max eccentricity"]))
+    blocks.append({"type": "heading", "text": "Plots"})
+    blocks.append({"type": "figure", "svg": bearing_speed_figure(res, q, 1e6, "MOFT [µm]", "µm"),
+                   "caption": "Minimum oil film thickness against speed, full and no load."
+                              + shade_caption(q), "data": [q.name]})
     orb = ex.get("orbit") or {}
     judged_worst = jd.worst(q, (), jd.direction(res, q.name, "min"))[0]
     if orb and judged_worst is not None:
@@ -69,35 +76,54 @@ def bearings_section(res: CheckResult) -> dict:
         a = int(np.where(orb["rows"] == i)[0][0])
         exx, eyy = orb["eps_x"][a, ci, k], orb["eps_y"][a, ci, k]
         th = np.degrees(orb["theta"])
-        fig = figure(170, 75, ncols=2)[0]
+        fig = figure(170, 72, ncols=2)[0]
         fig.clf()
-        ax0 = fig.add_subplot(1, 2, 1, aspect="equal")
+        ax0 = fig.add_axes((0.11, 0.16, 0.28, 0.72), aspect="equal")
         t = np.linspace(0, 2 * np.pi, 181)
-        ax0.plot(np.cos(t), np.sin(t), color="0.5", lw=0.8)
-        ax0.plot(exx, eyy, lw=1.0)
+        ax0.plot(np.cos(t), np.sin(t), color="0.5", lw=0.8, label="clearance circle")
+        ev = every(exx.size, 2)
+        ax0.plot(exx[ev], eyy[ev], lw=1.0, color="#1f77b4", label="journal centre")
         ax0.set_xlim(-1.05, 1.05)
         ax0.set_ylim(-1.05, 1.05)
-        ax0.set_title(literal(f"Journal orbit ε, {names[i]}, {cases[ci]} load, {sp[k]:.0f} rpm"),
-                      fontsize=7)
-        ax1 = fig.add_subplot(1, 2, 2)
+        ax0.set_xlabel("ε_x (eccentricity / clearance) [-]")
+        ax0.set_ylabel("ε_y [-]")
+        ax0.set_title("Journal orbit")
+        ax1 = fig.add_axes((0.52, 0.16, 0.38, 0.72))
         c_ = bearings[names[i]].clearance
-        ax1.plot(th, c_ * (1 - np.hypot(exx, eyy)) * 1e6, label="film thickness h [µm]")
+        h = c_ * (1 - np.hypot(exx, eyy)) * 1e6
+        ax1.plot(th[ev], h[ev], color="#1f77b4", label="film thickness h")
+        ax1.set_xlim(0, 720)
+        ax1.set_xticks(np.arange(0, 721, 180))
         bl = res.outcome.quantities.get("loads.bearing_load")
+        cols = {"crank angle [°]": th, "eps_x [-]": exx, "eps_y [-]": eyy, "h [µm]": h}
         if bl is not None:
             le = bl.extra
             f = np.hypot(le["fx"][i, ci, k], le["fy"][i, ci, k]) / 1e3
             ax2 = ax1.twinx()
-            ax2.plot(np.degrees(le["theta"]), f, color="#c0392b", lw=0.8, label="|F| [kN]")
-            ax2.set_ylabel("|F| [kN]", color="#c0392b")
-        ax1.set_xlabel("Crank angle [deg]")
-        ax1.set_ylabel("h [µm]")
-        ax1.set_title("Film thickness and load over the cycle", fontsize=7)
-        blocks.append({"type": "figure", "svg": to_svg(fig),
-                       "caption": "Judged worst case (the thinnest film the rules judge):"
-                                  " journal orbit (eccentricity ratio, in the bearing's frame)"
-                                  " and film thickness with the load"})
+            fv = every(f.size)
+            ax2.plot(np.degrees(le["theta"])[fv], f[fv], color="#c0392b", lw=0.8)
+            ax2.set_ylabel("Bearing load |F| [kN]", color="#c0392b")
+            ax2.tick_params(axis="y", colors="#c0392b")
+            ax2.spines["right"].set_visible(True)
+            ax2.grid(False)
+            if len(le["theta"]) == th.size:
+                cols["|F| [kN]"] = f
+        ax1.set_xlabel("Crank angle [°]")
+        ax1.set_ylabel("Film thickness h [µm]", color="#1f77b4")
+        ax1.set_title("Film thickness (blue) and load (red) over the cycle")
+        names_ = list(cols)
+        data = {"sheet": "orbit of the worst case",
+                "title": f"Journal orbit and film of {names[i]}, {cases[ci]} load,"
+                         f" {sp[k]:.0f} rpm", "columns": names_,
+                "rows": [[float(cols[n][j]) for n in names_] for j in range(th.size)]}
+        blocks.append({"type": "figure", "svg": to_svg(fig), "data": [data],
+                       "caption": f"Judged worst case (the thinnest film the rules judge):"
+                                  f" {names[i]}, {cases[ci]} load, {sp[k]:.0f} rpm; journal"
+                                  " orbit (eccentricity ratio in the bearing's frame) and film"
+                                  " thickness with the load over the cycle."})
     return {"id": "bearings", "title": "Bearing oil film (MOFT)",
             "intro": "Minimum oil film thickness at every main and big-end bearing by Booker's"
                      " mobility method (short bearing, rigid journal, statically determinate"
-                     " loads, mean cold clearance: the seed's concept assumptions), at full and"
-                     " no load across the speed range.", "blocks": blocks}
+                     " loads, mean cold clearance: the concept-stage assumptions of Bell,"
+                     " Ricardo 2013), at full and no load across the speed range.",
+            "blocks": blocks}

@@ -9,7 +9,7 @@ from ..calc.fatigue import goodman_line
 from ..calc.scf import VALIDITY
 from ..modules.fatigue import FACTORS_OF, LOCATIONS, SCF_FIELDS
 from . import judged as jd
-from .plots import LIMIT_STYLE, figure, literal, to_svg
+from .plots import LIMIT_STYLE, figure, legend_below, limit_line, literal, to_svg
 from .sections import fmt, section
 
 RPM = 2 * np.pi / 60
@@ -29,7 +29,6 @@ def _limit(res: CheckResult, quantity: str) -> float | None:
 
 
 def _svg(fig) -> str:
-    fig.subplots_adjust(wspace=0.3, hspace=0.45)
     return to_svg(fig)
 
 
@@ -44,7 +43,7 @@ def _inputs(res: CheckResult, ex: dict, m53q) -> list[dict]:
         return f"{sheet} (blank)" if c == sheet else c
 
     def mm(v) -> str:
-        return "-" if v is None else fmt(v * 1e3, 4)
+        return "-" if v is None else fmt(v * 1e3)
 
     rows = [
         ["Crank-pin diameter", "D", mm(g["pin_diameter"]), "mm", "Bearings (big end)"],
@@ -80,7 +79,7 @@ def _inputs(res: CheckResult, ex: dict, m53q) -> list[dict]:
                      cell("Fatigue", "pin_oil_hole_diameter")])
         ang = oil["angle"]
         rows.append(["Crank-pin oil hole angle from the throw axis (+ leading)", "φ",
-                     "-" if ang is None else fmt(np.degrees(ang), 4), "deg",
+                     "-" if ang is None else fmt(np.degrees(ang)), "deg",
                      f"Bearings {oil['row'].name}"])
     if ex["main_oil_hole_diameter"] is not None:
         rows.append(["Main journal oil hole diameter", "D_O,G",
@@ -89,7 +88,7 @@ def _inputs(res: CheckResult, ex: dict, m53q) -> list[dict]:
     blocks: list[dict] = [{"type": "table", "caption": "Geometry of the crank throw (SI inputs"
                            " shown in mm; sizes of the first/smallest bearing rows)",
                            "columns": ["parameter", "symbol", "value", "unit", "source"],
-                           "rows": rows}]
+                           "rows": rows, "widths": [37, 12, 12, 6, 33]}]
     rows = []
     dw = {} if m53q is None else m53q.extra["sigma_dw"]
     for loc in LOCATIONS:
@@ -97,13 +96,14 @@ def _inputs(res: CheckResult, ex: dict, m53q) -> list[dict]:
         if st is None:
             continue
         se, su, c_se, c_su = st
-        rows.append([loc, "-" if se is None else fmt(se / 1e6, 4), c_se,
-                     "-" if su is None else fmt(su / 1e6, 4), c_su,
-                     fmt(dw[loc] / 1e6, 4) if loc in dw else "-"])
+        rows.append([loc, "-" if se is None else fmt(se / 1e6), c_se,
+                     "-" if su is None else fmt(su / 1e6), c_su,
+                     fmt(dw[loc] / 1e6) if loc in dw else "-"])
     blocks.append({"type": "table", "caption": "Material strengths (sheet Fatigue) and the IACS"
                    " UR M53 §6 fatigue strength σ_DW (base UTS, no surface-treatment credit)",
                    "columns": ["location", "S_e [MPa]", "cell", "S_u [MPa]", "cell",
-                               "M53 σ_DW [MPa]"], "rows": rows})
+                               "M53 σ_DW [MPa]"], "rows": rows,
+                   "widths": [18, 11, 20, 11, 20, 20]})
     return blocks
 
 
@@ -117,13 +117,14 @@ def _scf(ex: dict) -> list[dict]:
         used = scf["used"][key]
         status = "; ".join(t.split("): ", 1)[-1] for t in find.get(key, [])) or (
             "within M53 validity" if scf["source"][key].startswith("IACS") else "-")
-        rows.append([sym, what, fmt(used, 4), scf["source"][key], fmt(scf["m53"][key], 4),
+        rows.append([sym, what, fmt(used), scf["source"][key], fmt(scf["m53"][key]),
                      status])
     blocks: list[dict] = [{"type": "table", "caption": "Stress concentration factors: workbook"
                            " value where given, otherwise IACS UR M53 §3 (validity flags"
                            " reported, never silent)",
                            "columns": ["factor", "location and load", "used", "source",
-                                       "M53 value", "M53 validity"], "rows": rows}]
+                                       "M53 value", "M53 validity"], "rows": rows,
+                           "widths": [8, 27, 8, 19, 9, 29]}]
     ratios = scf.get("ratios")
     if ratios is not None:
         rows = []
@@ -132,7 +133,7 @@ def _scf(ex: dict) -> list[dict]:
             lo, hi = VALIDITY[name]
             v = float(getattr(ratios, name))
             inside = (lo is None or v >= lo) and (hi is None or v <= hi)
-            rows.append([name, fmt(v, 4), f"{'-∞' if lo is None else f'{lo:g}'} .."
+            rows.append([name, fmt(v), f"{'-∞' if lo is None else f'{lo:g}'} .."
                          f" {'∞' if hi is None else f'{hi:g}'}", "yes" if inside else "NO"])
         blocks.append({"type": "table", "caption": "M53 related dimensions (§3.1): r = R/D, s ="
                        " S/D with the overlap S = (D + D_G)/2 − E, w = W/D, b = B/D, d_O = D_O/D,"
@@ -146,10 +147,10 @@ def _scf(ex: dict) -> list[dict]:
 def _equations() -> list[dict]:
     return [{"type": "equations", "items": [
         ("Pin force in the throw frame", "F_R = F·e_r (+ outward),  F_T = F·e_t (+ rotation),"
-         "  F = −Σ big-end load of the rods on the pin", "checker.calc.crank_forces;"
-         " IACS UR M53 §2.1"),
+         "  F = −Σ big-end load of the rods on the pin", "IACS UR M53 §2.1"),
         ("Web bending (web centre)", "σ_BF = K_e·Q_RF·L1 / (B·W²/6),  Q_RF = F_R·(L3 − L2)/L3,"
-         "  K_e = 1", "M53 §2.1; seed 000 slide 25 (statically determinate)"),
+         "  K_e = 1", "M53 §2.1; statically determinate: Bell, Ricardo 2013, 'Crankshaft"
+         " analysis (25)'"),
         ("Web direct stress", "σ_QF = K_e·Q_RF / (B·W)", "M53 §2.1"),
         ("Oil-bore bending", "σ_BO = (M_BRO·cos φ + M_BTO·sin φ) / W_e,  W_e = π/32·(D⁴ − D_BH⁴)/D",
          "M53 §2.1.2"),
@@ -162,11 +163,12 @@ def _equations() -> list[dict]:
         ("Equivalent alternating (fillet)", "σ_eq,a = √(σ_a² + 3·τ_a²)  (von Mises of the"
          " amplitudes, in phase)", "M53 §5"),
         ("Equivalent mean (fillet)", "σ_eq,m = sign(σ_m)·√(σ_m² + 3·τ_m²),  compressive"
-         " σ_eq,m not credited (taken as 0)", "signed von Mises; standards.md §3"),
+         " σ_eq,m not credited (taken as 0)", "signed von Mises of the means (Budynas and"
+         " Nisbett, Shigley's Mechanical Engineering Design, 10th ed., 2015, §6-14)"),
         ("Oil hole (amplitude and mean)", "σ_eq = (σ_BO + 2·√(σ_BO² + 9/4·σ_TO²))/3",
          "M53 §5(4), maximum principal stress"),
         ("Goodman safety factor", "SF = 1 / (σ_eq,a/S_e + σ_eq,m/S_u) ≥ 1.5",
-         "Shigley eq. 6-46; seed 000 slide 28"),
+         "Shigley eq. 6-46; limit: Bell, Ricardo 2013, 'Crankshaft analysis (28)'"),
         ("M53 acceptability", "Q = σ_DW / σ_V ≥ 1.15,  σ_V = √((σ_a + σ_add)² + 3·τ_a²),"
          "  σ_add = 10 MPa", "M53 §4-7"),
         ("M53 fatigue strength", "σ_DW = K(0.42σ_B + 39.3)[0.264 + 1.073·D^−0.2 + (785 − σ_B)/4900"
@@ -199,34 +201,10 @@ def _plots(res: CheckResult, q) -> list[dict]:
     if not gov:
         return blocks
     note = jd.shade_caption([] if judged[list(gov.values())].all() else [jd.reason(q)])
-    # max/min equivalent stress vs speed, governing item per location type
-    n = len(gov)
-    fig, axes = figure(170, 58 * ((n + 1) // 2), nrows=(n + 1) // 2, ncols=2, squeeze=False,
-                       sharex=True)
-    for a, (loc, i) in enumerate(gov.items()):
-        ax = axes[a // 2, a % 2]
-        for ci, c in enumerate(cases):
-            ls = "-" if c == "full" else "--"
-            jd.line(ax, sp, ex["sigma_eq_max"][i, ci] / 1e6, judged[i, ci], ls=ls,
-                    color="#c0392b", label=f"max, {CASE_TEXT.get(c, c)}")
-            jd.line(ax, sp, ex["sigma_eq_min"][i, ci] / 1e6, judged[i, ci], ls=ls,
-                    color="#2980b9", label=f"min, {CASE_TEXT.get(c, c)}")
-        ax.axhline(0, color="k", lw=0.5)
-        ax.set_title(literal(f"{q.coords['item'][i]} (lowest SF of the {loc}s)"), fontsize=8)
-        ax.set_ylabel("Equivalent stress [MPa]")
-        ax.legend(fontsize=5.5, ncols=2)
-    for a in range(n, axes.size):
-        axes[a // 2, a % 2].set_visible(False)
-    for ax in axes[-1]:
-        ax.set_xlabel("Engine speed [rpm]")
-    blocks.append({"type": "figure", "svg": _svg(fig), "caption": (
-        "Maximum and minimum equivalent stress over the cycle against speed (σ_eq,m ± σ_eq,a,"
-        " local stresses with SCFs) at the location of each type with the lowest judged safety"
-        " factor" + ("" if not note else "; dotted: computed but not judged ("
-                     + jd.reason(q) + ")"))})
     # Goodman SF vs speed with the limit
     lim = _limit(res, "fatigue.goodman_sf")
-    fig, axes = figure(170, 65, ncols=len(cases), squeeze=False, sharey=True)
+    fig, axes = figure(170, 66, ncols=len(cases), squeeze=False, sharey=True, wgap=8,
+                       legend_rows=1)
     by_loc = ex["sf_by_location"]
     for ci, c in enumerate(cases):
         ax = axes[0, ci]
@@ -234,21 +212,19 @@ def _plots(res: CheckResult, q) -> list[dict]:
         for li, loc in enumerate(LOCATIONS):
             if loc in gov:
                 ax.plot(sp, np.minimum(by_loc[li, ci], SF_PLOT_MAX), color=COLORS[loc],
-                        label=loc)
+                        label=f"{loc}s (lowest)")
         if lim is not None:
-            ax.axhline(lim, **LIMIT_STYLE)
-            ax.text(sp[0], lim, f" limit {lim:g}", fontsize=6, va="bottom",
-                    color=LIMIT_STYLE["color"])
+            limit_line(ax, lim, f"limit {lim:g} (FAT-001)")
         ax.set_ylim(0, SF_PLOT_MAX)
-        ax.set_title(CASE_TEXT.get(c, c), fontsize=8)
+        ax.set_title(CASE_TEXT.get(c, c))
         ax.set_xlabel("Engine speed [rpm]")
-        ax.legend(fontsize=6)
     axes[0, 0].set_ylabel("Goodman safety factor [-]")
-    blocks.append({"type": "figure", "svg": _svg(fig), "caption": (
-        f"Lowest Goodman safety factor of each location type against speed (FAT-001 limit;"
-        f" axis clipped at {SF_PLOT_MAX:g}).{note}")})
+    legend_below(fig, ncols=6)
+    blocks.append({"type": "figure", "svg": _svg(fig), "data": [q.name], "caption": (
+        f"Lowest Goodman safety factor of each location type against speed (axis clipped at"
+        f" {SF_PLOT_MAX:g}).{note}")})
     # normalised Haigh (Goodman) diagram
-    fig, ax = figure(170, 85)
+    fig, ax = figure(170, 80, legend_rows=2)
     x_max = max(1.05, float(np.nanmax(ex["haigh_x"][list(gov.values())])) * 1.1)
     xs = np.linspace(min(-0.5, float(np.nanmin(ex["haigh_x"][list(gov.values())])) * 1.1),
                      x_max, 200)
@@ -256,32 +232,46 @@ def _plots(res: CheckResult, q) -> list[dict]:
     if lim is not None:
         ax.plot(xs, goodman_line(xs, 1.0, 1.0, lim), **LIMIT_STYLE,
                 label=f"SF = {lim:g} (FAT-001)")
-    step = max(1, sp.size // 31)
     grey = False
+    cols: dict[str, list] = {}
     for loc, i in gov.items():
         for ci, c in enumerate(cases):
-            j = judged[i, ci, ::step]
-            hx, hy = ex["haigh_x"][i, ci, ::step], ex["haigh_y"][i, ci, ::step]
-            ax.scatter(hx[j], hy[j], s=7,
-                       color=COLORS[loc], marker="o" if c == "full" else "^",
-                       facecolors=COLORS[loc] if c == "full" else "none", linewidths=0.6,
-                       label=literal(f"{q.coords['item'][i]}, {CASE_TEXT.get(c, c)}"))
+            j = judged[i, ci]
+            hx, hy = ex["haigh_x"][i, ci], ex["haigh_y"][i, ci]
+            # the operating points as a path over speed (one line per location and case),
+            # the judged lowest safety factor marked
+            ax.plot(np.where(j, hx, np.nan), np.where(j, hy, np.nan), color=COLORS[loc],
+                    ls="-" if c == "full" else "--", lw=0.9,
+                    label=literal(f"{q.coords['item'][i]}, {CASE_TEXT.get(c, c)}"))
             if (~j).any():
-                ax.scatter(hx[~j], hy[~j], s=9, color="0.55", marker="x", linewidths=0.6,
-                           label=None if grey else "not judged")
+                ax.plot(np.where(j, np.nan, hx), np.where(j, np.nan, hy), color="0.55",
+                        ls=":", lw=0.9, label=None if grey else "not judged")
                 grey = True
+            p = jd.worst(q, (i, ci), "min")[0]
+            if p is not None:
+                k = p.index[-1]
+                ax.plot([hx[k]], [hy[k]], "o" if c == "full" else "^", ms=4,
+                        color=COLORS[loc], mfc=COLORS[loc] if c == "full" else "white")
+            name = f"{q.coords['item'][i]}, {CASE_TEXT.get(c, c)}"
+            cols[f"{name}: mean / S_u"] = list(ex["haigh_x"][i, ci])
+            cols[f"{name}: alternating / S_e"] = list(ex["haigh_y"][i, ci])
     ax.axvline(0, color="k", lw=0.5)
     ax.set_xlim(xs[0], xs[-1])
     ax.set_ylim(0, max(1.1, float(np.nanmax(ex["haigh_y"][list(gov.values())])) * 1.1))
     ax.set_xlabel("Equivalent mean stress / S_u [-]")
     ax.set_ylabel("Equivalent alternating stress / S_e [-]")
-    ax.legend(fontsize=5.5, ncols=2)
-    blocks.append({"type": "figure", "svg": _svg(fig), "caption": (
-        "Normalised Haigh (Goodman) diagram: operating points of the location of each type with"
-        " the lowest safety factor (every "
-        + ("" if step == 1 else f"{step}th ") + "swept speed; filled: full load, open: no"
-        " load). Compressive means are not credited: the line is flat for σ_m < 0."
-        + ("" if not grey else f" Grey crosses: computed but not judged ({jd.reason(q)}).")
+    legend_below(fig, ncols=4)
+    names = list(cols)
+    data = {"sheet": "Haigh diagram", "title": "Normalised Haigh diagram points per speed",
+            "columns": ["speed [rpm]", *names],
+            "rows": [[float(sp[k]), *[float(cols[n][k]) for n in names]]
+                     for k in range(sp.size)]}
+    blocks.append({"type": "figure", "svg": _svg(fig), "data": [data], "caption": (
+        "Normalised Haigh (Goodman) diagram: the operating points over the speed range of the"
+        " location of each type with the lowest safety factor (solid: full load, dashed: no"
+        " load; marker: the judged lowest factor). Compressive means are not credited: the"
+        " line is flat for σ_m < 0."
+        + ("" if not grey else f" Grey dotted: computed but not judged ({jd.reason(q)}).")
         )})
     return blocks
 
@@ -298,15 +288,15 @@ def _worst(res: CheckResult, q, m53q) -> list[dict]:
             return ["-"] * 6
         i, ci, si = p.index
         side = ex["candidates"][i][int(ex["governing"][i, ci, si])]
-        return [fmt(p.value, 4), CASE_TEXT.get(cases[ci], cases[ci]), f"{sp[si]:.0f}",
-                fmt(ex["sigma_eq_a"][i, ci, si] / 1e6, 4),
-                fmt(ex["sigma_eq_m"][i, ci, si] / 1e6, 4), side]
+        return [fmt(p.value), CASE_TEXT.get(cases[ci], cases[ci]), f"{sp[si]:.0f}",
+                fmt(ex["sigma_eq_a"][i, ci, si] / 1e6),
+                fmt(ex["sigma_eq_m"][i, ci, si] / 1e6), side]
 
     def q_cells(p):
         if p is None:
             return ["-", "-"]
         _, cq, sq = p.index
-        return [fmt(p.value, 4), f"{CASE_TEXT.get(cases[cq], cases[cq])}, {sp[sq]:.0f}"]
+        return [fmt(p.value), f"{CASE_TEXT.get(cases[cq], cases[cq])}, {sp[sq]:.0f}"]
 
     rows, css = [], []
     for i, n in enumerate(q.coords["item"]):
@@ -337,10 +327,10 @@ def _worst(res: CheckResult, q, m53q) -> list[dict]:
         " not judge"),
         "columns": ["location", "SF min", "case", "speed [rpm]", "σ_eq,a [MPa]",
                     "σ_eq,m [MPa]", "governing", "M53 Q min", "Q at", "judged by"],
-        "rows": rows, "row_css": css}]
+        "rows": rows, "row_css": css, "widths": [12, 7, 8, 7, 8, 8, 11, 8, 11, 20]}]
 
 
-@section("fatigue")
+@section("fatigue", label="crankshaft fatigue")
 def fatigue_section(res: CheckResult) -> dict:
     qs = res.outcome.quantities
     q = qs.get("fatigue.goodman_sf")
@@ -348,7 +338,8 @@ def fatigue_section(res: CheckResult) -> dict:
     title = "Crankshaft fatigue (classical stress analysis)"
     intro = ("Classical (statically determinate) stresses at the crank-pin fillets, main-journal"
              " fillets and oil holes over the 720° cycle at full and no load across the speed"
-             " range (seed 000 slides 25-28; IACS UR M53 §2-5): bending of each throw from the"
+             " range (Bell, Ricardo 2013, 'Crankshaft analysis (25)-(28)'; IACS UR M53 §2-5):"
+             " bending of each throw from the"
              " con-rod forces of the loads module, torsion from the TV module's element torques"
              " synthesised at the same crank angle, stress concentration factors from the"
              " workbook or IACS UR M53, Goodman safety factor against the workbook's fatigue"
@@ -386,9 +377,10 @@ def fatigue_section(res: CheckResult) -> dict:
         " listed under 'Assumptions and run'.",
     ]})
     if q.name == "fatigue.goodman_sf":
-        blocks.append({"type": "heading", "text": "Results"})
-        blocks += _plots(res, q)
+        blocks.append({"type": "heading", "text": "Judged worst cases"})
         blocks += _worst(res, q, m53q)
+        blocks.append({"type": "heading", "text": "Plots"})
+        blocks += _plots(res, q)
     found = sorted({f for v in q.findings.values() for f in v}
                    | ({f for v in m53q.findings.values() for f in v} if m53q else set()))
     if found:
@@ -426,6 +418,6 @@ def _nose(res: CheckResult) -> list[dict]:
                    f" of TV element '{ex['element']}'): the judged points, lowest first (the"
                    " value of the rule result), then, marked, lower factors at points the"
                    " rules do not judge",
-                   "columns": ["case", "speed [rpm]", "Goodman SF", "T min / max [N m]",
+                   "columns": ["case", "speed [rpm]", "Goodman SF", "T min / max [N·m]",
                                "σ_eq,a [MPa]", "σ_eq,m [MPa]", "judged by"],
-                   "rows": rows, "row_css": css}]
+                   "rows": rows, "row_css": css, "widths": [11, 10, 10, 17, 11, 11, 30]}]

@@ -6,47 +6,61 @@ import numpy as np
 
 from ..api import CheckResult
 from ..units import from_si
-from .plots import LIMIT_STYLE, figure, literal, to_svg
+from .plots import STATUS_COLORS, figure, legend_below, literal, to_svg
 from .sections import fmt, section
 
+BELL = "Bell, Cranktrain Analysis Using ENGDYN and VALDYN, Ricardo, 2013"
 
-@section("joints")
+
+def _by_joint(caption: str, names: list[str], rows: list[tuple[str, list[str]]]) -> dict:
+    """A table with one column per joint (parameters as rows): readable for the usual two
+    joints, and no narrow columns."""
+    w = max(12.0, min(30.0, 60.0 / max(1, len(names))))
+    return {"type": "table", "caption": caption, "columns": ["", *names],
+            "rows": [[label, *vals] for label, vals in rows],
+            "widths": [100 - w * len(names), *[w] * len(names)]}
+
+
+@section("joints", label="bolted joint")
 def joints_section(res: CheckResult) -> dict:
     q = res.outcome.quantities
     eng = res.engine
     blocks: list[dict] = []
-    rows = []
-    for j in eng.joints:
-        rows.append([
-            j.name, j.location, str(j.bolts), fmt(j.diameter * 1e3), fmt(j.pitch * 1e3),
-            j.property_class, j.tightening,
-            fmt(j.tightening_torque) if j.tightening_torque is not None else "-",
-            f"{fmt(j.face_inner * 1e3)} / {fmt(j.face_outer * 1e3)}",
-            "-" if j.head_outer is None or j.head_inner is None
-            else f"{fmt(j.head_inner * 1e3)} / {fmt(j.head_outer * 1e3)}",
-            j.clamped_material or "-",
-            fmt(j.friction) if j.friction is not None else "0.2 (default)",
-        ])
-    blocks.append({"type": "table", "caption": "Joint inputs (sheet Joints)",
-                   "columns": ["joint", "location", "bolts", "d [mm]", "p [mm]", "class",
-                               "tightening", "T [N m]", "face d/D [mm]", "head d/D [mm]",
-                               "clamped", "μ"],
-                   "rows": rows})
+    js = list(eng.joints)
+    mm = lambda v: fmt(v * 1e3)  # noqa: E731
+    blocks.append(_by_joint("Joint inputs (sheet Joints)", [j.name for j in js], [
+        ("Location", [j.location for j in js]),
+        ("Bolts", [str(j.bolts) for j in js]),
+        ("Thread diameter d x pitch p [mm]", [f"{mm(j.diameter)} x {mm(j.pitch)}" for j in js]),
+        ("Property class", [j.property_class for j in js]),
+        ("Tightening", [j.tightening for j in js]),
+        ("Tightening torque [N·m]", [fmt(j.tightening_torque)
+                                     if j.tightening_torque is not None else "-" for j in js]),
+        ("Clamped face inner / outer diameter [mm]",
+         [f"{mm(j.face_inner)} / {mm(j.face_outer)}" for j in js]),
+        ("Head bearing inner / outer diameter [mm]",
+         ["-" if j.head_outer is None or j.head_inner is None
+          else f"{mm(j.head_inner)} / {mm(j.head_outer)}" for j in js]),
+        ("Clamped material", [j.clamped_material or "-" for j in js]),
+        ("Friction coefficient μ of the face", [fmt(j.friction) if j.friction is not None
+                                                else "0.2 (default)" for j in js]),
+    ]))
     blocks.append({"type": "equations", "items": [
-        ("Tensile stress area", "A_s = π/4 · (d − c·p)²,  c = 0.9382", "ISO 898-1:2013 §9.1.6.1;"
-         " the seed's crank-nose worksheet uses c = 0.938"),
-        ("Preload, torque tightening", "F = T / (K·d),  K = 0.2", "Ricardo 2013 (seed 000),"
-         " slide 23: F = 5 T / D"),
+        ("Tensile stress area", "A_s = π/4 · (d − c·p)²,  c = 0.9382", "ISO 898-1:2013 §9.1.6.1"
+         f" ({BELL}, crank-nose worksheet: c = 0.938)"),
+        ("Preload, torque tightening", "F = T / (K·d),  K = 0.2",
+         f"{BELL}, 'Crankshaft analysis (23)': F = 5 T / D"),
         ("Preload, yield/angle/torque-wrench", "F = k·σ_ref·A_s,  k = 0.75 / 0.85 R_p0.2,"
-         " 0.70 S_p", "Ricardo 2013 (seed 000), slide 24 table"),
-        ("Proof-stress percentage", "100 · F / (P·A_s),  P = R_p0.2", "Ricardo 2013 (seed 000)"
-         " slide 23; 70–75 % recommended"),
-        ("Contact stress under the head", "σ = F / (π/4 · (d_o² − d_i²))", "Ricardo 2013"
-         " (seed 000) slide 23; VDI 2230-1 R10"),
+         " 0.70 S_p", f"{BELL}, 'Crankshaft analysis (24)', table"),
+        ("Proof-stress percentage", "100 · F / (P·A_s),  P = R_p0.2",
+         f"{BELL}, 'Crankshaft analysis (23)': 70-75 % recommended"),
+        ("Contact stress under the head", "σ = F / (π/4 · (d_o² − d_i²))",
+         f"{BELL}, 'Crankshaft analysis (23)'; VDI 2230 Part 1, 2015, R10"),
         ("Slip torque capacity", "T_cap = μ·n·F·(2/3)(R³ − r³)/(R² − r²) = μ·n·F·D_eff/2",
-         "Ricardo 2013 (seed 000) slides 23–24"),
-        ("Cover factor", "CF = T_cap / T_applied", "Ricardo 2013 (seed 000): crank nose ≥ 1.8"
-         " (2.0 preferred); flywheel ≥ 1.8 TV peak, ≥ 2.0 max power, ≥ 1.7 overspeed"),
+         f"{BELL}, 'Crankshaft analysis (23)-(24)'"),
+        ("Cover factor", "CF = T_cap / T_applied", f"{BELL}: crank nose ≥ 1.8 (2.0"
+         " preferred); flywheel ≥ 1.8 at the TV peak, ≥ 2.0 at max power, ≥ 1.7 at"
+         " overspeed"),
     ]})
     area = q.get("joint.stress_area")
     if area is not None:
@@ -54,16 +68,18 @@ def joints_section(res: CheckResult) -> dict:
         pre, clamp = q["joint.preload"].values, q["joint.clamp_force"].values
         proof, head = q["joint.proof_stress_ratio"].values, q["joint.head_contact_stress"].values
         deff, cap = q["joint.effective_diameter"].values, q["joint.slip_capacity"].values
-        rows = []
-        for i, n in enumerate(names):
-            rows.append([n, fmt(area.values[i] * 1e6, 6), fmt(pre[i] / 1e3, 6),
-                         fmt(clamp[i] / 1e3, 6), fmt(proof[i] * 100, 5),
-                         fmt(head[i] / 1e6, 6), fmt(deff[i] * 1e3, 5), fmt(cap[i], 6)])
-        blocks.append({"type": "table", "caption": "Bolt and face results",
-                       "columns": ["joint", "A_s [mm²]", "F per bolt [kN]", "clamp [kN]",
-                                   "proof stress [%]", "head stress [MPa]", "D_eff [mm]",
-                                   "T_cap [N m]"],
-                       "rows": rows})
+        n = range(len(names))
+        blocks.append({"type": "heading", "text": "Bolt and face results"})
+        blocks.append(_by_joint("Bolt and face results (rules JNT-001, JNT-002; the slip"
+                                " capacity enters the cover factors)", list(names), [
+            ("Stress area A_s [mm²]", [fmt(area.values[i] * 1e6) for i in n]),
+            ("Preload per bolt F [kN]", [fmt(pre[i] / 1e3) for i in n]),
+            ("Clamp force, all bolts [kN]", [fmt(clamp[i] / 1e3) for i in n]),
+            ("Bolt stress / proof stress [%]", [fmt(proof[i] * 100) for i in n]),
+            ("Contact stress under the head [MPa]", [fmt(head[i] / 1e6) for i in n]),
+            ("Effective friction diameter D_eff [mm]", [fmt(deff[i] * 1e3) for i in n]),
+            ("Slip torque capacity T_cap [N·m]", [fmt(cap[i]) for i in n]),
+        ]))
         how = area.extra.get("how", {})
         items = [f"{n}: " + "; ".join(f"{k}: {v}" for k, v in how.get(n, {}).items())
                  for n in names]
@@ -77,12 +93,13 @@ def joints_section(res: CheckResult) -> dict:
             "intro": "Crank-nose and flywheel bolted joints: bolt preload and proof-stress"
                      " percentage, contact stress under the bolt head, and the cover factor of"
                      " the clamped face (slip torque capacity over the peak applied torque),"
-                     " after the worked calculations of Ricardo 2013 (seed 000).",
+                     f" after the worked calculations of {BELL}, 'Crankshaft analysis"
+                     " (23)-(24)'.",
             "blocks": blocks}
 
 
 def _rpm(w) -> str:
-    return "-" if w is None or not np.isfinite(w) else fmt(from_si(w, "rad/s", "rpm"), 5)
+    return "-" if w is None or not np.isfinite(w) else fmt(from_si(w, "rad/s", "rpm"))
 
 
 def _torques(res: CheckResult, cf, tq, comp, comp_cf) -> list[dict]:
@@ -101,16 +118,16 @@ def _torques(res: CheckResult, cf, tq, comp, comp_cf) -> list[dict]:
     for i, n in enumerate(cf.coords["item"]):
         for k, p in enumerate(cf.coords["point"]):
             t = given.get((n, p))
-            g = "-" if t is None else f"{fmt(t.torque, 5)} ({_rpm(t.speed)} rpm)"
+            g = "-" if t is None else f"{fmt(t.torque)} ({_rpm(t.speed)} rpm)"
             if comp is None:
                 c = "not computed (the torsional module was not needed by the selected rules)"
                 c_cf = "-"
             elif np.isfinite(comp.values[i, k]):
                 case = {"full": "full load", "no": "no load"}.get(
                     str(comp.extra["case"][i, k]), str(comp.extra["case"][i, k]))
-                c = (f"{fmt(comp.values[i, k], 5)} ({case}, {_rpm(comp.extra['speed'][i, k])}"
+                c = (f"{fmt(comp.values[i, k])} ({case}, {_rpm(comp.extra['speed'][i, k])}"
                      " rpm)")
-                c_cf = "-" if comp_cf is None else fmt(comp_cf.values[i, k], 4)
+                c_cf = "-" if comp_cf is None else fmt(comp_cf.values[i, k])
             else:
                 c = "not computed: " + "; ".join(comp.missing.get((i, k), []))
                 c_cf = "-"
@@ -118,57 +135,78 @@ def _torques(res: CheckResult, cf, tq, comp, comp_cf) -> list[dict]:
             used = ("given" if s.startswith("workbook") else "computed" if s else
                     "not available: " + "; ".join(tq.missing.get((i, k), [])))
             if s:
-                used += f": {fmt(tq.values[i, k], 5)} N m at {_rpm(spd[i, k])} rpm"
+                used += f": {fmt(tq.values[i, k])} N·m at {_rpm(spd[i, k])} rpm"
             rules = ", ".join(used_by.get((n, p), [])) or "none (not judged)"
-            rows.append([n, p, g, c, used, rules, fmt(cf.values[i, k], 4), c_cf])
-    blocks: list[dict] = [{
+            rows.append([n, p, g, c, used, rules, fmt(cf.values[i, k]), c_cf])
+    blocks: list[dict] = [{"type": "heading", "text": "Cover factors"}, {
         "type": "table",
         "caption": "Applied torque per operating point: the value given in sheet JointTorques,"
                    " the torsional model's value at the same operating point ('tv peak': the"
                    " model's own peak speed), the one the cover-factor rules used, and the"
                    " cover factor at each (JNT-008 warns when the computed torque exceeds the"
                    " given one)",
-        "columns": ["joint", "operating point", "given T [N m]", "computed T [N m]",
+        "columns": ["joint", "operating point", "given T [N·m]", "computed T [N·m]",
                     "used by the rules", "rules", "cover factor (used T)",
                     "cover factor (computed T)"],
-        "rows": rows}]
-    labels, vals, alt = [], [], []
-    judged = []
+        "rows": rows, "widths": [10, 10, 13, 18, 16, 11, 11, 11]}]
+    status = {}
+    limits: dict[tuple[str, str], list[float]] = {}
+    for r in res.results:
+        rule = by_rule.get(r.rule)
+        if rule is None or rule.quantity != "joint.cover_factor" or not r.case:
+            continue
+        key = (r.item, r.case)
+        st = ("FAIL" if r.status == "fail" and r.severity == "error" else
+              "WARN" if r.status == "fail" else "PASS" if r.status == "pass" else
+              "NOT EVALUATED")
+        rank = ["PASS", "NOT EVALUATED", "WARN", "FAIL"]
+        if rank.index(st) > rank.index(status.get(key, "PASS")) or key not in status:
+            status[key] = st
+        if r.limit_values:
+            limits.setdefault(key, []).append(r.limit_values[0])
+    labels, vals, alt, colors, lims = [], [], [], [], []
     for i, n in enumerate(cf.coords["item"]):
         for k, p in enumerate(cf.coords["point"]):
             if np.isfinite(cf.values[i, k]):
-                labels.append(f"{n}\n{p}")
+                labels.append(f"{n}, {p}")
                 vals.append(cf.values[i, k])
-                judged.append(bool(used_by.get((n, p))))
+                st = status.get((n, p), "NOT JUDGED")
+                colors.append(STATUS_COLORS[st])
+                lims.append(limits.get((n, p), []))
                 differs = (comp_cf is not None and src is not None
                            and str(src[i, k]).startswith("workbook")
                            and np.isfinite(comp_cf.values[i, k]))
                 alt.append(comp_cf.values[i, k] if differs else np.nan)
     if vals:
-        fig, ax = figure(170, 30 + 12 * len(vals))
+        fig, ax = figure(170, 22 + 8 * len(vals), left=34, bottom=10, legend_rows=2)
         y = np.arange(len(vals))
-        jb = np.array(judged)
-        ax.barh(y[jb], np.array(vals)[jb], color="#34495e", height=0.5,
-                label="at the torque the rules used")
-        if (~jb).any():
-            ax.barh(y[~jb], np.array(vals)[~jb], color="#bdc3c7", height=0.5,
-                    label="no rule at this operating point (not judged)")
+        ax.barh(y, vals, color=colors, height=0.55)
+        for yi, ls in zip(y, lims):
+            for v in ls:
+                ax.plot([v, v], [yi - 0.42, yi + 0.42], color="#c0392b", lw=1.4)
         if np.isfinite(alt).any():
-            ax.plot(alt, y, "D", color="#e67e22", ms=4, ls="none",
-                    label="at the torsional model's torque (given torque used)")
+            ax.plot(alt, y, "D", color="#34495e", ms=3.5, ls="none")
         ax.set_yticks(y, [literal(x) for x in labels])
-        for lim, lab in ((1.7, "1.7 overspeed"), (1.8, "1.8 minimum"),
-                         (2.0, "2.0 preferred / max power")):
-            ax.axvline(lim, **LIMIT_STYLE)
-            ax.text(lim, -0.45, lab, rotation=90, va="top", ha="right",
-                    fontsize=6, color=LIMIT_STYLE["color"])
         ax.set_xlabel("Cover factor (slip torque capacity / applied torque)")
         ax.set_ylim(len(vals) - 0.5, -0.5)
-        ax.legend(fontsize=6, loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=2,
-                  frameon=False)
+        ax.grid(axis="x", alpha=0.3)
+        ax.grid(axis="y", visible=False)
+        from matplotlib.lines import Line2D
+        from matplotlib.patches import Patch
+
+        used = dict.fromkeys(c for c in colors)
+        names = {v: k.lower() for k, v in STATUS_COLORS.items()}
+        handles = [Patch(color=c, label=f"{names[c]} (at the torque the rules used)"
+                         if names[c] != "not judged" else "no rule at this point")
+                   for c in used]
+        handles.append(Line2D([], [], color="#c0392b", lw=1.4, label="limit of the rule"))
+        if np.isfinite(alt).any():
+            handles.append(Line2D([], [], marker="D", color="#34495e", ms=3.5, ls="none",
+                                  label="at the torsional model's torque"))
+        legend_below(fig, handles=handles, labels=[h.get_label() for h in handles], ncols=3)
         blocks.append({"type": "figure", "svg": to_svg(fig),
-                       "caption": "Joint cover factors against the seed's limits (dark bars: at"
-                                  " the torque the rules used; grey bars: operating points no"
-                                  " rule judges; diamonds: at the torsional model's torque"
-                                  " where a given torque was used)"})
+                       "data": ["joint.cover_factor", "joint.computed_cover_factor"],
+                       "caption": "Joint cover factors coloured by the result of their rules,"
+                                  " with each rule's limit (red mark); diamonds: at the"
+                                  " torsional model's torque where a given torque was used."})
     return blocks

@@ -5,9 +5,10 @@ from __future__ import annotations
 import numpy as np
 
 from ..api import CheckResult
+from ..display import unit_text
 from . import judged as jd
-from .plots import LIMIT_STYLE, figure, literal, to_svg
-from .sections import fmt, section
+from .plots import every, figure, legend_below, limit_line, literal, to_svg
+from .sections import fmt, merge_items, param_table, section
 
 RPM = 2 * np.pi / 60
 
@@ -25,12 +26,14 @@ def _rule_limits(res: CheckResult, quantity: str, case: str) -> dict[str, float]
 
 def bearing_speed_figure(res: CheckResult, q, scale: float, ylabel: str, unit: str) -> str:
     """Per-bearing curves (values x ``scale``) against speed, mains / big ends x load cases,
-    with the rule limit of each lining; ``q`` has dims (item, case, speed) and item attributes
-    type and lining."""
+    with the rule limit of each lining (named in the legend below the panels); ``q`` has dims
+    (item, case, speed) and item attributes type and lining."""
     names = q.coords["item"]
     sp = np.array(q.coords["speed"]) / RPM
     judged = jd.mask(q)
-    fig, axes = figure(170, 110, nrows=2, ncols=2, sharex=True)
+    fig, axes = figure(170, 100, nrows=2, ncols=2, sharex=True, sharey="row", wgap=8,
+                       legend_rows=2)
+    u = unit_text(unit)
     for ci, c in enumerate(q.coords["case"]):
         lim = _rule_limits(res, q.name, c)
         for row, typ in enumerate(("main", "big end")):
@@ -40,23 +43,34 @@ def bearing_speed_figure(res: CheckResult, q, scale: float, ylabel: str, unit: s
                     and np.isfinite(q.values[i, ci]).all()]
             if rows:
                 jd.shade(ax, sp, judged[rows, ci].any(axis=0))
-            for i in rows:
+            for k, i in enumerate(rows):
                 n = names[i]
-                ax.plot(sp, q.values[i, ci] * scale, label=literal(n))
+                ax.plot(sp, q.values[i, ci] * scale, label=literal(n),
+                        color=CURVE_COLORS[k % len(CURVE_COLORS)],
+                        ls="-" if typ == "main" else "--")
                 linings.add(q.item_attrs[n]["lining"])
             for ln in sorted(x for x in linings if x):
                 v = lim.get(ln, lim.get("*"))
                 if v is not None:
-                    ax.axhline(v, **LIMIT_STYLE)
-                    ax.text(sp[0], v, literal(f" limit {ln} {v:g} {unit}"), va="bottom", fontsize=6,
-                            color=LIMIT_STYLE["color"])
-            ax.set_title(f"{typ} bearings, {c} load", fontsize=8)
-            ax.set_ylabel(ylabel)
-            ax.set_ylim(bottom=0)
-            ax.legend(fontsize=6, ncols=3)
+                    limit_line(ax, v, f"limit, {ln}: {v:g} {u}")
+            ax.set_title(f"{typ} bearings, {c} load")
+            if ci == 0:
+                ax.set_ylabel(ylabel)
+    for row in axes:  # shared y per row: from 0 to the highest curve or limit of the row
+        top = max(max((float(np.nanmax(np.asarray(ln.get_ydata(), float)))
+                       for ln in ax.get_lines() if np.isfinite(
+                           np.asarray(ln.get_ydata(), float)).any()), default=1.0)
+                  for ax in row)
+        row[0].set_ylim(0, top * 1.08)
     for ax in axes[-1]:
         ax.set_xlabel("Engine speed [rpm]")
+    legend_below(fig, ncols=7)
     return to_svg(fig)
+
+
+CURVE_COLORS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#17becf",
+                "#7f7f7f", "#bcbd22")
+"""Curve colours (the red of limit lines is kept for limits)."""
 
 
 def shade_caption(q) -> str:
@@ -68,7 +82,8 @@ def worst_table(res: CheckResult, q, value, extra_cols, caption: str, columns: l
                 ) -> dict:
     """Worst value per item and load case of an (item, case, speed) quantity: the judged worst
     first (the point the rule names), then, marked, a worse point the rules do not judge.
-    ``value(v)`` formats a value; ``extra_cols(i, ci, k)`` gives the row's further cells."""
+    ``value(v)`` formats a value; ``extra_cols(i, ci, k)`` gives the row's further cells.
+    Items with identical rows (symmetric bearings) share one row."""
     how = jd.direction(res, q.name, "max")
     sp = np.array(q.coords["speed"]) / RPM
     rows, css = [], []
@@ -86,158 +101,210 @@ def worst_table(res: CheckResult, q, value, extra_cols, caption: str, columns: l
                 rows.append([n, f"{c} load", value(p.value), f"{sp[k]:.0f}",
                              *extra_cols((i, ci, k)), jd.judged_text(res, q, p, n, c)])
                 css.append(jd.row_css(p))
+    rows, css = merge_items(rows, css)
     return {"type": "table", "caption": caption, "columns": columns + ["judged by"],
             "rows": rows, "row_css": css}
 
 
-@section("loads")
-def loads_section(res: CheckResult) -> dict:
-    q = res.outcome.quantities
+def _inputs(res: CheckResult) -> dict:
     p = res.engine.params
-    blocks: list[dict] = []
-    rows = [["Bore", fmt(p["bore"] * 1e3), "mm"], ["Stroke", fmt(p["stroke"] * 1e3), "mm"],
-            ["Connecting rod length", fmt(p["rod_length"] * 1e3), "mm"],
-            ["Cylinder offset", fmt((p.get("cylinder_offset") or 0) * 1e3), "mm"],
-            ["Pin offset", fmt((p.get("pin_offset") or 0) * 1e3), "mm"]]
+    items = [("Bore", f"{fmt(p['bore'] * 1e3)} mm"), ("Stroke", f"{fmt(p['stroke'] * 1e3)} mm"),
+             ("Connecting rod length", f"{fmt(p['rod_length'] * 1e3)} mm"),
+             ("Cylinder offset", f"{fmt((p.get('cylinder_offset') or 0) * 1e3)} mm"),
+             ("Pin offset", f"{fmt((p.get('pin_offset') or 0) * 1e3)} mm")]
     for key, label, f, u in (("piston_mass", "Piston assembly mass", 1, "kg"),
                              ("rod_mass", "Con-rod mass", 1, "kg"),
                              ("rod_com", "Rod centre of mass from big end", 1e3, "mm"),
-                             ("rod_inertia", "Rod inertia about centre of mass", 1e6, "kg mm²"),
-                             ("compression_ratio", "Compression ratio", 1, "-"),
+                             ("rod_inertia", "Rod inertia about centre of mass", 1e6,
+                              "kg·mm²"),
+                             ("compression_ratio", "Compression ratio", 1, ""),
                              ("main_spacing", "Main journal spacing", 1e3, "mm")):
         if p.get(key) is not None:
-            rows.append([label, fmt(p[key] * f), u])
-    rows.append(["Firing order", str(p.get("firing_order")), ""])
-    blocks.append({"type": "table", "caption": "Inputs (sheet Engine)",
-                   "columns": ["parameter", "value", "unit"], "rows": rows})
-    blocks.append({"type": "equations", "items": [
-        ("Gas force", "F_g = (p − p_cc)·π/4·B²", "Heywood 1988 ch. 2"),
-        ("Reciprocating inertia", "F_i = −m_rec·ω²·x''(θ),  m_rec = m_piston + m_rod·l_g/l",
-         "two-mass con-rod, seed 004"),
-        ("Rod inertia correction", "C = (I − m_rod·l_g·(l − l_g))·α_rod",
-         "restores the true rod inertia; rigid-body dynamics"),
-        ("Main bearing load", "F_j = Σ_bay F·(1 − z/L) + F·z/L (lever rule)",
-         "statically determinate, seed 000 slide 'bearing analysis assumptions'"),
-        ("Peak specific load", "p = max_θ |F| / (D·L_eff)", "bearings.md sec. 3.1"),
-    ]})
+            items.append((label, f"{fmt(p[key] * f)} {u}".strip()))
+    items.append(("Firing order", str(p.get("firing_order"))))
+    return param_table("Inputs (sheet Engine)", items)
+
+
+EQUATIONS = {"type": "equations", "items": [
+    ("Gas force", "F_g = (p − p_cc)·π/4·B²",
+     "Heywood, Internal Combustion Engine Fundamentals, 1988, ch. 2"),
+    ("Reciprocating inertia", "F_i = −m_rec·ω²·x''(θ),  m_rec = m_piston + m_rod·l_g/l",
+     "two-mass con-rod: Agostini, Powertrain Components Design, Politecnico di Torino,"
+     " 2019, ch. 1"),
+    ("Rod inertia correction", "C = (I − m_rod·l_g·(l − l_g))·α_rod",
+     "restores the true rod inertia (rigid-body dynamics of the con-rod)"),
+    ("Main bearing load", "F_j = Σ_bay F·(1 − z/L) + F·z/L (lever rule)",
+     "statically determinate: Bell, Cranktrain Analysis Using ENGDYN and VALDYN, Ricardo,"
+     " 2013, 'Bearing analysis assumptions'"),
+    ("Peak specific load", "p = max_θ |F| / (D·L_eff)",
+     "load over the projected bearing area, L_eff without grooves and chamfers (the usual"
+     " convention; lining limits in the rule table)"),
+]}
+
+
+@section("loads", label="crank-train load")
+def loads_section(res: CheckResult) -> dict:
+    q = res.outcome.quantities
+    blocks: list[dict] = [_inputs(res), EQUATIONS]
     cyc_q = q.get("loads.cycle")
+    ref = q.get("bearing.peak_specific_load")
+    cs_judged = None
     if cyc_q is not None:
         cyc = cyc_q.extra["cycle"]
         sp = cyc.speeds / RPM
-        pick = [i for i, s in enumerate(sp) if abs(s % 500) < 1e-6 or i == sp.size - 1]
         # judged (case, speed) points: those the load rules judge (any bearing)
-        ref = q.get("bearing.peak_specific_load")
         cs_judged = (np.ones((len(cyc.cases), sp.size), bool) if ref is None
                      or list(ref.coords["case"]) != list(cyc.cases)
                      or len(ref.coords["speed"]) != sp.size else jd.mask(ref).any(axis=0))
-        rows, css = [], []
-        for ci, c in enumerate(cyc.cases):
-            for i in pick:
-                rows.append([f"{c} load", f"{sp[i]:.0f}", fmt(cyc.pressure[ci, i].max() / 1e5, 4),
-                             "synthesized" if cyc.synthesized[ci, i] else "workbook trace",
-                             "yes" if cyc.extrapolated[ci, i] else "",
-                             fmt(cyc.imep[ci, i] / 1e5, 4),
-                             fmt(cyc.target_imep[ci, i] / 1e5, 4),
-                             "yes" if cs_judged[ci, i] else "not judged: " + jd.reason(ref)])
-                css.append("" if cs_judged[ci, i] else jd.NOT_JUDGED_CSS)
-        blocks.append({"type": "table", "caption": "Cylinder pressure per load case (every"
-                       " 500 rpm); 'judged': whether the rules judge results at this point",
-                       "columns": ["case", "speed [rpm]", "peak [bar]", "trace",
-                                   "extrapolated", "IMEP [bar]", "target IMEP [bar]",
-                                   "judged"], "rows": rows, "row_css": css})
-        fig, axes = figure(170, 70, ncols=2)
-        deg = np.degrees(cyc.theta)
-        for ci, (ax, c) in enumerate(zip(axes, cyc.cases)):
-            for i in pick[:: max(1, len(pick) // 5)]:
-                ax.plot(deg, cyc.pressure[ci, i] / 1e5, ls="-" if cs_judged[ci, i] else ":",
-                        label=f"{sp[i]:.0f} rpm" + ("" if cs_judged[ci, i] else
-                                                    " (not judged)"))
-            ax.set_xlim(-0.5 + 0, 720)
-            ax.set_xlabel("Crank angle from firing TDC [deg]")
-            ax.set_ylabel("Cylinder pressure [bar]")
-            ax.set_title(f"{c} load")
-            ax.legend(fontsize=6)
-        blocks.append({"type": "figure", "svg": to_svg(fig),
-                       "caption": "Cylinder pressure traces used (own cycle angle)"
-                       + ("" if cs_judged.all() else
-                          f"; dotted: not judged by the rules ({jd.reason(ref)})")})
+        blocks.append(_pressure_text(cyc, sp, cs_judged, ref))
     sl = q.get("bearing.peak_specific_load")
     bl = q.get("loads.bearing_load")
     if sl is not None and bl is not None:
-        names = sl.coords["item"]
-        sp = np.array(sl.coords["speed"]) / RPM
-        cases = sl.coords["case"]
-        blocks.append({"type": "figure", "svg": bearing_speed_figure(
-            res, sl, 1e-6, "Peak specific load [MPa]", "MPa"),
-            "caption": "Peak specific load against speed, full and no load."
-                       + shade_caption(sl)})
         th = sl.extra["theta_at_max"]
 
         def more(idx):
             if idx is None:
                 return ["-", "-"]
-            return [fmt(np.degrees(th[idx]), 4), fmt(bl.values[idx] / 1e3, 4)]
+            return [fmt(np.degrees(th[idx])), fmt(bl.values[idx] / 1e3)]
 
+        blocks.append({"type": "heading", "text": "Judged worst cases"})
         blocks.append(worst_table(
-            res, sl, lambda v: fmt(v / 1e6, 4), more,
-            "Worst peak specific load per bearing and load case: the judged worst first (the"
-            " value of the rule result), then a worse point the rules do not judge, marked",
-            ["bearing", "case", "p [MPa]", "speed [rpm]", "crank angle [deg]", "load [kN]"]))
-        ex = bl.extra
-        sl_judged = jd.mask(sl)
-        how = jd.direction(res, sl.name, "max")
-        choose = [n for n in names if sl.item_attrs[n]["type"] == "big end"][:1] + \
-                 [n for n in names if sl.item_attrs[n]["type"] == "main"][len(
-                     [n for n in names if sl.item_attrs[n]["type"] == "main"]) // 2:][:1]
-        speeds_pick = sorted({int(np.argmin(abs(sp - s))) for s in
-                              ((res.engine.params.get("rated_speed") or sp[-1] * RPM) / RPM,
-                               sp[-1])})
-        if choose:
-            fig, axes = figure(170, 85, ncols=len(choose),
-                               subplot_kw={"projection": "polar"}, squeeze=False)
-            for a, n in enumerate(choose):
-                i = names.index(n)
-                ax = axes[0, a]
-                for ci, c in enumerate(cases):
-                    for k in speeds_pick:
-                        fx, fy = ex["fx"][i, ci, k], ex["fy"][i, ci, k]
-                        ax.plot(np.arctan2(fx, fy), np.hypot(fx, fy) / 1e3,
-                                label=f"{c} load {sp[k]:.0f} rpm"
-                                + jd.point_label(sl, (i, ci, k)), lw=0.8,
-                                ls="-" if sl_judged[i, ci, k] else ":")
-                ax.set_theta_zero_location("N")
-                ax.set_theta_direction(-1)
-                ax.set_title(literal(f"{n} ({ex['frames'][n]}), kN"), fontsize=8)
-                ax.legend(fontsize=5, loc="lower left", bbox_to_anchor=(-0.15, -0.25))
-            shown = [sl_judged[names.index(n), ci, k] for n in choose
-                     for ci in range(len(cases)) for k in speeds_pick]
-            blocks.append({"type": "figure", "svg": to_svg(fig),
-                           "caption": "Polar load diagrams (force of the journal on the"
-                                      " bearing; 0 deg = frame y axis, angle in the direction"
-                                      " of rotation)" + ("" if all(shown) else
-                                                         "; dotted: computed but not judged"
-                                                         f" ({jd.reason(sl)})")})
-            fig, axes = figure(170, 60, ncols=len(choose), squeeze=False)
-            deg = np.degrees(ex["theta"])
-            for a, n in enumerate(choose):
-                i = names.index(n)
-                ax = axes[0, a]
-                for ci, c in enumerate(cases):
-                    p = jd.worst(sl, (i, ci), how)[0]
-                    if p is None:
-                        continue
-                    k = p.index[-1]
-                    ax.plot(deg, np.hypot(ex["fx"][i, ci, k], ex["fy"][i, ci, k]) / 1e3,
-                            label=f"{c} load {sp[k]:.0f} rpm (judged worst)")
-                ax.set_xlabel("Crank angle [deg]")
-                ax.set_ylabel("|F| [kN]")
-                ax.set_title(literal(n), fontsize=8)
-                ax.legend(fontsize=6)
-            blocks.append({"type": "figure", "svg": to_svg(fig),
-                           "caption": "Bearing load against crank angle at the judged worst"
-                                      " speed (the point of the rule result)"})
+            res, sl, lambda v: fmt(v / 1e6), more,
+            "Highest peak specific load per bearing and load case: the judged worst first (the"
+            " value of the rule result), then, marked, a higher value at a point the rules do"
+            " not judge",
+            ["bearing", "case", "p [MPa]", "speed [rpm]", "crank angle [°]", "load [kN]"]))
+        blocks.append({"type": "heading", "text": "Plots"})
+        blocks.append({"type": "figure", "svg": bearing_speed_figure(
+            res, sl, 1e-6, "Peak specific load [MPa]", "MPa"),
+            "caption": "Peak specific load against speed, full and no load." + shade_caption(sl),
+            "data": [sl.name]})
+    if cyc_q is not None:
+        blocks.append(_pressure_figure(cyc, sp, cs_judged, ref))
+    if sl is not None and bl is not None:
+        blocks += _polar(res, sl, bl)
     return {"id": "loads", "title": "Crank-train loads and peak specific load",
             "intro": "Cylinder pressure, gas and inertia forces, big-end loads (con-rod frame)"
                      " and main bearing loads (statically determinate) at full and no load"
                      " across the speed range; peak specific load per bearing against the"
                      " lining limits.", "blocks": blocks}
+
+
+def _pressure_text(cyc, sp, cs_judged, ref) -> dict:
+    """The cylinder pressure used, in words (the per-speed values are in the workbook)."""
+    parts = []
+    for ci, c in enumerate(cyc.cases):
+        pk = cyc.pressure[ci].max(axis=-1) / 1e5
+        kind = ("synthesized" if cyc.synthesized[ci].all() else "workbook traces"
+                if not cyc.synthesized[ci].any() else "workbook traces and synthesized")
+        txt = (f"{c} load: peak {fmt(pk.min())} to {fmt(pk.max())} bar over"
+               f" {sp[0]:.0f} to {sp[-1]:.0f} rpm ({kind}")
+        ok = np.isfinite(cyc.target_imep[ci])
+        if ok.any():
+            dev = np.abs(cyc.imep[ci, ok] / cyc.target_imep[ci, ok] - 1).max() * 100
+            txt += f"; IMEP within {fmt(dev, 2)} % of the brake-torque target"
+        if cyc.extrapolated[ci].any():
+            ex = sp[cyc.extrapolated[ci]]
+            txt += (f"; peak pressure extrapolated at {ex.size} speed{'s' if ex.size > 1 else ''}"
+                    f" ({ex.min():.0f} to {ex.max():.0f} rpm)")
+        parts.append(txt + ")")
+    note = "" if cs_judged.all() else (f" Points not judged by the rules: {jd.reason(ref)}.")
+    return {"type": "text", "text": "Cylinder pressure: " + "; ".join(parts) + "." + note
+            + f" Per speed (peak, IMEP, target, trace): {ATTACHMENT}, sheet loads.cycle."}
+
+
+ATTACHMENT = "results.xlsx"
+
+
+def _pressure_figure(cyc, sp, cs_judged, ref) -> dict:
+    fig, axes = figure(170, 62, ncols=len(cyc.cases), wgap=14, legend_rows=1)
+    deg = np.degrees(cyc.theta)
+    th = every(deg.size)
+    pick = sorted({0, int(np.argmin(abs(sp - 0.5 * (sp[0] + sp[-1])))), sp.size - 1})
+    cols = {"crank angle [°]": deg}
+    for ci, (ax, c) in enumerate(zip(np.atleast_1d(axes), cyc.cases)):
+        for n, i in enumerate(pick):
+            lab = f"{sp[i]:.0f} rpm" + ("" if cs_judged[ci, i] else " (not judged)")
+            ax.plot(deg[th], cyc.pressure[ci, i, th] / 1e5, ls="-" if cs_judged[ci, i] else ":",
+                    color=CURVE_COLORS[n], label=lab)
+            cols[f"{c} load, {sp[i]:.0f} rpm [bar]"] = cyc.pressure[ci, i] / 1e5
+        ax.set_xlim(0, 720)
+        ax.set_xticks(np.arange(0, 721, 180))
+        ax.set_xlabel("Crank angle from firing TDC [°]")
+        ax.set_ylabel("Cylinder pressure [bar]")
+        ax.set_title(f"{c} load")
+    legend_below(fig, axes=[np.atleast_1d(axes)[0]], ncols=6)
+    names = list(cols)
+    data = {"sheet": "pressure traces", "title": "Cylinder pressure traces of the report's"
+            " plot", "columns": names,
+            "rows": [[float(cols[k][j]) for k in names] for j in range(deg.size)]}
+    return {"type": "figure", "svg": to_svg(fig), "data": ["loads.cycle", data],
+            "caption": "Cylinder pressure at the lowest, middle and highest speed (own cycle"
+                       " angle)" + ("" if cs_judged.all() else
+                                    f"; dotted: not judged by the rules ({jd.reason(ref)})")
+                       + "."}
+
+
+def _polar(res: CheckResult, sl, bl) -> list[dict]:
+    """Polar load diagrams of one big end and the centre main at rated and top speed."""
+    ex = bl.extra
+    names = sl.coords["item"]
+    sp = np.array(sl.coords["speed"]) / RPM
+    cases = sl.coords["case"]
+    sl_judged = jd.mask(sl)
+    bes = [n for n in names if sl.item_attrs[n]["type"] == "big end"]
+    mains = [n for n in names if sl.item_attrs[n]["type"] == "main"]
+    choose = bes[:1] + mains[len(mains) // 2:][:1]
+    if not choose:
+        return []
+    speeds_pick = sorted({int(np.argmin(abs(sp - s))) for s in
+                          ((res.engine.params.get("rated_speed") or sp[-1] * RPM) / RPM,
+                           sp[-1])})
+    fig, axes = figure(170, 82, ncols=len(choose), subplot_kw={"projection": "polar"},
+                       squeeze=False, left=8, right=8, top=15, bottom=9, wgap=30,
+                       legend_rows=1)
+    cols: dict[str, np.ndarray] = {"crank angle [°]": np.degrees(ex["theta"])}
+    k_col = 0
+    for a, n in enumerate(choose):
+        i = names.index(n)
+        ax = axes[0, a]
+        k_col = 0
+        for ci, c in enumerate(cases):
+            for k in speeds_pick:
+                fx, fy = ex["fx"][i, ci, k], ex["fy"][i, ci, k]
+                judged = sl_judged[i, ci, k]
+                th = every(fx.size)
+                ax.plot(np.arctan2(fx, fy)[th], np.hypot(fx, fy)[th] / 1e3, lw=0.8,
+                        color=CURVE_COLORS[k_col], ls="-" if judged else ":",
+                        label=f"{c} load, {sp[k]:.0f} rpm" + ("" if judged else
+                                                             " (not judged)"))
+                k_col += 1
+                cols[f"{n} {c} load {sp[k]:.0f} rpm Fx [kN]"] = fx / 1e3
+                cols[f"{n} {c} load {sp[k]:.0f} rpm Fy [kN]"] = fy / 1e3
+        ax.set_theta_zero_location("N")
+        ax.set_theta_direction(-1)
+        ax.set_thetagrids(np.arange(0, 360, 45))
+        ax.set_rlabel_position(112.5)
+        ax.yaxis.set_major_locator(_max_ticks(4))
+        ax.tick_params(axis="y", labelsize=5.5)
+        ax.grid(True, alpha=0.3)
+        ax.set_title(literal(f"{n} ({ex['frames'][n]}), load in kN"), pad=14)
+    legend_below(fig, axes=[axes[0, 0]], ncols=4)
+    names_ = list(cols)
+    data = {"sheet": "polar loads", "title": "Bearing load components of the polar diagrams",
+            "columns": names_, "rows": [[float(cols[k][j]) for k in names_]
+                                        for j in range(cols["crank angle [°]"].size)]}
+    shown = [sl_judged[names.index(n), ci, k] for n in choose
+             for ci in range(len(cases)) for k in speeds_pick]
+    return [{"type": "figure", "svg": to_svg(fig), "data": [data],
+             "caption": "Polar load diagrams: force of the journal on the bearing in kN (0° ="
+                        " frame y axis, angle in the direction of rotation), at rated and top"
+                        " speed" + ("" if all(shown) else
+                                    f"; dotted: computed but not judged ({jd.reason(sl)})")
+                        + "."}]
+
+
+def _max_ticks(n: int):
+    from matplotlib.ticker import MaxNLocator
+
+    return MaxNLocator(n)

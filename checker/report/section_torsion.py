@@ -6,7 +6,7 @@ import numpy as np
 
 from ..api import CheckResult
 from . import judged as jd
-from .plots import LIMIT_STYLE, figure, literal, to_svg
+from .plots import figure, legend_below, limit_line, literal, to_svg
 from .sections import fmt, section
 
 RPM = 2 * np.pi / 60
@@ -15,9 +15,7 @@ CASE_TEXT = {"full": "full load", "no": "no load"}
 
 
 def _svg(fig) -> str:
-    """SVG of a figure; side-by-side panels get room for their axis labels (cheaper than
-    tight_layout, which renders the figure once more)."""
-    fig.subplots_adjust(wspace=0.35)
+    """SVG of a figure (margins fixed in :func:`plots.figure`)."""
     return to_svg(fig)
 
 
@@ -34,15 +32,16 @@ def _inputs(res: CheckResult) -> list[dict]:
     rows = []
     for s in eng.tv_model:
         rows.append([s.station, s.role, ", ".join(map(str, s.cylinders)) or "-",
-                     fmt(s.inertia * 1e3, 5), fmt(s.absolute_damping, 3),
-                     "-" if s.stiffness is None else fmt(s.stiffness / 1e3, 6),
-                     fmt(s.relative_damping, 3)])
+                     fmt(s.inertia * 1e3), fmt(s.absolute_damping),
+                     "-" if s.stiffness is None else fmt(s.stiffness / 1e3),
+                     fmt(s.relative_damping)])
     blocks = [{"type": "table", "caption": "Torsional model (sheet TVModel), front to rear",
-               "columns": ["station", "role", "cylinder", "J [g m²]", "d_abs [N m s/rad]",
-                           "k to next [kN m/rad]", "c to next [N m s/rad]"], "rows": rows}]
+               "columns": ["station", "role", "cylinder", "J [g·m²]", "d_abs [N·m·s/rad]",
+                           "k to next [kN·m/rad]", "c to next [N·m·s/rad]"], "rows": rows,
+               "widths": [18, 14, 10, 12, 15, 16, 15]}]
     d = eng.damper
     rows = []
-    for key, label, f, u in (("loss_factor", "Rubber loss factor η", 1, "-"),
+    for key, label, f, u in (("loss_factor", "Rubber loss factor η", 1, ""),
                              ("inner_radius", "Rubber inner radius", 1e3, "mm"),
                              ("outer_radius", "Rubber outer radius", 1e3, "mm"),
                              ("axial_length", "Rubber axial length", 1e3, "mm"),
@@ -51,14 +50,14 @@ def _inputs(res: CheckResult) -> list[dict]:
                              ("heat_limit", "Heat per unit volume limit (supplier)", 1e-6,
                               "W/cm³")):
         v = d.get(key)
-        rows.append([label, "-" if v is None else fmt(v * f, 5), u,
+        rows.append([label, "-" if v is None else f"{fmt(v * f)} {u}".strip(),
                      eng.cell("Damper", key)])
     fead = eng.params.get("fead_torque")
     rows.append(["Accessory drive torque at the crank nose",
-                 "-" if fead is None else fmt(fead, 4), "N m", eng.cell("Engine", "fead_torque")])
+                 "-" if fead is None else f"{fmt(fead)} N·m", eng.cell("Engine", "fead_torque")])
     blocks.append({"type": "table", "caption": "Damper rubber and accessory drive (sheets"
-                   " Damper, Engine)", "columns": ["parameter", "value", "unit", "cell"],
-                   "rows": rows})
+                   " Damper, Engine)", "columns": ["parameter", "value", "cell"],
+                   "rows": rows, "widths": [50, 25, 25]})
     return blocks
 
 
@@ -75,60 +74,85 @@ def _modes(res: CheckResult, nf, sp: np.ndarray) -> list[dict]:
         crit = ex["critical_speed"][i]
         inside = [f"{o:g}: {c / RPM:.0f}" for o, c in zip(orders, crit)
                   if o in major and lo <= c <= hi]
-        rows.append([lab, fmt(f[i], 5), fmt(ex["damping_ratio"][i] * 100, 3),
+        rows.append([lab, fmt(f[i]), fmt(ex["damping_ratio"][i] * 100),
                      ", ".join(inside) or "-"])
     blocks: list[dict] = [{"type": "table", "caption": "Undamped natural frequencies (flexible"
                            " modes), modal damping ratio and critical speeds of the major"
                            " orders inside the speed range",
                            "columns": ["mode", "f [Hz]", "ζ [%]",
-                                       "major order: critical speed [rpm]"], "rows": rows}]
+                                       "major order: critical speed [rpm]"], "rows": rows,
+                           "widths": [12, 12, 10, 66]}]
     modes = ex["modes"]
     stations = ex["stations"]
     n_show = min(3, f.size)
     if n_show:
-        fig, ax = figure(170, 60)
+        fig, ax = figure(170, 58, bottom=17, legend_rows=1)
         x = np.arange(len(stations))
         for i in range(n_show):
             phi = modes[:, i] / np.max(np.abs(modes[:, i]))
-            ax.plot(x, phi, marker="o", label=f"mode {i + 1}: {f[i]:.0f} Hz")
+            ax.plot(x, phi, marker="o", ms=3, label=f"mode {i + 1}: {f[i]:.0f} Hz")
         ax.axhline(0, color="k", lw=0.6)
-        ax.set_xticks(x, [literal(s) for s in stations], rotation=20, fontsize=6)
+        ax.set_xticks(x, [literal(s) for s in stations], rotation=15, ha="right")
         ax.set_ylabel("Relative amplitude [-]")
-        ax.legend(fontsize=6)
-        blocks.append({"type": "figure", "svg": _svg(fig),
-                       "caption": "Mode shapes (normalised to the largest station amplitude)"})
+        ax.set_xlabel("Station of the torsional model (front to rear)", labelpad=1)
+        legend_below(fig, ncols=3)
+        blocks.append({"type": "figure", "svg": _svg(fig), "data": [nf.name],
+                       "caption": "Mode shapes of the first flexible modes, normalised to the"
+                                  " largest station amplitude."})
     # Campbell diagram
-    fig, ax = figure(170, 80)
+    fig, ax = figure(170, 78, right=12, legend_rows=1)
     x_max = hi / RPM * 1.1
     f_show = f[f <= max(orders) * x_max / 60]
     y_max = (f_show.max() if f_show.size else f.min()) * 1.15
     ax.axvspan(lo / RPM, hi / RPM, color="#3498db", alpha=0.08, label="speed range")
+    first = True
+    placed: list[tuple[str, float]] = []  # order labels already placed (edge, position)
     for o in [o for o in orders if float(o).is_integer() and o <= 2 * n_cyl + 4]:
         is_major = o in major
         ax.plot([0, x_max], [0, o * x_max / 60], color="#2c3e50" if is_major else "#95a5a6",
-                lw=1.0 if is_major else 0.6)
+                lw=1.0 if is_major else 0.6,
+                label=("major orders" if is_major else "other orders") if first or (
+                    is_major and o == min(major)) else None)
+        first = False
         y_end = o * x_max / 60
-        if y_end > y_max:
-            ax.text(y_max * 60 / o, y_max, f" {o:g}", fontsize=6, va="top")
+        # the order number where its line leaves the axes; labels too close to a placed one
+        # are left out (the lines are in order, every other one is enough to read them)
+        edge, pos = ("top", y_max * 60 / o / x_max) if y_end > y_max else (
+            "right", y_end / y_max)
+        if any(e == edge and abs(pos - p) < 0.035 for e, p in placed):
+            continue
+        placed.append((edge, pos))
+        if edge == "top":
+            ax.annotate(f"{o:g}", (y_max * 60 / o, y_max), xytext=(0, 2),
+                        textcoords="offset points", fontsize=6, ha="center", va="bottom",
+                        annotation_clip=False)
         else:
-            ax.text(x_max, y_end, f" {o:g}", fontsize=6, va="center")
+            ax.annotate(f"{o:g}", (x_max, y_end), xytext=(2, 0), textcoords="offset points",
+                        fontsize=6, va="center", annotation_clip=False)
     for i, fi in enumerate(f_show):
-        ax.axhline(fi, **LIMIT_STYLE)
-        ax.text(0, fi, f" mode {i + 1} {fi:.0f} Hz", fontsize=6, va="bottom",
-                color=LIMIT_STYLE["color"])
+        ax.axhline(fi, color="#c0392b", lw=0.8, ls="--",
+                   label="natural frequencies" if i == 0 else None)
+        # a label above its line, or below it when the next mode's line is close above
+        close = i + 1 < f_show.size and f_show[i + 1] - fi < 0.07 * y_max
+        ax.annotate(f"mode {i + 1}: {fi:.0f} Hz", (0, fi), xytext=(2, -1.5 if close else 1.5),
+                    textcoords="offset points", fontsize=5.5, va="top" if close else "bottom",
+                    color="#c0392b",
+                    bbox={"boxstyle": "square,pad=0.1", "fc": "white", "ec": "none",
+                          "alpha": 0.85})
         crit = ex["critical_speed"][i] / RPM
         pick = [(c, o) for o, c in zip(orders, crit) if o in major and lo / RPM <= c <= hi / RPM]
         if pick:
-            ax.plot([c for c, _ in pick], [fi] * len(pick), "o", color="#c0392b", ms=3)
+            ax.plot([c for c, _ in pick], [fi] * len(pick), "o", color="#c0392b", ms=3,
+                    label="major-order resonance in the speed range" if i == 0 else None)
     ax.set_xlim(0, x_max)
     ax.set_ylim(0, y_max)
     ax.set_xlabel("Engine speed [rpm]")
     ax.set_ylabel("Frequency [Hz]")
-    ax.legend(fontsize=6, loc="upper left")
-    blocks.append({"type": "figure", "svg": _svg(fig),
-                   "caption": "Campbell diagram: engine orders (dark: major orders) against the"
-                              " natural frequencies; dots mark major-order resonances inside"
-                              " the speed range"})
+    legend_below(fig, ncols=5)
+    blocks.append({"type": "figure", "svg": _svg(fig), "data": [nf.name],
+                   "caption": "Campbell diagram: engine orders (numbered at the ends of the"
+                              " lines) against the natural frequencies; dots mark major-order"
+                              " resonances inside the speed range."})
     return blocks
 
 
@@ -164,17 +188,22 @@ def _nose(res: CheckResult, q: dict) -> list[dict]:
     tot_j = jd.mask(tot)
     hi_labels = list(hi_q.coords["order"]) if hi_q is not None else []
     k_cyl = int(np.argmin(np.abs(orders - n_cyl)))
-    fig, axes = figure(170, 75, ncols=len(cases), sharey=True, squeeze=False)
+    fig, axes = figure(170, 82, ncols=len(cases), sharey=True, squeeze=False, wgap=8,
+                       legend_rows=2)
+    # the same orders in both panels (one legend): the cylinder-count order and the five
+    # largest others over both load cases
+    peak = per.values.max(axis=(1, 2))
+    top = [k for k in np.argsort(-peak) if k != k_cyl][:5]
+    show = [k_cyl] + sorted(top, key=lambda k: orders[k])
+    colors = ["#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#17becf"]
     marked = shaded = False
     for ci, c in enumerate(cases):
         ax = axes[0, ci]
         shaded |= jd.shade(ax, sp, tot_j[ci])
         ax.plot(sp, tot.values[ci] * DEG, color="k", lw=1.6, label="total (synthesis)")
-        peak = per.values[:, ci].max(axis=-1)
-        top = [k for k in np.argsort(-peak) if k != k_cyl][:5]
-        for k in [k_cyl] + sorted(top, key=lambda k: orders[k]):
+        for n, k in enumerate(show):
             (ln,) = ax.plot(sp, per.values[k, ci] * DEG, lw=1.4 if k == k_cyl else 0.9,
-                            label=literal(labels[k]))
+                            color=colors[n % len(colors)], label=literal(labels[k]))
             jm = None
             if k == k_cyl and cyl is not None:
                 jm = jd.mask(cyl)[ci]
@@ -184,20 +213,19 @@ def _nose(res: CheckResult, q: dict) -> list[dict]:
                 ax.plot(sp[jm], per.values[k, ci, jm] * DEG, "o", ms=3.5, mfc="none",
                         color=ln.get_color())
                 marked = True
-        for lim, text, va in ((lim_cyl, f"order {n_cyl} limit", "bottom"),
-                              (lim_hi, "higher orders limit", "top")):
-            if lim is not None:
-                ax.axhline(lim, **LIMIT_STYLE)
-                ax.text(sp[-1], lim, f"{text} {lim:g}° ", fontsize=6, va=va, ha="right",
-                        color=LIMIT_STYLE["color"])
+        if lim_cyl is not None:
+            limit_line(ax, lim_cyl, f"limit, order {n_cyl}: {lim_cyl:g}°")
+        if lim_hi is not None:
+            limit_line(ax, lim_hi, f"limit, higher orders: {lim_hi:g}°", ls=":")
         ax.set_yscale("log")
         ax.set_ylim(1e-3, None)
-        ax.set_title(CASE_TEXT.get(c, c), fontsize=8)
+        ax.set_title(CASE_TEXT.get(c, c))
         ax.set_xlabel("Engine speed [rpm]")
-        if marked:
-            ax.plot([], [], "o", ms=3.5, mfc="none", color="0.3", label="judged (TV-001/002)")
-        ax.legend(fontsize=5.5, ncols=2)
-    axes[0, 0].set_ylabel("Crank-nose amplitude [deg]")
+    if marked:
+        axes[0, 0].plot([], [], "o", ms=3.5, mfc="none", color="0.3",
+                        label="points the rules judge")
+    axes[0, 0].set_ylabel("Crank-nose amplitude [°]")
+    legend_below(fig, ncols=6)
     why = [jd.reason(x) for x in (cyl, hi_q) if x is not None]
     caption = (
         "Crank-nose TV amplitude against speed (relative to a node rotating at the mean speed,"
@@ -206,14 +234,15 @@ def _nose(res: CheckResult, q: dict) -> list[dict]:
         + (" Circles: the points the rules judge; the rest of each order curve is computed"
            " but not judged (" + "; ".join(dict.fromkeys(why)) + ")." if marked else "")
         + (jd.shade_caption([jd.reason(tot)]) if shaded else ""))
-    blocks: list[dict] = [{"type": "figure", "svg": _svg(fig), "caption": caption}]
+    blocks: list[dict] = [{"type": "figure", "svg": _svg(fig), "caption": caption,
+                           "data": [x.name for x in (tot, per, cyl, hi_q) if x is not None]}]
 
     def cells(content, qq, p):
         ci, si = p.index[-2], p.index[-1]
         if qq is hi_q:
             content = f"higher: {hi_q.coords['order'][p.index[0]]}"
         lim = lim_cyl if qq is cyl else lim_hi if qq is hi_q else None
-        return [content, CASE_TEXT.get(cases[ci], cases[ci]), fmt(p.value * DEG, 4),
+        return [content, CASE_TEXT.get(cases[ci], cases[ci]), fmt(p.value * DEG),
                 f"{sp[si]:.0f}", "-" if lim is None else f"< {lim:g}"]
 
     items = []
@@ -228,8 +257,9 @@ def _nose(res: CheckResult, q: dict) -> list[dict]:
     blocks.append({"type": "table", "caption": "Largest crank-nose amplitudes: per content the"
                    " judged worst first (the value of the rule result), then, marked, larger"
                    " amplitudes at points the rules do not judge",
-                   "columns": ["content", "case", "amplitude [deg]", "speed [rpm]",
-                               "limit [deg]", "judged by"], "rows": rows, "row_css": css})
+                   "columns": ["content", "case", "amplitude [°]", "speed [rpm]",
+                               "limit [°]", "judged by"], "rows": rows, "row_css": css,
+                   "widths": [17, 10, 12, 10, 9, 42]})
     return blocks
 
 
@@ -241,29 +271,32 @@ def _elements(res: CheckResult, q: dict) -> list[dict]:
     cases = et.coords["case"]
     names = et.coords["item"]
     et_j = jd.mask(et)
-    fig, axes = figure(170, 70, ncols=2, squeeze=False)
+    fig, axes = figure(170, 70, ncols=2, squeeze=False, legend_rows=2)
     ax = axes[0, 0]
     for ci, c in enumerate(cases):
         if tw is not None:
-            jd.line(ax, sp, tw.values[ci] * DEG, jd.mask(tw)[ci],
-                    label=f"nose to flywheel, {CASE_TEXT.get(c, c)}")
+            jd.line(ax, sp, tw.values[ci] * DEG, jd.mask(tw)[ci], color=("k", "0.5")[ci % 2],
+                    label=f"twist, {CASE_TEXT.get(c, c)}")
     ax.set_xlabel("Engine speed [rpm]")
-    ax.set_ylabel("[deg]")
-    ax.set_title("crank twist, half peak-to-peak", fontsize=8)
-    ax.legend(fontsize=6)
+    ax.set_ylabel("Twist, nose to flywheel [°]")
+    ax.set_title("crank twist, half peak-to-peak")
     ax = axes[0, 1]
     ci = cases.index("full") if "full" in cases else 0
+    colors = ["#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#17becf", "#e377c2",
+              "#7f7f7f", "#bcbd22"]
     for e, n in enumerate(names):
-        jd.line(ax, sp, et.values[e, ci], et_j[e, ci], label=literal(n), lw=0.9)
+        jd.line(ax, sp, et.values[e, ci], et_j[e, ci], label=literal(n), lw=0.9,
+                color=colors[e % len(colors)])
     ax.set_xlabel("Engine speed [rpm]")
-    ax.set_ylabel("[N m]")
-    ax.set_title("vibratory torque, half peak-to-peak, full load", fontsize=8)
-    ax.legend(fontsize=5.5)
+    ax.set_ylabel("Vibratory torque [N·m]")
+    ax.set_title("element torque, half peak-to-peak, full load")
+    legend_below(fig, ncols=5)
     dotted = not et_j.all() or (tw is not None and not jd.mask(tw).all())
     blocks: list[dict] = [{"type": "figure", "svg": _svg(fig), "caption": (
         "Crankshaft twist (crank nose to flywheel) and vibratory torque in every element of"
         " the TV model against speed"
-        + (f"; dotted: computed but not judged ({jd.reason(et)})" if dotted else ""))}]
+        + (f"; dotted: computed but not judged ({jd.reason(et)})" if dotted else "") + "."),
+        "data": [x.name for x in (tw, et) if x is not None]}]
     rows, css = [], []
     for e, n in enumerate(names):
         for ci, c in enumerate(cases):
@@ -271,10 +304,10 @@ def _elements(res: CheckResult, q: dict) -> list[dict]:
                 if p is None:
                     continue
                 k = p.index[-1]
-                rows.append([n, CASE_TEXT.get(c, c), fmt(p.value, 4), f"{sp[k]:.0f}",
-                             fmt(ex["mean"][e, ci, k], 4), fmt(ex["vib_min"][e, ci, k], 4),
-                             fmt(ex["vib_max"][e, ci, k], 4),
-                             fmt(ex["twist"][e, ci, k] * DEG, 3),
+                rows.append([n, CASE_TEXT.get(c, c), fmt(p.value), f"{sp[k]:.0f}",
+                             fmt(ex["mean"][e, ci, k]), fmt(ex["vib_min"][e, ci, k]),
+                             fmt(ex["vib_max"][e, ci, k]),
+                             fmt(ex["twist"][e, ci, k] * DEG),
                              jd.judged_text(res, et, p, n, c)])
                 css.append(jd.row_css(p))
     blocks.append({"type": "table", "caption": (
@@ -282,9 +315,10 @@ def _elements(res: CheckResult, q: dict) -> list[dict]:
         " part, positive in the direction of rotation; mean = cylinder mean torques from the"
         " front minus the accessory drive, friction not subtracted); a larger value at a point"
         " the rules do not judge follows, marked"),
-        "columns": ["element", "case", "T half range [N m]", "speed [rpm]", "T mean [N m]",
-                    "T vib min [N m]", "T vib max [N m]", "twist [deg]", "judged by"],
-        "rows": rows, "row_css": css})
+        "columns": ["element", "case", "T half range [N·m]", "speed [rpm]", "T mean [N·m]",
+                    "T vib min [N·m]", "T vib max [N·m]", "twist [°]", "judged by"],
+        "rows": rows, "row_css": css, "widths": [20, 9, 11, 9, 10, 10, 10, 8, 13],
+        "detail": True, "sheet": "element torque maxima"})
     return blocks
 
 
@@ -300,45 +334,43 @@ def _damper(res: CheckResult, q: dict) -> list[dict]:
     heat, heat_pk, tau = (q.get(n) for n in ("damper.heat_density", "damper.heat_density_peak",
                                              "damper.shear_stress"))
     geo = heat is not None and np.isfinite(heat.values).any()
-    fig, axes = figure(170, 65, ncols=3 if geo else 1, squeeze=False)
+    fig, axes = figure(170, 62, ncols=3 if geo else 1, squeeze=False, wgap=16, legend_rows=1)
+    case_color = {c: ("#1f77b4", "#ff7f0e", "#2ca02c")[i % 3] for i, c in enumerate(cases)}
     ax = axes[0, 0]
     for ci, c in enumerate(cases):
-        jd.line(ax, sp, pw.values[ci], jd.mask(pw)[ci], label=CASE_TEXT.get(c, c))
-    ax.set_ylabel("[W]")
-    ax.set_title("dissipated power", fontsize=8)
+        jd.line(ax, sp, pw.values[ci], jd.mask(pw)[ci], color=case_color[c],
+                label=CASE_TEXT.get(c, c))
+    ax.set_ylabel("Dissipated power [W]")
+    ax.set_title("dissipated power")
     ax.set_xlabel("Engine speed [rpm]")
-    ax.legend(fontsize=6)
     if geo:
         ax = axes[0, 1]
         for ci, c in enumerate(cases):
-            jd.line(ax, sp, heat.values[ci] / 1e6, jd.mask(heat)[ci],
-                    label=f"mean, {CASE_TEXT.get(c, c)}")
-            jd.line(ax, sp, heat_pk.values[ci] / 1e6, jd.mask(heat_pk)[ci], ls=":",
-                    label=f"peak, {CASE_TEXT.get(c, c)}")
+            jd.line(ax, sp, heat.values[ci] / 1e6, jd.mask(heat)[ci], color=case_color[c])
+            jd.line(ax, sp, heat_pk.values[ci] / 1e6, jd.mask(heat_pk)[ci], ls="--",
+                    lw=0.8, color=case_color[c])
+        ax.plot([], [], color="0.3", label="mean (solid)")
+        ax.plot([], [], color="0.3", ls="--", lw=0.8, label="peak at the inner radius")
         if d.get("heat_limit") is not None:
-            ax.axhline(d["heat_limit"] / 1e6, **LIMIT_STYLE)
-            ax.text(sp[0], d["heat_limit"] / 1e6, " supplier limit", fontsize=6, va="bottom",
-                    color=LIMIT_STYLE["color"])
-        ax.set_ylabel("[W/cm³]")
-        ax.set_title("heat per unit volume", fontsize=8)
+            limit_line(ax, d["heat_limit"] / 1e6, "supplier limit")
+        ax.set_ylabel("Heat per rubber volume [W/cm³]")
+        ax.set_title("heat per unit volume")
         ax.set_xlabel("Engine speed [rpm]")
-        ax.legend(fontsize=5.5)
         ax = axes[0, 2]
         for ci, c in enumerate(cases):
-            jd.line(ax, sp, tau.values[ci] / 1e6, jd.mask(tau)[ci], label=CASE_TEXT.get(c, c))
+            jd.line(ax, sp, tau.values[ci] / 1e6, jd.mask(tau)[ci], color=case_color[c])
         if d.get("shear_stress_limit") is not None:
-            ax.axhline(d["shear_stress_limit"] / 1e6, **LIMIT_STYLE)
-            ax.text(sp[0], d["shear_stress_limit"] / 1e6, " supplier limit", fontsize=6,
-                    va="bottom", color=LIMIT_STYLE["color"])
-        ax.set_ylabel("[MPa]")
-        ax.set_title("shear stress at r_i", fontsize=8)
+            limit_line(ax, d["shear_stress_limit"] / 1e6, "supplier limit")
+        ax.set_ylabel("Shear stress amplitude [MPa]")
+        ax.set_title("shear stress at the inner radius")
         ax.set_xlabel("Engine speed [rpm]")
-        ax.legend(fontsize=6)
+    legend_below(fig, ncols=6)
     faint = not jd.mask(pw).all()
     blocks: list[dict] = [{"type": "figure", "svg": _svg(fig), "caption": (
         "TV damper rubber: dissipated power (sum of orders), heat per unit rubber volume (mean"
         " P/V and peak at the inner radius) and shear-stress amplitude at the inner radius"
-        + (f"; faint dotted: computed but not judged ({jd.reason(pw)})" if faint else ""))}]
+        + (f"; faint dotted: computed but not judged ({jd.reason(pw)})" if faint else "")
+        + "."), "data": [x.name for x in (pw, heat, heat_pk, tau) if x is not None]}]
     tw, tq = q.get("damper.relative_twist"), q.get("damper.torque")
     cols = [(pw, 1.0), (tw, DEG), (tq, 1.0)] + (
         [(heat, 1e-6), (heat_pk, 1e-6), (tau, 1e-6)] if geo else [])
@@ -351,7 +383,7 @@ def _damper(res: CheckResult, q: dict) -> list[dict]:
                 continue
             p0 = pts[0]
             row = [CASE_TEXT.get(c, c), "-" if p0 is None else f"{sp[p0.index[-1]]:.0f}"]
-            row += ["-" if p is None else fmt(p.value * f, 4) for p, (_, f) in zip(pts, cols)]
+            row += ["-" if p is None else fmt(p.value * f) for p, (_, f) in zip(pts, cols)]
             row += ["-"] * (3 - (len(cols) - 3))
             row.append("judged points" if which == 0 else "not judged: " + jd.reason(pw))
             rows.append(row)
@@ -360,9 +392,10 @@ def _damper(res: CheckResult, q: dict) -> list[dict]:
                    " per load case, then, marked, larger values at points the rules do not"
                    " judge",
                    "columns": ["case", "speed of max power [rpm]", "P max [W]",
-                               "twist [deg]", "torque [N m]", "q mean [W/cm³]",
+                               "twist [°]", "torque [N·m]", "q mean [W/cm³]",
                                "q peak [W/cm³]", "τ max [MPa]", "points"],
-                   "rows": rows, "row_css": css})
+                   "rows": rows, "row_css": css, "widths": [9, 11, 9, 8, 9, 10, 10, 9, 25],
+                   "detail": True, "sheet": "damper maxima"})
     ratios = [(n, q.get(n)) for n in ("damper.shear_stress_ratio", "damper.heat_ratio",
                                       "damper.heat_peak_ratio")]
     items = [(qq.spec.description.split(" / ")[0], qq, [(ci,) for ci in range(len(cases))],
@@ -371,7 +404,7 @@ def _damper(res: CheckResult, q: dict) -> list[dict]:
     if items:
         def cells(content, qq, p):
             ci, si = p.index
-            return [content, CASE_TEXT.get(cases[ci], cases[ci]), fmt(p.value, 4),
+            return [content, CASE_TEXT.get(cases[ci], cases[ci]), fmt(p.value),
                     f"{sp[si]:.0f}"]
 
         rows, css = _judged_rows(res, items, cells)
@@ -404,10 +437,10 @@ def _joints(res: CheckResult, q: dict) -> list[dict]:
             s = "" if src is None else str(src[i, k])
             used = ("workbook (JointTorques)" if s.startswith("workbook") else
                     "TV module" if s else "-")
-            g = fmt(given[(n, p)].torque, 5) if (n, p) in given else "-"
+            g = fmt(given[(n, p)].torque) if (n, p) in given else "-"
             if np.isfinite(jt.values[i, k]):
                 rows.append([n, p, CASE_TEXT.get(jt.extra["case"][i, k], "-"),
-                             f"{jt.extra['speed'][i, k] / RPM:.0f}", fmt(jt.values[i, k], 5),
+                             f"{jt.extra['speed'][i, k] / RPM:.0f}", fmt(jt.values[i, k]),
                              g, used])
             else:
                 rows.append([n, p, "-", "-", "-", g, used if s else "not available: "
@@ -416,8 +449,9 @@ def _joints(res: CheckResult, q: dict) -> list[dict]:
         "Peak torque through the bolted joints from the TV model (max over the cycle of"
         " |mean + vibratory|), the workbook's value and the one the joint check uses (both"
         " cover factors are in the bolted-joints section)"),
-        "columns": ["joint", "operating point", "case", "speed [rpm]", "TV torque [N m]",
-                    "workbook [N m]", "used"], "rows": rows}]
+        "columns": ["joint", "operating point", "case", "speed [rpm]", "TV torque [N·m]",
+                    "workbook [N·m]", "used"], "rows": rows,
+        "widths": [12, 13, 10, 10, 12, 12, 31]}]
     items = [f"{n} at '{p}': {jt.extra['how'][i, k]}"
              for i, n in enumerate(jt.coords["item"]) for k, p in enumerate(jt.coords["point"])
              if jt.extra["how"][i, k]]
@@ -436,24 +470,30 @@ def _joints(res: CheckResult, q: dict) -> list[dict]:
     return blocks
 
 
-@section("torsion")
+@section("torsion", label="torsional vibration")
 def torsion_section(res: CheckResult) -> dict:
     q = res.outcome.quantities
     blocks: list[dict] = _inputs(res)
     blocks.append({"type": "equations", "items": [
         ("Forced response per order n", "[K(1 + jη) + jΩC − Ω²M]·Θₙ = Fₙ,  Ω = n·ω",
-         "torsion.md 3.3; Friswell et al. 2010 ch. 9; seed 000 (linear, frequency domain)"),
+         "Friswell, Penny, Garvey and Lees, Dynamics of Rotating Machines, 2010, ch. 9;"
+         " linear, frequency domain as in Bell, Ricardo 2013, 'Crankshaft analysis (15)'"),
         ("Cylinder excitation", "Fᵢₙ = cₙ·e^(−j n φᵢ),  T(θ) = c₀/2 + Σ Re{cₙ e^(jnθ)}",
-         "torsion.md 3.2-3.3; Ker Wilson vol. 2 ch. 19"),
+         "Ker Wilson, Practical Solution of Torsional Vibration Problems, vol. 2, ch. 19;"
+         " Drápal and Novotný, J. Vibroengineering 19, 2017, eq. 1-2"),
         ("Total amplitude", "A = (max θ(t) − min θ(t))/2 over 720°, all orders synthesised",
-         "seed 000 '1/2 peak to peak'; Lloyd's Register 'half-range'"),
-        ("Element torque", "Tₑ = zₑ·(Θ_front − Θ_rear),  zₑ = k(1 + jη) + jΩc", "torsion.md 3.3"),
-        ("Damper power", "P = Σₙ ½·Ωₙ·η·k'·|Δφₙ|²", "torsion.md 3.5; Den Hartog 1956 §2.8"),
-        ("Rubber shear stress", "τ = T / (2π·rᵢ²·L)", "torsion.md 3.5; Gent 2012 ch. 8"),
+         "half peak-to-peak: Bell, Ricardo 2013, 'Crankshaft analysis (15)'; Lloyd's"
+         " Register rules, 'half-range' amplitudes"),
+        ("Element torque", "Tₑ = zₑ·(Θ_front − Θ_rear),  zₑ = k(1 + jη) + jΩc",
+         "Friswell et al. 2010, ch. 9"),
+        ("Damper power", "P = Σₙ ½·Ωₙ·η·k'·|Δφₙ|²", "Den Hartog, Mechanical Vibrations, 1956,"
+         " §2.8; Nashif, Jones and Henderson, Vibration Damping, 1985"),
+        ("Rubber shear stress", "τ = T / (2π·rᵢ²·L)", "Gent, Engineering with Rubber, 2012,"
+         " ch. 8"),
         ("Rubber heat per volume", "q_mean = P / (π(rₒ² − rᵢ²)L),  q_peak = q_mean·(rₒ/rᵢ)²",
-         "torsion.md 3.5"),
-        ("Joint torque", "T = max_t |T_mean + T_vib(t)|", "seed 000 slides 23-24 (TV torque"
-         " + FEAD / + brake torque)"),
+         "Nashif, Jones and Henderson 1985 (local heat ∝ 1/r⁴ in a bonded ring)"),
+        ("Joint torque", "T = max_t |T_mean + T_vib(t)|", "Bell, Ricardo 2013, 'Crankshaft"
+         " analysis (23)-(24)' (TV torque + accessory drive / + brake torque)"),
     ]})
     nf = q.get("tv.natural_frequency")
     tot = q.get("tv.nose_amplitude")
@@ -493,8 +533,8 @@ def torsion_section(res: CheckResult) -> dict:
             "intro": "Lumped-mass torsional model of the crank train (damper ring, crank nose,"
                      " cylinders, flywheel) excited by the gas and inertia torque of every"
                      " cylinder, solved per order in the frequency domain at full and no load"
-                     " across the speed range (seed 000, Ricardo's concept-level VALDYN"
-                     " practice): natural frequencies, crank-nose amplitude with its order"
+                     " across the speed range (the concept-level practice of Bell, Ricardo"
+                     " 2013): natural frequencies, crank-nose amplitude with its order"
                      " content, crankshaft twist and element torques, damper rubber power,"
                      " heat and stress, and the TV torques at the bolted joints.",
             "blocks": blocks}

@@ -1,10 +1,25 @@
 """Report sections: each calculation module contributes a section built from its quantities.
 
-A section is a dict ``{"id", "title", "intro", "blocks"}``; blocks are
-``{"type": "table", "caption", "columns", "rows"}``, ``{"type": "equations", "items":
-[(name, equation, source)]}``, ``{"type": "figure", "svg", "caption"}``,
-``{"type": "text", "text"}`` or ``{"type": "list", "items"}``. Sections only format numbers
-that the calculations produced; they never compute physics.
+Adding a section: a module ``checker/report/section_<name>.py`` with a function decorated
+``@section("<module name>", label="<words for the progress line>")`` that takes the
+:class:`~checker.api.CheckResult` and returns a dict ``{"id", "title", "intro", "blocks"}``.
+It is found automatically and shown when its calculation module ran, in module order.
+
+Blocks (in the order a reader needs them: inputs, method and assumptions, judged worst cases,
+plots):
+
+* ``{"type": "table", "caption", "columns", "rows", "row_css"?}``: a table in the body. Keep
+  it short (inputs, judged worst cases); per-speed results belong in the results workbook,
+  which holds every quantity anyway. ``"detail": True`` moves a table out of the body into
+  the results workbook (sheet named by ``"sheet"``).
+* ``{"type": "figure", "svg", "caption", "data"?}``: ``data`` names where the numbers behind
+  the plot are: quantity names (their sheets in the results workbook) and/or extra sheets
+  ``{"sheet", "title", "columns", "rows"}`` for curves that are not quantities (crank-angle
+  traces); the report says so under the plot.
+* ``{"type": "equations", "items": [(name, equation, source)]}``, ``{"type": "text",
+  "text"}``, ``{"type": "list", "items"}``, ``{"type": "heading", "text"}``.
+
+Sections only format numbers that the calculations produced; they never compute physics.
 """
 
 from __future__ import annotations
@@ -13,29 +28,34 @@ from collections.abc import Callable
 
 import numpy as np
 
+from .. import display
 from ..api import CheckResult
 
 SECTIONS: dict[str, Callable[[CheckResult], dict]] = {}
+LABELS: dict[str, str] = {}
+"""Words for the progress line "Drawing <label> figures", per module."""
 
 
-def section(module: str):
+def section(module: str, label: str | None = None):
     def deco(f):
         SECTIONS[module] = f
+        LABELS[module] = label or module
         return f
 
     return deco
 
 
-def fmt(v, digits: int = 4) -> str:
+def fmt(v, digits: int = display.SIG) -> str:
+    """A number as the report shows it (``digits`` significant digits, ``-`` for none)."""
     if v is None or (isinstance(v, float) and not np.isfinite(v)):
         return "-"
     if isinstance(v, str):
         return v
-    return f"{v:.{digits}g}"
+    return display.number(float(v), digits)
 
 
-def build_sections(res: CheckResult) -> list[dict]:
-    """Sections of the modules that ran, in module order."""
+def load_sections() -> None:
+    """Import every ``section_*`` module so that it registers itself."""
     import importlib
     import pkgutil
 
@@ -44,35 +64,110 @@ def build_sections(res: CheckResult) -> list[dict]:
     for m in pkgutil.iter_modules(report.__path__):
         if m.name.startswith("section_"):
             importlib.import_module(f"{report.__name__}.{m.name}")
-    mods = [m for m in res.outcome.modules_run if m in SECTIONS]
-    return _build_parallel(res, mods) if len(mods) > 1 else [SECTIONS[m](res) for m in mods]
+
+
+def modules_with_sections(res: CheckResult) -> list[str]:
+    load_sections()
+    return [m for m in res.outcome.modules_run if m in SECTIONS]
+
+
+def build_sections(res: CheckResult, progress: Callable[[str], None] | None = None
+                   ) -> list[dict]:
+    """Sections of the modules that ran, in module order (figures drawn in worker processes
+    where the platform can fork)."""
+    return SectionJob(res, progress).result()
+
+
+def _one(module: str, progress: Callable[[str], None] | None = None) -> dict:
+    if progress is not None:
+        progress(f"Drawing the {LABELS.get(module, module)} figures")
+    return SECTIONS[module](_RESULT if _RESULT is not None else _ARG)
 
 
 _RESULT: CheckResult | None = None
+_ARG: CheckResult | None = None
+_PROGRESS: Callable[[str], None] | None = None
 
 
-def _one(module: str) -> dict:
-    assert _RESULT is not None
-    return SECTIONS[module](_RESULT)
+def _worker(module: str) -> dict:
+    return _one(module, _PROGRESS)
 
 
-def _build_parallel(res: CheckResult, mods: list[str]) -> list[dict]:
-    """Draw the sections' figures in forked worker processes (matplotlib is single-threaded
-    and drawing dominates the report's time); sequential where fork is unavailable."""
-    import multiprocessing as mp
-    import os
-    from concurrent.futures import ProcessPoolExecutor
+SLOW_FIRST = ("torsion", "loads", "fatigue", "bearings")
+"""Sections with the most figures, started first so that the workers stay busy."""
 
-    global _RESULT
-    workers = min(len(mods), os.cpu_count() or 1)
-    if workers < 2 or "fork" not in mp.get_all_start_methods():
-        return [SECTIONS[m](res) for m in mods]
-    _RESULT = res
-    try:
-        with ProcessPoolExecutor(workers, mp_context=mp.get_context("fork")) as pool:
-            # the slowest sections first, so the pool stays busy
-            order = sorted(mods, key=lambda m: m not in ("torsion", "loads", "fatigue"))
-            done = dict(zip(order, pool.map(_one, order)))
-        return [done[m] for m in mods]
-    finally:
-        _RESULT = None
+
+class SectionJob:
+    """Sections being built: in forked worker processes (matplotlib is single-threaded and
+    drawing dominates a section's time) while the caller does other work; call
+    :meth:`result` to wait. Sequential where fork is unavailable or with one core."""
+
+    def __init__(self, res: CheckResult, progress: Callable[[str], None] | None = None,
+                 workers: int | None = None):
+        import multiprocessing as mp
+        import os
+
+        global _RESULT, _PROGRESS
+        self.res = res
+        self.mods = modules_with_sections(res)
+        self.progress = progress
+        self.pool = None
+        self.futures: dict[str, object] = {}
+        cores = os.cpu_count() or 1
+        if not self.mods or cores < 2 or "fork" not in mp.get_all_start_methods():
+            return
+        n = max(1, min(len(self.mods), workers or cores))
+        from concurrent.futures import ProcessPoolExecutor
+
+        _RESULT, _PROGRESS = res, progress
+        try:
+            self.pool = ProcessPoolExecutor(n, mp_context=mp.get_context("fork"))
+            order = sorted(self.mods, key=lambda m: (m not in SLOW_FIRST,
+                                                     SLOW_FIRST.index(m) if m in SLOW_FIRST
+                                                     else 0))
+            for m in order:
+                self.futures[m] = self.pool.submit(_worker, m)
+        finally:
+            _RESULT, _PROGRESS = None, None
+
+    def result(self) -> list[dict]:
+        global _ARG
+        if self.pool is None:
+            _ARG = self.res
+            try:
+                return [_one(m, self.progress) for m in self.mods]
+            finally:
+                _ARG = None
+        try:
+            return [self.futures[m].result() for m in self.mods]
+        finally:
+            self.pool.shutdown()
+
+
+def param_table(caption: str, items: list[tuple[str, str]], pairs: int = 2) -> dict:
+    """A compact inputs table: ``(parameter, value with unit)`` pairs, ``pairs`` per row
+    (filled column by column)."""
+    n = max(1, (len(items) + pairs - 1) // pairs)
+    rows = []
+    for r in range(n):
+        row: list[str] = []
+        for p in range(pairs):
+            k = p * n + r
+            row += list(items[k]) if k < len(items) else ["", ""]
+        rows.append(row)
+    share = 100 / pairs
+    return {"type": "table", "caption": caption, "columns": ["parameter", "value"] * pairs,
+            "rows": rows, "widths": [round(share * 0.62, 1), round(share * 0.38, 1)] * pairs}
+
+
+def merge_items(rows: list[list[str]], css: list[str]) -> tuple[list[list[str]], list[str]]:
+    """Rows equal in every cell but the first (the item) merged into one row naming every
+    item ("BE1, BE2, BE3, BE4"), in the order of first appearance."""
+    out: dict[tuple, list] = {}
+    for row, c in zip(rows, css):
+        key = (tuple(row[1:]), c)
+        if key in out:
+            out[key][0][0] += ", " + row[0]
+        else:
+            out[key] = [list(row), c]
+    return [v[0] for v in out.values()], [v[1] for v in out.values()]

@@ -14,6 +14,19 @@ def _kind(kind: str) -> str:
     return f"{k.name.replace('_', ' ')} (e.g. {k.example})"
 
 
+def field_description(f) -> str:
+    """One line on a workbook field for the template's description column and comments:
+    kind, choices, required, usual range and the schema's note."""
+    parts = [_kind(f.kind)]
+    if f.choices:
+        parts[0] += ": " + ", ".join(f.choices)
+    parts.append("required" if f.required else "optional")
+    if f.usual:
+        parts.append(f"usual {f.usual.text()}")
+    text = "; ".join(parts) + "."
+    return text + (f" {f.note}" if f.note else "")
+
+
 def workbook_markdown() -> str:
     out = ["# Engine workbook layout", "",
            "Generated from `checker/workbook/schema.py` by `python -m checker.workbook.docs`.",

@@ -313,36 +313,86 @@ def write_workbook(path: str | Path, content: dict[str, Any]) -> None:
     ``(columns, rows)`` with ``columns`` a list of ``(name, unit)``; ``Notes`` is a list of lines.
     """
     import openpyxl
-    from openpyxl.styles import Font, PatternFill
+    from openpyxl.comments import Comment
+    from openpyxl.styles import Alignment, Font, PatternFill
+    from openpyxl.worksheet.datavalidation import DataValidation
+
+    from .docs import field_description
+    from .loader import DITTO
+    from .schema import SHEETS
 
     wb = openpyxl.Workbook()
     wb.remove(wb.active)
     bold = Font(bold=True)
+    grey = Font(italic=True, color="666666")
     unit_fill = PatternFill("solid", fgColor="EEEEEE")
+    assumed = PatternFill("solid", fgColor="FFF2CC")  # ASSUMPTION values stand out
+    wrap = Alignment(wrap_text=True, vertical="top")
+
+    def choice_list(ws, f, ref: str) -> None:
+        """A drop-down of the field's choices (other accepted spellings still allowed)."""
+        if not f.choices:
+            return
+        dv = DataValidation(type="list", formula1='"' + ",".join(f.choices) + '"',
+                            allow_blank=True, showErrorMessage=False)
+        dv.add(ref)
+        ws.add_data_validation(dv)
+
     for name, body in content.items():
         ws = wb.create_sheet(name)
+        spec = SHEETS.get(name)
+        fields = {} if spec is None else {f.label.lower(): f for f in spec.fields}
         if name == "Notes":
             for i, line in enumerate(body, start=1):
                 ws.cell(row=i, column=1, value=line)
             ws.column_dimensions["A"].width = 100
             continue
         if isinstance(body, list):
-            for j, h in enumerate(("parameter", "value", "unit", "note"), start=1):
+            for j, h in enumerate(("parameter", "value", "unit", "note", "description"),
+                                  start=1):
                 ws.cell(row=1, column=j, value=h).font = bold
             for i, row in enumerate(body, start=2):
                 for j, v in enumerate(row, start=1):
                     ws.cell(row=i, column=j, value=v)
-            for col, w in zip("ABCD", (44, 40, 12, 90)):
+                f = fields.get(str(row[0]).lower())
+                if f is not None:
+                    d = ws.cell(row=i, column=5, value=field_description(f))
+                    d.font = grey
+                    choice_list(ws, f, f"B{i}")
+                if len(row) > 3 and row[3] and "assumption" in str(row[3]).lower():
+                    ws.cell(row=i, column=2).fill = assumed
+                    ws.cell(row=i, column=4).fill = assumed
+            for col, w in zip("ABCDE", (40, 24, 10, 70, 70)):
                 ws.column_dimensions[col].width = w
         else:
             cols, rows = body
+            note_j = next((j for j, (h, _u) in enumerate(cols, start=1) if h == "note"), None)
             for j, (h, u) in enumerate(cols, start=1):
-                ws.cell(row=1, column=j, value=h).font = bold
+                c = ws.cell(row=1, column=j, value=h)
+                c.font = bold
+                f = fields.get(str(h).lower())
+                if f is not None:
+                    c.comment = Comment(field_description(f), "checker", width=320,
+                                        height=120)
+                    choice_list(ws, f, f"{openpyxl.utils.get_column_letter(j)}3:"
+                                       f"{openpyxl.utils.get_column_letter(j)}"
+                                       f"{max(50, len(rows) + 30)}")
                 c = ws.cell(row=2, column=j, value=u)
                 c.fill = unit_fill
+            last = None
             for i, row in enumerate(rows, start=3):
                 for j, v in enumerate(row, start=1):
+                    if j == note_j and v and v == last:
+                        v = DITTO[0]  # a long note once per run of rows
+                    elif j == note_j:
+                        last = row[j - 1]
                     ws.cell(row=i, column=j, value=v)
+                note = row[note_j - 1] if note_j and note_j <= len(row) else None
+                if note and "assumption" in str(note).lower():
+                    for j in range(1, len(row) + 1):
+                        ws.cell(row=i, column=j).fill = assumed
+                if note_j:
+                    ws.cell(row=i, column=note_j).alignment = wrap
             for j, (h, _u) in enumerate(cols, start=1):
                 ws.column_dimensions[openpyxl.utils.get_column_letter(j)].width = max(
                     10, min(60, len(h) + 4)) if h != "note" else 80

@@ -418,6 +418,7 @@ class _Reader:
             unit_of[attr] = None if u is None else str(u).strip()
         keys_seen: dict[Any, str] = {}
         notes: dict[str, list[int]] = {}
+        last_note = None
         formula_rows = {r for r, _ in raw.formulas}
         for r in sorted(set(raw.rows) | formula_rows):
             if r <= 2:
@@ -451,6 +452,9 @@ class _Reader:
             out.append(rec)
             if note_col is not None:
                 note = row.get(note_col, (None, None))[0]
+                if note is not None and _norm(note) in DITTO:
+                    note = last_note  # "as above": the note of the row above applies
+                last_note = note
                 if note and "assumption" in str(note).lower():
                     notes.setdefault(str(note), []).append(r)
         if spec.max_rows is not None and len(out) > spec.max_rows:
@@ -459,6 +463,11 @@ class _Reader:
         for text, rws in notes.items():
             rr = f"row {rws[0]}" if len(rws) == 1 else f"rows {', '.join(map(str, rws))}"
             data.assumptions.append(f"{name} {rr}: {text}")
+
+
+DITTO = ("as above", "ditto", "〃", '"')
+"""A table row's note that repeats the note of the row above (the template writes a long
+note once per run of rows)."""
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,114 @@
+"""Benchmark of `checker report` and `checker check`: whole-process times and time per stage.
+
+    python benchmarks/bench_report.py [--runs 3] [--engines i4,i6]
+
+For each example engine (the I4 of Bell, Ricardo 2013 and the I6 of Mendes et al. 2008,
+written by ``checker template``) it measures, each in a fresh process, ``--runs`` times:
+
+* ``checker check`` whole process (process start to exit, output to a file);
+* ``checker report`` whole process (process start to PDF written);
+* a stage-timing run of the same report: imports, analysis, PDF engine import (overlapping
+  the figure drawing in worker processes), figures, results workbook, HTML, PDF layout, PDF
+  write: wall time and processor time per stage.
+
+It prints the medians, the page count and the targets (I4 report <= 4 s, I6 <= 5 s, check
+<= 1.5 s). On a machine shared with other work, compare processor times: the wall time of a
+stage grows with the load, its processor time much less. Run it once, not in a loop.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+TARGETS = {"i4": 4.0, "i6": 5.0}
+CHECK_TARGET = 1.5
+
+DRIVER = r"""
+import json, sys, time
+t0 = time.perf_counter(); c0 = time.process_time()
+from checker import api
+from checker.report import render
+t1 = time.perf_counter(); c1 = time.process_time()
+res = api.check(sys.argv[1])
+t2 = time.perf_counter(); c2 = time.process_time()
+rep = render.build_report(res, want_html=False)
+with open(sys.argv[2], "wb") as f:
+    f.write(rep.pdf)
+t3 = time.perf_counter()
+wall = {"imports": t1 - t0, "analysis": t2 - t1, **rep.stages}
+cpu = {"imports": c1 - c0, "analysis": c2 - c1, **rep.cpu}
+print(json.dumps({"wall": wall, "cpu": cpu, "pages": rep.pages, "total": t3 - t0}))
+"""
+
+
+def _env() -> dict:
+    env = dict(os.environ)
+    env["PYTHONPATH"] = str(ROOT) + os.pathsep + env.get("PYTHONPATH", "")
+    return env
+
+
+def _timed(cmd: list[str]) -> float:
+    t = time.perf_counter()
+    r = subprocess.run(cmd, env=_env(), capture_output=True, text=True)
+    dt = time.perf_counter() - t
+    if r.returncode not in (0, 1):
+        raise RuntimeError(f"{' '.join(cmd)} failed ({r.returncode}): {r.stderr[-2000:]}")
+    return dt
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--engines", default="i4,i6")
+    args = ap.parse_args()
+    py = sys.executable
+    out: dict[str, dict] = {}
+    with tempfile.TemporaryDirectory() as d:
+        for eng in args.engines.split(","):
+            wb = Path(d) / f"engine-{eng}.xlsx"
+            subprocess.run([py, "-m", "checker.cli", "template", str(wb), "--engine", eng,
+                            "--force"], env=_env(), check=True, capture_output=True)
+            pdf = Path(d) / f"{eng}.pdf"
+            check, report, stage_runs = [], [], []
+            for _ in range(args.runs):
+                check.append(_timed([py, "-m", "checker.cli", "check", str(wb), "-o",
+                                     str(Path(d) / "out.txt")]))
+                report.append(_timed([py, "-m", "checker.cli", "report", str(wb), "-o",
+                                      str(pdf), "--quiet"]))
+                r = subprocess.run([py, "-c", DRIVER, str(wb), str(pdf)], env=_env(),
+                                   capture_output=True, text=True, check=True)
+                stage_runs.append(json.loads(r.stdout.strip().splitlines()[-1]))
+            stages = list(stage_runs[0]["wall"])
+            out[eng] = {
+                "check": statistics.median(check), "report": statistics.median(report),
+                "pages": stage_runs[0]["pages"],
+                "wall": {s: statistics.median(x["wall"][s] for x in stage_runs) for s in stages},
+                "cpu": {s: statistics.median(x["cpu"][s] for x in stage_runs) for s in stages},
+            }
+    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    print(f"median of {args.runs} runs; load average {load:.1f} on {os.cpu_count()} cores\n")
+    print("| stage | " + " | ".join(f"{e} wall [s] | {e} cpu [s]" for e in out) + " |")
+    print("|---|" + "---|---|" * len(out))
+    for s in next(iter(out.values()))["wall"]:
+        print(f"| {s} | " + " | ".join(f"{v['wall'][s]:.2f} | {v['cpu'][s]:.2f}"
+                                       for v in out.values()) + " |")
+    print()
+    for e, v in out.items():
+        tgt = TARGETS.get(e)
+        print(f"{e}: report whole process {v['report']:.2f} s (target {tgt} s"
+              f" {'met' if tgt and v['report'] <= tgt else 'NOT met'}), {v['pages']} pages;"
+              f" check whole process {v['check']:.2f} s (target {CHECK_TARGET} s"
+              f" {'met' if v['check'] <= CHECK_TARGET else 'NOT met'})")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,178 @@
+"""The results workbook: every computed quantity (item, load case, speed, with units), the rule
+results and the data behind the report's crank-angle plots, as one .xlsx.
+
+The PDF report carries it as an attachment (``results.xlsx``); ``checker report --results
+FILE`` also writes it beside the PDF. The report's body shows the judged worst cases only and
+says, under each plot, which sheet holds its data.
+"""
+
+from __future__ import annotations
+
+import re
+
+import numpy as np
+
+from ..api import CheckResult
+from ..display import unit_text
+
+ATTACHMENT_NAME = "results.xlsx"
+
+DEFAULT_DISPLAY = {"Pa": "MPa", "m": "mm", "rad": "deg", "N*m": "N*m", "W/m**3": "W/cm**3",
+                   "m**2": "mm**2", "N": "kN", "rad/s": "rpm", "Hz": "Hz", "W": "W",
+                   "": "", "-": ""}
+"""Display unit of a quantity's SI unit when no rule names one."""
+
+CASE_TEXT = {"full": "full load", "no": "no load", "part": "part load"}
+
+
+def sheet_name(quantity: str) -> str:
+    """The sheet of a quantity (Excel allows 31 characters, no ``[]:*?/\\``)."""
+    s = re.sub(r"[\[\]:*?/\\]", "_", quantity)
+    return s if len(s) <= 31 else s[:31]
+
+
+def display_unit(res: CheckResult, q) -> str:
+    """The unit a quantity is shown in: the unit of a rule on it, else a readable default."""
+    for r in list(res.rules) + list(res.table.rules):
+        if r.quantity == q.name and r.unit not in ("", "-", "%"):
+            return r.unit
+    if q.name.endswith("moft"):
+        return "um"
+    return DEFAULT_DISPLAY.get(q.spec.unit or "", q.spec.unit or "")
+
+
+def _factor(si: str, disp: str) -> float:
+    from ..units import from_si
+
+    if si in ("", "-") or si == disp:
+        return 1.0
+    try:
+        return float(from_si(1.0, si, disp))
+    except Exception:  # noqa: BLE001 - an exotic unit: keep SI
+        return float("nan")
+
+
+def _coord(dim: str, label) -> object:
+    if dim == "speed":
+        return round(float(label) * 60 / (2 * np.pi), 3)
+    if dim == "case":
+        return CASE_TEXT.get(str(label), str(label))
+    return label if isinstance(label, (int, float, str)) else str(label)
+
+
+def _cell(v):
+    if v is None:
+        return None
+    if isinstance(v, (float, np.floating)):
+        return float(v) if np.isfinite(v) else None
+    if isinstance(v, (np.integer,)):
+        return int(v)
+    return v
+
+
+def quantity_rows(res: CheckResult, q) -> tuple[list[str], list[list], str]:
+    """Header, rows and display unit of one quantity: with a speed dimension (last), one row
+    per combination of the other coordinates and one column per speed; otherwise one row per
+    point."""
+    disp = display_unit(res, q)
+    f = _factor(q.spec.unit or "", disp)
+    if not np.isfinite(f):
+        disp, f = q.spec.unit or "", 1.0
+    dims = list(q.spec.dims)
+    vals = np.asarray(q.values, dtype=float) * f
+    judged = None if q.applies is None else np.broadcast_to(
+        np.asarray(q.applies, dtype=bool), vals.shape)
+    if dims and dims[-1] == "speed":
+        speeds = [_coord("speed", s) for s in q.coords["speed"]]
+        lead = dims[:-1]
+        header = [*lead, *[f"{s:g} rpm" for s in speeds]]
+        rows = []
+        for idx in np.ndindex(*vals.shape[:-1]):
+            rows.append([_coord(d, q.coords[d][i]) for d, i in zip(lead, idx)]
+                        + [_cell(v) for v in vals[idx]])
+        if judged is not None and not judged.all():
+            rows.append([])
+            rows.append(["judged by the rules (1) or computed only (0):"])
+            for idx in np.ndindex(*vals.shape[:-1]):
+                rows.append([_coord(d, q.coords[d][i]) for d, i in zip(lead, idx)]
+                            + [int(x) for x in judged[idx]])
+        return header, rows, disp
+    header = [*dims, "value"]
+    rows = []
+    for idx in np.ndindex(*vals.shape):
+        rows.append([_coord(d, q.coords[d][i]) for d, i in zip(dims, idx)]
+                    + [_cell(vals[idx])])
+    return header, rows, disp
+
+
+def _results_rows(res: CheckResult) -> tuple[list[str], list[list]]:
+    header = ["rule", "name", "item", "status", "severity", "value", "unit", "limit",
+              "margin [%]", "margin", "case", "message", "override"]
+    rows = []
+    for r in res.results:
+        st = "WARN" if r.status == "fail" and r.severity == "warning" else r.status.upper()
+        rows.append([r.rule, r.name, r.item, st.replace("_", " "), r.severity, _cell(r.value),
+                     unit_text(r.unit), r.limit,
+                     None if r.margin is None else round(r.margin * 100, 3),
+                     r.margin_text if r.status != "not_evaluated" else "", r.case, r.message,
+                     r.override])
+    return header, rows
+
+
+def sheet_names(res: CheckResult, extra: list[dict] | None = None) -> set[str]:
+    """The sheets :func:`build` writes (for the report's "Data:" notes under plots)."""
+    out = {"Contents", "Rule results"}
+    for q in res.outcome.quantities.values():
+        if q.values is not None and np.size(q.values):
+            out.add(sheet_name(q.name))
+    out |= {sheet_name(e["sheet"]) for e in extra or []}
+    return out
+
+
+def build(res: CheckResult, extra: list[dict] | None = None) -> bytes:
+    """The workbook as bytes (byte-identical for the same results).
+
+    ``extra``: further sheets ``{"sheet", "title", "columns", "rows"}`` (the curves of the
+    report's crank-angle plots)."""
+    from .xlsx import write
+
+    source = res.engine.source.replace("\\", "/").split("/")[-1]
+    contents = [[f"Results of the design-rule check: {res.engine.name}"],
+                [f"Input workbook {source}, SHA-256 {res.engine.sha256}"],
+                ["Every computed quantity with its items, load cases and speeds, in the unit"
+                 " given on each sheet. Where a sheet has a 'judged' block, points marked 0"
+                 " are computed but not judged by the rules (the report says why)."],
+                [],
+                ["sheet", "contents", "unit", "dimensions"]]
+    sheets: list[dict] = []
+    used: set[str] = {"Contents", "Rule results"}
+    for q in res.outcome.quantities.values():
+        if q.values is None or not np.size(q.values):
+            continue
+        name = sheet_name(q.name)
+        k = 2
+        while name in used:
+            name = sheet_name(q.name)[:28] + f"~{k}"
+            k += 1
+        used.add(name)
+        header, rows, disp = quantity_rows(res, q)
+        sheets.append({"name": name, "rows": [[q.spec.description],
+                                              [f"unit: {unit_text(disp) or '-'}"], header,
+                                              *rows],
+                       "bold_rows": (0, 2), "widths": [18] * len(header[:1])})
+        contents.append([name, q.spec.description, unit_text(disp) or "-",
+                         " x ".join(q.spec.dims)])
+    for e in extra or []:
+        name = sheet_name(e["sheet"])
+        if name in used:
+            continue
+        used.add(name)
+        sheets.append({"name": name, "rows": [[e.get("title", name)], [], list(e["columns"]),
+                                              *e["rows"]], "bold_rows": (0, 2)})
+        contents.append([name, e.get("title", name), "in the column headers", "plot data"])
+    header, rows = _results_rows(res)
+    first = [{"name": "Contents", "rows": contents, "bold_rows": (0, 4),
+              "widths": [32, 90, 10, 24]},
+             {"name": "Rule results", "rows": [header, *rows], "bold_rows": (0,),
+              "widths": [9, 40, 16, 8, 8, 10, 6, 12, 10, 28, 26, 60, 40]}]
+    return write(first + sheets)

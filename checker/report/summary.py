@@ -1,0 +1,127 @@
+"""The report's first pages: rule results grouped for a reader (formatting only).
+
+Failures first, then warnings, results that could not be evaluated, and passes; within each
+group one item's results sit together; a finding repeated on several items (the same rule,
+value, limit and case, e.g. four identical big-end bearings) is one row naming every item.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from ..api import CheckResult
+from ..ruletable import RuleResult
+
+GROUPS = (
+    ("fail", "Failed", "fail"),
+    ("warning", "Warnings", "warn"),
+    ("not_evaluated", "Not evaluated", "ne"),
+    ("pass", "Passed", "pass"),
+)
+"""(kind, heading, CSS class) in the order the report shows them."""
+
+LOOK_FIRST = 5
+"""How many passing findings closest to their limits page 1 lists."""
+
+
+@dataclass
+class Row:
+    """One line of a results table: a finding and the items it applies to."""
+
+    kind: str  # fail | warning | not_evaluated | pass
+    rule: str
+    name: str
+    items: list[str]
+    case: str
+    value: str
+    limit: str
+    margin: str
+    note: str
+    override: str
+    margin_value: float | None
+    results: list[RuleResult] = field(default_factory=list)
+    first_of_item: bool = True
+
+    @property
+    def item_text(self) -> str:
+        return ", ".join(self.items) if self.items != ["all"] else "engine"
+
+    @property
+    def css(self) -> str:
+        return {"fail": "fail", "warning": "warn", "not_evaluated": "ne", "pass": "pass"}[
+            self.kind]
+
+
+def kind(r: RuleResult) -> str:
+    """The group of a result: failed (an error, or any internal error), warning (a failed
+    warning-severity rule), not evaluated, passed."""
+    if r.status == "fail":
+        return "warning" if r.severity == "warning" and not r.internal_error else "fail"
+    return r.status
+
+
+def _note(r: RuleResult) -> str:
+    """The note under a row: why a result is not evaluated or an internal error, or the
+    first finding of a failed result (passes carry their findings in the module section)."""
+    if r.status == "not_evaluated" or r.internal_error:
+        return r.message
+    if not r.findings or r.status == "pass":
+        return ""
+    first = r.findings[0]
+    more = len(r.findings) - 1
+    return first + (f" (and {more} more finding{'s' if more > 1 else ''} in the module"
+                    " section)" if more else "")
+
+
+def rows(res: CheckResult, results: list[RuleResult] | None = None) -> list[Row]:
+    """Rows of ``results`` (default: all), identical findings on several items merged,
+    ordered by group, then item (order of first appearance), then rule."""
+    results = res.results if results is None else results
+    item_order: dict[str, int] = {}
+    for r in res.results:
+        item_order.setdefault(r.item, len(item_order))
+    merged: dict[tuple, Row] = {}
+    for r in results:
+        k = kind(r)
+        value = "-" if r.value is None else r.value_text
+        note = _note(r)
+        key = (k, r.rule, r.case, value, r.limit, note, r.override)
+        row = merged.get(key)
+        if row is None:
+            merged[key] = Row(k, r.rule, r.name, [r.item], r.case or "-", value, r.limit,
+                              r.margin_text if r.status != "not_evaluated" else "-", note,
+                              r.override, r.margin, [r])
+        else:
+            row.items.append(r.item)
+            row.results.append(r)
+    order = {g[0]: i for i, g in enumerate(GROUPS)}
+    out = sorted(merged.values(), key=lambda x: (order[x.kind], item_order.get(x.items[0], 0),
+                                                 x.rule, x.case))
+    prev = None
+    for x in out:
+        x.first_of_item = (x.kind, x.item_text) != prev
+        prev = (x.kind, x.item_text)
+    return out
+
+
+def groups(res: CheckResult) -> list[dict]:
+    """``[{"kind", "title", "css", "rows", "count"}]`` in report order (empty groups left
+    out); ``count`` is the number of results, ``rows`` the merged findings."""
+    all_rows = rows(res)
+    out = []
+    for k, title, css in GROUPS:
+        rs = [x for x in all_rows if x.kind == k]
+        if rs:
+            out.append({"kind": k, "title": title, "css": css, "rows": rs,
+                        "count": sum(len(x.results) for x in rs)})
+    return out
+
+
+def look_first(res: CheckResult, n: int = LOOK_FIRST) -> list[Row]:
+    """The passing findings closest to their limits (smallest relative margin first)."""
+    ps = [x for x in rows(res, [r for r in res.results if r.status == "pass"])
+          if x.margin_value is not None]
+    ps.sort(key=lambda x: x.margin_value)
+    for x in ps:
+        x.first_of_item = True
+    return ps[:n]
