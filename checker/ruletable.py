@@ -493,8 +493,7 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None
                 continue
             lim = tuple(float(x) * factor for x in given)
         lim_text = rule.limit_text(lim)
-        if rule.limit_from == "workbook" and attrs.get("limit_cell"):
-            lim_text += f" ({attrs['limit_cell']})"
+        limit_cell = attrs.get("limit_cell") if rule.limit_from == "workbook" else None
         # missing entries and findings within the selection
         missing = _collect(q.missing, sel_i)
         findings = _collect(q.findings, sel_i)
@@ -560,6 +559,8 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None
                f" {lim_text}")
         if case_parts:
             msg += f" (worst at {', '.join(case_parts)})"
+        if limit_cell:
+            msg += f"; limit from {limit_cell}"
         results.append(RuleResult(**base, item=item, status=status, value=value,
                                   limit=lim_text, limit_values=list(lim), margin=margin,
                                   case=", ".join(case_parts), message=msg, findings=findings))

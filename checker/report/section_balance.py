@@ -110,6 +110,7 @@ def balance_section(res: CheckResult) -> dict:
         ax.set_ylabel(f"Free {lim_key} [{unit}]")
     fig.subplots_adjust(wspace=0.35)
     blocks.append({"type": "figure", "svg": to_svg(fig),
+                   "data": ["balance.free_force", "balance.free_moment"],
                    "caption": f"Free forces and moments per order at {w / RPM:.0f} rpm (log"
                               " scale; '0' = zero to round-off; dashed: project limits)"})
 
@@ -168,6 +169,7 @@ def balance_section(res: CheckResult) -> dict:
                      pad=14)
         ax.legend(fontsize=6, loc="lower left", bbox_to_anchor=(-0.2, -0.2))
         blocks.append({"type": "figure", "svg": to_svg(fig),
+                       "data": ["balance.balance_ratio", "balance.internal_moment"],
                        "caption": "Polar diagram of each throw's unbalance seen from the front:"
                                   " net (arrows), without counterweights (circles) and of the"
                                   " counterweights alone (crosses)"})

@@ -97,6 +97,7 @@ def damper_section(res: CheckResult) -> dict:
             ax.legend(fontsize=6)
         fig.subplots_adjust(wspace=0.35)
         blocks.append({"type": "figure", "svg": to_svg(fig),
+                       "data": ["tv.nose_amplitude", "damper.optimum_nose_amplitude"],
                        "caption": "Crank-nose amplitude, actual damper (solid) and optimum"
                                   " rubber (dashed): the cylinder-count order and all orders"
                                   " synthesised (the low-speed part is the rigid-body"

@@ -109,6 +109,7 @@ def flywheel_section(res: CheckResult) -> dict:
     ax.legend(fontsize=6)
     fig.subplots_adjust(wspace=0.35)
     blocks.append({"type": "figure", "svg": to_svg(fig),
+                   "data": ["flywheel.cyclic_irregularity"],
                    "caption": "Left: cyclic irregularity against speed (dashed: target)."
                               f" Right: speed over the cycle at {sp[k0] / RPM:.0f} rpm"})
     tgt = ("the target is not given (Engine 'Target cyclic irregularity'): FLY-001 is not"
