@@ -174,18 +174,29 @@ def _sommerfeld_gamma(theta: np.ndarray, a: float) -> np.ndarray:
     return g + 2.0 * np.pi * k
 
 
-def _invert_monotone(fun, target: np.ndarray, lo: float, hi: float) -> np.ndarray:
-    """Solve ``fun(x) = target`` for increasing ``fun`` on ``[lo, hi]`` (bisection + secant)."""
+def _invert_monotone(fun, dfun, target: np.ndarray, lo: float, hi: float) -> np.ndarray:
+    """Solve ``fun(x) = target`` for increasing ``fun`` on ``[lo, hi]``: a few bisection
+    steps, then Newton (derivative ``dfun``) kept inside the bracket, to rounding."""
     a = np.full(target.shape, lo)
     b = np.full(target.shape, hi)
-    for _ in range(200):
+    for _ in range(6):
         m = 0.5 * (a + b)
-        f = fun(m) - target
-        a = np.where(f < 0.0, m, a)
-        b = np.where(f < 0.0, b, m)
-        if np.max(b - a) < 1e-15 * max(1.0, abs(hi)):
+        below = fun(m) < target
+        a = np.where(below, m, a)
+        b = np.where(below, b, m)
+    x = 0.5 * (a + b)
+    tol = 1e-15 * max(1.0, abs(lo), abs(hi))
+    for _ in range(60):
+        f = fun(x) - target
+        a = np.where(f < 0.0, x, a)
+        b = np.where(f < 0.0, b, x)
+        xn = x - f / dfun(x)
+        xn = np.where((xn >= a) & (xn <= b), xn, 0.5 * (a + b))
+        done = np.max(np.abs(xn - x)) <= tol
+        x = xn
+        if done:
             break
-    return 0.5 * (a + b)
+    return x
 
 
 @functools.lru_cache(maxsize=64)
@@ -201,13 +212,32 @@ def _theta_nodes(n: int, eps_key: float) -> tuple[np.ndarray, np.ndarray]:
     def s_of(t):
         return (1.0 - b) * _sommerfeld_gamma(t, a) + b * t
 
+    q = np.sqrt((1.0 - a) * (1.0 + a))
+
+    def ds(t):
+        return (1.0 - b) * q / (1.0 - a * np.cos(t)) + b
+
     s_nodes = -np.pi + 2.0 * np.pi * np.arange(n) / n
     s_faces = s_nodes + np.pi / n
     if a == 0.0:
         return s_nodes, s_faces
-    nodes = _invert_monotone(s_of, s_nodes, -np.pi - 1e-12, np.pi + 1e-12)
-    faces = _invert_monotone(s_of, s_faces, -np.pi - 1e-12, np.pi + 2.0 * np.pi / n + 1e-9)
+    nodes = _invert_monotone(s_of, ds, s_nodes, -np.pi - 1e-12, np.pi + 1e-12)
+    faces = _invert_monotone(s_of, ds, s_faces, -np.pi - 1e-12,
+                             np.pi + 2.0 * np.pi / n + 1e-9)
     return nodes, faces
+
+
+_GRID_EPS_STEP = 0.05  # grid clustering parameter: 1 - eps rounded to 5 % steps (log scale)
+
+
+def _grid_eps(eps: float) -> float:
+    """Eccentricity ratio used to cluster the grid: ``1 - eps`` rounded to
+    :data:`_GRID_EPS_STEP` in ``ln(1 - eps)``, so that nearby eccentricities (orbits, root
+    finds) share grids (cached) while every grid stays clustered at the right scale."""
+    if eps <= 0.0:
+        return 0.0
+    k = round(np.log1p(-eps) / _GRID_EPS_STEP)
+    return float(-np.expm1(k * _GRID_EPS_STEP))
 
 
 def _edge_width(eps: float) -> float:
@@ -238,7 +268,11 @@ def _zeta_nodes(n: int, half: float, width: float, groove: float) -> np.ndarray:
     def g(z):
         return b * z / half + (1.0 - b) * (np.arctan((z - half) / w) - lo) / (0.0 - lo)
 
-    z = _invert_monotone(g, s, 0.0, half)
+    def dg(z):
+        u = (z - half) / w
+        return b / half + (1.0 - b) / (w * (1.0 + u * u) * (0.0 - lo))
+
+    z = _invert_monotone(g, dg, s, 0.0, half)
     z[0], z[-1] = 0.0, half
     return z
 
@@ -320,9 +354,10 @@ class _System:
 
 def _assemble(eps: float, half: float, grid: Grid, groove=None, supply=None) -> _System:
     n, m = grid.n_theta, grid.n_z
-    th, fa = _theta_nodes(n, float(eps))
+    eg = _grid_eps(eps)
+    th, fa = _theta_nodes(n, eg)
     g_half = 0.0 if groove is None else float(groove[2])
-    z = _zeta_nodes(m, float(half), _edge_width(eps), g_half)
+    z = _zeta_nodes(m, float(half), _edge_width(eg), g_half)
     # control volumes in zeta: node j owns [z_{j-1/2}, z_{j+1/2}] (j = 0: from 0)
     zm = 0.5 * (z[1:] + z[:-1])  # faces j+1/2, j = 0..m-1
     dz = np.empty(m)
@@ -449,7 +484,8 @@ _WARM_DALPHA = 0.25  # [rad] reuse the last active set of the same system below 
 _COARSEST = (36, 6)  # nested iteration: coarsest grid
 
 
-def _nested_guess(eps: float, half: float, grid: Grid, alpha: float) -> np.ndarray | None:
+def _nested_guess(eps: float, half: float, grid: Grid, alpha: float, groove=None
+                  ) -> np.ndarray | None:
     """Initial active set from the solution on a grid half as fine (recursively, down to
     :data:`_COARSEST`): nested iteration. The mapped grids nest (every second node of the
     fine grid is a coarse node), so the coarse pressure is prolonged by linear interpolation
@@ -460,15 +496,22 @@ def _nested_guess(eps: float, half: float, grid: Grid, alpha: float) -> np.ndarr
     if n % 2 or m % 2 or n // 2 < _COARSEST[0] or m // 2 < _COARSEST[1]:
         return None
     coarse = Grid(n // 2, m // 2)
-    sc = _system_cached(eps, half, coarse, None, None)
+    sc = _system_cached(eps, half, coarse, groove, None)
+    if groove is not None:  # the composite axial grid nests only for some node counts
+        sf = _system_cached(eps, half, grid, groove, None)
+        if not np.allclose(sf.zeta[::2], sc.zeta, rtol=0.0, atol=1e-12):
+            return None
     fc = _source(sc, alpha)
-    pc, _, _ = _solve_lcp(sc, fc, _nested_guess(eps, half, coarse, alpha))
+    pc, _, _ = _solve_lcp(sc, fc, _nested_guess(eps, half, coarse, alpha, groove))
     pcz = np.concatenate([pc, np.zeros((pc.shape[0], 1))], axis=1)  # with the edge column
     pf = np.zeros((n, m + 1))
     pf[0::2, 0::2] = pcz
     pf[1::2, 0::2] = 0.5 * (pcz + np.roll(pcz, -1, axis=0))
     pf[:, 1::2] = 0.5 * (pf[:, 0:-1:2] + pf[:, 2::2])
-    return pf[:, :m] <= 0.0
+    guess = pf[:, :m] <= 0.0
+    if groove is not None:
+        guess |= _system_cached(eps, half, grid, groove, None).fixed
+    return guess
 
 
 def _check_inputs(eps: float, l_over_d: float) -> None:
@@ -558,8 +601,8 @@ def solve_film(
     d_alpha = abs(float(np.angle(np.exp(1j * (alpha - s.last_alpha)))))
     if s.last_active is not None and d_alpha < _WARM_DALPHA:
         warm = s.last_active
-    elif gkey is None and skey is None:
-        warm = _nested_guess(eps, l_over_d, grid, alpha)
+    elif skey is None:
+        warm = _nested_guess(eps, l_over_d, grid, alpha, gkey)
     pp, active, it = _solve_lcp(s, f, warm)
     s.last_active = active
     s.last_alpha = alpha
@@ -695,14 +738,15 @@ def sommerfeld_squeeze(eps_signed: float, l_over_d: float, *, grid: Grid = DEFAU
 
 
 def _alpha_for_load(eps: float, chi: float, l_over_d: float, grid: Grid,
-                    alpha0: float | None, groove=None, tol: float = 1e-10
+                    alpha0: float | None, groove=None, tol: float = 1e-9
                     ) -> tuple[float, FilmSolution]:
     """Squeeze direction ``alpha`` (from e) whose film load points at ``chi`` (from e).
 
     ``g(alpha) = wrap(arg W - alpha) + alpha - chi`` is continuous and increasing on
     ``(chi - pi/2, chi + pi/2)`` (``W . V_s = int P f / 12 > 0``, so ``arg W - alpha`` stays
     in ``(-pi/2, pi/2)``). Safeguarded secant iteration (bracket kept, bisection fallback),
-    started at ``alpha0``; stops when the bracket or the step is below ``tol`` [rad].
+    started at ``alpha0``; stops when the load direction matches to ``tol / 10`` or the
+    bracket or the step is below ``tol`` [rad].
     """
 
     def g(a):
@@ -722,7 +766,7 @@ def _alpha_for_load(eps: float, chi: float, l_over_d: float, grid: Grid,
     a1 = float(np.clip(a0 + step, lo, hi))
     g1, s1 = g(a1)
     for _ in range(100):
-        if g1 == 0.0:
+        if abs(g1) < 0.1 * tol:  # load direction matched to 1e-10 rad
             return a1, s1
         if g1 < 0.0:
             lo = max(lo, a1)
@@ -745,7 +789,7 @@ def _alpha_for_load(eps: float, chi: float, l_over_d: float, grid: Grid,
 
 def mobility_reynolds(
     zeta: ArrayLike, kappa: ArrayLike, l_over_d: float, *, grid: Grid = DEFAULT_GRID,
-    alpha0: ArrayLike | None = None,
+    alpha0: ArrayLike | None = None, groove: tuple[float, float, float] | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Finite-length mobility (Booker's convention) by direct solution of the Reynolds LCP.
 
@@ -772,6 +816,10 @@ def mobility_reynolds(
         Resolution.
     alpha0 : array_like, optional [rad]
         Initial guesses of the squeeze direction from the eccentricity vector.
+    groove : (theta_start, theta_end, half_width), optional
+        Zero-pressure groove, angles from the eccentricity vector (:func:`solve_film`). A
+        groove fixed in the bearing breaks the rotational symmetry the mobility method rests
+        on; the result holds for the given groove position only.
 
     Returns
     -------
@@ -793,7 +841,7 @@ def mobility_reynolds(
             raise ValueError(f"eccentricity ratio {eps} above EPS_MAX = {EPS_MAX}")
         chi = -float(np.angle(w)) if eps > 0.0 else 0.0
         alpha, s = _alpha_for_load(eps, chi, float(l_over_d), grid,
-                                   None if a0 is None else float(a0[idx]))
+                                   None if a0 is None else float(a0[idx]), groove)
         wm = float(np.hypot(s.w_r, s.w_t))
         out[idx] = 4.0 * l_over_d / wm * np.exp(1j * (alpha - chi))
     return out.real, out.imag
