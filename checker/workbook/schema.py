@@ -108,10 +108,12 @@ OIL = Sheet(
         F("Film temperature rise", "temperature_rise", "temperature_difference", check=">=0",
           required=False, note="Added to the supply temperature to give the film temperature."),
         F("Mobility model", "mobility_model", "choice",
-          choices=("short bearing", "exact short bearing", "finite length"), required=False,
+          choices=("short bearing", "exact short bearing", "finite length", "Butenschoen fits"),
+          required=False,
           note="short bearing = Booker closed form (default, seed 000); exact short bearing ="
-               " numerical short-bearing mobility (reference); finite length = Butenschoen"
-               " fits (L/D 1/8..1)."),
+               " numerical short-bearing mobility (reference); finite length = mobility map of"
+               " the finite-length Reynolds equation (checker's solver, L/D 1/16..1);"
+               " Butenschoen fits = Butenschoen (1976) curve fits (L/D 1/8..1)."),
     ),
 )
 
