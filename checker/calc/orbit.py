@@ -203,7 +203,8 @@ class _Problem:
 
     def __init__(
         self, load_x, load_y, omega_journal, omega_bearing, speed, diameter, length, clearance,
-        viscosity, model, full_groove, steps_per_cycle, cycle_angle,
+        viscosity, model, full_groove, steps_per_cycle, cycle_angle, solver_grid=None,
+        solver_groove=None,
     ):
         if model not in _mob.MOBILITY_MODELS:
             raise ValueError(f"unknown model {model!r}; choose one of {_mob.MOBILITY_MODELS}")
@@ -286,7 +287,18 @@ class _Problem:
         fs_step *= _STIFF_COEF * self.h
         self.arr = {"fk": f, "uc": uc, "iwb": iwb, "lam": fs_step}  # lam: (n, B)
 
+        self.shared = {}
+        tid = np.zeros(lod.size, dtype=np.intp)
+        if model in ("reynolds_map", "reynolds"):
+            from checker.calc import reynolds_map as _rm
+
+            mob, _, _, tid = _rm._stack(lod)  # ValueError outside the map's L/D range
+            self.shared["map_mobility"] = mob
+            if model == "reynolds":
+                self.shared["solver_grid"] = solver_grid
+                self.shared["solver_groove"] = solver_groove
         self.bear = {
+            "tid": tid,
             "lod": lod,
             "coef": _mob._butenschoen_coefficients(lod).T.copy() if model == "butenschoen"
             else np.zeros((lod.size, 0)),
@@ -308,7 +320,7 @@ class _Problem:
 # --------------------------------------------------------------------------------------------
 # right-hand sides
 # --------------------------------------------------------------------------------------------
-def _make_rate(model: str, bear: dict):
+def _make_rate(model: str, bear: dict, shared: dict | None = None):
     """Return rate(z, fk, uc, iwb, sel) -> d eps / d theta (complex) for the active bearings
     (``sel``: indices of a subset of the active bearings, for per-bearing model data)."""
     if model == "closed_form":
@@ -334,6 +346,46 @@ def _make_rate(model: str, bear: dict):
 
         def rate(z, fk, uc, iwb, sel=None):
             return fk * _mob._m_exact(clip(z * uc)) + iwb * z
+
+        return rate
+    if model == "reynolds_map":
+        from checker.calc import reynolds_map as _rm
+
+        mob = shared["map_mobility"]
+        tid = bear["tid"]
+
+        def rate(z, fk, uc, iwb, sel=None):
+            t = tid if sel is None else tid[sel]
+            return fk * _rm._m_map(z * uc, mob, t) + iwb * z
+
+        return rate
+    if model == "reynolds":
+        from checker.calc import reynolds as _ry
+        from checker.calc import reynolds_map as _rm
+
+        mob = shared["map_mobility"]
+        tid = bear["tid"]
+        lod_all = bear["lod"]
+        grid = shared.get("solver_grid") or _ry.DEFAULT_GRID
+        groove = shared.get("solver_groove")
+
+        def rate(z, fk, uc, iwb, sel=None):
+            t = tid if sel is None else tid[sel]
+            lods = lod_all if sel is None else lod_all[sel]
+            w = clip(z * uc)
+            aw = np.abs(w)
+            w = np.where(aw > _ry.EPS_MAX, w * (_ry.EPS_MAX / np.maximum(aw, _ry.EPS_MAX)), w)
+            guess = _rm._m_map(w, mob, t)  # initial squeeze direction from the map
+            alpha0 = np.angle(guess) - np.angle(w)  # M is along V_s: alpha = arg M + chi
+            m = np.empty(w.shape, dtype=complex)
+            phi = np.angle(z)  # eccentricity direction in the caller's frame
+            for i in range(w.size):
+                g_e = None if groove is None else (
+                    groove[0] - phi[i], groove[1] - phi[i], groove[2])
+                mz, mk = _ry.mobility_reynolds(w.real[i], w.imag[i], float(lods[i]),
+                                               grid=grid, alpha0=alpha0[i], groove=g_e)
+                m[i] = complex(float(mz), float(mk)) * lods[i] ** 2
+            return fk * m + iwb * z
 
         return rate
     x = bear["lod"]
@@ -415,7 +467,7 @@ def _ros2_steps(rate, z, fk3, iw3, sel, h, nsub):
     return z, r_start, lam_h
 
 
-def _rk4_steps(rate, z, fk3, iw3, h, nsub):
+def _rk4_steps(rate, z, fk3, iw3, h, nsub, sel=None):
     """Advance ``z`` over one step of length ``h`` with ``nsub`` classical RK4 sub-steps
     (loads piecewise-linear between the three nodes of the step)."""
 
@@ -428,10 +480,10 @@ def _rk4_steps(rate, z, fk3, iw3, h, nsub):
         p0 = p1
         pm = at((k + 0.5) / nsub)
         p1 = at((k + 1.0) / nsub)
-        k1 = rate(z, *p0)
-        k2 = rate(z + 0.5 * hs * k1, *pm)
-        k3 = rate(z + 0.5 * hs * k2, *pm)
-        k4 = rate(z + hs * k3, *p1)
+        k1 = rate(z, *p0, sel)
+        k2 = rate(z + 0.5 * hs * k1, *pm, sel)
+        k3 = rate(z + 0.5 * hs * k2, *pm, sel)
+        k4 = rate(z + hs * k3, *p1, sel)
         z = z + (hs / 6.0) * (k1 + 2.0 * (k2 + k3) + k4)
         za = np.abs(z)
         z = np.where(za > EPS_CAP, z * (EPS_CAP / np.maximum(za, EPS_CAP)), z)
@@ -459,7 +511,8 @@ def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: 
     hh, h6 = 0.5 * h, h / 6.0
     arr = prob.arr
     fk, uc, iwb, lam = arr["fk"], arr["uc"], arr["iwb"], arr["lam"]
-    rate = _make_rate(prob.model, prob.bear)
+    rate = _make_rate(prob.model, prob.bear, prob.shared)
+    map_stiff = prob.model in ("reynolds_map", "reynolds")
     implicit = prob.model == "butenschoen"
     nbase = _ROS2_BASE_SUBSTEPS
     zh = np.empty((n, z.size), dtype=complex)
@@ -498,6 +551,10 @@ def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: 
                 # (1) closed-form stiffness estimate 2.5/pi |f|max h s^1.5, s = 1 - zeta + travel
                 s = np.minimum(1.0 - (z * uc[a]).real + h * np.abs(k1), 2.0)
                 lh = lam[j] * (s * np.sqrt(s))
+                if map_stiff:
+                    # finite length: Jacobian ~ p |f M| / s for M ~ s^p; p = 2.5 for the short
+                    # bearing, 1.5 for the (locally long) finite-length film near the wall
+                    lh = np.maximum(lh, (1.5 * h) * np.abs(k1 - iwb[a] * z) / s)
                 # (2) travel: the step closes more than _TRAVEL_FRAC of the film gap
                 za = np.abs(znew)
                 travel = (za - za0) / (_TRAVEL_FRAC * (1.0 - za0))
@@ -509,7 +566,7 @@ def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: 
                     need = np.maximum(lh[idx] / stiff_limit, travel[idx])
                     nsub, ratio = _nsub_for(need, _MAX_RK4_SUBSTEPS)
                     if ratio <= _MAX_RK4_SUBSTEPS:  # moderately stiff: RK4 sub-steps
-                        znew[idx] = _rk4_steps(rate, z[idx], fk3, iw3, h, nsub)
+                        znew[idx] = _rk4_steps(rate, z[idx], fk3, iw3, h, nsub, idx)
                     else:  # very stiff: L-stable ROS2 sub-steps
                         need = np.maximum(lh[idx] / _ROS2_LAMBDA_H, travel[idx])
                         nsub, ratio = _nsub_for(need, max_substeps)
@@ -624,6 +681,8 @@ def solve_orbit(
     eps0_y: ArrayLike | None = None,
     cycle_angle: float = 4.0 * np.pi,
     collapse_h_min: float = COLLAPSE_H_MIN,
+    solver_grid=None,
+    solver_groove=None,
 ) -> OrbitResult:
     """Periodic journal orbit and minimum oil film thickness for a batch of bearings.
 
@@ -653,15 +712,26 @@ def solve_orbit(
         Radial clearance (> 0, < 0.05 D).
     viscosity : array_like, shape (...) [Pa*s]
         Effective dynamic viscosity.
-    model : {"closed_form", "exact", "exact_table", "butenschoen"}
+    model : {"closed_form", "exact", "exact_table", "butenschoen", "reynolds_map", "reynolds"}
         Mobility model (:mod:`checker.calc.mobility`). ``"exact"`` is very slow (reference
         for a handful of bearings); ``"exact_table"`` is its fast interpolated version.
+        ``"reynolds_map"``: finite-length Reynolds mobility map
+        (:mod:`checker.calc.reynolds_map`, L/D 1/16..1); ``"reynolds"``: the same film solved
+        by :func:`checker.calc.reynolds.mobility_reynolds` at every evaluation (reference for
+        a few bearings; seconds per step).
     full_groove : array_like of bool, shape (...)
         Full circumferential central groove: two lands of ``length/2`` each carrying half the
         load (notes ``bearings.md`` 1.6).
     steps_per_cycle : int
         RK4 steps per cycle (``"butenschoen"``: at least one step per degree, each made of two
         ROS2 sub-steps; the stored orbit then has that many points).
+    solver_grid : checker.calc.reynolds.Grid, optional
+        Resolution of the Reynolds solver for ``model="reynolds"`` (direct solution at every
+        evaluation; default grid).
+    solver_groove : (theta_start, theta_end, half_width), optional
+        ``model="reynolds"`` only: a zero-pressure groove fixed in the caller's frame (angles
+        [rad] in that frame, half width over the radius); ``length`` is then the total width
+        including the groove. For measuring what the effective-width model costs.
     tol : float [-]
         Periodicity tolerance on the eccentricity ratio.
     max_cycles : int
@@ -707,7 +777,8 @@ def solve_orbit(
     if int(max_cycles) < 2:
         raise ValueError("max_cycles must be >= 2")
     prob = _Problem(load_x, load_y, omega_journal, omega_bearing, speed, diameter, length,
-                    clearance, viscosity, model, full_groove, steps_per_cycle, cycle_angle)
+                    clearance, viscosity, model, full_groove, steps_per_cycle, cycle_angle,
+                    solver_grid, solver_groove)
     n, size = prob.n, prob.size
     z = _prepare_eps0(eps0_x, eps0_y, prob)
     gid = np.arange(size)
@@ -817,6 +888,8 @@ def integrate_orbit(
     eps0_x: ArrayLike | None = None,
     eps0_y: ArrayLike | None = None,
     cycle_angle: float = 4.0 * np.pi,
+    solver_grid=None,
+    solver_groove=None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Transient orbit over a fixed number of cycles (no periodicity iteration).
 
@@ -826,7 +899,7 @@ def integrate_orbit(
     ----------
     load_x, load_y, omega_journal, omega_bearing, speed, diameter, length, clearance, \
 viscosity, model, full_groove, steps_per_cycle, stiff_limit, max_substeps, eps0_x, eps0_y, \
-cycle_angle
+cycle_angle, solver_grid, solver_groove
         As in :func:`solve_orbit`.
     n_cycles : int
         Number of cycles to integrate.
@@ -845,7 +918,8 @@ cycle_angle
     if int(n_cycles) < 1:
         raise ValueError("n_cycles must be >= 1")
     prob = _Problem(load_x, load_y, omega_journal, omega_bearing, speed, diameter, length,
-                    clearance, viscosity, model, full_groove, steps_per_cycle, cycle_angle)
+                    clearance, viscosity, model, full_groove, steps_per_cycle, cycle_angle,
+                    solver_grid, solver_groove)
     z = _prepare_eps0(eps0_x, eps0_y, prob)
     hist = []
     for _ in range(int(n_cycles)):

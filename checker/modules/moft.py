@@ -14,23 +14,43 @@ from .loads import CASES
 register_module("bearings", "Bearing oil film (MOFT)")
 
 MODELS = {"short bearing": "closed_form", "exact short bearing": "exact_table",
-          "finite length": "butenschoen"}
+          "finite length": "reynolds_map", "Butenschoen fits": "butenschoen"}
 MODEL_TEXT = {
     "closed_form": "Booker's closed-form short-bearing mobility (Booker 1965; as in seed 000:"
                    " 'short bearing assumption normally used')",
     "exact_table": "exact short-bearing mobility (numerical pi-film integral, tabulated)",
+    "reynolds_map": "finite-length mobility of the Reynolds equation (Swift-Stieber"
+                    " cavitation), tabulated from checker's finite-difference solution"
+                    " (Booker 1965 mobility method; map as in Goenka 1984)",
     "butenschoen": "Butenschoen (1976) finite-length curve fits (rotation + squeeze"
                    " superposed)",
 }
+METHOD_QUANTITY = {"closed_form": "bearing.moft_short", "reynolds_map": "bearing.moft_finite"}
+"""Model -> the method-tagged quantity that always uses that model."""
 
 STEPS_PER_CYCLE = ob.DEFAULT_STEPS_PER_CYCLE
 """RK steps per 720 deg cycle (benchmarks/bench_moft.py; halving the step changes the example's
 MOFT by far less than 0.5 %, tests/modules/test_moft_module.py)."""
 
+STEPS_PER_CYCLE_FINITE = 240
+"""RK steps per cycle for the finite-length map (benchmarks/bench_finite_length.py: MOFT within
+4e-4 of 1440 steps on the example I4)."""
+
 MOFT = quantity(QuantitySpec(
     "bearing.moft", "m", ("item", "case", "speed"),
-    "Minimum oil film thickness over the cycle (periodic journal orbit)", "um",
+    "Minimum oil film thickness over the cycle (periodic journal orbit), by the mobility model"
+    " chosen in the workbook (Oil sheet 'Mobility model'; default short bearing)", "um",
     ("type", "lining"), coords={"case": CASES}))
+MOFT_SHORT = quantity(QuantitySpec(
+    "bearing.moft_short", "m", ("item", "case", "speed"),
+    "Minimum oil film thickness by the short-bearing mobility (Booker's closed form), whatever"
+    " the workbook's model", "um", ("type", "lining"), coords={"case": CASES}))
+MOFT_FINITE = quantity(QuantitySpec(
+    "bearing.moft_finite", "m", ("item", "case", "speed"),
+    "Minimum oil film thickness by the finite-length Reynolds mobility map, whatever the"
+    " workbook's model", "um", ("type", "lining"), coords={"case": CASES}))
+SPECS = {"bearing.moft": MOFT, "bearing.moft_short": MOFT_SHORT,
+         "bearing.moft_finite": MOFT_FINITE}
 
 
 def oil_viscosity(engine: Engine) -> tuple[float, float, list[str]]:
@@ -69,22 +89,70 @@ def oil_viscosity(engine: Engine) -> tuple[float, float, list[str]]:
     return t_film, mu, notes
 
 
-@calculation("moft", "bearings", provides=("bearing.moft",), needs=("loads.bearing_load",),
+def chosen_model(engine: Engine) -> str:
+    """Mobility model of the workbook (Oil sheet 'Mobility model'), as a model key."""
+    return MODELS[engine.oil.get("mobility_model") or "short bearing"]
+
+
+def _moft_needs(engine: Engine) -> tuple[str, ...]:
+    alias = METHOD_QUANTITY.get(chosen_model(engine))
+    return ("loads.bearing_load",) + ((alias,) if alias else ())
+
+
+@calculation("moft", "bearings", provides=("bearing.moft",), needs=_moft_needs,
              reads=("bearings", "oil"))
 def moft(engine: Engine, inputs: dict) -> dict[str, Quantity]:
+    """MOFT by the workbook's model (reuses the method-tagged quantity of that model)."""
+    model = chosen_model(engine)
+    alias = METHOD_QUANTITY.get(model)
+    if alias is not None and alias in inputs:
+        q = inputs[alias]
+        return {"bearing.moft": Quantity(MOFT, q.values, q.coords, q.item_attrs,
+                                         dict(q.missing), q.findings, q.extra)}
+    return {"bearing.moft": _solve(engine, inputs, model, "bearing.moft")}
+
+
+@calculation("moft_short", "bearings", provides=("bearing.moft_short",),
+             needs=("loads.bearing_load",), reads=("bearings", "oil"))
+def moft_short(engine: Engine, inputs: dict) -> dict[str, Quantity]:
+    """MOFT by the short-bearing mobility (Booker's closed form), for method-tagged limits."""
+    return {"bearing.moft_short": _solve(engine, inputs, "closed_form", "bearing.moft_short")}
+
+
+@calculation("moft_finite", "bearings", provides=("bearing.moft_finite",),
+             needs=("loads.bearing_load",), reads=("bearings", "oil"))
+def moft_finite(engine: Engine, inputs: dict) -> dict[str, Quantity]:
+    """MOFT by the finite-length Reynolds mobility map, for physical film criteria."""
+    return {"bearing.moft_finite": _solve(engine, inputs, "reynolds_map",
+                                          "bearing.moft_finite")}
+
+
+def _solve(engine: Engine, inputs: dict, model: str, name: str) -> Quantity:
     """Periodic journal orbits of all bearings x load cases x speeds in one batch."""
     bl = inputs["loads.bearing_load"]
     if not bl.coords["item"]:
         raise MissingInputs(["Bearings: no bearings given (sheet Bearings)"])
     ex = bl.extra
     t_film, mu, notes = oil_viscosity(engine)
-    choice = engine.oil.get("mobility_model") or "short bearing"
-    model = MODELS[choice]
     names = bl.coords["item"]
     bearings = {b.name: b for b in engine.bearings}
     speeds = np.array(bl.coords["speed"])
     nb, nc, ns = bl.values.shape
-    ok_rows = np.where(np.isfinite(bl.values).all(axis=(1, 2)))[0]
+    ok = np.isfinite(bl.values).all(axis=(1, 2))
+    missing = dict(bl.missing)
+    lo_hi = _model_l_over_d_range(model)
+    if lo_hi is not None:
+        lo, hi = lo_hi
+        for i, n in enumerate(names):
+            b = bearings[n]
+            lod = (0.5 if b.groove == "full" else 1.0) * b.length / b.diameter
+            if ok[i] and not lo - 1e-12 <= lod <= hi + 1e-12:
+                ok[i] = False
+                missing[(i,)] = [
+                    f"{engine.cell('Bearings', 'length', b.row)}: land length / diameter"
+                    f" {lod:.3g} outside the range {lo:.3g}..{hi:.3g} of the"
+                    f" {MODEL_TEXT[model].split(' (')[0]}"]
+    ok_rows = np.where(ok)[0]
     h = np.full((nb, nc, ns), np.nan)
     eps = np.full((nb, nc, ns), np.nan)
     th_min = np.full((nb, nc, ns), np.nan)
@@ -103,7 +171,7 @@ def moft(engine: Engine, inputs: dict) -> dict[str, Quantity]:
             speeds[None, None, :], np.broadcast_to(d, (sel.size, nc, ns)),
             np.broadcast_to(length, (sel.size, nc, ns)), np.broadcast_to(c, (sel.size, nc, ns)),
             mu, model=model, full_groove=np.broadcast_to(full, (sel.size, nc, ns)),
-            steps_per_cycle=STEPS_PER_CYCLE)
+            **_steps(model))
         h[sel] = res.h_min
         eps[sel] = res.eps_max
         th_min[sel] = res.theta_h_min
@@ -131,13 +199,18 @@ def moft(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         assumptions.append(
             "Partial grooves (" + ", ".join(partial) + ") are not modelled: the bearing is"
             " treated as ungrooved with its effective length (approximation; Booker 2014"
-            " notes the method applies approximately when the loaded region is symmetric).")
+            " notes the method applies approximately when the loaded region is symmetric)."
+            " Checked with checker's finite-length Reynolds solution on the seed's I4 mains"
+            " (groove as an ambient-pressure strip in the upper shell): the effective-width"
+            " film is 25 % thinner than the grooved one where the thinnest film lies in the"
+            " plain shell (full load, 1000 rpm) but 48 % thicker where it lies under the"
+            " groove (no load, 7000 rpm).")
     holes = [n for n in names if (bearings[n].oil_holes or 0) > 0]
     if holes:
         assumptions.append("Journal oil holes (" + ", ".join(holes) + ") are recorded but"
                            " their effect on the film is not modelled (no documented method"
                            " in the mobility method used).")
-    if model != "butenschoen":
+    if model in ("closed_form", "exact_table"):
         ld = ", ".join(f"{n} {bearings[n].length / bearings[n].diameter:.2f}" for n in names)
         assumptions.append("Short-bearing theory is optimistic at engine L/D (reference notes"
                            f" 1.5: +28 % h_min at L/D 1/3, eps 0.9); L/D: {ld}.")
@@ -145,5 +218,22 @@ def moft(engine: Engine, inputs: dict) -> dict[str, Quantity]:
              "model": model, "model_text": MODEL_TEXT[model], "orbit": orbit_store,
              "assumptions": assumptions,
              "l_over_d": {n: bearings[n].length / bearings[n].diameter for n in names}}
-    return {"bearing.moft": Quantity(MOFT, h, bl.coords, bl.item_attrs, dict(bl.missing),
-                                     findings, extra)}
+    return Quantity(SPECS[name], h, bl.coords, bl.item_attrs, missing, findings, extra)
+
+
+def _steps(model: str) -> dict:
+    if model == "reynolds_map":
+        return {"steps_per_cycle": STEPS_PER_CYCLE_FINITE}
+    return {"steps_per_cycle": STEPS_PER_CYCLE}
+
+
+def _model_l_over_d_range(model: str) -> tuple[float, float] | None:
+    if model in ("reynolds_map", "reynolds"):
+        from ..calc import reynolds_map as rm
+
+        return rm.MAP_L_OVER_D[0], rm.MAP_L_OVER_D[-1]
+    if model == "butenschoen":
+        from ..calc import mobility as mb
+
+        return mb.BUTENSCHOEN_B_OVER_D_RANGE
+    return None

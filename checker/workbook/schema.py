@@ -314,13 +314,16 @@ OIL = Sheet(
           required=False, note="Added to the supply temperature to give the film temperature.",
           valid=R(0, 200, "K"), usual=R(0, 60, "K")),
         F("Mobility model", "mobility_model", "choice",
-          choices=("short bearing", "exact short bearing", "finite length"), required=False,
+          choices=("short bearing", "exact short bearing", "finite length", "Butenschoen fits"),
+          required=False,
           note="short bearing = Booker closed form (default, seed 000); exact short bearing ="
-               " numerical short-bearing mobility (reference); finite length = Butenschoen"
-               " fits (L/D 1/8..1).",
+               " numerical short-bearing mobility (reference); finite length = mobility map of"
+               " the finite-length Reynolds equation (checker's solver, L/D 1/16..1);"
+               " Butenschoen fits = Butenschoen (1976) curve fits (L/D 1/8..1).",
           aliases=(("short", "short bearing"), ("booker", "short bearing"),
                    ("exact short", "exact short bearing"), ("finite", "finite length"),
-                   ("butenschoen", "finite length"), ("finite bearing", "finite length"))),
+                   ("reynolds", "finite length"), ("finite bearing", "finite length"),
+                   ("butenschoen", "Butenschoen fits"))),
     ),
 )
 
