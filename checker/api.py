@@ -311,7 +311,10 @@ def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = No
         engine = load_engine(source, check_overrides=_check_overrides)
         table = RuleTable(resolved["rules"], table.files, resolved["applied"])
     chosen = _select(table, select, ignore)
-    outcome = graph.run(engine, {r.quantity for r in chosen}, progress=progress, cache=cache)
+    wanted = {r.quantity for r in chosen}
+    # quantities a result is shown beside (the film thickness by the other method)
+    wanted |= {n for r in chosen for _, n in graph.QUANTITIES[r.quantity].compare}
+    outcome = graph.run(engine, wanted, progress=progress, cache=cache)
     if cache is not None:  # cached quantities are shared between variants: judge on copies
         outcome.quantities = {k: replace(q, extra=dict(q.extra))
                               for k, q in outcome.quantities.items()}
@@ -319,7 +322,7 @@ def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = No
     results: list[RuleResult] = []
     for r in chosen:
         results += evaluate_rule(r, outcome.quantities.get(r.quantity),
-                                 outcome.unavailable.get(r.quantity))
+                                 outcome.unavailable.get(r.quantity), outcome.quantities)
     _mark_overrides(results, table)
     return CheckResult(engine, table, chosen, results, outcome, fail_on,
                        _assumptions(engine, outcome))

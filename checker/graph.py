@@ -42,6 +42,12 @@ class QuantitySpec:
     display_unit: str | None = None  # default display unit in reports
     filters: tuple[str, ...] = ()  # item attributes a rule may filter on
     coords: dict[str, tuple[str, ...]] = field(default_factory=dict)  # fixed labels of a dim
+    methods: dict[str, str] = field(default_factory=dict)
+    """Method-tagged quantity families (film thickness): a rule on this quantity must name its
+    ``method``, which selects the quantity it is judged on (method -> quantity name)."""
+    compare: tuple[tuple[str, str], ...] = ()
+    """(label, quantity) computed beside this one: a result carries their values at its
+    judged point (e.g. the short-bearing and the finite-length film)."""
 
 
 @dataclass

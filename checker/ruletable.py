@@ -26,7 +26,8 @@ ID_PATTERN = re.compile(r"^[A-Z]{2,5}-\d{3}$")
 CHECKS = (">=", "<=", ">", "<", "between")
 SEVERITIES = ("error", "warning")
 REQUIRED = ("id", "name", "quantity", "check", "unit", "severity", "source", "rationale")
-OPTIONAL = ("limit", "limit_by", "limits", "limit_from", "where", "applies_to", "status")
+OPTIONAL = ("limit", "limit_by", "limits", "limit_from", "where", "applies_to", "status",
+            "method")
 LIMIT_FROM = ("workbook",)
 """Values of ``limit_from``: ``workbook`` = the limit is the engine's own (a workbook value
 such as a balancing limit or a target), carried by the quantity per item (item attributes
@@ -52,6 +53,7 @@ class Rule:
     applies_to: str = ""
     origin: str = ""
     limit_from: str | None = None  # "workbook": per-engine limit carried by the quantity
+    method: str | None = None  # method tag of a film-thickness limit (selects the quantity)
 
     def limit_text(self, limit: tuple[float, ...] | None = None) -> str:
         """The limit as displayed (``≤ 48 MPa``, ``≥ 1.2 µm``, ``70..75 %``)."""
@@ -129,6 +131,23 @@ def _parse_rule(raw: dict, origin: str, problems: list[str]) -> Rule | None:
         problems.append(f"{pre}: unknown quantity '{raw['quantity']}' (known: "
                         + ", ".join(sorted(QUANTITIES)) + ")")
         return None
+    method = raw.get("method")
+    if spec.methods:
+        # a film-thickness limit is only meaningful with the method it was calibrated to
+        if method not in spec.methods:
+            problems.append(f"{pre}: a limit on {spec.name} must say which method it belongs"
+                            f" to: method = one of {', '.join(repr(m) for m in spec.methods)}"
+                            + (f", found {method!r}" if method is not None else ""))
+            return None
+        target = spec.methods[method]
+        if spec.name != "bearing.moft" and spec.name != target:
+            problems.append(f"{pre}: method '{method}' is judged on {target}, but the rule"
+                            f" names {spec.name}")
+            return None
+        spec = QUANTITIES[target]
+    elif method is not None:
+        problems.append(f"{pre}: 'method' applies only to method-tagged quantities")
+        return None
     check = raw["check"]
     if check not in CHECKS:
         problems.append(f"{pre}: check must be one of {', '.join(CHECKS)}, found '{check}'")
@@ -199,6 +218,7 @@ def _parse_rule(raw: dict, origin: str, problems: list[str]) -> Rule | None:
                     return None
         where[k] = vals
     return Rule(id=rid, name=raw["name"], quantity=spec.name, check=check, unit=unit,
+                method=method,
                 severity=raw["severity"], source=raw["source"], rationale=raw["rationale"],
                 limit=limit, limit_by=raw.get("limit_by"), limits=limits, where=where,
                 applies_to=raw.get("applies_to", ""), origin=origin, limit_from=limit_from)
@@ -347,6 +367,8 @@ class RuleResult:
     missing: list[str] = field(default_factory=list)
     findings: list[str] = field(default_factory=list)
     internal_error: bool = False  # the calculation ran but produced no number (NaN/inf)
+    compare: dict[str, float] = field(default_factory=dict)  # other methods at the point
+    judged_on: str = ""  # which of ``compare`` the rule judged (method-tagged quantities)
     check: str = ""  # the rule's comparison (">=", "<=", ">", "<", "between")
     override: str = ""  # how the workbook's RuleOverrides changed the limit ("" if not)
 
@@ -376,6 +398,8 @@ class RuleResult:
             "internal_error": self.internal_error,
             "margin_text": self.margin_text if self.status != "not_evaluated" else "",
             "override": self.override or None,
+            "compare": {k: float(f"{v:.6g}") for k, v in self.compare.items()} or None,
+            "judged_on": self.judged_on or None,
         }
 
 
@@ -430,9 +454,13 @@ def _passes(check: str, margin: float) -> bool:
     return margin >= -REL_TOL
 
 
-def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None
-                  ) -> list[RuleResult]:
-    """Evaluate one rule on its quantity: one result per item it applies to."""
+def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
+                  others: dict[str, Quantity] | None = None) -> list[RuleResult]:
+    """Evaluate one rule on its quantity: one result per item it applies to.
+
+    ``others`` holds the quantities the rule's quantity is compared with
+    (``QuantitySpec.compare``, e.g. the film thickness by the other method): each result
+    carries their values at its judged point, and which one the rule judged."""
     spec = QUANTITIES[rule.quantity]
     base = dict(rule=rule.id, name=rule.name, severity=rule.severity, unit=rule.unit,
                 source=rule.source, check=rule.check)
@@ -561,10 +589,36 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None
             msg += f" (worst at {', '.join(case_parts)})"
         if limit_cell:
             msg += f"; limit from {limit_cell}"
+        compare, judged_on = _compare_at(spec, others, q, tuple(
+            int(sel_i[j][worst[j]]) for j in range(len(dims))), factor)
+        if compare:
+            judged_on = next((lab for lab, n in spec.compare if n == rule.quantity), "")
+            parts = [f"{lab} {display.with_unit(v, rule.unit)}" for lab, v in compare.items()]
+            vals = list(compare.values())
+            ratio = (f", ratio {max(vals) / min(vals):.2f}" if len(vals) == 2 and min(vals) > 0
+                     else "")
+            msg += f" [{'; '.join(parts)}{ratio}; judged on {judged_on or rule.quantity}]"
         results.append(RuleResult(**base, item=item, status=status, value=value,
                                   limit=lim_text, limit_values=list(lim), margin=margin,
-                                  case=", ".join(case_parts), message=msg, findings=findings))
+                                  case=", ".join(case_parts), message=msg, findings=findings,
+                                  compare=compare, judged_on=judged_on))
     return results
+
+
+def _compare_at(spec, others, q, index: tuple[int, ...], factor: float
+                ) -> tuple[dict[str, float], str]:
+    """Values of the compared quantities at ``index`` (display units of the rule)."""
+    out: dict[str, float] = {}
+    if not spec.compare:
+        return out, ""
+    for label, name in spec.compare:
+        o = q if name == spec.name else (others or {}).get(name)
+        if o is None or o.values.shape != q.values.shape:
+            continue
+        v = float(o.values[index])
+        if math.isfinite(v):
+            out[label] = v * factor
+    return out, ""
 
 
 def is_finite(x: float | None) -> bool:

@@ -36,19 +36,30 @@ STEPS_PER_CYCLE_FINITE = 240
 """RK steps per cycle for the finite-length map (benchmarks/bench_finite_length.py: MOFT within
 4e-4 of 1440 steps on the example I4)."""
 
+METHODS = {"short-bearing guideline": "bearing.moft_short",
+           "physical criterion": "bearing.moft_finite"}
+"""MOFT limits are method-tagged (rule key ``method``): a guideline calibrated to the
+short-bearing mobility method (Bell, Ricardo 2013: "Ricardo limiting values should only be
+applied when using Ricardo calculation methods") is judged on the short-bearing film, a
+physical criterion (film over composite roughness) on the finite-length film."""
+COMPARE = (("short bearing", "bearing.moft_short"), ("finite length", "bearing.moft_finite"))
+"""Every MOFT result carries both values at its judged point."""
+
 MOFT = quantity(QuantitySpec(
     "bearing.moft", "m", ("item", "case", "speed"),
     "Minimum oil film thickness over the cycle (periodic journal orbit), by the mobility model"
     " chosen in the workbook (Oil sheet 'Mobility model'; default short bearing)", "um",
-    ("type", "lining"), coords={"case": CASES}))
+    ("type", "lining"), coords={"case": CASES}, methods=METHODS, compare=COMPARE))
 MOFT_SHORT = quantity(QuantitySpec(
     "bearing.moft_short", "m", ("item", "case", "speed"),
     "Minimum oil film thickness by the short-bearing mobility (Booker's closed form), whatever"
-    " the workbook's model", "um", ("type", "lining"), coords={"case": CASES}))
+    " the workbook's model", "um", ("type", "lining"), coords={"case": CASES},
+    methods=METHODS, compare=COMPARE))
 MOFT_FINITE = quantity(QuantitySpec(
     "bearing.moft_finite", "m", ("item", "case", "speed"),
     "Minimum oil film thickness by the finite-length Reynolds mobility map, whatever the"
-    " workbook's model", "um", ("type", "lining"), coords={"case": CASES}))
+    " workbook's model", "um", ("type", "lining"), coords={"case": CASES},
+    methods=METHODS, compare=COMPARE))
 SPECS = {"bearing.moft": MOFT, "bearing.moft_short": MOFT_SHORT,
          "bearing.moft_finite": MOFT_FINITE}
 
