@@ -6,6 +6,7 @@ import numpy as np
 
 from ..api import CheckResult
 from . import judged as jd
+from .film_methods import film_method_blocks
 from .plots import every, figure, to_svg
 from .section_loads import bearing_speed_figure, shade_caption, worst_table
 from .sections import fmt, merge_items, section
@@ -15,7 +16,8 @@ RPM = 2 * np.pi / 60
 
 @section("bearings", label="bearing oil film")
 def bearings_section(res: CheckResult) -> dict:
-    q = res.outcome.quantities.get("bearing.moft")
+    qs = res.outcome.quantities
+    q = qs.get("bearing.moft") or qs.get("bearing.moft_finite") or qs.get("bearing.moft_short")
     blocks: list[dict] = []
     if q is None:
         return {"id": "bearings", "title": "Bearing oil film (MOFT)", "intro": "Not computed.",
@@ -53,18 +55,26 @@ def bearings_section(res: CheckResult) -> dict:
     sp = np.array(q.coords["speed"]) / RPM
     cases = q.coords["case"]
 
-    def more(idx):
-        if idx is None:
-            return ["-", "-"]
-        return [fmt(np.degrees(ex["theta_h_min"][idx])), fmt(ex["eps_max"][idx])]
-
     blocks.append({"type": "heading", "text": "Judged worst cases"})
-    blocks.append(worst_table(
-        res, q, lambda v: fmt(v * 1e6), more,
-        "Thinnest film per bearing and load case: the judged worst first (the value of the rule"
-        " result), then, marked, a thinner film at a point the rules do not judge",
-        ["bearing", "case", "MOFT [µm]", "speed [rpm]", "crank angle [°]",
-         "max eccentricity"]))
+    judged_qs = [x for x in (res.outcome.quantities.get(n) for n in
+                             ("bearing.moft_finite", "bearing.moft_short", "bearing.moft"))
+                 if x is not None and any(r.quantity == x.name for r in res.rules)]
+    for jq in judged_qs or [q]:
+        jx = jq.extra
+
+        def more_j(idx, jx=jx):
+            if idx is None:
+                return ["-", "-"]
+            return [fmt(np.degrees(jx["theta_h_min"][idx])), fmt(jx["eps_max"][idx])]
+
+        blocks.append(worst_table(
+            res, jq, lambda v: fmt(v * 1e6), more_j,
+            f"Thinnest film per bearing and load case, {jx['model_text']}: the judged worst"
+            " first (the value of the rule result), then, marked, a thinner film at a point the"
+            " rules do not judge",
+            ["bearing", "case", "MOFT [µm]", "speed [rpm]", "crank angle [°]",
+             "max eccentricity"]))
+    blocks += film_method_blocks(res)
     blocks.append({"type": "heading", "text": "Plots"})
     blocks.append({"type": "figure", "svg": bearing_speed_figure(res, q, 1e6, "MOFT [µm]", "µm"),
                    "caption": "Minimum oil film thickness against speed, full and no load."

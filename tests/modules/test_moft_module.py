@@ -31,7 +31,8 @@ def _moft(engine):
 
 
 def test_all_nine_bearings_full_and_no_load(result):
-    q = result.outcome.quantities["bearing.moft"]
+    # BRG-003/004 are a physical criterion: judged on the finite-length film
+    q = result.outcome.quantities["bearing.moft_finite"]
     assert q.coords["item"] == ["M1", "M2", "M3", "M4", "M5", "BE1", "BE2", "BE3", "BE4"]
     assert q.coords["case"] == ["full", "no"] and len(q.coords["speed"]) == 61
     assert np.isfinite(q.values).all() and (q.values > 0).all()
@@ -65,7 +66,23 @@ def _with_bearings(engine, **changes):
     return e
 
 
-def test_film_collapse_is_finite_and_reported(engine):
+SHORT_RULE = """
+[[rule]]
+id = "BRG-901"
+name = "film, short-bearing guideline"
+quantity = "bearing.moft"
+method = "short-bearing guideline"
+where = { case = "full" }
+check = ">="
+limit = 0.6
+unit = "um"
+severity = "error"
+source = "test"
+rationale = "test"
+"""
+
+
+def test_film_collapse_is_finite_and_reported(engine, tmp_path):
     # a sliver of a bearing under a huge load: the journal is driven to the wall
     e = _with_bearings(engine, length=0.5e-3)
     e.params = Params({**engine.params, "piston_mass": 20.0})
@@ -75,7 +92,9 @@ def test_film_collapse_is_finite_and_reported(engine):
     assert np.isfinite(vals).all() and (vals > 0).all()
     assert vals.min() < 0.01e-6  # near zero
     assert any("film collapse" in f for v in q.findings.values() for f in v)
-    res = api.check(e, select=["BRG-003"])
+    rules = tmp_path / "short.toml"
+    rules.write_text(SHORT_RULE, encoding="utf-8")
+    res = api.check(e, rules=str(rules))
     be1 = next(r for r in res.results if r.item == "BE1")
     assert be1.status == "fail" and any("film collapse" in f for f in be1.findings)
 
@@ -167,8 +186,7 @@ def test_finite_length_film_collapse_is_finite_and_reported(engine, monkeypatch)
     e.oil = Params({**engine.oil, "mobility_model": "Butenschoen fits"})
     monkeypatch.setattr(ob, "solve_orbit",
                         functools.partial(ob.solve_orbit, max_cycles=2, max_substeps=2))
-    res = api.check(e, select=["BRG-003", "BRG-004"])
-    q = res.outcome.quantities["bearing.moft"]
+    q = graph.run(e, ["bearing.moft"]).quantities["bearing.moft"]
     assert q.extra["model"] == "butenschoen"
     assert np.isfinite(q.values).all() and (q.values > 0).all()
     c = 0.3e-3
@@ -176,5 +194,4 @@ def test_finite_length_film_collapse_is_finite_and_reported(engine, monkeypatch)
     assert (q.values >= c * (1 - ob.EPS_CAP) * (1 - 1e-9)).all()
     assert all(any("film collapse" in f for f in q.findings[idx])
                for idx in np.ndindex(q.values.shape))
-    for r in res.results:
-        assert r.status == "fail" and any("film collapse" in f for f in r.findings)
+
