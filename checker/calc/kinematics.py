@@ -23,7 +23,7 @@ in the direction of rotation. The piston pin (small end) moves on the line ``t =
 major thrust side of the liner during expansion is then ``-t``, so a pin offset "toward the major
 thrust side" is negative here.) Only the sum ``e`` enters the kinematics and the forces on the
 crank train. With ``lam = r/l`` and ``delta = e/l`` (Agostini 2019, *Powertrain Components
-Design*, Politecnico di Torino, ch. 1 "Offset layout"; seed 004):
+Design*, Politecnico di Torino, ch. 1 "Offset layout"):
 
     sin(beta) = lam sin(phi) - delta                       (con-rod obliquity beta)
     y_P       = r cos(phi) + l cos(beta)                   (piston pin along c)
@@ -156,7 +156,8 @@ def slider_kinematics(
         dbeta/dphi   = lam cos(phi)/c
         d2beta/dphi2 = -lam sin(phi)/c + lam^2 cos^2(phi) s/c^3
 
-    The position and obliquity are those of Agostini (2019, seed 004, "Offset layout"); the
+    The position and obliquity are those of Agostini (Powertrain Components Design, Politecnico di
+    Torino, 2019, "Offset layout"); the
     derivatives are differentiated here in closed form (the acceleration printed in that source
     lacks the ``cos(phi)`` term and has the sign of the ``s sin(phi)`` term reversed; the forms
     above are checked against finite differences and a direct vector construction in
@@ -249,7 +250,8 @@ def dead_centres(
 
     Notes
     -----
-    Geometry of Agostini (2019, seed 004, "Offset layout"); valid for ``r + |e| < l``.
+    Geometry of Agostini (Powertrain Components Design, Politecnico di Torino, 2019, "Offset
+    layout"); valid for ``r + |e| < l``.
     """
     r, l, e = _check_geometry(crank_radius, rod_length, np.add(cylinder_offset, pin_offset))
     tdc = np.arcsin(e / (l + r))
