@@ -67,7 +67,7 @@ def tensile_stress_area(d: ArrayLike, p: ArrayLike,
     p : array_like [m]
         Thread pitch.
     coefficient : array_like [-]
-        ``c``; 0.9382 per ISO 898-1 [2]. The seed's crank-nose worksheet [1] uses 0.938.
+        ``c``; 0.9382 per ISO 898-1 [2]. The crank-nose worksheet of [1] uses 0.938.
 
     Returns
     -------
@@ -102,7 +102,7 @@ def preload_from_torque(torque: ArrayLike, d: ArrayLike,
     d : array_like [m]
         Nominal diameter.
     nut_factor : array_like [-]
-        K, 0.2 in [1] (the seed writes F = 5 T / D).
+        K, 0.2 in [1] ([1] writes F = 5 T / D).
 
     Returns
     -------
@@ -149,7 +149,7 @@ def proof_stress_ratio(preload: ArrayLike, proof_stress: ArrayLike,
 
     .. math:: \frac{F}{P\,A_s}
 
-    ``P`` is the proof stress the seed uses (940 N/mm^2 for grade 10.9, i.e. R_p0.2) [1].
+    ``P`` is the proof stress [1] uses (940 N/mm^2 for grade 10.9, i.e. R_p0.2) [1].
     Multiply by 100 for the percentage (70-75 % recommended in [1]).
 
     Returns

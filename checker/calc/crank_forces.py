@@ -137,10 +137,11 @@ def rod_mass_split(
     -----
     The two masses reproduce the rod's mass and centre of mass, hence its inertia *force*,
     exactly; their inertia ``m_a (l - l_g)^2 + m_b l_g^2 = m l_g (l - l_g)`` generally differs
-    from ``I_G``, so a correction couple ``dI * rod_alpha`` must act on the rod (Agostini 2019,
-    seed 004, "Dynamics": ``J_0 = J_cr - m x1 x2``, ``J_0 = -dI``). Example engine: m = 0.597 kg,
-    l = 145.7 mm, l_g = 35.73 mm: m_a = 0.1464 kg (piston + m_a = 0.6419 kg, the reciprocating
-    mass of seed 000), two-mass inertia 2346 vs I_G = 2128 kg mm^2.
+    from ``I_G``, so a correction couple ``dI * rod_alpha`` must act on the rod (Agostini,
+    Powertrain Components Design, Politecnico di Torino, 2019, "Dynamics": ``J_0 = J_cr - m x1
+    x2``, ``J_0 = -dI``). Example engine: m = 0.597 kg, l = 145.7 mm, l_g = 35.73 mm:
+    m_a = 0.1464 kg (piston + m_a = 0.6419 kg, the reciprocating mass of Bell, Ricardo 2013),
+    two-mass inertia 2346 vs I_G = 2128 kg mm^2.
     """
     m = np.asarray(rod_mass, dtype=float)
     l = np.asarray(rod_length, dtype=float)
@@ -272,7 +273,8 @@ def cylinder_loads(
 
     With zero offsets and no masses the torque is ``(p - p_cc) A r sin(phi) [1 + lam cos(phi) /
     sqrt(1 - lam^2 sin^2 phi)]`` (torsion.md sec. 3.1); at TDC without gas the big-end load is
-    ``-(m_rec (1 + lam) + m_b) r omega^2`` along ``c`` (Agostini 2019, seed 004, "Dynamics").
+    ``-(m_rec (1 + lam) + m_b) r omega^2`` along ``c`` (Agostini, Powertrain Components Design,
+    Politecnico di Torino, 2019, "Dynamics").
 
     Parameters
     ----------
@@ -539,7 +541,8 @@ def main_bearing_loads(
     """Main bearing loads by the statically determinate (simply supported bay) method.
 
     Each bay ``j`` (throw ``j``) is a rigid beam pin-jointed at main ``j`` and main ``j+1``
-    (seed 000, "Concept level bearing analysis assumptions": each main carries only the adjacent
+    (Bell, Ricardo 2013, "Concept level bearing analysis assumptions": each main carries only the
+    adjacent
     throws; load sharing with distant mains ignored). A force ``F`` at axial position ``z`` from
     main ``j`` in a bay of length ``L_j`` loads main ``j`` with ``F (1 - z/L_j)`` and main
     ``j+1`` with ``F z/L_j`` (lever rule). Forces on the crank in bay ``j``:
@@ -585,7 +588,8 @@ def main_bearing_loads(
 
     Notes
     -----
-    Rigid crankshaft and bearings, gravity, flywheel/pulley and belt loads neglected (seed 000
+    Rigid crankshaft and bearings, gravity, flywheel/pulley and belt loads neglected (Bell, Ricardo
+    2013
     concept-level assumptions). ``n_pins + 1`` mains; the rod's big-end mass is already in the
     big-end load, so it must not be repeated in ``mass``.
     """

@@ -2,7 +2,8 @@
 
 The crank nose carries the torque to the damper and the front-end accessory drive (TV torque of
 the nose section plus the FEAD/timing torque) and, where a belt or chain pulls on it, a bending
-moment that is stationary in space and therefore fully reversed in the rotating shaft (seed 000,
+moment that is stationary in space and therefore fully reversed in the rotating shaft (Bell,
+Ricardo 2013,
 "Classical stress analysis of crank nose": TV torque, FEAD and timing drive torque, bending
 loads due to FEAD belts and timing drive).
 

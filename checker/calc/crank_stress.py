@@ -1,9 +1,9 @@
 """Nominal crankshaft stresses over the engine cycle (classical, statically determinate).
 
-Method: IACS UR M53 §2 (as transcribed in KR RA-05-E 2025 Pt 5 Annex 5-3 §2; research notes
-``/work/shared/reference/standards.md`` §1.2), which is also the concept-stage "classical
-stress analysis" of the Ricardo ENGDYN slides (seed 000, slides 25-28) and the Cummins
-"statically determinate scheme" (seed 002, §2): each crank throw is a beam simply supported at
+Method: IACS UR M53 §2 (as transcribed in KR RA-05-E 2025 Pt 5 Annex 5-3 §2), which is also
+the concept-stage "classical stress analysis" of the Ricardo ENGDYN slides (Bell, Ricardo 2013,
+'Crankshaft analysis (25)-(28)') and the Cummins "statically determinate scheme" (Cummins
+crankshaft and bearing analysis process, 2002, §2): each crank throw is a beam simply supported at
 the centres of its two main journals (span ``L3``) and loaded by the con-rod force at the
 crankpin centre; bending moments follow from the triangular moment diagrams of the radial and
 tangential force components; torsion comes from an element torque supplied by the caller.
@@ -197,7 +197,7 @@ def web_centre_distance(
         Axial length of the crankpin (web face to web face).
     web_offset : float [m]
         Axial shift of the web reference section from the geometric mid-plane of the web,
-        positive towards the crankpin (seed "web offset", 0 in the example engine).
+        positive towards the crankpin (Bell 2013 "web offset", 0 in the example engine).
 
     Returns
     -------
@@ -213,9 +213,10 @@ def web_centre_distance(
 
     Notes
     -----
-    Example engine (seed 000): L3 = 96, L_G = 27, L_H = 24.4 mm gives W_full = 22.3 mm (the
-    seed's "full width 22.3") and L1 = 24.65 mm. The interpretation of "web offset" as an axial
-    shift of the reference section is this module's (the seed does not define it).
+    Example engine (Bell, Ricardo 2013): L3 = 96, L_G = 27, L_H = 24.4 mm gives W_full = 22.3 mm
+    (the
+    workshop's "full width 22.3") and L1 = 24.65 mm. The interpretation of "web offset" as an axial
+    shift of the reference section is this module's (Bell 2013 does not define it).
     """
     L3 = _pos("main_spacing", main_spacing)
     LG = _pos("main_journal_length", main_journal_length)
@@ -510,7 +511,8 @@ def throw_nominal_stresses(
 
     Notes
     -----
-    Equations (IACS UR M53 §2.1-2.2; seed 000 slide 25 "statically determinate loading")::
+    Equations (IACS UR M53 §2.1-2.2; Bell, Ricardo 2013, 'Crankshaft analysis (25)' "statically
+    determinate loading")::
 
         Q_RF,front = F_R (L3 - L2)/L3,  Q_RF,rear = F_R L2/L3
         M_BRF = Q_RF L1

@@ -2,11 +2,12 @@
 
 Two assessments are provided; they are **not** equivalent criteria (``standards.md`` §3):
 
-1. **Goodman safety factor** (the Ricardo ENGDYN classical-stress output, seed 000 slides
-   25-28: "Goodman fatigue safety factor ... minimum safety factor of 1.5 at all load/speed
-   conditions"): per critical point, the alternating and mean values of the local stress
-   histories over one working cycle, combined into equivalent alternating and mean stresses,
-   then ``SF = 1 / (sigma_eq,a / S_e + sigma_eq,m / S_u)`` (proportional overload).
+1. **Goodman safety factor** (the Ricardo ENGDYN classical-stress output, Bell, Ricardo 2013,
+   'Crankshaft analysis (25)-(28)': "Goodman fatigue safety factor ... minimum safety factor
+   of 1.5 at all load/speed conditions"): per critical point, the alternating and mean values
+   of the local stress histories over one working cycle, combined into equivalent alternating
+   and mean stresses, then ``SF = 1 / (sigma_eq,a / S_e + sigma_eq,m / S_u)`` (proportional
+   overload).
 2. **IACS UR M53 acceptability** ``Q = sigma_DW / sigma_V >= 1.15`` with alternating stresses
    only (means neglected), ``sigma_V = sqrt((sigma_BH + sigma_add)^2 + 3 tau_H^2)`` and the M53
    fatigue strength formula (M53 §5-7; ``standards.md`` §1.5-1.8).
@@ -24,7 +25,8 @@ Stress criteria chosen for the Goodman check (and why)
 * **Equivalent mean stress = signed von Mises** (default), ``sigma_eq,m = sign(sigma_m)
   sqrt(sigma_m^2 + 3 tau_m^2)`` with sign(0) = +. It keeps the mean shear from the brake
   torque (the Cummins process combines the mean nominal shear from the brake power with the
-  amplitude, seed 002 §2.1, and the seed 000 slides note torsion matters most at oil holes),
+  amplitude, Cummins crankshaft and bearing analysis process, 2002 §2.1, and the Bell, Ricardo 2013
+  slides note torsion matters most at oil holes),
   while a compressive normal mean is not counted as tensile. Compressive equivalent means are
   **not credited** by default (clipped to 0) because the Goodman line is not validated on the
   compressive side. Alternatives: ``"normal"`` (Sines-type: only the normal mean acts; mean
@@ -65,7 +67,8 @@ __all__ = [
     "oil_hole_goodman",
 ]
 
-#: Minimum Goodman safety factor at all load/speed conditions (Ricardo, seed 000 slide 28).
+#: Minimum Goodman safety factor at all load/speed conditions (Bell, Ricardo 2013,
+#: 'Crankshaft analysis (28)').
 GOODMAN_SF_MIN = 1.5
 #: Minimum M53 acceptability factor Q (IACS UR M53 §7; KR Annex 5-3 App. V §3(3)).
 M53_Q_MIN = 1.15
@@ -415,7 +418,8 @@ def fatigue_strength(
     Returns
     -------
     ndarray [Pa]
-        ``S_e = S_base k_size k_surface k_treatment`` (seed 000 slide 26: 375 x 0.868 x 1.9 =
+        ``S_e = S_base k_size k_surface k_treatment`` (Bell, Ricardo 2013, 'Crankshaft analysis
+        (26)': 375 x 0.868 x 1.9 =
         618 MPa, printed as 619).
     """
     return (

@@ -27,12 +27,12 @@ toward ``+t``, so the piston presses on the ``-t`` side (``CylinderLoads.side_fo
 :mod:`checker.calc.crank_forces`). A pin offset towards the major thrust side therefore moves the
 pin to ``-t``: Agostini's ``z_o,wp = -pin_offset``. Because ``t`` is defined by the direction of
 rotation, this holds for either rotation (clockwise seen from the front with the head up: ``+t``
-points right and the major thrust side is on the left). Such an offset (seed 004 "Methods to
+points right and the major thrust side is on the left). Such an offset (Agostini 2019, "Methods to
 decrease slap": the pin "moved towards the major thrust side") brings the piston's crossover from
 the minor to the major thrust side (``beta = 0``, ``sin(phi) = e/r``) ahead of the top dead centre,
 which itself comes early: ``phi_TDC = asin(e/(l + r)) < 0``. Only ``e`` enters the kinematics and
 the forces on the crank train. With ``lam = r/l`` and ``delta = e/l`` (Agostini 2019,
-*Powertrain Components Design*, Politecnico di Torino, ch. 1 "Offset layout"; seed 004):
+*Powertrain Components Design*, Politecnico di Torino, ch. 1 "Offset layout"):
 
     sin(beta) = lam sin(phi) - delta                       (con-rod obliquity beta)
     y_P       = r cos(phi) + l cos(beta)                   (piston pin along c)
@@ -166,7 +166,8 @@ def slider_kinematics(
         dbeta/dphi   = lam cos(phi)/c
         d2beta/dphi2 = -lam sin(phi)/c + lam^2 cos^2(phi) s/c^3
 
-    The position and obliquity are those of Agostini (2019, seed 004, "Offset layout"); the
+    The position and obliquity are those of Agostini (Powertrain Components Design, Politecnico di
+    Torino, 2019, "Offset layout"); the
     derivatives are differentiated here in closed form (the acceleration printed in that source
     lacks the ``cos(phi)`` term and has the sign of the ``s sin(phi)`` term reversed; the forms
     above are checked against finite differences and a direct vector construction in
@@ -260,7 +261,8 @@ def dead_centres(
 
     Notes
     -----
-    Geometry of Agostini (2019, seed 004, "Offset layout"); valid for ``r + |e| < l``.
+    Geometry of Agostini (Powertrain Components Design, Politecnico di Torino, 2019, "Offset
+    layout"); valid for ``r + |e| < l``.
     """
     r, l, e = _check_geometry(crank_radius, rod_length, np.subtract(cylinder_offset, pin_offset))
     tdc = np.arcsin(e / (l + r))

@@ -2,8 +2,8 @@
 
 Empirical formulae of IACS UR M53 "Calculation of crankshafts for I.C. engines", section 3
 (stress concentration factors), as transcribed in Korean Register, *Rules for Classification of
-Steel Ships* (2025), Pt 5 Annex 5-3 "Guidance for Calculation of Crankshaft Stress (2)", §3, and
-restated in ``/work/shared/reference/standards.md`` §1.3-1.4. The fillet formulae come from FVV
+Steel Ships* (2025), Pt 5 Annex 5-3 "Guidance for Calculation of Crankshaft Stress (2)", §3.
+The fillet formulae come from FVV
 strain-gauge investigations, the oil-bore formulae from ESDU (radially drilled holes only).
 
 Definitions (M53 §3.1):

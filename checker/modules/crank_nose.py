@@ -1,5 +1,5 @@
 """Graph calculation: classical fatigue check of the crank nose (TV + FEAD torque, belt
-bending), seed 000 slide 29. Part of the fatigue module."""
+bending), Bell, Ricardo 2013, 'Crankshaft analysis (29)'. Part of the fatigue module."""
 
 from __future__ import annotations
 

@@ -2,7 +2,7 @@
 fillets, main-journal fillets and oil holes across the speed range, and the IACS UR M53
 acceptability factor from the same stresses.
 
-Method (seed 000 slides 25-28, Ricardo's concept-stage "classical stress analysis"; IACS UR M53)
+Method (Bell, Ricardo 2013, 'Crankshaft analysis (25)-(28)': "classical stress analysis"; M53)
 ----------------------------------------------------------------------------------------------
 * **Loads** (quantity ``loads.bearing_load``): the force of the con-rod(s) on each crank pin in
   the crank frame, ``F_pin = -big_end_crank`` summed over the rods of the pin
@@ -15,7 +15,8 @@ Method (seed 000 slides 25-28, Ricardo's concept-stage "classical stress analysi
   loading and are not included; being constant at a given speed they would shift only the
   mean stress.
 * **Bending**: each throw is a beam simply supported at the centres of its two main journals
-  (statically determinate, seed 000 "load sharing between main bearings not included"); the
+  (statically determinate, Bell, Ricardo 2013 "load sharing between main bearings not included");
+  the
   web bending stress at the web centre ``sigma_BF = (F_R (L3 - L2)/L3) L1 / (B W^2/6)`` and the
   direct stress ``sigma_QF`` (:func:`checker.calc.crank_stress.throw_nominal_stresses`), the
   oil-bore bending from the moments of ``F_R`` and ``F_T`` at the pin centre.
@@ -565,7 +566,8 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
 
     # ------------------------------------------------------------- assumptions and extras
     assumptions = [
-        "Crankshaft fatigue (classical, seed 000 slides 25-28; IACS UR M53 §2-5): each throw"
+        "Crankshaft fatigue (classical, Bell, Ricardo 2013, 'Crankshaft analysis (25)-(28)';"
+        " IACS UR M53 §2-5): each throw"
         " simply supported at its main journal centres (statically determinate, no load"
         " sharing, no bending vibration); con-rod gas and inertia forces on the pin; web width"
         " B = minimum web width; K_e = 1 (4-stroke). The crank's own centrifugal forces (pin,"

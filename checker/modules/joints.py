@@ -81,7 +81,7 @@ def _preload(engine: Engine, j: Joint, area: float) -> tuple[float | None, list[
         k = j.nut_factor if j.nut_factor is not None else bj.DEFAULT_NUT_FACTOR
         f = float(bj.preload_from_torque(j.tightening_torque, j.diameter, k))
         how = (f"F = T/(K d) with T = {j.tightening_torque:g} N m, K = {k:g}"
-               + (" (default, seed 000)" if j.nut_factor is None else ""))
+               + (" (default, Bell, Ricardo 2013)" if j.nut_factor is None else ""))
         return f, [], how
     frac_default, ref = bj.PRELOAD_FRACTIONS[j.tightening]
     frac = j.preload_fraction if j.preload_fraction is not None else frac_default
@@ -133,7 +133,8 @@ def joint_bolts(engine: Engine, inputs: dict) -> dict[str, Quantity]:
             "proof stress": f"P = R_p0.2 = {rp02 / 1e6:g} MPa"
                             + (" (ISO 898-1 minimum for class " + j.property_class + ")"
                                if j.rp02 is None else ""),
-            "friction": f"mu = {mu:g}" + (" (default, seed 000)" if j.friction is None else ""),
+            "friction": f"mu = {mu:g}" + (" (default, Bell, Ricardo 2013)"
+                                          if j.friction is None else ""),
         }
         if f is None:
             miss_pre[(i,)] = missing

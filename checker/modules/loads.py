@@ -18,7 +18,7 @@ register_module("loads", "Crank-train loads")
 
 RPM = 2.0 * np.pi / 60.0
 CASES = ("full", "no")
-"""Load cases swept: full load and no load (seed 000: 'at full load and no load across the
+"""Load cases swept: full load and no load (Bell, Ricardo 2013: 'at full load and no load across the
 speed range'). Part-load data are read and shown but not swept."""
 DEFAULT_SPEED_STEP = 100 * RPM
 DEFAULT_INTAKE = 1.0e5
@@ -57,7 +57,7 @@ def speed_sweep(engine: Engine) -> tuple[np.ndarray, list[str]]:
                              engine.describe_missing("Engine", "speed_max")])
     step = p.get("speed_step") or DEFAULT_SPEED_STEP
     if p.get("speed_step") is None:
-        notes.append("Speed step not given: 100 rpm (seed 000 practice).")
+        notes.append("Speed step not given: 100 rpm (the practice of Bell, Ricardo 2013).")
     n = int(np.floor((hi - lo) / step + 1e-9)) + 1
     speeds = lo + step * np.arange(n)
     if hi - speeds[-1] > 1e-9:
@@ -395,7 +395,7 @@ def bearing_loads(engine: Engine, inputs: dict) -> dict[str, Quantity]:
              "torque": loads.torque, "big_end_crank": loads.big_end_crank,
              "assumptions": [
                  "Main bearing loads by the statically determinate method: rigid crank pinned"
-                 " at each main, each main carries only the adjacent throws (seed 000).",
+                 " at each main, each main carries only the adjacent throws (Bell, Ricardo 2013).",
                  "Con-rod as two masses plus an inertia-correction couple (exact rigid-body"
                  " dynamics of the slider crank); constant crank speed; gravity neglected."]
              + shared_pins_text(engine)}

@@ -16,7 +16,8 @@ register_module("bearings", "Bearing oil film (MOFT)")
 MODELS = {"short bearing": "closed_form", "exact short bearing": "exact_table",
           "finite length": "reynolds_map", "Butenschoen fits": "butenschoen"}
 MODEL_TEXT = {
-    "closed_form": "Booker's closed-form short-bearing mobility (Booker 1965; as in seed 000:"
+    "closed_form": "Booker's closed-form short-bearing mobility (Booker 1965; as in Bell,"
+                   " Ricardo 2013:"
                    " 'short bearing assumption normally used')",
     "exact_table": "exact short-bearing mobility (numerical pi-film integral, tabulated)",
     "reynolds_map": "finite-length mobility of the Reynolds equation (Swift-Stieber"
@@ -201,7 +202,7 @@ def _solve(engine: Engine, inputs: dict, model: str, name: str) -> Quantity:
                        "collapse": res.collapse, "n_cycles": res.n_cycles}
     assumptions = [
         f"MOFT by the mobility method: {MODEL_TEXT[model]}; rigid journal and housing,"
-        " statically determinate loads, mean cold radial clearance (seed 000 concept"
+        " statically determinate loads, mean cold radial clearance (Bell, Ricardo 2013 concept"
         " assumptions); isoviscous film at "
         f"{t_film - 273.15:.0f} °C, viscosity {mu * 1e3:.2f} mPa s.",
     ] + notes

@@ -1,7 +1,7 @@
 """Graph calculations for crankshaft torsional vibration (TV), the rubber TV damper and the
 TV torques at the bolted joints.
 
-Model (seed 000, Ricardo's concept-level VALDYN practice)
+Model (the concept-level VALDYN practice of Bell, Ricardo 2013)
 ---------------------------------------------------------
 * Lumped-mass chain from sheet ``TVModel``, front to rear in row order: station ``i`` has the
   inertia ``J_i`` and absolute viscous damping ``d_i`` to a node rotating at the mean speed;
@@ -9,7 +9,7 @@ Model (seed 000, Ricardo's concept-level VALDYN practice)
   of row ``e`` ("stiffness to next", "damping to next"). The damper element is the element from
   the ``damper ring`` station to the next one; it gets the rubber's hysteretic loss factor from
   sheet ``Damper`` (``k* = k (1 + j eta)``). The variable inertia of pistons and rods is
-  represented by the constant inertia lumped at the cylinder stations (seed 000).
+  represented by the constant inertia lumped at the cylinder stations (Bell, Ricardo 2013).
 * Excitation: the crank torque of one cylinder (gas pressure + reciprocating and con-rod
   inertia at constant speed, :func:`checker.calc.crank_forces.cylinder_loads`, offsets
   included) from the loads module's pressure traces (quantity ``loads.cycle``), its harmonics
@@ -28,7 +28,8 @@ Sign conventions
 ----------------
 * Angles: ``theta_i(t) = sum_n Re{Theta_in exp(j n w t)}``, station angle relative to a node
   rotating at the mean speed, positive in the direction of rotation (so the crank-nose motion is
-  *not* twist; seed 000). Amplitudes are 0-to-peak per order, half peak-to-peak for totals.
+  *not* twist; Bell, Ricardo 2013). Amplitudes are 0-to-peak per order, half peak-to-peak for
+  totals.
 * Element torque ``T_e`` (quantity ``tv.element_torque``, extras ``coeffs``, ``vib_max``,
   ``vib_min``, ``mean``): the torque the front part of the chain exerts on the rear part
   through element ``e``, positive in the direction of rotation; equivalently positive when the
@@ -320,10 +321,11 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
     nose, ring, fw = data["nose"], data["ring"], data["flywheel"]
     assumptions = [
         "TV excitation: crank torque of gas pressure plus reciprocating and con-rod inertia at"
-        " constant speed (checker.calc.crank_forces.cylinder_loads), orders 0.5 to"
+        " constant speed (the same cylinder loads as the loads module), orders 0.5 to"
         f" {MAX_ORDER:g}, phased by the firing angles; the variable inertia of pistons and rods"
-        " is the constant inertia lumped at the cylinder stations (seed 000).",
-        "TV response: linear, steady state, frequency domain (seed 000 'analysis in frequency"
+        " is the constant inertia lumped at the cylinder stations (Bell, Ricardo 2013).",
+        "TV response: linear, steady state, frequency domain (Bell, Ricardo 2013: 'analysis in"
+        " frequency"
         " domain'); amplitudes relative to a node rotating at the mean speed; totals are the"
         " half peak-to-peak of all orders synthesised over 720 deg.",
     ]

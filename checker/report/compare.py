@@ -53,7 +53,7 @@ def _series(res, qname: str, case: str, unit: str, reduce: str | None):
 
 
 def _figures(comps: list[Comparison]) -> list[dict[str, Any]]:
-    from .plots import figure, to_svg
+    from .plots import figure, legend_below, to_svg
 
     runs = [comps[0].baseline] + [c.variant for c in comps]
     names = [Path(r.engine.source).name for r in runs]
@@ -84,9 +84,8 @@ def _figures(comps: list[Comparison]) -> list[dict[str, Any]]:
                 ax.set_xlabel("speed [rpm]")
         for k in range(n, rows * cols):
             axes[k // cols][k % cols].set_visible(False)
-        fig.legend(loc="upper center", ncol=len(runs), frameon=False,
-                   bbox_to_anchor=(0.5, 1.03))
         fig.tight_layout()
+        legend_below(fig, axes=[axes[0][0]])  # below the axes: never cut off, never on data
         svg = to_svg(fig)
         out.append({"title": title, "src": "data:image/svg+xml;base64," + base64.b64encode(
             svg.encode()).decode("ascii"),

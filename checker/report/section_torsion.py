@@ -499,16 +499,26 @@ def torsion_section(res: CheckResult) -> dict:
     tot = q.get("tv.nose_amplitude")
     if nf is not None and tot is not None:
         sp = np.array(tot.coords["speed"])
-        blocks.append({"type": "heading", "text": "Natural frequencies and Campbell diagram"})
-        blocks += _modes(res, nf, sp)
-        blocks.append({"type": "heading", "text": "Crank-nose amplitude"})
-        blocks += _nose(res, q)
-        blocks.append({"type": "heading", "text": "Crankshaft twist and element torques"})
-        blocks += _elements(res, q)
-        blocks.append({"type": "heading", "text": "TV damper rubber"})
-        blocks += _damper(res, q)
+        # judged worst cases first (the values of the rule results), then the plots
+        modes, nose, elements, damper = (_modes(res, nf, sp), _nose(res, q),
+                                         _elements(res, q), _damper(res, q))
+
+        def tables(bs):
+            return [b for b in bs if b["type"] != "figure"]
+
+        def figures(bs):
+            return [b for b in bs if b["type"] == "figure"]
+
+        blocks.append({"type": "heading", "text": "Crank-nose amplitude: judged worst cases"})
+        blocks += tables(nose)
+        blocks.append({"type": "heading", "text": "TV damper rubber: judged worst cases"})
+        blocks += tables(damper)
         blocks.append({"type": "heading", "text": "Torques at the bolted joints"})
         blocks += _joints(res, q)
+        blocks.append({"type": "heading", "text": "Natural frequencies"})
+        blocks += tables(modes) + tables(elements)
+        blocks.append({"type": "heading", "text": "Plots"})
+        blocks += figures(modes) + figures(nose) + figures(elements) + figures(damper)
         found = sorted({f for v in tot.findings.values() for f in v})
         if found:
             blocks.append({"type": "heading", "text": "Numerical findings"})

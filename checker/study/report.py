@@ -37,7 +37,7 @@ def _item_margins(df, items: tuple[str, ...], fam: str) -> dict[int, float]:
 
 
 def _margin_figures(vt, run: StudyRun, fams: list[str], df=None) -> list[dict[str, Any]]:
-    from ..report.plots import figure, to_svg
+    from ..report.plots import figure, legend_below, to_svg
 
     params = [q for q in run.study.parameters if q.numeric]
     if not params:
@@ -81,11 +81,8 @@ def _margin_figures(vt, run: StudyRun, fams: list[str], df=None) -> list[dict[st
                 ax.set_ylabel(_label(f"{f}: smallest margin [%]"))
         for k in range(n, rows * cols):
             axes[k // cols][k % cols].set_visible(False)
-        handles, labels = axes[0][0].get_legend_handles_labels()
-        if handles:
-            fig.legend(handles, labels, loc="upper center", ncol=len(labels), frameon=False,
-                       bbox_to_anchor=(0.5, 1.02))
         fig.tight_layout()
+        legend_below(fig, axes=[axes[0][0]])  # below the axes: never cut off, never on data
         figs.append({"family": f, "src": _img(to_svg(fig)),
                      "caption": f"{f} rules: smallest margin of each variant (error-severity"
                      " results) against each parameter; below 0 % a rule fails. Colour: the"
@@ -96,7 +93,7 @@ def _margin_figures(vt, run: StudyRun, fams: list[str], df=None) -> list[dict[st
 
 
 def _map_figure(vt, run: StudyRun, fams: list[str]) -> dict[str, Any] | None:
-    from ..report.plots import figure, to_svg
+    from ..report.plots import figure, legend_below, to_svg
 
     params = [q for q in run.study.parameters if q.numeric]
     if len(params) != 2:
@@ -116,7 +113,7 @@ def _map_figure(vt, run: StudyRun, fams: list[str]) -> dict[str, Any] | None:
                    s=40, marker="x", color=_COLOURS["input error"], label="input error")
     ax.set_xlabel(_label(f"{a.name} [{a.unit or '-'}]"))
     ax.set_ylabel(_label(f"{b.name} [{b.unit or '-'}]"))
-    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), frameon=False)
+    legend_below(fig)
     return {"src": _img(to_svg(fig)),
             "caption": "Feasibility map: a variant is feasible when no error-severity rule of"
             " the selected families fails (" + ", ".join(fams) + ")."}

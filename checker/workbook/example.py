@@ -1,10 +1,10 @@
 """The example workbook: the 4-cylinder gasoline engine of Ricardo's 2013 workshop slides.
 
-Source: D. Bell, "Cranktrain Analysis Using ENGDYN and VALDYN", Ricardo, 4 Feb 2013
-(``shared/seeds/000_8258d38ef378fe05.txt``): engine and bearing data, peak cylinder
+Source: D. Bell, "Cranktrain Analysis Using ENGDYN and VALDYN", Ricardo workshop, 4 Feb 2013:
+engine and bearing data, peak cylinder
 pressures, crankshaft mass properties, torsional model data, classical stress inputs, brake
 torque, and the crank-nose and flywheel bolted-joint worked calculations. Values a later
-analysis needs that the seed does not give are entered as labelled ASSUMPTIONS in the note
+analysis needs that the workshop slides do not give are entered as labelled ASSUMPTIONS in the note
 column; :data:`ASSUMED` lists them so the report can state them.
 """
 
@@ -14,8 +14,8 @@ import datetime as _dt
 from pathlib import Path
 from typing import Any
 
-SEED = "Ricardo 2013 (seed 000)"
-ASSUMPTION = "ASSUMPTION (not in seed)"
+SEED = "Bell, Ricardo 2013"
+ASSUMPTION = "ASSUMPTION (not in Bell 2013)"
 
 # ---------------------------------------------------------------- parameter sheets
 ENGINE_ROWS: list[tuple[str, Any, str, str]] = [
@@ -241,11 +241,11 @@ JOINTS = (
     [
         ["crank nose", "crank nose", 1, 16, 1.5, 0.938, "10.9", "torque", 400, 0.2, None, 940,
          None, 24, 17, "steel", 36, 20, 0.2,
-         SEED + " worked example: R1 = 18 mm, r1 = 10 mm; the seed's stress area uses"
+         SEED + " worked example: R1 = 18 mm, r1 = 10 mm; the workshop's stress area uses"
          " 0.938 p; P = 940 N/mm^2 (grade 10.9)"],
         ["flywheel", "flywheel", 6, 10, 1.0, None, "12.9", "yield controlled", None, None, 0.75,
          1100, None, None, None, "steel", 84.4, 47, 0.2,
-         SEED + " worked example; bolt head bearing diameters not given in the seed"],
+         SEED + " worked example; bolt head bearing diameters not given by Bell 2013"],
     ],
 )
 
@@ -270,7 +270,7 @@ NOTES = [
     "Parameter sheets: columns parameter | value | unit | note.",
     "Table sheets: row 1 column names, row 2 units, data from row 3.",
     "Every value carries an explicit unit; '-' marks text and dimensionless columns.",
-    "Values marked ASSUMPTION are not in the seed and are stated in the report.",
+    "Values marked ASSUMPTION are not in Bell 2013 and are stated in the report.",
     "See docs/workbook.md for every sheet, parameter and column.",
 ]
 

@@ -25,8 +25,9 @@ Sources
     7.2 L family; that it is the engine of [MENDES] is inferred from 6 x 105 x 137 mm = 7.12 L
     and is itself an assumption): big-end bore with shells 63.015-63.031 mm and big-end
     clearance 0.026-0.081 mm.
-[TORSION] ``shared/reference/torsion.md`` section 1.1/5: free-free natural frequencies of the
-    [OT] chain, 216.6 / 592.7 / 984.9 / 1171.0 / 1416.0 / 1660.0 / 1794.4 / 2993.5 Hz.
+[TORSION] free-free natural frequencies of the [OT] chain (an independent eigen-solution of
+    the published J and k): 216.6 / 592.7 / 984.9 / 1171.0 / 1416.0 / 1660.0 / 1794.4 /
+    2993.5 Hz.
 
 What the sources do not give (bearings, crank mass properties, fillets, joints, oil, damper
 rubber, brake torque...) is entered as a physically sound value for a ~7 L truck diesel, and its

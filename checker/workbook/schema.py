@@ -215,7 +215,8 @@ ENGINE = Sheet(
           note="Big-end to small-end centre distance.",
           valid=R(1, 20000, "mm"), usual=R(50, 8000, "mm")),
         F("Cylinder offset", "cylinder_offset", "length", required=False,
-          note="Offset of the cylinder axis from the crank axis (seed 004 convention).",
+          note="Offset of the cylinder axis from the crank axis (convention of Agostini,"
+               " Powertrain Components Design, 2019).",
           valid=R(-1000, 1000, "mm"), usual=R(-50, 50, "mm")),
         F("Pin offset", "pin_offset", "length", required=False,
           note="Piston pin offset from the cylinder axis, towards the thrust side positive.",
@@ -316,8 +317,9 @@ OIL = Sheet(
         F("Mobility model", "mobility_model", "choice",
           choices=("short bearing", "exact short bearing", "finite length", "Butenschoen fits"),
           required=False,
-          note="short bearing = Booker closed form (default, seed 000); exact short bearing ="
-               " numerical short-bearing mobility (reference); finite length = mobility map of"
+          note="short bearing = Booker closed form (default, Bell, Ricardo 2013); exact short"
+               " bearing = numerical short-bearing mobility (reference); finite length ="
+               " mobility map of"
                " the finite-length Reynolds equation (checker's solver, L/D 1/16..1);"
                " Butenschoen fits = Butenschoen (1976) curve fits (L/D 1/8..1).",
           aliases=(("short", "short bearing"), ("booker", "short bearing"),
@@ -628,7 +630,7 @@ CRANK_MASS = Sheet(
           valid=R(0, 1e6, "kg"), usual=R(0, 20000, "kg")),
         F("X", "x", "length",
           note="Axial offset of the centre of mass from the component's reference plane"
-               " (seed 000 convention: mirrored webs have opposite signs).",
+               " (convention of Bell, Ricardo 2013: mirrored webs have opposite signs).",
           valid=R(-20000, 20000, "mm"), usual=R(-3000, 3000, "mm")),
         F("Y", "y", "length",
           note="Radial position in the crank frame, along throw 1 (throw 1 pin at +Y; for a V"
@@ -709,10 +711,11 @@ JOINTS = Sheet(
         F("tightening torque", "tightening_torque", "torque", check=">0", required=False,
           valid=R(0.001, 1e8, "N m"), usual=R(1, 1e5, "N m")),
         F("nut factor", "nut_factor", "ratio", check=">0", required=False,
-          note="F = T/(K d); blank = 0.2 (seed 000).",
+          note="F = T/(K d); blank = 0.2 (Bell, Ricardo 2013).",
           valid=R(0.01, 2), usual=R(0.08, 0.4)),
         F("preload fraction", "preload_fraction", "ratio", check="0..1", required=False,
-          note="Fraction of the reference stress for method-based preload; blank = seed table.",
+          note="Fraction of the reference stress for method-based preload; blank = the table"
+               " of Bell, Ricardo 2013, 'Crankshaft analysis (24)'.",
           valid=R(0, 1), usual=R(0.3, 1)),
         F("proof stress Rp0.2", "rp02", "stress", check=">0", required=False,
           note="Blank = ISO 898-1 minimum for the property class.",
@@ -735,7 +738,7 @@ JOINTS = Sheet(
         F("face inner diameter", "face_inner", "length", check=">=0",
           valid=R(0, 10000, "mm"), usual=R(0, 3000, "mm")),
         F("friction coefficient", "friction", "ratio", check=">0", required=False,
-          note="Blank = 0.2 (seed 000).",
+          note="Blank = 0.2 (Bell, Ricardo 2013).",
           valid=R(0.001, 2), usual=R(0.05, 0.6)),
     ),
 )

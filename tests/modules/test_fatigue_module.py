@@ -250,7 +250,7 @@ def test_report_section(result):
 
     sec = {s["id"]: s for s in build_sections(result)}["fatigue"]
     types = [b["type"] for b in sec["blocks"]]
-    assert types.count("figure") == 3 and "equations" in types
+    assert types.count("figure") == 2 and "equations" in types  # SF against speed, Haigh
     tables = {b["caption"].split(" (")[0].split(":")[0]: b for b in sec["blocks"]
               if b["type"] == "table"}
     worst = next(b for c, b in tables.items() if c.startswith("Lowest Goodman"))
