@@ -378,7 +378,7 @@ RING_INERTIA = 0.0065  # kg m^2
 #: ring (372.3 Hz): J_eq = 0.0317 kg m^2 (modal inertia at the nose), mu = 0.0065/0.0317 =
 #: 0.205, f_ring = 372.3/(1 + mu) = 308.9 Hz, k = J_ring (2 pi f_ring)^2.
 RUBBER_STIFFNESS = 24500.0
-STATION_DAMPING = 3.0  # N m s/rad per throw station: 1.5 per cylinder (seed 000)
+STATION_DAMPING = 3.0  # N m s/rad per throw station: 1.5 per cylinder (Bell, Ricardo 2013)
 
 _K_NOTE = (ASSUMPTION + ": seed I4 crank (403 kN m/rad per throw) scaled by journal and pin"
            " diameters^4, the 111.76 mm pitch and nodular iron's shear modulus (0.8 x steel)")
@@ -401,7 +401,7 @@ def _tv_rows(split: bool = False, link: float = 1e13) -> list[list[Any]]:
         k_next = SHAFT_STIFFNESS if j < 4 else REAR_STIFFNESS
         note = (ASSUMPTION + f": throw {j} with the rods of cylinders {a} and {b} (inertia from"
                 " the CrankMass rows and both rods); absolute damping 1.5 N m s/rad per"
-                " cylinder (seed 000); " + ("stiffness to the next throw " + _K_NOTE
+                " cylinder (Bell, Ricardo 2013); " + ("stiffness to the next throw " + _K_NOTE
                                            [len(ASSUMPTION) + 2:] if j < 4 else
                                            "stiffness to the flywheel: short rear flange"))
         if split:
@@ -424,7 +424,8 @@ JOINTS = (
          None, None, None, 30, 17, "steel", 46, 17, 0.15,
          ASSUMPTION + ": one M16x2 10.9 centre bolt, angle controlled (preload from the seed's"
          " method table), clamping the balancer hub (face 46/17 mm, mu 0.15); the hub's"
-         " press fit on the nose is not credited (bolt clamp friction only, seed 000 method)"],
+         " press fit on the nose is not credited (bolt clamp friction only, the method of Bell,"
+         " Ricardo 2013)"],
         ["flywheel", "flywheel", 6, 11, 1.5, None, "10.9", "torque", 110, 0.2, None, None, None,
          17, 11.5, "steel", 76, 45, 0.2,
          ASSUMPTION + ": 6 x M11x1.5 10.9 at 110 N m into the rear flange (76/45 mm face),"
