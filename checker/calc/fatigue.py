@@ -368,7 +368,7 @@ def oil_hole_goodman(
     sigma_torsion_history : array_like [Pa]
         gamma_T * tau_N history (``LocalStresses.sigma_oil_torsion``).
     endurance_limit, ultimate_strength : array_like [Pa]
-        S_e and S_u at the oil bore (seed: pin oil hole 326 MPa).
+        S_e and S_u at the oil bore (Bell 2013 example: pin oil hole 326 MPa).
     credit_compressive_mean : bool
         See :func:`goodman_safety_factor`.
     axis : int
@@ -409,9 +409,9 @@ def fatigue_strength(
     Parameters
     ----------
     base_strength : array_like [Pa]
-        Base infinite-life (fully reversed) strength, e.g. 0.5 x UTS (seed: 375 MPa).
+        Base infinite-life (fully reversed) strength, e.g. 0.5 x UTS (Bell 2013 example: 375 MPa).
     size_factor, surface_factor, treatment_factor : array_like [-]
-        Multiplicative factors (seed: size 0.868 pin / 0.858 main; rolled fillet 1.9,
+        Multiplicative factors (Bell 2013 example: size 0.868 pin / 0.858 main; rolled fillet 1.9,
         induction-hardened oil hole 1.0). Treatment factors are user data: M53 accepts
         surface-treatment gains only from tests (``standards.md`` §1.10, §3).
 

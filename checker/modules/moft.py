@@ -212,7 +212,7 @@ def _solve(engine: Engine, inputs: dict, model: str, name: str) -> Quantity:
             "Partial grooves (" + ", ".join(partial) + ") are not modelled: the bearing is"
             " treated as ungrooved with its effective length (approximation; Booker 2014"
             " notes the method applies approximately when the loaded region is symmetric)."
-            " Checked with checker's finite-length Reynolds solution on the seed's I4 mains"
+            " Checked with checker's finite-length Reynolds solution on Bell 2013 I4 mains"
             " (groove as an ambient-pressure strip in the upper shell): the effective-width"
             " film is 25 % thinner than the grooved one where the thinnest film lies in the"
             " plain shell (full load, 1000 rpm) but 48 % thicker where it lies under the"

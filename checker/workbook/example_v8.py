@@ -182,7 +182,7 @@ ENGINE_ROWS: list[tuple[str, Any, str, str]] = [
      " torque curve"),
     ("Minimum speed", 1000, "rpm", ASSUMPTION + ": lowest full-load speed swept"),
     ("Maximum speed", 6000, "rpm", ASSUMPTION + ": rev limit of a two-valve pushrod V8"),
-    ("Speed step", 100, "rpm", ASSUMPTION + ": as the seed's I4 (100 rpm intervals)"),
+    ("Speed step", 100, "rpm", ASSUMPTION + ": as Bell 2013 I4 (100 rpm intervals)"),
     ("Overspeed", 6500, "rpm", ASSUMPTION + ": about 1.08 x the rev limit"),
     ("Accessory drive torque at crank nose", 25, "N m", ASSUMPTION + ": alternator, water pump,"
      " power steering and A/C on one belt"),
@@ -264,7 +264,7 @@ FATIGUE_ROWS = [
     ("Fillet tensile and compressive yield", 600, "N/mm^2", ASSUMPTION + ": rolled fillet"
      " layer"),
     ("Pin fillet fatigue strength", 470, "N/mm^2", ASSUMPTION + ": 300 x 0.87 (size) x 1.8"
-     " (rolled fillet, as the seed's x 1.9 for steel)"),
+     " (rolled fillet, as Bell, Ricardo 2013: x 1.9 for steel)"),
     ("Pin oil hole fatigue strength", 261, "N/mm^2", ASSUMPTION + ": 300 x 0.87 x 1.0"),
     ("Main fillet fatigue strength", 465, "N/mm^2", ASSUMPTION + ": 300 x 0.86 x 1.8 (rolled)"),
     ("Main oil hole fatigue strength", 258, "N/mm^2", ASSUMPTION + ": 300 x 0.86 x 1.0"),
@@ -284,8 +284,8 @@ _FULL = [(1000, 55.0), (1500, 60.0), (2000, 66.0), (2500, 71.0), (3000, 75.0), (
 PEAK_PRESSURE = (
     [("load case", "-"), ("speed", "rpm"), ("peak pressure", "bar"), ("note", "")],
     [["full", n, p, ASSUMPTION + ": absolute peak pressure of a naturally aspirated 10:1"
-      " two-valve gasoline engine (as the seed's I4, 53-84 bar)"] for n, p in _FULL]
-    + [["no", 6500, 29.0, ASSUMPTION + ": no-load overspeed point as the seed's I4 (29.1 bar"
+      " two-valve gasoline engine (as Bell 2013 I4, 53-84 bar)"] for n, p in _FULL]
+    + [["no", 6500, 29.0, ASSUMPTION + ": no-load overspeed point as Bell 2013 I4 (29.1 bar"
         " at 7000 rpm)"]],
 )
 
@@ -422,7 +422,7 @@ JOINTS = (
     [
         ["crank nose", "crank nose", 1, 16, 2.0, None, "10.9", "angle controlled", None, None,
          None, None, None, 30, 17, "steel", 46, 17, 0.15,
-         ASSUMPTION + ": one M16x2 10.9 centre bolt, angle controlled (preload from the seed's"
+         ASSUMPTION + ": one M16x2 10.9 centre bolt, angle controlled (preload from the"
          " method table), clamping the balancer hub (face 46/17 mm, mu 0.15); the hub's"
          " press fit on the nose is not credited (bolt clamp friction only, the method of Bell,"
          " Ricardo 2013)"],
