@@ -57,8 +57,13 @@ def number(v: float | None, sig: int = SIG, distinct_from: float | None = None) 
     return s
 
 
+ROUND_OFF = 1e-9
+"""Shown values smaller than this (in their display unit) are zero to round-off (the free
+moments of an inline 4 come out near 1e-13 N·m): shown as 0."""
+
+
 def _number(v: float, sig: int) -> str:
-    if v == 0:
+    if v == 0 or abs(v) < ROUND_OFF:
         return "0"
     a = abs(v)
     if a >= 10 ** sig:

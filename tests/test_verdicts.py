@@ -225,7 +225,7 @@ def test_json_carries_every_computed_quantity(example):
     d = json.loads(run("check", example, "--format", "json", "--no-timings").stdout)
     q = d["quantities"]
     assert {"balance.free_force", "flywheel.minimum_inertia", "damper.tuning_ratio",
-            "bearing.moft", "tv.nose_amplitude"} <= set(q)
+            "bearing.moft_finite", "bearing.moft_short", "tv.nose_amplitude"} <= set(q)
     ff = q["balance.free_force"]
     assert ff["coords"]["item"][1] == "order 2" and ff["values"][1] > 1000
     mi = q["flywheel.minimum_inertia"]["over_speed"]

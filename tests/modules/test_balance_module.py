@@ -71,7 +71,7 @@ def test_rules_use_the_workbook_limits(result):
     by = {(r.rule, r.item): r for r in result.results}
     r2 = by[("BAL-002", "order 2")]
     assert r2.status == "fail" and r2.severity == "warning"  # 16.0 kN > 10 kN (illustrative)
-    assert r2.limit_values == [pytest.approx(10000.0)] and "Engine!" in r2.limit
+    assert r2.limit_values == [pytest.approx(10000.0)] and "Engine!" in r2.message
     assert by[("BAL-001", "order 1")].status == "pass"
     assert {r.status for r in result.results if r.rule == "BAL-005"} == {"pass"}
 
