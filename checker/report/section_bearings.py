@@ -58,7 +58,9 @@ def bearings_section(res: CheckResult) -> dict:
     blocks.append({"type": "heading", "text": "Judged worst cases"})
     judged_qs = [x for x in (res.outcome.quantities.get(n) for n in
                              ("bearing.moft_finite", "bearing.moft_short", "bearing.moft"))
-                 if x is not None and any(r.quantity == x.name for r in res.rules)]
+                 if x is not None and any(
+                     r.quantity == x.name and any(rr.rule == r.id for rr in res.results)
+                     for r in res.rules)]
     for jq in judged_qs or [q]:
         jx = jq.extra
 
