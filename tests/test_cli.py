@@ -176,3 +176,29 @@ def test_template_i6_engine(tmp_path):
     assert run("template", p, "--engine", "i6").exit_code == 0
     r = run("check", p, "--select", "JNT", "--format", "json")
     assert r.exit_code in (0, 1) and json.loads(r.stdout)["engine"].startswith("Example I6")
+
+
+def test_report_progress_in_words_only_when_asked(example, tmp_path):
+    pdf = tmp_path / "r.pdf"
+    # stderr is not a terminal here: no progress unless asked, the final line always
+    quiet = run("report", example, "-o", pdf, "--select", "JNT-003")
+    assert quiet.stderr.strip().splitlines() == [quiet.stderr.strip()]
+    assert quiet.stderr.startswith(f"wrote {pdf} (")
+    loud = run("report", example, "-o", pdf, "--select", "JNT-003", "--progress")
+    assert "checker: Drawing the bolted joint figures" in loud.stderr
+    assert "checker: Laying out the PDF, page 10" in loud.stderr or \
+        "checker: Writing the PDF" in loud.stderr
+    assert "Computing the" in loud.stderr and "joint_bolts" not in loud.stderr
+
+
+def test_check_imports_no_plotting_pdf_or_dask(example):
+    import subprocess
+    import sys
+
+    code = ("import sys; from click.testing import CliRunner; from checker.cli import main;"
+            f" CliRunner().invoke(main, ['check', {str(example)!r}]);"
+            " print(sorted(m for m in ('matplotlib', 'weasyprint', 'dask', 'scipy.fft',"
+            " 'scipy.linalg', 'pandas') if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.strip().splitlines()[-1]
+    assert out == "[]"

@@ -90,7 +90,7 @@ _PROGRESS: Callable[[str], None] | None = None
 
 
 def _worker(module: str) -> dict:
-    return _one(module, _PROGRESS)
+    return _one(module, None)  # progress is told by the parent (it owns stderr)
 
 
 SLOW_FIRST = ("torsion", "loads", "fatigue", "bearings")
@@ -129,6 +129,9 @@ class SectionJob:
                 self.futures[m] = self.pool.submit(_worker, m)
         finally:
             _RESULT, _PROGRESS = None, None
+        if progress is not None:  # drawn in parallel from now on; told here (stderr is ours)
+            for m in order:
+                progress(f"Drawing the {LABELS.get(m, m)} figures")
 
     def result(self) -> list[dict]:
         global _ARG
