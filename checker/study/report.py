@@ -46,6 +46,8 @@ def _margin_figures(vt, run: StudyRun, fams: list[str], df=None) -> list[dict[st
     figs = []
     ok = vt[~vt["input_error"]]
     for f in fams:
+        if not np.isfinite(ok[f"{f} margin"].to_numpy(dtype=float)).any():
+            continue  # warnings only (no error-severity margin): nothing to plot
         n = len(params)
         cols = min(n, 3)
         rows = (n + cols - 1) // cols

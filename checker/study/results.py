@@ -90,7 +90,10 @@ def variant_table(df, run: StudyRun):
     """One row per variant: parameter values, min margin and status per rule family."""
     import pandas as pd
 
-    fams = sorted({family(r) for r in df["rule"] if r})
+    # families with at least one evaluated result (a family whose rules all lack inputs,
+    # e.g. balancing without project limits, has nothing to show)
+    ev = df[df["status"].isin(["pass", "fail", "warning"])]
+    fams = sorted({family(r) for r in ev["rule"] if r})
     pnames = [q.name for q in run.study.parameters]
     base = baseline_values(run)
     out = []
