@@ -53,6 +53,9 @@ class Bearing:
     oil_hole_diameter: float | None = None
     oil_hole_angle: float | None = None
     lining: str | None = None
+    max_film_temperature: float | None = None  # [K], supplier limit
+    max_film_pressure: float | None = None  # [Pa], supplier limit
+    min_oil_flow: float | None = None  # [m^3/s], supplier limit
     index: int = 0  # main number (1..) or big-end number (1..)
     row: int = -1  # data-row index in sheet Bearings
 
@@ -551,7 +554,9 @@ def build_engine(data: WorkbookData,
             groove_start=r["groove_start"], groove_end=r["groove_end"], oil_feed=r["oil_feed"],
             oil_holes=r["oil_holes"] or 0, oil_hole_type=r["oil_hole_type"],
             oil_hole_diameter=r["oil_hole_diameter"], oil_hole_angle=r["oil_hole_angle"],
-            lining=r["lining"], index=counts[r["type"]], row=i))
+            lining=r["lining"], max_film_temperature=r["max_film_temperature"],
+            max_film_pressure=r["max_film_pressure"], min_oil_flow=r["min_oil_flow"],
+            index=counts[r["type"]], row=i))
 
     crank_mass = tuple(
         MassItem(r["location"], r["throw"], r["kind"], r["mass"], r["x"], r["y"], r["z"] or 0.0,

@@ -307,13 +307,12 @@ def override_problems(table: RuleTable, overrides) -> tuple[list[Rule], list[Ove
         unit = (o.unit or r.unit or "").strip()
         unit = "" if unit in ("-", "1") else unit
         try:
-            factor = Q_(1.0, (unit or "").replace("%", "percent")).to(
-                (r.unit or "").replace("%", "percent")).magnitude
+            factor = _affine((unit or "").replace("%", "percent"), r.unit)
         except Exception:
             errs.append(InputError(o.where or "RuleOverrides", f"unit '{o.unit}' does not fit"
                                    f" rule {r.id} (limit in '{r.unit or '-'}')"))
             continue
-        new = tuple(x * factor for x in lim)
+        new = tuple(float(factor(x)) for x in lim)
         old_text = r.limit_text()
         rules[by_id[rid]] = replace(r, limit=new, limit_by=None, limits={}, limit_from=None)
         applied.append(Override(r.id, old_text, rules[by_id[rid]].limit_text(), o.reason,
@@ -479,7 +478,7 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
         if k in dims:
             d = dims.index(k)
             sel[d] = np.array([i for i, c in enumerate(q.coords[k]) if str(c) in vals], int)
-    factor = Q_(1.0, spec.unit or "").to((rule.unit or "").replace("%", "percent")).magnitude
+    factor = _affine(spec.unit, rule.unit)
     for ii, item in enumerate(items):
         attrs = q.item_attrs.get(item, {})
         if any(k not in dims and str(attrs.get(k)) not in vals and
@@ -519,7 +518,7 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
                                           message="not evaluated: missing " + "; ".join(why),
                                           missing=why))
                 continue
-            lim = tuple(float(x) * factor for x in given)
+            lim = tuple(float(factor(float(x))) for x in given)
         lim_text = rule.limit_text(lim)
         limit_cell = attrs.get("limit_cell") if rule.limit_from == "workbook" else None
         # missing entries and findings within the selection
@@ -560,7 +559,7 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
                                       + "; ".join(missing), missing=missing,
                                       findings=findings))
             continue
-        disp = sub * factor
+        disp = factor(sub)
         m = _margin(rule.check, disp, lim)
         if q.applies is not None:
             app = q.applies[np.ix_(*sel_i)]
@@ -605,7 +604,7 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
     return results
 
 
-def _compare_at(spec, others, q, index: tuple[int, ...], factor: float
+def _compare_at(spec, others, q, index: tuple[int, ...], factor
                 ) -> tuple[dict[str, float], str]:
     """Values of the compared quantities at ``index`` (display units of the rule)."""
     out: dict[str, float] = {}
@@ -617,8 +616,20 @@ def _compare_at(spec, others, q, index: tuple[int, ...], factor: float
             continue
         v = float(o.values[index])
         if math.isfinite(v):
-            out[label] = v * factor
+            out[label] = float(factor(v))
     return out, ""
+
+
+def _affine(si_unit: str, unit: str):
+    """Conversion from an SI unit to a rule's unit, ``x -> a x + b`` (offset units such as
+    °C convert affinely)."""
+    src = si_unit or ""
+    dst = (unit or "").replace("%", "percent")
+    b = float(Q_(0.0, src).to(dst).magnitude)
+    a = float(Q_(1.0, src).to(dst).magnitude) - b
+    if b == 0.0:
+        return lambda x: x * a
+    return lambda x: x * a + b
 
 
 def is_finite(x: float | None) -> bool:

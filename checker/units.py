@@ -117,6 +117,7 @@ KINDS: dict[str, Kind] = {
         Kind("linear_damping", "N*s/m", "N s/m"),
         Kind("power_density", "W/m**3", "W/cm^3"),
         Kind("power", "W", "kW"),
+        Kind("volume_flow", "m**3/s", "l/min"),
         Kind("dimensionless", "", "-"),
         Kind("ratio", "", "-"),
     ]

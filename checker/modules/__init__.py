@@ -3,6 +3,7 @@
 from .. import graph
 from . import (  # noqa: F401
     balance,
+    bearing_performance,
     crank_nose,
     damper_tuning,
     fatigue,
@@ -13,7 +14,8 @@ from . import (  # noqa: F401
     torsion,
 )
 
-ORDER = ("loads", "bearings", "torsion", "joints", "fatigue", "balance", "flywheel", "damper")
+ORDER = ("loads", "bearings", "bearing_performance", "torsion", "joints", "fatigue", "balance",
+         "flywheel", "damper")
 """Order of the modules in listings and in the report (each builds on the ones before)."""
 
 _registered = dict(graph.MODULES)

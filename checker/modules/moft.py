@@ -65,18 +65,10 @@ SPECS = {"bearing.moft": MOFT, "bearing.moft_short": MOFT_SHORT,
          "bearing.moft_finite": MOFT_FINITE}
 
 
-def oil_viscosity(engine: Engine) -> tuple[float, float, list[str]]:
-    """Film temperature [K], dynamic viscosity [Pa s] and the assumptions used."""
+def oil_fit(engine: Engine) -> tuple[vs.VogelOil, list[str]]:
+    """Viscosity-temperature law of the workbook's oil and the assumptions used."""
     oil = engine.oil
     notes: list[str] = []
-    t_supply = oil.get("supply_temperature")
-    if t_supply is None:
-        raise MissingInputs([engine.describe_missing("Oil", "supply_temperature")])
-    rise = oil.get("temperature_rise")
-    if rise is None:
-        rise = 0.0
-        notes.append("Film temperature rise not given: film at the oil supply temperature.")
-    t_film = t_supply + rise
     if oil.get("kv40") is not None and oil.get("kv100") is not None:
         dens = oil.get("density")
         fit = vs.vogel_from_datasheet(oil["kv40"], oil["kv100"],
@@ -94,6 +86,23 @@ def oil_viscosity(engine: Engine) -> tuple[float, float, list[str]]:
     else:
         raise MissingInputs([engine.describe_missing("Oil", "grade")
                              + " (or KV40 and KV100)"])
+    return fit, notes
+
+
+def oil_viscosity(engine: Engine) -> tuple[float, float, list[str]]:
+    """Film temperature [K], dynamic viscosity [Pa s] and the assumptions used."""
+    oil = engine.oil
+    notes: list[str] = []
+    t_supply = oil.get("supply_temperature")
+    if t_supply is None:
+        raise MissingInputs([engine.describe_missing("Oil", "supply_temperature")])
+    rise = oil.get("temperature_rise")
+    if rise is None:
+        rise = 0.0
+        notes.append("Film temperature rise not given: film at the oil supply temperature.")
+    t_film = t_supply + rise
+    fit, fit_notes = oil_fit(engine)
+    notes += fit_notes
     mu = float(fit.viscosity(t_film))
     if bool(fit.is_extrapolated(t_film)):
         notes.append(f"Viscosity at the film temperature {t_film - 273.15:.0f} °C extrapolates"
@@ -101,14 +110,25 @@ def oil_viscosity(engine: Engine) -> tuple[float, float, list[str]]:
     return t_film, mu, notes
 
 
+def heat_balance_asked(engine: Engine) -> bool:
+    """The workbook asks for the film at the heat-balance temperature (Oil 'Film
+    temperature' = heat balance)."""
+    return engine.oil.get("film_temperature_method") == "heat balance"
+
+
 def chosen_model(engine: Engine) -> str:
     """Mobility model of the workbook (Oil sheet 'Mobility model'), as a model key."""
     return MODELS[engine.oil.get("mobility_model") or "short bearing"]
 
 
+def _film_needs(engine: Engine) -> tuple[str, ...]:
+    return ("loads.bearing_load",) + (("bearing.film_temperature",)
+                                      if heat_balance_asked(engine) else ())
+
+
 def _moft_needs(engine: Engine) -> tuple[str, ...]:
     alias = METHOD_QUANTITY.get(chosen_model(engine))
-    return ("loads.bearing_load",) + ((alias,) if alias else ())
+    return _film_needs(engine) + ((alias,) if alias else ())
 
 
 @calculation("moft", "bearings", provides=("bearing.moft",), needs=_moft_needs,
@@ -125,14 +145,14 @@ def moft(engine: Engine, inputs: dict) -> dict[str, Quantity]:
 
 
 @calculation("moft_short", "bearings", provides=("bearing.moft_short",),
-             needs=("loads.bearing_load",), reads=("bearings", "oil"))
+             needs=_film_needs, reads=("bearings", "oil"))
 def moft_short(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """MOFT by the short-bearing mobility (Booker's closed form), for method-tagged limits."""
     return {"bearing.moft_short": _solve(engine, inputs, "closed_form", "bearing.moft_short")}
 
 
 @calculation("moft_finite", "bearings", provides=("bearing.moft_finite",),
-             needs=("loads.bearing_load",), reads=("bearings", "oil"))
+             needs=_film_needs, reads=("bearings", "oil"))
 def moft_finite(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """MOFT by the finite-length Reynolds mobility map, for physical film criteria."""
     return {"bearing.moft_finite": _solve(engine, inputs, "reynolds_map",
@@ -145,13 +165,24 @@ def _solve(engine: Engine, inputs: dict, model: str, name: str) -> Quantity:
     if not bl.coords["item"]:
         raise MissingInputs(["Bearings: no bearings given (sheet Bearings)"])
     ex = bl.extra
-    t_film, mu, notes = oil_viscosity(engine)
     names = bl.coords["item"]
+    ft = inputs.get("bearing.film_temperature") if heat_balance_asked(engine) else None
+    if ft is None:
+        t_film, mu, notes = oil_viscosity(engine)
+    else:
+        fit, notes = oil_fit(engine)
+        t_film = ft.values
+        mu = fit.viscosity(np.where(np.isfinite(t_film), t_film, engine.oil[
+            "supply_temperature"]))
     bearings = {b.name: b for b in engine.bearings}
     speeds = np.array(bl.coords["speed"])
     nb, nc, ns = bl.values.shape
     ok = np.isfinite(bl.values).all(axis=(1, 2))
     missing = dict(bl.missing)
+    if ft is not None:
+        ok &= np.isfinite(ft.values).all(axis=(1, 2))
+        for k, v in ft.missing.items():
+            missing.setdefault(k[:1], []).extend(f"film temperature: {t}" for t in v)
     lo_hi = _model_l_over_d_range(model)
     if lo_hi is not None:
         lo, hi = lo_hi
@@ -168,6 +199,8 @@ def _solve(engine: Engine, inputs: dict, model: str, name: str) -> Quantity:
     h = np.full((nb, nc, ns), np.nan)
     eps = np.full((nb, nc, ns), np.nan)
     th_min = np.full((nb, nc, ns), np.nan)
+    p_max = np.full((nb, nc, ns), np.nan) if model == "closed_form" else None
+    th_p = np.full((nb, nc, ns), np.nan) if model == "closed_form" else None
     findings: dict[tuple, list[str]] = {}
     orbit_store = {}
     if ok_rows.size:
@@ -182,8 +215,12 @@ def _solve(engine: Engine, inputs: dict, model: str, name: str) -> Quantity:
             ex["fy"][sel], ex["fx"][sel], ex["omega_journal"][sel], ex["omega_bearing"][sel],
             speeds[None, None, :], np.broadcast_to(d, (sel.size, nc, ns)),
             np.broadcast_to(length, (sel.size, nc, ns)), np.broadcast_to(c, (sel.size, nc, ns)),
-            mu, model=model, full_groove=np.broadcast_to(full, (sel.size, nc, ns)),
-            **_steps(model))
+            mu if np.ndim(mu) == 0 else mu[sel], model=model,
+            full_groove=np.broadcast_to(full, (sel.size, nc, ns)),
+            peak_pressure=p_max is not None, **_steps(model))
+        if p_max is not None:
+            p_max[sel] = res.p_max
+            th_p[sel] = res.theta_p_max
         h[sel] = res.h_min
         eps[sel] = res.eps_max
         th_min[sel] = res.theta_h_min
@@ -203,8 +240,7 @@ def _solve(engine: Engine, inputs: dict, model: str, name: str) -> Quantity:
     assumptions = [
         f"MOFT by the mobility method: {MODEL_TEXT[model]}; rigid journal and housing,"
         " statically determinate loads, mean cold radial clearance (Bell, Ricardo 2013 concept"
-        " assumptions); isoviscous film at "
-        f"{t_film - 273.15:.0f} °C, viscosity {mu * 1e3:.2f} mPa s.",
+        " assumptions); " + _film_text(t_film, mu),
     ] + notes
     partial = [n for n in names if bearings[n].groove == "partial"]
     if partial:
@@ -227,10 +263,24 @@ def _solve(engine: Engine, inputs: dict, model: str, name: str) -> Quantity:
         assumptions.append("Short-bearing theory is optimistic at engine L/D (reference notes"
                            f" 1.5: +28 % h_min at L/D 1/3, eps 0.9); L/D: {ld}.")
     extra = {"eps_max": eps, "theta_h_min": th_min, "viscosity": mu, "film_temperature": t_film,
+             "p_max": p_max, "theta_p_max": th_p,
              "model": model, "model_text": MODEL_TEXT[model], "orbit": orbit_store,
              "assumptions": assumptions,
              "l_over_d": {n: bearings[n].length / bearings[n].diameter for n in names}}
     return Quantity(SPECS[name], h, bl.coords, bl.item_attrs, missing, findings, extra)
+
+
+def _film_text(t_film, mu) -> str:
+    if np.ndim(t_film) == 0:
+        return (f"isoviscous film at {float(t_film) - 273.15:.0f} °C, viscosity"
+                f" {float(mu) * 1e3:.2f} mPa s.")
+    t = np.asarray(t_film)[np.isfinite(t_film)] - 273.15
+    m = np.asarray(mu)[np.isfinite(t_film)] * 1e3
+    if not t.size:
+        return "film temperature of the heat balance (not available)."
+    return (f"isoviscous film at the effective temperature of each bearing's heat balance"
+            f" ({t.min():.0f}..{t.max():.0f} °C, viscosity {m.min():.2f}..{m.max():.2f}"
+            " mPa s; Oil 'Film temperature' = heat balance).")
 
 
 def _steps(model: str) -> dict:

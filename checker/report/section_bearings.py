@@ -38,9 +38,18 @@ def bearings_section(res: CheckResult) -> dict:
                    "columns": ["bearing", "type", "D [mm]", "L_eff [mm]", "c [µm]", "L/D",
                                "groove", "oil holes", "lining"], "rows": rows,
                    "widths": [22, 9, 9, 10, 8, 8, 12, 10, 12]})
-    blocks.append({"type": "text", "text": f"Model: {ex['model_text']}. Film temperature"
-                   f" {ex['film_temperature'] - 273.15:.0f} °C, dynamic viscosity"
-                   f" {ex['viscosity'] * 1e3:.3f} mPa·s."})
+    tf, mu = np.asarray(ex["film_temperature"], float), np.asarray(ex["viscosity"], float)
+    if tf.ndim == 0:
+        film = (f"Film temperature {float(tf) - 273.15:.0f} °C, dynamic viscosity"
+                f" {float(mu) * 1e3:.3f} mPa·s.")
+    else:
+        ok = np.isfinite(tf)
+        film = ("Film temperature from each bearing's heat balance (section 'Bearing oil flow,"
+                f" friction and temperature'): {tf[ok].min() - 273.15:.0f}.."
+                f"{tf[ok].max() - 273.15:.0f} °C, dynamic viscosity"
+                f" {mu[ok].min() * 1e3:.3f}..{mu[ok].max() * 1e3:.3f} mPa·s.") if ok.any() \
+            else "Film temperature of the heat balance: not available."
+    blocks.append({"type": "text", "text": f"Model: {ex['model_text']}. {film}"})
     blocks.append({"type": "equations", "items": [
         ("Journal motion", "dε/dt = |F| ψ² /(μ L D) · M(ε, F̂) + ω̄ ẑ × ε,  ψ = c/R",
          "Booker, Dynamically loaded journal bearings: mobility method of solution, J. Basic"

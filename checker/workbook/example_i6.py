@@ -51,6 +51,7 @@ import math
 from typing import Any
 
 from .example import (
+    _NO_SUPPLIER_LIMITS,
     BEARING_COLUMNS,
     BRAKE_TORQUE_COLUMNS,
     CRANK_MASS_COLUMNS,
@@ -285,8 +286,8 @@ _PIN_NOTE = (MANUAL + ": pin 62.950-62.989 mm (shell bore 63.015-63.031 minus cl
              " sputter lining (usual for ~150 bar truck diesels), oil hole 7 mm at 45 deg leading")
 BEARINGS = (
     BEARING_COLUMNS,
-    [[f"M{i}", *_MAIN, _MAIN_NOTE] for i in range(1, 8)]
-    + [[f"BE{i}", *_PIN, _PIN_NOTE] for i in range(1, 7)],
+    [[f"M{i}", *_MAIN, *_NO_SUPPLIER_LIMITS, _MAIN_NOTE] for i in range(1, 8)]
+    + [[f"BE{i}", *_PIN, *_NO_SUPPLIER_LIMITS, _PIN_NOTE] for i in range(1, 7)],
 )
 
 # Crank mass properties per throw (ASSUMPTIONS). Cylinders 2 and 5 carry 0.0140 kg m^2 less

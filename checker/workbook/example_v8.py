@@ -51,6 +51,7 @@ import math
 from typing import Any
 
 from .example import (
+    _NO_SUPPLIER_LIMITS,
     BEARING_COLUMNS,
     BRAKE_TORQUE_COLUMNS,
     CRANK_MASS_COLUMNS,
@@ -313,8 +314,8 @@ _PIN_NOTE = (GM + ": pin 53.32 mm (53.318-53.338), radial clearance (0.023 + 0.0
              " bimetal lining; oil hole 6 mm at 45 deg leading")
 BEARINGS = (
     BEARING_COLUMNS,
-    [[f"M{i}", *_MAIN, _MAIN_NOTE] for i in range(1, 6)]
-    + [[f"BE{i}", *_PIN, _PIN_NOTE + f" (rod of cylinder {i}, pin {PINS[i]})"]
+    [[f"M{i}", *_MAIN, *_NO_SUPPLIER_LIMITS, _MAIN_NOTE] for i in range(1, 6)]
+    + [[f"BE{i}", *_PIN, *_NO_SUPPLIER_LIMITS, _PIN_NOTE + f" (rod of cylinder {i}, pin {PINS[i]})"]
        for i in range(1, 9)],
 )
 

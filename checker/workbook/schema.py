@@ -314,6 +314,20 @@ OIL = Sheet(
         F("Film temperature rise", "temperature_rise", "temperature_difference", check=">=0",
           required=False, note="Added to the supply temperature to give the film temperature.",
           valid=R(0, 200, "K"), usual=R(0, 60, "K")),
+        F("Film temperature", "film_temperature_method", "choice",
+          choices=("supply plus rise", "heat balance"), required=False,
+          note="supply plus rise = the film runs at the supply temperature plus the film"
+               " temperature rise (default); heat balance = every bearing, load case and speed"
+               " at the effective temperature of its heat balance (friction power carried away"
+               " by its oil flow, ISO 7902-1), also for the film thickness.",
+          aliases=(("supply", "supply plus rise"), ("supply + rise", "supply plus rise"),
+                   ("fixed", "supply plus rise"), ("balance", "heat balance"),
+                   ("thermal", "heat balance"), ("heat-balance", "heat balance"))),
+        F("Heat fraction carried by the oil", "heat_to_oil", "ratio", check=">0",
+          required=False,
+          note="Fraction of the bearing friction heat that leaves with the oil flow (default 1:"
+               " none conducted to journal and housing, conservative).",
+          valid=R(1e-3, 1), usual=R(0.5, 1)),
         F("Mobility model", "mobility_model", "choice",
           choices=("short bearing", "exact short bearing", "finite length", "Butenschoen fits"),
           required=False,
@@ -606,6 +620,18 @@ BEARINGS = Sheet(
           valid=R(0.1, 1000, "mm"), usual=R(1, 50, "mm")),
         F("oil hole angle", "oil_hole_angle", "angle", required=False,
           valid=R(-720, 720, "deg")),
+        F("max film temperature", "max_film_temperature", "temperature", required=False,
+          note="Supplier's limit of the effective film temperature for this shell (rule"
+               " BRG-007). Blank: not judged.",
+          valid=R(0, 400, "°C"), usual=R(80, 250, "°C")),
+        F("max film pressure", "max_film_pressure", "stress", check=">0", required=False,
+          note="Supplier's limit of the peak oil-film pressure for this lining (rule BRG-008)."
+               " Blank: not judged.",
+          valid=R(1, 5000, "MPa"), usual=R(20, 1000, "MPa")),
+        F("min oil flow", "min_oil_flow", "volume_flow", check=">0", required=False,
+          note="Supplier's minimum oil flow through this bearing (rule BRG-009). Blank: not"
+               " judged.",
+          valid=R(1e-4, 1000, "l/min"), usual=R(0.01, 50, "l/min")),
         F("lining", "lining", "choice", required=False, choices=LININGS,
           aliases=_LINING_ALIASES,
           note="Lining material; selects the specific-load and film-thickness limits (AS15/AS16"

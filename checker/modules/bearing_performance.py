@@ -1,0 +1,447 @@
+"""Graph calculations: bearing oil flow, friction power, effective film temperature (heat
+balance) and peak oil-film pressure, from the journal orbits of the mobility method."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..calc import bearing_performance as bp
+from ..calc import mobility as mob
+from ..calc import orbit as ob
+from ..calc import reynolds as ry
+from ..calc import reynolds_map as rm
+from ..calc import viscosity as vs
+from ..engine import Bearing, Engine
+from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity, register_module
+from .loads import CASES
+from .moft import oil_fit
+
+register_module("bearing_performance", "Bearing oil flow, friction and temperature")
+
+_F = ("type", "lining")
+FILM_TEMPERATURE = quantity(QuantitySpec(
+    "bearing.film_temperature", "K", ("item", "case", "speed"),
+    "Effective oil-film temperature of the heat balance (friction power carried away by the"
+    " bearing's oil flow; mean of inlet and outlet, ISO 7902-1)", "°C", _F,
+    coords={"case": CASES}))
+FRICTION_POWER = quantity(QuantitySpec(
+    "bearing.friction_power", "W", ("item", "case", "speed"),
+    "Friction power of the oil film, cycle mean (Couette shear over the full film + squeeze"
+    " term), at the effective film temperature", "W", _F, coords={"case": CASES}))
+FRICTION_POWER_PEAK = quantity(QuantitySpec(
+    "bearing.friction_power_peak", "W", ("item", "case", "speed"),
+    "Friction power of the oil film, largest value over the cycle", "W", _F,
+    coords={"case": CASES}))
+FRICTION_TORQUE = quantity(QuantitySpec(
+    "bearing.friction_torque", "N*m", ("item", "case", "speed"),
+    "Friction torque of the oil film resisting the journal's rotation relative to the shell,"
+    " cycle mean", "N m", _F, coords={"case": CASES}))
+SIDE_FLOW = quantity(QuantitySpec(
+    "bearing.side_flow", "m**3/s", ("item", "case", "speed"),
+    "Hydrodynamic side leakage of the short-bearing film, cycle mean", "l/min", _F,
+    coords={"case": CASES}))
+FEED_FLOW = quantity(QuantitySpec(
+    "bearing.feed_flow", "m**3/s", ("item", "case", "speed"),
+    "Pressure-driven flow from the oil feed (groove or holes) at the supply pressure, cycle"
+    " mean", "l/min", _F, coords={"case": CASES}))
+OIL_FLOW = quantity(QuantitySpec(
+    "bearing.oil_flow", "m**3/s", ("item", "case", "speed"),
+    "Oil flow through the bearing: side leakage + pressure-fed flow, cycle mean", "l/min", _F,
+    coords={"case": CASES}))
+ENGINE_FRICTION = quantity(QuantitySpec(
+    "engine.bearing_friction_power", "W", ("case", "speed"),
+    "Friction power of all main and big-end bearings (hydrodynamic films only)", "W",
+    coords={"case": CASES}))
+PRESSURE_COMPARE = (("finite length", "bearing.peak_film_pressure"),
+                    ("short bearing", "bearing.peak_film_pressure_short"))
+PEAK_PRESSURE = quantity(QuantitySpec(
+    "bearing.peak_film_pressure", "Pa", ("item", "case", "speed"),
+    "Peak oil-film pressure over the cycle, finite-length film (Reynolds equation, along the"
+    " finite-length orbit of the film-thickness calculation)", "MPa", _F,
+    coords={"case": CASES}, compare=PRESSURE_COMPARE))
+PEAK_PRESSURE_SHORT = quantity(QuantitySpec(
+    "bearing.peak_film_pressure_short", "Pa", ("item", "case", "speed"),
+    "Peak oil-film pressure over the cycle, short-bearing (Ocvirk) pressure field along the"
+    " short-bearing orbit", "MPa", _F, coords={"case": CASES}, compare=PRESSURE_COMPARE))
+
+HEAT_BALANCE_TOL = 0.1
+"""[K] Convergence tolerance of the film temperature (benchmarks/bench_bearing_performance.py:
+two or three orbit evaluations on the examples)."""
+HEAT_BALANCE_MAX_EVALUATIONS = 8
+STEPS_PER_CYCLE = 180
+"""RK steps per cycle of the heat-balance orbits (cycle means of friction power and flow are
+integral quantities: benchmarks/bench_bearing_performance.py compares with 720 steps)."""
+"""Orbit evaluations before a point still changing is reported as not converged."""
+
+FEED_TEXT = {
+    "groove": "full circumferential groove: axial Poiseuille flow across both lands with the"
+              " film's (1 + 1.5 eps^2) (Budynas and Nisbett, Shigley's Mechanical Engineering"
+              " Design, 9th ed., 2011, sec. 12-10)",
+    "partial": "partial groove: axial flow out of the groove arc only, h^3 integrated over the"
+               " arc along the orbit (spreading beyond the groove ends neglected: a lower bound,"
+               " conservative for the film temperature)",
+    "hole": "feed hole: source in a strip between the two edges, Q = h^3/(12 mu) 2 pi p /"
+            " ln(4b / (pi a)) (conformal solution of the feed's Reynolds equation); a journal"
+            " hole sees the film averaged over a turn, (1 + 1.5 eps^2) c^3, and the"
+            " centrifugal pressure of the crank drilling, rho omega^2 (r_hole^2 - R_main^2)/2",
+}
+
+
+def _resample(a: np.ndarray, n: int) -> np.ndarray:
+    return ob._resample_periodic(np.asarray(a, dtype=float), n)
+
+
+def _squeeze_velocity(lx, ly, ex, ey, diameter, length, land, clearance, mu):
+    """V_s / c of the short-bearing (closed-form) mobility method, ``|F| psi^2/(mu L D) u M``
+    with ``psi = 2 c / D`` (Booker 1965; as :func:`checker.calc.mobility.eccentricity_rate`)."""
+    f = lx + 1j * ly
+    fa = np.abs(f)
+    u = np.where(fa > 0.0, f / np.where(fa > 0.0, fa, 1.0), 1.0)
+    wz = (ex + 1j * ey) * np.conj(u)
+    mz, mk = mob.mobility_closed_form(wz.real, wz.imag, land / diameter)
+    psi = 2.0 * clearance / diameter
+    v = fa * psi**2 / (mu * length * diameter) * u * (mz + 1j * mk)
+    return v.real, v.imag
+
+
+def _feed(engine: Engine, b: Bearing) -> tuple[str, list[str]]:
+    """Feed kind of a bearing (``full``, ``partial``, ``hole``, combinations joined by '+',
+    or ``none``) and the inputs missing for it."""
+    kinds, missing = [], []
+    if b.groove == "full":
+        kinds.append("full")
+    elif b.groove == "partial":
+        kinds.append("partial")
+        for f in ("groove_start", "groove_end"):
+            if getattr(b, f) is None:
+                missing.append(engine.describe_missing("Bearings", f, b.row,
+                                                       f"partial groove arc of {b.name}"))
+    if (b.oil_holes or 0) > 0:
+        kinds.append("hole")
+        if b.oil_hole_diameter is None:
+            missing.append(engine.describe_missing("Bearings", "oil_hole_diameter", b.row,
+                                                   f"feed hole of {b.name}"))
+    return "+".join(kinds) or "none", missing
+
+
+@calculation("bearing_heat_balance", "bearing_performance",
+             provides=("bearing.film_temperature", "bearing.friction_power",
+                       "bearing.friction_power_peak", "bearing.friction_torque",
+                       "bearing.side_flow", "bearing.feed_flow", "bearing.oil_flow",
+                       "engine.bearing_friction_power"),
+             needs=("loads.bearing_load",), reads=("bearings", "oil", "params.stroke"))
+def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
+    """Oil flow, friction and effective film temperature of every bearing by a heat balance
+    iterated with the viscosity-temperature law (short-bearing orbits at each iterate)."""
+    bl = inputs["loads.bearing_load"]
+    names = bl.coords["item"]
+    if not names:
+        raise MissingInputs(["Bearings: no bearings given (sheet Bearings)"])
+    oil = engine.oil
+    t_supply = oil.get("supply_temperature")
+    if t_supply is None:
+        raise MissingInputs([engine.describe_missing("Oil", "supply_temperature")])
+    fit, notes = oil_fit(engine)
+    bearings = {b.name: b for b in engine.bearings}
+    ex = bl.extra
+    speeds = np.array(bl.coords["speed"])
+    nb, nc, ns = bl.values.shape
+    missing: dict[tuple, list[str]] = {k: list(v) for k, v in bl.missing.items()}
+    ok = np.isfinite(bl.values).all(axis=(1, 2))
+    feed_missing: dict[int, list[str]] = {}
+    feeds = {}
+    p_supply = oil.get("supply_pressure")
+    for i, n in enumerate(names):
+        kind, miss = _feed(engine, bearings[n])
+        if kind != "none" and p_supply is None:
+            miss.append(engine.describe_missing("Oil", "supply_pressure",
+                                                what=f"oil feed of {n}"))
+        feeds[n] = kind
+        if miss:
+            feed_missing[i] = miss
+    dens15 = oil.get("density") or vs.DENSITY_15C_DEFAULT
+    heat_to_oil = oil.get("heat_to_oil") or 1.0
+    mains = [b for b in engine.bearings if b.type == "main"]
+    r_main = 0.5 * min(b.diameter for b in mains) if mains else None
+    stroke = engine.params.get("stroke")
+
+    rows = np.where(ok)[0]
+    shape = (rows.size, nc, ns)
+    out = {k: np.full((nb, nc, ns), np.nan) for k in (
+        "t", "p", "p_peak", "torque", "qs", "qf")}
+    findings: dict[tuple, list[str]] = {}
+    info: dict = {}
+    if rows.size:
+        sel = [bearings[names[i]] for i in rows]
+        col = (slice(None), None, None)
+        dia = np.array([b.diameter for b in sel])[col]
+        length = np.array([b.length for b in sel])[col]
+        clear = np.array([b.clearance for b in sel])[col]
+        full = np.array([b.groove == "full" for b in sel])[col]
+        land = np.where(full, 0.5 * length, length)
+        n_steps = STEPS_PER_CYCLE
+        fx_s = _resample(ex["fx"][rows], n_steps)
+        fy_s = _resample(ex["fy"][rows], n_steps)
+        wj_full = np.broadcast_to(ex["omega_journal"][rows], ex["fx"][rows].shape)
+        wb_full = np.broadcast_to(ex["omega_bearing"][rows], ex["fx"][rows].shape)
+        wj_s, wb_s = _resample(wj_full, n_steps), _resample(wb_full, n_steps)
+        bdim = tuple(np.broadcast_to(a, shape) for a in (dia, length, clear, full))
+        warm: dict = {}
+
+        def feed_flow(eps_x, eps_y, mu):
+            """Cycle-mean pressure-fed flow [m^3/s] of every selected bearing, (B, C, S)."""
+            q = np.zeros(shape)
+            mu4 = mu[..., None]
+            for a, b in enumerate(sel):
+                kind = feeds[b.name]
+                if kind == "none" or int(rows[a]) in feed_missing:
+                    continue
+                e_x, e_y = eps_x[a], eps_y[a]
+                if "full" in kind:
+                    q[a] += bp.groove_feed_flow(e_x, e_y, p_supply, mu4[a], b.diameter,
+                                                0.5 * b.length, b.clearance, 0.0,
+                                                2.0 * np.pi).mean(axis=-1)
+                if "partial" in kind:
+                    t1 = b.groove_start
+                    t2 = b.groove_end if b.groove_end > t1 else b.groove_end + 2.0 * np.pi
+                    q[a] += bp.groove_feed_flow(e_x, e_y, p_supply, mu4[a], b.diameter,
+                                                0.5 * b.length, b.clearance, t1,
+                                                t2).mean(axis=-1)
+                if "hole" in kind:
+                    eps2 = e_x**2 + e_y**2
+                    crank_fed = (b.oil_feed or "").strip().lower() == "crank"
+                    p_hole = np.full((nc, ns), float(p_supply))
+                    if crank_fed or b.oil_hole_angle is None:
+                        h3 = bp.rotating_hole_film_factor(np.sqrt(eps2)).mean(axis=-1)
+                    else:
+                        phi = b.oil_hole_angle
+                        h3 = ((1.0 - e_x * np.cos(phi) - e_y * np.sin(phi))**3).mean(axis=-1)
+                    if (crank_fed and b.type == "big end" and b.oil_hole_angle is not None
+                            and r_main is not None and stroke is not None):
+                        r = 0.5 * stroke
+                        rp = 0.5 * b.diameter
+                        r_out = np.sqrt(r * r + rp * rp + 2 * r * rp * np.cos(b.oil_hole_angle))
+                        rho = float(vs.oil_density(float(t_supply), dens15))
+                        p_hole = p_hole + bp.centrifugal_pressure_rise(
+                            rho, speeds[None, :], r_out, r_main)
+                    q[a] += (b.oil_holes or 0) * bp.hole_feed_flow(
+                        b.clearance * np.cbrt(h3), np.maximum(p_hole, 0.0), mu[a],
+                        b.oil_hole_diameter, 0.5 * b.length)
+            return q
+
+        def evaluate(t):
+            mu = fit.viscosity(t)
+            res = ob.solve_orbit(
+                ex["fy"][rows], ex["fx"][rows], ex["omega_journal"][rows],
+                ex["omega_bearing"][rows], speeds[None, None, :], *bdim[:3], mu,
+                model="closed_form", full_groove=bdim[3], steps_per_cycle=n_steps,
+                eps0_x=warm.get("x"),
+                eps0_y=warm.get("y"))
+            warm["x"], warm["y"] = res.eps_x[..., 0], res.eps_y[..., 0]
+            mu4 = mu[..., None]
+            lx, ly = fy_s, fx_s  # orbit frame: X along the loads' y axis
+            vx, vy = _squeeze_velocity(lx, ly, res.eps_x, res.eps_y, dia[..., None],
+                                       length[..., None], land[..., None], clear[..., None],
+                                       mu4)
+            torque, power = ry.film_losses(res.eps_x, res.eps_y, lx, ly, vx, vy, wj_s, wb_s,
+                                           dia[..., None], length[..., None], clear[..., None],
+                                           mu4)
+            qs = bp.short_bearing_side_flow(vx, vy, dia[..., None], length[..., None],
+                                            clear[..., None]).mean(axis=-1)
+            qf = feed_flow(res.eps_x, res.eps_y, mu)
+            rho_cp = vs.oil_density(t, dens15) * bp.oil_specific_heat(t, dens15)
+            state = {"orbit": res, "torque": -torque.mean(axis=-1), "power": power.mean(axis=-1),
+                     "power_peak": power.max(axis=-1), "qs": qs, "qf": qf}
+            return power.mean(axis=-1), qs, qf, rho_cp, state
+
+        ts = np.full(shape, float(t_supply))
+        try:
+            hb = bp.solve_heat_balance(evaluate, ts, fit.viscosity, heat_to_oil=heat_to_oil,
+                                       tol=HEAT_BALANCE_TOL,
+                                       max_evaluations=HEAT_BALANCE_MAX_EVALUATIONS)
+        except ValueError as exc:
+            raise MissingInputs([f"bearing heat balance: {exc}"]) from None
+        st = hb.state
+        res = st["orbit"]
+        out["t"][rows] = hb.temperature
+        out["p"][rows] = st["power"]
+        out["p_peak"][rows] = st["power_peak"]
+        out["torque"][rows] = st["torque"]
+        out["qs"][rows] = st["qs"]
+        out["qf"][rows] = st["qf"]
+        for a, ci, si in np.argwhere(~hb.converged):
+            rpm = speeds[si] * 30 / np.pi
+            findings.setdefault((int(rows[a]), int(ci), int(si)), []).append(
+                f"heat balance not converged at {rpm:.0f} rpm ({CASES[ci]} load) after"
+                f" {hb.evaluations} orbit evaluations: last change"
+                f" {hb.change[a, ci, si]:.2g} K > {HEAT_BALANCE_TOL} K")
+        for a, ci, si in np.argwhere(res.collapse | ~res.converged):
+            rpm = speeds[si] * 30 / np.pi
+            findings.setdefault((int(rows[a]), int(ci), int(si)), []).append(
+                f"short-bearing orbit at the film temperature: {res.message[a, ci, si]}"
+                f" at {rpm:.0f} rpm ({CASES[ci]} load)")
+        extrap = fit.is_extrapolated(hb.temperature)
+        info = {"evaluations": hb.evaluations, "change_max": float(np.max(hb.change)),
+                "extrapolated": bool(np.any(extrap)),
+                "t_range": (float(np.min(hb.temperature)), float(np.max(hb.temperature)))}
+    # not converged, not periodic or collapsed: the balance cannot be trusted there
+    bad_t = np.zeros((nb, nc, ns), dtype=bool)
+    for (i, ci, si), texts in findings.items():
+        bad_t[i, ci, si] = any("not converged" in t for t in texts)
+    for i, miss in feed_missing.items():
+        for k in ("t", "qf"):
+            out[k][i] = np.nan
+        missing.setdefault((i,), []).extend(miss)
+    out["t"][bad_t] = np.nan
+    for i, ci, si in np.argwhere(bad_t):
+        missing.setdefault((int(i), int(ci), int(si)), []).append(
+            "heat balance not converged (see findings)")
+    qtot = out["qs"] + out["qf"]
+
+    def attrs(limit_attr: str | None, label: str) -> dict:
+        d = {}
+        for n in names:
+            b = bearings[n]
+            a = dict(bl.item_attrs.get(n, {}))
+            if limit_attr is not None:
+                v = getattr(b, limit_attr)
+                if v is None:
+                    a["limit_missing"] = [engine.describe_missing(
+                        "Bearings", limit_attr, b.row, f"{label} of {n} (supplier's data)")]
+                else:
+                    a["limit"] = (float(v),)
+                    a["limit_cell"] = engine.cell("Bearings", limit_attr, b.row)
+            d[n] = a
+        return d
+
+    assumptions = [
+        "Bearing oil flow, friction and film temperature from the short-bearing journal orbit"
+        " (Booker's closed-form mobility) at the effective film temperature of each bearing,"
+        " load case and speed.",
+        "Friction: Couette shear of the full film over the whole circumference (the cavitated"
+        " region is taken as full film: an upper bound of the shear, usual at concept level)"
+        " plus the load term (c/2) eps x F; power = Couette + squeeze term F . V_s (Hirani,"
+        " Athre and Biswas, 'Dynamically loaded finite length journal bearings: analytical"
+        " method of solution', J. Tribol. 121, 1999, for the same split).",
+        "Side leakage of the short-bearing pi-film Q = D c L |V_s/c| (Ocvirk 1952, steady"
+        " U c L eps); oil flow = side leakage + pressure-fed flow (superposed; the two interact"
+        " through the film boundary conditions, an approximation).",
+        f"Heat balance: T_eff = T_supply + 0.5 f P / (rho c_p Q), fraction of the heat"
+        f" carried by the oil f = {heat_to_oil:g}"
+        + ("" if oil.get("heat_to_oil") is not None else " (ASSUMPTION: not given, all heat"
+           " leaves with the oil, conservative)")
+        + "; rho(T) by thermal expansion, c_p by Cragoe (1929); iterated with the Vogel"
+        f" viscosity law to {HEAT_BALANCE_TOL} K (ISO 7902-1; Budynas and Nisbett 2011,"
+        " sec. 12-9).",
+    ] + [f"Oil feed of {', '.join(n for n in names if feeds[n] == k) or '-'}: {FEED_TEXT[t]}"
+         for k, t in (("full", "groove"), ("partial", "partial"))
+         if any(feeds[n] == k or k in feeds[n].split("+") for n in names)] + notes
+    holes = [n for n in names if "hole" in feeds[n].split("+")]
+    if holes:
+        assumptions.append(f"Oil feed of {', '.join(holes)}: {FEED_TEXT['hole']}; the pressure"
+                           " drop in the drillings is neglected.")
+    none_fed = [n for n in names if feeds[n] == "none"]
+    if none_fed:
+        assumptions.append(f"No oil feed given for {', '.join(none_fed)}: only the side"
+                           " leakage carries the heat (conservative).")
+    if info.get("extrapolated"):
+        assumptions.append("The effective film temperature lies beyond the viscosity data"
+                           " (Vogel fit extrapolated).")
+    extra = {"feeds": feeds, "heat_to_oil": heat_to_oil, "t_supply": float(t_supply),
+             "p_supply": p_supply, "assumptions": assumptions, **info}
+    coords = bl.coords
+    miss_tq = {k: v for k, v in missing.items()}
+
+    def q(spec, values, limit_attr=None, label=""):
+        return Quantity(spec, values, coords, attrs(limit_attr, label), dict(miss_tq),
+                        findings, extra)
+
+    eng = np.sum(out["p"], axis=0) if nb else np.full((nc, ns), np.nan)
+    eng_missing = {}
+    if nb and not np.isfinite(eng).all():
+        eng_missing[()] = ["friction power of " + ", ".join(
+            n for i, n in enumerate(names) if not np.isfinite(out["p"][i]).all())
+            + " could not be computed"]
+    return {
+        "bearing.film_temperature": q(FILM_TEMPERATURE, out["t"], "max_film_temperature",
+                                      "maximum film temperature"),
+        "bearing.friction_power": q(FRICTION_POWER, out["p"]),
+        "bearing.friction_power_peak": q(FRICTION_POWER_PEAK, out["p_peak"]),
+        "bearing.friction_torque": q(FRICTION_TORQUE, out["torque"]),
+        "bearing.side_flow": q(SIDE_FLOW, out["qs"]),
+        "bearing.feed_flow": q(FEED_FLOW, out["qf"]),
+        "bearing.oil_flow": q(OIL_FLOW, qtot, "min_oil_flow", "minimum oil flow"),
+        "engine.bearing_friction_power": Quantity(
+            ENGINE_FRICTION, eng, {"case": coords["case"], "speed": coords["speed"]}, {},
+            eng_missing, {}, {"assumptions": assumptions}),
+    }
+
+
+@calculation("film_pressure", "bearing_performance",
+             provides=("bearing.peak_film_pressure", "bearing.peak_film_pressure_short"),
+             needs=("loads.bearing_load", "bearing.moft_short", "bearing.moft_finite"),
+             reads=("bearings",))
+def film_pressure(engine: Engine, inputs: dict) -> dict[str, Quantity]:
+    """Peak oil-film pressure along the orbits of the film-thickness calculation: the
+    short-bearing pressure field (Ocvirk) and the finite-length film (Reynolds map)."""
+    bl = inputs["loads.bearing_load"]
+    short = inputs["bearing.moft_short"]
+    fin = inputs["bearing.moft_finite"]
+    names = bl.coords["item"]
+    bearings = {b.name: b for b in engine.bearings}
+    nb, nc, ns = bl.values.shape
+    p_short = np.full((nb, nc, ns), np.nan)
+    th_short = np.full((nb, nc, ns), np.nan)
+    sx = short.extra
+    if sx.get("p_max") is not None:
+        p_short[:] = sx["p_max"]
+        th_short[:] = sx["theta_p_max"]
+    p_fin = np.full((nb, nc, ns), np.nan)
+    th_fin = np.full((nb, nc, ns), np.nan)
+    orb = fin.extra.get("orbit") or {}
+    if orb:
+        rows = orb["rows"]
+        n = orb["eps_x"].shape[-1]
+        ex = bl.extra
+        lx = _resample(ex["fy"][rows], n)
+        ly = _resample(ex["fx"][rows], n)
+        col = (slice(None), None, None, None)
+        sel = [bearings[names[i]] for i in rows]
+        dia = np.array([b.diameter for b in sel])[col]
+        length = np.array([b.length for b in sel])[col]
+        clear = np.array([b.clearance for b in sel])[col]
+        full = np.array([b.groove == "full" for b in sel])[col]
+        share = np.where(full, 0.5, 1.0)
+        mu = np.asarray(fin.extra["viscosity"], dtype=float)
+        mu = mu[rows][..., None] if mu.ndim == 3 else mu
+        pm, _ = rm.film_state_map(lx * share, ly * share, orb["eps_x"], orb["eps_y"], dia,
+                                  length * share, clear, mu)
+        k = np.argmax(pm, axis=-1)
+        p_fin[rows] = np.take_along_axis(pm, k[..., None], axis=-1)[..., 0]
+        th_fin[rows] = np.asarray(orb["theta"])[k]
+    missing_s = dict(short.missing)
+    missing_f = dict(fin.missing)
+    attrs = {}
+    for n in names:
+        b = bearings[n]
+        a = dict(bl.item_attrs.get(n, {}))
+        if b.max_film_pressure is None:
+            a["limit_missing"] = [engine.describe_missing(
+                "Bearings", "max_film_pressure", b.row,
+                f"maximum film pressure of {n} (supplier's data)")]
+        else:
+            a["limit"] = (float(b.max_film_pressure),)
+            a["limit_cell"] = engine.cell("Bearings", "max_film_pressure", b.row)
+        attrs[n] = a
+    extra_f = {"theta_p_max": th_fin, "film_temperature": fin.extra.get("film_temperature"),
+               "model_text": "finite-length Reynolds film (mobility map) along the"
+                             " finite-length orbit"}
+    extra_s = {"theta_p_max": th_short, "film_temperature": short.extra.get("film_temperature"),
+               "model_text": "short-bearing (Ocvirk) pressure along the short-bearing orbit"}
+    return {
+        "bearing.peak_film_pressure": Quantity(PEAK_PRESSURE, p_fin, bl.coords, attrs,
+                                               missing_f, dict(fin.findings), extra_f),
+        "bearing.peak_film_pressure_short": Quantity(PEAK_PRESSURE_SHORT, p_short, bl.coords,
+                                                     attrs, missing_s, dict(short.findings),
+                                                     extra_s),
+    }
