@@ -307,7 +307,7 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                 v = getattr(b, limit_attr)
                 if v is None:
                     a["limit_missing"] = [engine.describe_missing(
-                        "Bearings", limit_attr, b.row, f"{label} of {n} (supplier's data)")]
+                        "Bearings", limit_attr, b.row, f"{n} (the shell supplier's limit)")]
                 else:
                     a["limit"] = (float(v),)
                     a["limit_cell"] = engine.cell("Bearings", limit_attr, b.row)
@@ -427,8 +427,7 @@ def film_pressure(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         a = dict(bl.item_attrs.get(n, {}))
         if b.max_film_pressure is None:
             a["limit_missing"] = [engine.describe_missing(
-                "Bearings", "max_film_pressure", b.row,
-                f"maximum film pressure of {n} (supplier's data)")]
+                "Bearings", "max_film_pressure", b.row, f"{n} (the shell supplier's limit)")]
         else:
             a["limit"] = (float(b.max_film_pressure),)
             a["limit_cell"] = engine.cell("Bearings", "max_film_pressure", b.row)

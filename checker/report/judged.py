@@ -109,7 +109,13 @@ def judged_text(res: CheckResult, q, p: Point, item: str | None = None,
     if not p.judged:
         return "not judged: " + reason(q)
     ids = rule_ids(res, q.name, item, case)
-    return ", ".join(ids) if ids else "no rule on it"
+    if ids:
+        return ", ".join(ids)
+    ne = [rr.rule for rr in res.results if rr.status == "not_evaluated"
+          and any(r.id == rr.rule and r.quantity == q.name for r in res.rules)
+          and (item is None or rr.item in (item, "all"))]
+    return (", ".join(dict.fromkeys(ne)) + " not evaluated (limit not given)") if ne \
+        else "no rule on it"
 
 
 def row_css(p: Point | None) -> str:

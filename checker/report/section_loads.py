@@ -24,10 +24,12 @@ def _rule_limits(res: CheckResult, quantity: str, case: str) -> dict[str, float]
     return {}
 
 
-def bearing_speed_figure(res: CheckResult, q, scale: float, ylabel: str, unit: str) -> str:
+def bearing_speed_figure(res: CheckResult, q, scale: float, ylabel: str, unit: str,
+                         from_zero: bool = True) -> str:
     """Per-bearing curves (values x ``scale``) against speed, mains / big ends x load cases,
     with the rule limit of each lining (named in the legend below the panels); ``q`` has dims
-    (item, case, speed) and item attributes type and lining."""
+    (item, case, speed) and item attributes type and lining. The y axis starts at 0 unless
+    ``from_zero`` is false (then just below the lowest curve)."""
     names = q.coords["item"]
     sp = np.array(q.coords["speed"]) / RPM
     judged = jd.mask(q)
@@ -61,7 +63,15 @@ def bearing_speed_figure(res: CheckResult, q, scale: float, ylabel: str, unit: s
                        for ln in ax.get_lines() if np.isfinite(
                            np.asarray(ln.get_ydata(), float)).any()), default=1.0)
                   for ax in row)
-        row[0].set_ylim(0, top * 1.08)
+        if from_zero:
+            row[0].set_ylim(0, top * 1.08)
+        else:
+            low = min(min((float(np.nanmin(np.asarray(ln.get_ydata(), float)))
+                           for ln in ax.get_lines() if np.isfinite(
+                               np.asarray(ln.get_ydata(), float)).any()), default=0.0)
+                      for ax in row)
+            pad = 0.08 * max(top - low, 1e-9)
+            row[0].set_ylim(low - pad, top + pad)
     for ax in axes[-1]:
         ax.set_xlabel("Engine speed [rpm]")
     legend_below(fig, ncols=7)

@@ -7,6 +7,7 @@ value, limit and case, e.g. four identical big-end bearings) is one row naming e
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 
 from ..api import CheckResult
@@ -73,6 +74,22 @@ def _note(r: RuleResult) -> str:
                     " section)" if more else "")
 
 
+_CELL = re.compile(r"\b[A-Za-z][A-Za-z0-9_]*![A-Z]{1,3}[0-9]+\b")
+
+
+def _cell_span(refs: list[str]) -> str:
+    """``Sheet!S2, Sheet!S3, ...`` as ``Sheet!S2..S10`` when one column of one sheet."""
+    if not refs:
+        return ""
+    sheets = {r.split("!")[0] for r in refs}
+    cols = {re.sub(r"[0-9]+$", "", r.split("!")[1]) for r in refs}
+    if len(sheets) == 1 and len(cols) == 1 and len(refs) > 1:
+        nums = sorted(int(re.sub(r"^[A-Z]+", "", r.split("!")[1])) for r in refs)
+        col = cols.pop()
+        return f"{sheets.pop()}!{col}{nums[0]}..{col}{nums[-1]}"
+    return ", ".join(dict.fromkeys(refs))
+
+
 def rows(res: CheckResult, results: list[RuleResult] | None = None) -> list[Row]:
     """Rows of ``results`` (default: all), identical findings on several items merged,
     ordered by group, then item (order of first appearance), then rule."""
@@ -81,12 +98,18 @@ def rows(res: CheckResult, results: list[RuleResult] | None = None) -> list[Row]
     for r in res.results:
         item_order.setdefault(r.item, len(item_order))
     merged: dict[tuple, Row] = {}
+    cells: dict[tuple, list[list[str]]] = {}
     for r in results:
         k = kind(r)
         value = "-" if r.value is None else r.value_text
         note = _note(r)
-        key = (k, r.rule, r.case, value, r.limit, note, r.override)
+        pattern = note
+        if k == "not_evaluated":
+            # the same missing input on several items (one cell each) is one row
+            pattern = _CELL.sub("\x00", note).replace(r.item, "\x01") if r.item else note
+        key = (k, r.rule, r.case, value, r.limit, pattern, r.override)
         row = merged.get(key)
+        cells.setdefault(key, []).append(_CELL.findall(note))
         if row is None:
             merged[key] = Row(k, r.rule, r.name, [r.item], r.case or "-", value, r.limit,
                               r.margin_text if r.status != "not_evaluated" else "-", note,
@@ -94,6 +117,13 @@ def rows(res: CheckResult, results: list[RuleResult] | None = None) -> list[Row]
         else:
             row.items.append(r.item)
             row.results.append(r)
+    for key, row in merged.items():
+        if row.kind == "not_evaluated" and len(row.items) > 1:
+            text = key[5].replace("\x01", "each listed item")
+            for j in range(text.count("\x00")):
+                refs = [c[j] for c in cells[key] if len(c) > j]
+                text = text.replace("\x00", _cell_span(refs), 1)
+            row.note = text
     order = {g[0]: i for i, g in enumerate(GROUPS)}
     out = sorted(merged.values(), key=lambda x: (order[x.kind], item_order.get(x.items[0], 0),
                                                  x.rule, x.case))
