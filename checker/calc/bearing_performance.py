@@ -286,9 +286,9 @@ def oil_specific_heat(temperature: ArrayLike, density_15: ArrayLike) -> np.ndarr
     Parameters
     ----------
     temperature : array_like [K]
-        Oil temperature (valid 0..400 °C).
+        Oil temperature (accepted 0..400 °C).
     density_15 : array_like [kg/m^3]
-        Density at 15 °C (specific gravity ``s`` 0.75..0.96).
+        Density at 15 °C (accepted specific gravity ``s`` 0.7..1.0).
 
     Returns
     -------
@@ -375,8 +375,9 @@ def solve_heat_balance(
     the local model ``P = a mu(T)``, ``Q = Q_side + d / mu(T)`` (Petroff shear, Poiseuille
     feed) with ``a, d`` from that evaluation is solved exactly for ``T_{k+1}`` (bisection on a
     monotone function, so no oscillation); the iteration stops when ``|T_{k+1} - T_k| <=
-    tol``: then ``T_k`` satisfies the balance with the evaluated (not modelled) ``P`` and
-    ``Q`` to within ``tol``.
+    tol``. The returned ``T_k`` is the evaluated state (its ``P`` and ``Q`` belong to it); its
+    distance to the true fixed point is about ``tol / (1 - slope)`` of the balance (tests: at
+    most 2.3 ``tol`` in the balance residual), 0.2 K at the default 0.1 K.
 
     Parameters
     ----------
