@@ -75,6 +75,7 @@ from scipy.linalg import solveh_banded
 from scipy.sparse.linalg import splu
 
 from checker.calc import _checks
+from checker.calc.bearing_performance import film_losses  # noqa: F401 (re-export)
 
 __all__ = [
     "Grid",
@@ -947,76 +948,3 @@ def film_force(
         pm[idx] = scale * s.p_max
         qs[idx] = cl[idx] * r * r * abs(v) * s.q_side
     return FilmState(fx, fy, pm, qs)
-
-
-def film_losses(
-    eps_x: ArrayLike,
-    eps_y: ArrayLike,
-    force_x: ArrayLike,
-    force_y: ArrayLike,
-    vs_x: ArrayLike,
-    vs_y: ArrayLike,
-    omega_journal: ArrayLike,
-    omega_bearing: ArrayLike,
-    diameter: ArrayLike,
-    length: ArrayLike,
-    clearance: ArrayLike,
-    viscosity: ArrayLike,
-) -> tuple[np.ndarray, np.ndarray]:
-    """Friction torque on the journal and power dissipated in the film.
-
-    .. math::
-
-        T_J = -\\frac{2\\pi \\mu R^3 L (\\omega_J - \\omega_B)}{c\\sqrt{1-\\varepsilon^2}}
-        + \\frac{c}{2}\\,(\\boldsymbol\\varepsilon \\times \\mathbf F)_z, \\qquad
-        P = \\frac{2\\pi \\mu R^3 L (\\omega_J - \\omega_B)^2}{c\\sqrt{1-\\varepsilon^2}}
-        + \\mathbf F\\cdot\\mathbf V_s
-
-    (shear of the Couette flow over the full circumference, as in Butenschoen's friction
-    coefficient ``mu/psi = pi/(sqrt(1 - eps^2) So) + eps sin(beta)/2`` for pure rotation;
-    pressure-flow shear by integration by parts of ``int h/2 dp/dx``; its dissipation
-    ``int h^3 |grad p|^2 / (12 mu) = F . V_s`` by the Reynolds equation).
-
-    Parameters
-    ----------
-    eps_x, eps_y : array_like [-]
-        Eccentricity ratio vector.
-    force_x, force_y : array_like [N]
-        Load carried by the film (:func:`film_force` or the mobility method's applied load).
-    vs_x, vs_y : array_like [1/s]
-        Squeeze velocity over clearance (as in :func:`film_force`).
-    omega_journal, omega_bearing : array_like [rad/s]
-        Angular velocities of journal and bearing (same frame).
-    diameter, length, clearance, viscosity : array_like [m, m, m, Pa s]
-        Geometry and viscosity.
-
-    Returns
-    -------
-    torque : numpy.ndarray [N m]
-        Friction torque the film exerts on the journal (about z; opposes ``omega_J -
-        omega_B``).
-    power : numpy.ndarray [W]
-        Power dissipated in the film (>= 0).
-
-    Notes
-    -----
-    Petroff limit at ``eps = 0``: ``T = 2 pi mu R^3 L (omega_J - omega_B) / c``. Assumption:
-    the cavitated region transmits Couette shear as a full film (usual; a striated film
-    transmits less, so the torque is an upper bound there). Validity: ``|eps| < 1``.
-    """
-    ex, ey, fx, fy, vx, vy, wj, wb = (_checks.finite(n, a) for n, a in (
-        ("eps_x", eps_x), ("eps_y", eps_y), ("force_x", force_x), ("force_y", force_y),
-        ("vs_x", vs_x), ("vs_y", vs_y), ("omega_journal", omega_journal),
-        ("omega_bearing", omega_bearing)))
-    dia, ln, cl, mu = (_checks.positive(n, a) for n, a in (
-        ("diameter", diameter), ("length", length), ("clearance", clearance),
-        ("viscosity", viscosity)))
-    e2 = ex * ex + ey * ey
-    if np.any(e2 >= 1.0):
-        raise ValueError("eccentricity ratio must be < 1")
-    r = 0.5 * dia
-    dw = wj - wb
-    couette = 2.0 * np.pi * mu * r**3 * ln * dw / (cl * np.sqrt(1.0 - e2))
-    torque = -couette + 0.5 * cl * (ex * fy - ey * fx)
-    power = couette * dw + cl * (fx * vx + fy * vy)
-    return torque, power

@@ -8,7 +8,6 @@ import numpy as np
 from ..calc import bearing_performance as bp
 from ..calc import mobility as mob
 from ..calc import orbit as ob
-from ..calc import reynolds as ry
 from ..calc import reynolds_map as rm
 from ..calc import viscosity as vs
 from ..engine import Bearing, Engine
@@ -68,10 +67,12 @@ HEAT_BALANCE_TOL = 0.1
 """[K] Convergence tolerance of the film temperature (benchmarks/bench_bearing_performance.py:
 two or three orbit evaluations on the examples)."""
 HEAT_BALANCE_MAX_EVALUATIONS = 8
-STEPS_PER_CYCLE = 180
-"""RK steps per cycle of the heat-balance orbits (cycle means of friction power and flow are
-integral quantities: benchmarks/bench_bearing_performance.py compares with 720 steps)."""
-"""Orbit evaluations before a point still changing is reported as not converged."""
+STEPS_PER_CYCLE = ob.DEFAULT_STEPS_PER_CYCLE
+"""RK steps per cycle of the heat-balance orbits (360, as the film thickness).
+benchmarks/bench_bearing_performance.py against 720 steps, I4 / I6: 360 steps 0.04 / 0.001 K,
+friction power 9e-4 / 7e-5, oil flow 6e-3 / 3e-4 (relative, worst point); 180 steps 0.35 K,
+1.6e-2 and 5.8e-2 on the I4 (the side leakage follows the squeeze velocity's peaks)."""
+
 
 FEED_TEXT = {
     "groove": "full circumferential groove: axial Poiseuille flow across both lands with the"
@@ -243,7 +244,7 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
             vx, vy = _squeeze_velocity(lx, ly, res.eps_x, res.eps_y, dia[..., None],
                                        length[..., None], land[..., None], clear[..., None],
                                        mu4)
-            torque, power = ry.film_losses(res.eps_x, res.eps_y, lx, ly, vx, vy, wj_s, wb_s,
+            torque, power = bp.film_losses(res.eps_x, res.eps_y, lx, ly, vx, vy, wj_s, wb_s,
                                            dia[..., None], length[..., None], clear[..., None],
                                            mu4)
             qs = bp.short_bearing_side_flow(vx, vy, dia[..., None], length[..., None],

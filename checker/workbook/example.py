@@ -65,8 +65,8 @@ OIL_ROWS = [
     ("Oil supply pressure", 4.0, "bar(g)", SEED + " (gauge)"),
     ("Oil supply temperature", 130, "°C", SEED),
     ("Film temperature rise", 0, "K", ASSUMPTION + ": film at supply temperature"),
-    ("Film temperature", "supply plus rise", "-", "supply plus rise (default) or heat balance:"
-     " the film thickness at each bearing's heat-balance temperature"),
+    ("Film temperature", "supply plus rise", "-", ASSUMPTION + ": supply plus rise (the"
+     " default); 'heat balance' runs the film thickness at each bearing's balance temperature"),
     ("Heat fraction carried by the oil", 1.0, "-", ASSUMPTION + ": all bearing friction heat"
      " leaves with the oil (conservative; the default when blank)"),
 ]

@@ -183,8 +183,8 @@ OIL_ROWS = [
     ("Oil supply temperature", 110, "°C", ASSUMPTION + ": gallery temperature at full load"),
     ("Film temperature rise", 10, "K", ASSUMPTION + ": moderate film heating at 63-85 mm"
      " journals"),
-    ("Film temperature", "supply plus rise", "-", "supply plus rise (default) or heat balance:"
-     " the film thickness at each bearing's heat-balance temperature"),
+    ("Film temperature", "supply plus rise", "-", ASSUMPTION + ": supply plus rise (the"
+     " default); 'heat balance' runs the film thickness at each bearing's balance temperature"),
     ("Heat fraction carried by the oil", 1.0, "-", ASSUMPTION + ": all bearing friction heat"
      " leaves with the oil (conservative; the default when blank)"),
 ]

@@ -208,8 +208,8 @@ OIL_ROWS = [
      + " table's hot minimum is 1.65 bar at 4000 rpm)"),
     ("Oil supply temperature", 110, "°C", ASSUMPTION + ": sump/gallery at full load"),
     ("Film temperature rise", 10, "K", ASSUMPTION + ": moderate film heating"),
-    ("Film temperature", "supply plus rise", "-", "supply plus rise (default) or heat balance:"
-     " the film thickness at each bearing's heat-balance temperature"),
+    ("Film temperature", "supply plus rise", "-", ASSUMPTION + ": supply plus rise (the"
+     " default); 'heat balance' runs the film thickness at each bearing's balance temperature"),
     ("Heat fraction carried by the oil", 1.0, "-", ASSUMPTION + ": all bearing friction heat"
      " leaves with the oil (conservative; the default when blank)"),
 ]
