@@ -105,6 +105,26 @@ def _squeeze_velocity(lx, ly, ex, ey, diameter, length, land, clearance, mu):
     return v.real, v.imag
 
 
+def _limit_attrs(engine: Engine, bl: Quantity, limit_attr: str | None) -> dict:
+    """Item attributes of the bearing quantities with the supplier's limit of one Bearings
+    column (``limit`` SI + ``limit_cell``, or ``limit_missing`` naming the cell)."""
+    bearings = {b.name: b for b in engine.bearings}
+    out = {}
+    for n in bl.coords["item"]:
+        b = bearings[n]
+        a = dict(bl.item_attrs.get(n, {}))
+        if limit_attr is not None:
+            v = getattr(b, limit_attr)
+            if v is None:
+                a["limit_missing"] = [engine.describe_missing(
+                    "Bearings", limit_attr, b.row, f"{n} (the shell supplier's limit)")]
+            else:
+                a["limit"] = (float(v),)
+                a["limit_cell"] = engine.cell("Bearings", limit_attr, b.row)
+        out[n] = a
+    return out
+
+
 def _feed(engine: Engine, b: Bearing) -> tuple[str, list[str]]:
     """Feed kind of a bearing (``full``, ``partial``, ``hole``, combinations joined by '+',
     or ``none``) and the inputs missing for it."""
@@ -299,21 +319,8 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
             "heat balance not converged (see findings)")
     qtot = out["qs"] + out["qf"]
 
-    def attrs(limit_attr: str | None, label: str) -> dict:
-        d = {}
-        for n in names:
-            b = bearings[n]
-            a = dict(bl.item_attrs.get(n, {}))
-            if limit_attr is not None:
-                v = getattr(b, limit_attr)
-                if v is None:
-                    a["limit_missing"] = [engine.describe_missing(
-                        "Bearings", limit_attr, b.row, f"{n} (the shell supplier's limit)")]
-                else:
-                    a["limit"] = (float(v),)
-                    a["limit_cell"] = engine.cell("Bearings", limit_attr, b.row)
-            d[n] = a
-        return d
+    def attrs(limit_attr: str | None, _label: str = "") -> dict:
+        return _limit_attrs(engine, bl, limit_attr)
 
     assumptions = [
         "Bearing oil flow, friction and film temperature from the short-bearing journal orbit"
@@ -422,17 +429,7 @@ def film_pressure(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         th_fin[rows] = np.asarray(orb["theta"])[k]
     missing_s = dict(short.missing)
     missing_f = dict(fin.missing)
-    attrs = {}
-    for n in names:
-        b = bearings[n]
-        a = dict(bl.item_attrs.get(n, {}))
-        if b.max_film_pressure is None:
-            a["limit_missing"] = [engine.describe_missing(
-                "Bearings", "max_film_pressure", b.row, f"{n} (the shell supplier's limit)")]
-        else:
-            a["limit"] = (float(b.max_film_pressure),)
-            a["limit_cell"] = engine.cell("Bearings", "max_film_pressure", b.row)
-        attrs[n] = a
+    attrs = _limit_attrs(engine, bl, "max_film_pressure")
     extra_f = {"theta_p_max": th_fin, "film_temperature": fin.extra.get("film_temperature"),
                "model_text": "finite-length Reynolds film (mobility map) along the"
                              " finite-length orbit"}
