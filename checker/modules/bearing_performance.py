@@ -35,6 +35,10 @@ FRICTION_TORQUE = quantity(QuantitySpec(
     "bearing.friction_torque", "N*m", ("item", "case", "speed"),
     "Friction torque of the oil film resisting the journal's rotation relative to the shell,"
     " cycle mean", "N m", _F, coords={"case": CASES}))
+FRICTION_TORQUE_PEAK = quantity(QuantitySpec(
+    "bearing.friction_torque_peak", "N*m", ("item", "case", "speed"),
+    "Friction torque of the oil film resisting the journal's rotation, largest value over the"
+    " cycle", "N m", _F, coords={"case": CASES}))
 SIDE_FLOW = quantity(QuantitySpec(
     "bearing.side_flow", "m**3/s", ("item", "case", "speed"),
     "Hydrodynamic side leakage of the short-bearing film, cycle mean", "l/min", _F,
@@ -148,6 +152,7 @@ def _feed(engine: Engine, b: Bearing) -> tuple[str, list[str]]:
 @calculation("bearing_heat_balance", "bearing_performance",
              provides=("bearing.film_temperature", "bearing.friction_power",
                        "bearing.friction_power_peak", "bearing.friction_torque",
+                       "bearing.friction_torque_peak",
                        "bearing.side_flow", "bearing.feed_flow", "bearing.oil_flow",
                        "engine.bearing_friction_power"),
              needs=("loads.bearing_load",), reads=("bearings", "oil", "params.stroke"))
@@ -189,7 +194,7 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     rows = np.where(ok)[0]
     shape = (rows.size, nc, ns)
     out = {k: np.full((nb, nc, ns), np.nan) for k in (
-        "t", "p", "p_peak", "torque", "qs", "qf")}
+        "t", "p", "p_peak", "torque", "torque_peak", "qs", "qf")}
     findings: dict[tuple, list[str]] = {}
     info: dict = {}
     if rows.size:
@@ -271,7 +276,8 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                                             clear[..., None]).mean(axis=-1)
             qf = feed_flow(res.eps_x, res.eps_y, mu)
             rho_cp = vs.oil_density(t, dens15) * bp.oil_specific_heat(t, dens15)
-            state = {"orbit": res, "torque": -torque.mean(axis=-1), "power": power.mean(axis=-1),
+            state = {"orbit": res, "torque": -torque.mean(axis=-1),
+                     "torque_peak": (-torque).max(axis=-1), "power": power.mean(axis=-1),
                      "power_peak": power.max(axis=-1), "qs": qs, "qf": qf}
             return power.mean(axis=-1), qs, qf, rho_cp, state
 
@@ -288,6 +294,7 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         out["p"][rows] = st["power"]
         out["p_peak"][rows] = st["power_peak"]
         out["torque"][rows] = st["torque"]
+        out["torque_peak"][rows] = st["torque_peak"]
         out["qs"][rows] = st["qs"]
         out["qf"][rows] = st["qf"]
         for a, ci, si in np.argwhere(~hb.converged):
@@ -376,6 +383,7 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         "bearing.friction_power": q(FRICTION_POWER, out["p"]),
         "bearing.friction_power_peak": q(FRICTION_POWER_PEAK, out["p_peak"]),
         "bearing.friction_torque": q(FRICTION_TORQUE, out["torque"]),
+        "bearing.friction_torque_peak": q(FRICTION_TORQUE_PEAK, out["torque_peak"]),
         "bearing.side_flow": q(SIDE_FLOW, out["qs"]),
         "bearing.feed_flow": q(FEED_FLOW, out["qf"]),
         "bearing.oil_flow": q(OIL_FLOW, qtot, "min_oil_flow", "minimum oil flow"),

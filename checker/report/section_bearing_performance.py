@@ -97,10 +97,13 @@ def bearing_performance_section(res: CheckResult) -> dict:
         flow = qs.get("bearing.oil_flow")
         powq = qs.get("bearing.friction_power")
 
+        peak = qs.get("bearing.friction_power_peak")
+
         def more_t(idx):
             if idx is None:
-                return ["-", "-"]
-            return [fmt(flow.values[idx] * LPM), fmt(powq.values[idx])]
+                return ["-", "-", "-"]
+            return [fmt(flow.values[idx] * LPM), fmt(powq.values[idx]),
+                    fmt(None if peak is None else peak.values[idx])]
 
         blocks.append(worst_table(
             res, t, lambda v: fmt(v - 273.15), more_t,
@@ -108,7 +111,7 @@ def bearing_performance_section(res: CheckResult) -> dict:
             " balance): the judged worst first, then, marked, a hotter film at a point the"
             " rules do not judge",
             ["bearing", "case", "T_eff [°C]", "speed [rpm]", "oil flow [l/min]",
-             "friction [W]"]))
+             "friction mean [W]", "friction peak [W]"]))
 
         def more_q(idx):
             if idx is None:

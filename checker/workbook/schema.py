@@ -312,7 +312,8 @@ OIL = Sheet(
           required=False,
           valid=R(-40, 250, "°C"), usual=R(20, 160, "°C")),
         F("Film temperature rise", "temperature_rise", "temperature_difference", check=">=0",
-          required=False, note="Added to the supply temperature to give the film temperature.",
+          required=False, note="Added to the supply temperature to give the film temperature"
+                               " (not used with Film temperature = heat balance).",
           valid=R(0, 200, "K"), usual=R(0, 60, "K")),
         F("Film temperature", "film_temperature_method", "choice",
           choices=("supply plus rise", "heat balance"), required=False,
