@@ -697,7 +697,7 @@ def build_engine(data: WorkbookData,
     if check_overrides is not None:
         errs += check_overrides(overrides)
     if errs:
-        raise InputErrors(errs)
+        raise InputErrors(errs, warns)
     return Engine(
         params=p, cylinders=tuple(sorted(cylinders, key=lambda c: c.number)),
         bearings=tuple(bearings), crank_mass=crank_mass, tv_model=tuple(tv),

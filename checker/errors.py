@@ -25,14 +25,20 @@ class CheckerError(Exception):
 class InputErrors(CheckerError):
     """All problems found in one workbook."""
 
-    def __init__(self, errors: list[InputError]):
+    def __init__(self, errors: list[InputError], warnings: list[InputError] | tuple = ()):
         self.errors = list(errors)
+        self.warnings = list(warnings)
         super().__init__("\n".join(str(e) for e in self.errors))
 
     def __str__(self) -> str:
         n = len(self.errors)
         head = f"{n} problem{'s' if n != 1 else ''} in the input:"
-        return head + "\n" + "\n".join(f"  {e}" for e in self.errors)
+        text = head + "\n" + "\n".join(f"  {e}" for e in self.errors)
+        if self.warnings:
+            m = len(self.warnings)
+            text += (f"\nand {m} warning{'s' if m != 1 else ''}:\n"
+                     + "\n".join(f"  {w}" for w in self.warnings))
+        return text
 
 
 class RuleFileError(CheckerError):

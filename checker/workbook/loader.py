@@ -591,7 +591,7 @@ def convert_raw(raw: RawWorkbook, raise_errors: bool = True) -> WorkbookData:
     data.errors = list(reader.errors)
     data.warnings = list(reader.warnings)
     if raise_errors and reader.errors:
-        raise InputErrors(reader.errors)
+        raise InputErrors(reader.errors, reader.warnings)
     return data
 
 

@@ -109,3 +109,18 @@ def test_span_text():
     assert Span(None, 5, "bar").text() == "at most 5 bar"
     assert Span(0.3, None).text() == "at least 0.3"
     assert Span(-40, 250, "°C").si("temperature") == pytest.approx((233.15, 523.15))
+
+
+def test_warnings_are_reported_with_the_errors(tmp_path):
+    """A workbook with an error and an unusual value: one pass reports both (the warning is
+    not lost behind the error)."""
+    def edit(wb):
+        set_param(wb, "Engine", "Bore", -5)
+        set_param(wb, "Oil", "Oil supply temperature", 170)
+
+    with pytest.raises(InputErrors) as exc:
+        load_engine(edited(tmp_path, edit))
+    text = str(exc.value)
+    assert "1 problem in the input" in text and "Bore must be greater than zero" in text
+    assert "and 1 warning:" in text and "Oil supply temperature 170 °C" in text
+    assert [w.where for w in exc.value.warnings] == ["Oil!B4"]
