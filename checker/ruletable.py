@@ -437,6 +437,28 @@ def _coord_text(dim: str, label: Any) -> str:
     return str(label)
 
 
+def _unjudged_worst(rule: Rule, q: Quantity, sel_i: list, dims: tuple, factor
+                    ) -> tuple[float | None, str]:
+    """Worst value of a rule's selection in its direction (largest for an upper limit,
+    smallest for a lower one) at the points the rule would judge, and where; ``(None, "")``
+    for a range check or when nothing is finite."""
+    if rule.check not in ("<=", "<", ">=", ">"):
+        return None, ""
+    sub = factor(q.values[np.ix_(*sel_i)])
+    ok = np.isfinite(sub)
+    if q.applies is not None:
+        ok &= q.applies[np.ix_(*sel_i)]
+    if not ok.any():
+        return None, ""
+    upper = rule.check in ("<=", "<")
+    k = int(np.argmax(np.where(ok, sub, -np.inf)) if upper
+            else np.argmin(np.where(ok, sub, np.inf)))
+    worst = np.unravel_index(k, sub.shape)
+    parts = [_coord_text(d, q.coords[d][sel_i[j][worst[j]]])
+             for j, d in enumerate(dims) if d != "item"]
+    return float(sub[worst]), ", ".join(parts)
+
+
 def _margin(check: str, v: np.ndarray, lim: tuple[float, ...]) -> np.ndarray:
     if check in (">=", ">"):
         return (v - lim[0]) / abs(lim[0]) if lim[0] else v - lim[0]
@@ -512,11 +534,16 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
             if given is None or len(tuple(given)) != n_lim:
                 why = list(attrs.get("limit_missing") or [
                     f"no limit for '{item}' given in the workbook"])
+                # reported but not judged: the worst value in the rule's direction
+                value, where_txt = _unjudged_worst(rule, q, sel_i, dims, factor)
+                msg = "not evaluated: missing " + "; ".join(why)
+                if value is not None:
+                    msg += (f" (computed, not judged: {display.with_unit(value, rule.unit)}"
+                            + (f" at {where_txt}" if where_txt else "") + ")")
                 results.append(RuleResult(**base, item=item, status="not_evaluated",
-                                          value=None, limit=rule.limit_text(),
-                                          limit_values=None, margin=None, case="",
-                                          message="not evaluated: missing " + "; ".join(why),
-                                          missing=why))
+                                          value=value, limit=rule.limit_text(),
+                                          limit_values=None, margin=None, case=where_txt,
+                                          message=msg, missing=why))
                 continue
             lim = tuple(float(factor(float(x))) for x in given)
         lim_text = rule.limit_text(lim)

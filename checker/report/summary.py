@@ -107,11 +107,15 @@ def rows(res: CheckResult, results: list[RuleResult] | None = None) -> list[Row]
         if k == "not_evaluated":
             # the same missing input on several items (one cell each) is one row
             pattern = _CELL.sub("\x00", note).replace(r.item, "\x01") if r.item else note
-        key = (k, r.rule, r.case, value, r.limit, pattern, r.override)
+        if k == "not_evaluated":  # shown with the missing inputs, not by value
+            value, case = "-", ""
+        else:
+            case = r.case
+        key = (k, r.rule, case, value, r.limit, pattern, r.override)
         row = merged.get(key)
         cells.setdefault(key, []).append(_CELL.findall(note))
         if row is None:
-            merged[key] = Row(k, r.rule, r.name, [r.item], r.case or "-", value, r.limit,
+            merged[key] = Row(k, r.rule, r.name, [r.item], case or "-", value, r.limit,
                               r.margin_text if r.status != "not_evaluated" else "-", note,
                               r.override, r.margin, [r])
         else:
