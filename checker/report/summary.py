@@ -64,7 +64,10 @@ def kind(r: RuleResult) -> str:
 def _note(r: RuleResult) -> str:
     """The note under a row: why a result is not evaluated or an internal error, or the
     first finding of a failed result (passes carry their findings in the module section)."""
-    if r.status == "not_evaluated" or r.internal_error:
+    if r.status == "not_evaluated":
+        # the computed value of a rule without its limit is shown in the module section
+        return re.sub(r" \(computed, not judged: [^)]*\)$", "", r.message)
+    if r.internal_error:
         return r.message
     if not r.findings or r.status == "pass":
         return ""
