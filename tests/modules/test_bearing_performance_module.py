@@ -155,3 +155,22 @@ def test_film_thickness_at_heat_balance_temperature(tmp_path, result):
                             ex["omega_bearing"][5, 0, k], bl.coords["speed"][k], b.diameter,
                             b.length, b.clearance, mu)
     assert h_hb[5, 0, k] == pytest.approx(float(direct.h_min), rel=1e-9)
+
+
+def test_heat_balance_not_converged_is_reported(tmp_path, monkeypatch):
+    """A balance stopped before it converges is a finding and the film temperature is not
+    evaluated there (never a silent value)."""
+    from checker.modules import bearing_performance as bpm
+
+    monkeypatch.setattr(bpm, "HEAT_BALANCE_MAX_EVALUATIONS", 1)
+
+    def edit(wb):
+        set_cell(wb, "Bearings", "name", "M1", "max film temperature", 150)
+
+    res = api.check(edited(tmp_path, edit), select=["BRG-007"])
+    t = res.outcome.quantities["bearing.film_temperature"]
+    assert np.isnan(t.values).all()
+    assert any("heat balance not converged" in f for v in t.findings.values() for f in v)
+    assert all(r.status == "not_evaluated" and r.value is None for r in res.results)
+    m1 = next(r for r in res.results if r.item == "M1")
+    assert any("heat balance not converged" in m for m in m1.missing)
