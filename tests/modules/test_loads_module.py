@@ -13,7 +13,7 @@ from tests.helpers import edited, example_path, set_param
 
 @pytest.fixture(scope="module")
 def example_result(tmp_path_factory):
-    return api.check(example_path(tmp_path_factory.mktemp("ex")), select=["BRG"])
+    return api.check(example_path(tmp_path_factory.mktemp("ex")), select=["BRG-001", "BRG-002"])
 
 
 def test_sweep_61_speeds_full_and_no_load(example_result):
@@ -72,7 +72,7 @@ def test_given_traces_are_used(tmp_path):
             for a, p in zip(deg[::2], trace[::2]):
                 ws.append(["full", s, float(a), float(p) / 1e5])
 
-    res = api.check(edited(tmp_path, edit), select=["BRG"])
+    res = api.check(edited(tmp_path, edit), select=["BRG-001", "BRG-002"])
     c2 = res.outcome.quantities["loads.cycle"].extra["cycle"]
     assert not c2.synthesized[0].any() and c2.synthesized[1].all()
     assert c2.pressure[0, k].max() == pytest.approx(trace.max(), rel=2e-3)
@@ -81,7 +81,7 @@ def test_given_traces_are_used(tmp_path):
 
 def test_missing_compression_ratio_is_not_evaluated(tmp_path):
     p = edited(tmp_path, lambda wb: set_param(wb, "Engine", "Compression ratio", value=""))
-    res = api.check(p, select=["BRG"])
+    res = api.check(p, select=["BRG-001", "BRG-002"])
     assert all(r.status == "not_evaluated" for r in res.results)
     assert any("Compression ratio" in m and "Engine!B" in m for m in res.results[0].missing)
 
