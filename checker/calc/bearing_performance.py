@@ -33,6 +33,7 @@ __all__ = [
     "oil_specific_heat",
     "HeatBalance",
     "solve_heat_balance",
+    "model_temperature",
     "HOLE_RATIO_MAX",
     "EFFECTIVE_TEMPERATURE_WEIGHT",
 ]
@@ -410,9 +411,14 @@ class HeatBalance:
     state: object
 
 
-def _model_root(t_supply, a, qs, d, rho_cp, k, viscosity_of, t_hi):
-    """Root of ``g(T) = T_s + k a mu(T) / (rho_cp (qs + d / mu(T))) - T`` by bisection
-    (``g`` decreases in ``T``; bracket ``[T_s, t_hi]``)."""
+def model_temperature(t_supply, a, qs, d, rho_cp, k, viscosity_of, t_hi=None):
+    """Fixed point of the local heat-balance model ``T = T_s + k a mu(T) / (rho_cp (qs + d /
+    mu(T)))`` (friction power ``a mu`` [W], flow ``qs + d / mu`` [m^3/s]) by bisection: the
+    right-hand side decreases in ``T``, so the root lies in ``[T_s, T_s + k a mu(T_s) /
+    (rho_cp (qs + d / mu(T_s)))]``."""
+    if t_hi is None:
+        mu_s = viscosity_of(t_supply)
+        t_hi = t_supply + k * a * mu_s / (rho_cp * (qs + d / mu_s))
     lo = np.array(t_supply, dtype=float)
     hi = np.array(t_hi, dtype=float)
     for _ in range(60):
@@ -434,6 +440,7 @@ def solve_heat_balance(
     weight: float = EFFECTIVE_TEMPERATURE_WEIGHT,
     tol: float = 0.1,
     max_evaluations: int = 8,
+    t_start: ArrayLike | None = None,
 ) -> HeatBalance:
     """Effective film temperature of a bearing whose friction heat leaves with its oil flow.
 
@@ -471,6 +478,9 @@ def solve_heat_balance(
         Convergence tolerance on the temperature.
     max_evaluations : int
         Evaluations before the points still changing are reported as not converged.
+    t_start : array_like [K], optional
+        First temperature evaluated (default ``t_supply``); a close estimate saves an
+        evaluation, the result does not depend on it beyond ``tol``.
 
     Returns
     -------
@@ -492,7 +502,8 @@ def solve_heat_balance(
         raise ValueError("weight must be in (0, 1]")
     ts = _checks.positive("t_supply", t_supply)
     k = weight * heat_to_oil
-    t = np.array(ts, dtype=float)
+    t = np.array(ts if t_start is None else np.broadcast_to(
+        _checks.positive("t_start", t_start), ts.shape), dtype=float)
     change = np.full(t.shape, np.inf)
     conv = np.zeros(t.shape, dtype=bool)
     state = None
@@ -508,7 +519,7 @@ def solve_heat_balance(
         a = p / mu
         d = qf * mu
         t_hi = ts + k * a * viscosity_of(ts) / (rho_cp * (qs + d / viscosity_of(ts)))
-        t_next = _model_root(ts, a, qs, d, rho_cp, k, viscosity_of, t_hi)
+        t_next = model_temperature(ts, a, qs, d, rho_cp, k, viscosity_of, t_hi)
         change = np.abs(t_next - t)
         conv = change <= tol
         if conv.all() or n == int(max_evaluations):

@@ -255,6 +255,20 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                         b.oil_hole_diameter, 0.5 * b.length)
             return q
 
+        def start_estimate(ts):
+            """Couette friction, side leakage at eps 0.6 and the feed at eps 0: a first
+            temperature a few kelvin from the balance (saves an orbit evaluation; the result
+            does not depend on it beyond the tolerance)."""
+            mu0 = fit.viscosity(ts)
+            a = (2.0 * np.pi * (0.5 * dia) ** 3 * length / clear / np.sqrt(1.0 - 0.6**2)
+                 * ((wj_s - wb_s) ** 2).mean(axis=-1))
+            qs = dia * clear * length * 0.6 * np.abs(0.5 * (wj_s + wb_s)).mean(axis=-1)
+            z0 = np.zeros(shape + (1,))
+            d = feed_flow(z0, z0, mu0) * mu0
+            rho_cp = vs.oil_density(ts, dens15) * bp.oil_specific_heat(ts, dens15)
+            return bp.model_temperature(ts, a, qs, d, rho_cp, 0.5 * heat_to_oil,
+                                        fit.viscosity)
+
         def evaluate(t):
             mu = fit.viscosity(t)
             res = ob.solve_orbit(
@@ -285,7 +299,8 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         try:
             hb = bp.solve_heat_balance(evaluate, ts, fit.viscosity, heat_to_oil=heat_to_oil,
                                        tol=HEAT_BALANCE_TOL,
-                                       max_evaluations=HEAT_BALANCE_MAX_EVALUATIONS)
+                                       max_evaluations=HEAT_BALANCE_MAX_EVALUATIONS,
+                                       t_start=start_estimate(ts))
         except ValueError as exc:
             raise MissingInputs([f"bearing heat balance: {exc}"]) from None
         st = hb.state
