@@ -534,6 +534,7 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
             if given is None or len(tuple(given)) != n_lim:
                 why = list(attrs.get("limit_missing") or [
                     f"no limit for '{item}' given in the workbook"])
+                why += [m for m in _collect(q.missing, sel_i) if m not in why]
                 # reported but not judged: the worst value in the rule's direction
                 value, where_txt = _unjudged_worst(rule, q, sel_i, dims, factor)
                 msg = "not evaluated: missing " + "; ".join(why)

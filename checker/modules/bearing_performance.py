@@ -146,6 +146,13 @@ def _feed(engine: Engine, b: Bearing) -> tuple[str, list[str]]:
         if b.oil_hole_diameter is None:
             missing.append(engine.describe_missing("Bearings", "oil_hole_diameter", b.row,
                                                    f"feed hole of {b.name}"))
+        elif b.oil_hole_diameter / b.length > bp.HOLE_RATIO_MAX:
+            missing.append(
+                f"{engine.cell('Bearings', 'oil_hole_diameter', b.row)}: feed hole"
+                f" {b.oil_hole_diameter * 1e3:g} mm of {b.name} is outside the validity of the"
+                f" hole-feed formula (hole radius / distance to the edge"
+                f" {b.oil_hole_diameter / b.length:.2f} > {bp.HOLE_RATIO_MAX}): its flow is not"
+                " computed")
     return "+".join(kinds) or "none", missing
 
 

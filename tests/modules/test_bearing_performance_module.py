@@ -180,3 +180,19 @@ def test_heat_balance_not_converged_is_reported(tmp_path, monkeypatch):
     assert np.isnan(t.values[0]).any()
     assert m1.status == "not_evaluated" and m1.value is None
     assert any("heat balance not converged" in m for m in m1.missing)
+
+
+def test_feed_hole_outside_formula_validity_is_named(tmp_path):
+    """A feed hole too large for the strip-source formula (a / b > 0.5) leaves that bearing's
+    flow and temperature not evaluated, naming the cell; the other bearings are computed."""
+    cell = {}
+
+    def edit(wb):
+        cell["c"] = set_cell(wb, "Bearings", "name", "BE1", "oil hole diameter", 12)
+
+    res = api.check(edited(tmp_path, edit), select=["BRG-007", "BRG-009"])
+    t = res.outcome.quantities["bearing.film_temperature"]
+    i = t.coords["item"].index("BE1")
+    assert np.isnan(t.values[i]).all() and np.isfinite(np.delete(t.values, i, axis=0)).all()
+    be1 = [r for r in res.results if r.item == "BE1"]
+    assert be1 and all(any(cell["c"] in m and "validity" in m for m in r.missing) for r in be1)
