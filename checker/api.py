@@ -189,8 +189,9 @@ def _num(v: float) -> float | None:
 def quantity_summary(quantities: dict[str, graph.Quantity]) -> dict[str, Any]:
     """Every computed quantity in the JSON, compactly: the values themselves when the
     quantity has no speed axis; otherwise, per index of the other axes, the smallest and
-    largest value over speed with the speed (rpm) where each occurs. SI units; the full
-    per-speed arrays are in the API (``outcome.quantities``)."""
+    largest value over speed with the speed (rpm) where each occurs, and for engine-level
+    quantities (no item axis) also every value (``values`` over ``speed_rpm``, speed last).
+    SI units; the full per-speed arrays are in the API (``outcome.quantities``)."""
     out: dict[str, Any] = {}
     for name in sorted(quantities):
         q = quantities[name]
@@ -220,6 +221,10 @@ def quantity_summary(quantities: dict[str, graph.Quantity]) -> dict[str, Any]:
                              "min": _num(r[i_min]), "min_at_rpm": _num(rpm[i_min])})
             entry["over_speed"] = rows
             entry["over_speed_index"] = [d for d in dims if d != "speed"]
+            if "item" not in dims and lead.size <= 2000:
+                # engine-level curves (e.g. total bearing friction vs speed): every value
+                entry["speed_rpm"] = [_num(x) for x in rpm]
+                entry["values"] = np.vectorize(_num, otypes=[object])(moved).tolist()
         out[name] = entry
     return out
 
