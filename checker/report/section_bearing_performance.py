@@ -22,6 +22,11 @@ def _feed_text(kind: str) -> str:
     return " + ".join(FEED_WORDS.get(k, k) for k in kind.split("+"))
 
 
+def _widths(table: dict, widths: list[int]) -> dict:
+    """A table block with column widths [%] (the 'judged by' texts get room for one line)."""
+    return {**table, "widths": widths}
+
+
 def _celsius(q):
     """The same quantity in °C for plotting (display unit of the report)."""
     return replace(q, values=q.values - 273.15)
@@ -105,13 +110,13 @@ def bearing_performance_section(res: CheckResult) -> dict:
             return [fmt(flow.values[idx] * LPM), fmt(powq.values[idx]),
                     fmt(None if peak is None else peak.values[idx])]
 
-        blocks.append(worst_table(
+        blocks.append(_widths(worst_table(
             res, t, lambda v: fmt(v - 273.15), more_t,
             "Hottest film per bearing and load case (effective temperature of the heat"
             " balance): the judged worst first, then, marked, a hotter film at a point the"
             " rules do not judge",
             ["bearing", "case", "T_eff [°C]", "speed [rpm]", "oil flow [l/min]",
-             "friction mean [W]", "friction peak [W]"]))
+             "friction mean [W]", "friction peak [W]"]), [15, 9, 9, 9, 12, 11, 11, 24]))
 
         def more_q(idx):
             if idx is None:
@@ -119,12 +124,12 @@ def bearing_performance_section(res: CheckResult) -> dict:
             return [fmt(qs["bearing.side_flow"].values[idx] * LPM),
                     fmt(qs["bearing.feed_flow"].values[idx] * LPM)]
 
-        blocks.append(worst_table(
+        blocks.append(_widths(worst_table(
             res, flow, lambda v: fmt(v * LPM), more_q,
             "Smallest oil flow per bearing and load case (side leakage + pressure-fed flow,"
             " cycle mean)",
             ["bearing", "case", "oil flow [l/min]", "speed [rpm]", "side leakage [l/min]",
-             "feed [l/min]"]))
+             "feed [l/min]"]), [15, 9, 12, 10, 14, 12, 28]))
     if pp is not None:
         ps = qs.get("bearing.peak_film_pressure_short")
 
@@ -134,12 +139,12 @@ def bearing_performance_section(res: CheckResult) -> dict:
             return [fmt(None if ps is None else ps.values[idx] / 1e6),
                     fmt(np.degrees(pp.extra["theta_p_max"][idx]))]
 
-        blocks.append(worst_table(
+        blocks.append(_widths(worst_table(
             res, pp, lambda v: fmt(v / 1e6), more_p,
             "Highest oil-film pressure per bearing and load case: finite-length film (judged),"
             " the short-bearing value at the same point beside it",
             ["bearing", "case", "p_max finite [MPa]", "speed [rpm]", "p_max short [MPa]",
-             "crank angle [°]"]))
+             "crank angle [°]"]), [13, 9, 12, 10, 12, 10, 34]))
     blocks.append({"type": "heading", "text": "Plots"})
     ef = qs.get("engine.bearing_friction_power")
     powq = qs.get("bearing.friction_power")
