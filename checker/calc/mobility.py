@@ -67,6 +67,7 @@ __all__ = [
     "butenschoen_attitude_angle",
     "butenschoen_sommerfeld_squeeze",
     "eccentricity_rate",
+    "squeeze_velocity",
     "short_bearing_peak_pressure",
 ]
 
@@ -812,7 +813,7 @@ def eccentricity_rate(
     clearance: ArrayLike,
     viscosity: ArrayLike,
     model: str = "closed_form",
-    full_groove: bool = False,
+    full_groove: ArrayLike = False,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Rate of the eccentricity-ratio vector from Booker's mobility equation.
 
@@ -846,7 +847,7 @@ def eccentricity_rate(
         Dynamic viscosity ``mu``.
     model : str
         Mobility model, one of :data:`MOBILITY_MODELS`.
-    full_groove : bool
+    full_groove : array_like of bool
         Full circumferential central groove: two lands of ``length/2``, each carrying half the
         load (equivalent to one bearing of ``L/2`` with the full ``F/(mu L D)``).
 
@@ -859,24 +860,74 @@ def eccentricity_rate(
     Booker J.F. (1965), J. Basic Eng. 87:537-546 (mobility method; not read); the vector form and
     ``omega_bar`` follow notes ``bearings.md`` sections 1.1-1.2 [DERIVED, VERIFIED].
     """
+    wj, wb = np.broadcast_arrays(np.asarray(omega_journal, dtype=float),
+                                 np.asarray(omega_bearing, dtype=float))
+    if not (np.all(np.isfinite(wj)) and np.all(np.isfinite(wb))):
+        raise ValueError("angular velocities must be finite")
+    vx, vy = squeeze_velocity(load_x, load_y, eps_x, eps_y, diameter, length, clearance,
+                              viscosity, model, full_groove)
+    z = np.asarray(eps_x, dtype=float) + 1j * np.asarray(eps_y, dtype=float)
+    rate = (vx + 1j * vy) + 0.5j * (wj + wb) * z
+    return rate.real, rate.imag
+
+
+def squeeze_velocity(
+    load_x: ArrayLike,
+    load_y: ArrayLike,
+    eps_x: ArrayLike,
+    eps_y: ArrayLike,
+    diameter: ArrayLike,
+    length: ArrayLike,
+    clearance: ArrayLike,
+    viscosity: ArrayLike,
+    model: str = "closed_form",
+    full_groove: ArrayLike = False,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Squeeze velocity over clearance that carries the load, by the mobility method.
+
+    .. math::
+
+        \\frac{\\mathbf V_s}{c} = \\dot{\\boldsymbol\\varepsilon}
+        - \\bar\\omega\\,\\hat z \\times \\boldsymbol\\varepsilon
+        = \\frac{|F| \\psi^2}{\\mu L D} \\mathbf M(\\boldsymbol\\varepsilon, \\hat F),
+        \\qquad \\psi = \\frac{2c}{D}
+
+    Parameters
+    ----------
+    load_x, load_y : array_like [N]
+        Load applied to the journal.
+    eps_x, eps_y : array_like [-]
+        Eccentricity ratio vector, ``|eps| < 1`` (same frame).
+    diameter, length, clearance, viscosity : array_like [m, m, m, Pa*s]
+        As in :func:`eccentricity_rate`.
+    model : str
+        Mobility model, one of :data:`MOBILITY_MODELS`.
+    full_groove : array_like of bool
+        Full circumferential central groove (per entry): two lands of ``length/2``.
+
+    Returns
+    -------
+    vs_x, vs_y : numpy.ndarray [1/s]
+
+    Notes
+    -----
+    Booker J.F. (1965), J. Basic Eng. 87:537-546; the part of :func:`eccentricity_rate`
+    without the whirl term ``omega_bar z_hat x eps``.
+    """
     _check_model(model)
-    fx, fy, ex, ey, wj, wb, dia, ln, cl, mu = np.broadcast_arrays(
+    fx, fy, ex, ey, dia, ln, cl, mu, grooved = np.broadcast_arrays(
         *(
             np.asarray(a, dtype=float)
-            for a in (
-                load_x, load_y, eps_x, eps_y, omega_journal, omega_bearing,
-                diameter, length, clearance, viscosity,
-            )
-        )
+            for a in (load_x, load_y, eps_x, eps_y, diameter, length, clearance, viscosity)
+        ),
+        np.asarray(full_groove, dtype=bool),
     )
     for name, val in (("diameter", dia), ("length", ln), ("clearance", cl), ("viscosity", mu)):
         _check_positive(name, val)
     if not (np.all(np.isfinite(fx)) and np.all(np.isfinite(fy))):
         raise ValueError("load must be finite")
-    if not (np.all(np.isfinite(wj)) and np.all(np.isfinite(wb))):
-        raise ValueError("angular velocities must be finite")
     _check_in_disk(ex, ey)
-    land = ln / 2.0 if full_groove else ln
+    land = np.where(grooved, ln / 2.0, ln)
     lod = land / dia
     f = fx + 1j * fy
     fa = np.abs(f)
@@ -894,9 +945,8 @@ def eccentricity_rate(
             wz
         ) / lod**2
     psi = 2.0 * cl / dia
-    k = fa * psi**2 / (mu * ln * dia)
-    rate = k * u * m + 0.5j * (wj + wb) * z
-    return rate.real, rate.imag
+    v = fa * psi**2 / (mu * ln * dia) * u * m
+    return v.real, v.imag
 
 
 def short_bearing_peak_pressure(

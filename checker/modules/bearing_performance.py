@@ -96,19 +96,6 @@ def _resample(a: np.ndarray, n: int) -> np.ndarray:
     return ob._resample_periodic(np.asarray(a, dtype=float), n)
 
 
-def _squeeze_velocity(lx, ly, ex, ey, diameter, length, land, clearance, mu):
-    """V_s / c of the short-bearing (closed-form) mobility method, ``|F| psi^2/(mu L D) u M``
-    with ``psi = 2 c / D`` (Booker 1965; as :func:`checker.calc.mobility.eccentricity_rate`)."""
-    f = lx + 1j * ly
-    fa = np.abs(f)
-    u = np.where(fa > 0.0, f / np.where(fa > 0.0, fa, 1.0), 1.0)
-    wz = (ex + 1j * ey) * np.conj(u)
-    mz, mk = mob.mobility_closed_form(wz.real, wz.imag, land / diameter)
-    psi = 2.0 * clearance / diameter
-    v = fa * psi**2 / (mu * length * diameter) * u * (mz + 1j * mk)
-    return v.real, v.imag
-
-
 def _limit_attrs(engine: Engine, bl: Quantity, limit_attr: str | None) -> dict:
     """Item attributes of the bearing quantities with the supplier's limit of one Bearings
     column (``limit`` SI + ``limit_cell``, or ``limit_missing`` naming the cell)."""
@@ -211,7 +198,6 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         length = np.array([b.length for b in sel])[col]
         clear = np.array([b.clearance for b in sel])[col]
         full = np.array([b.groove == "full" for b in sel])[col]
-        land = np.where(full, 0.5 * length, length)
         n_steps = STEPS_PER_CYCLE
         fx_s = _resample(ex["fx"][rows], n_steps)
         fy_s = _resample(ex["fy"][rows], n_steps)
@@ -287,9 +273,9 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
             warm["x"], warm["y"] = res.eps_x[..., 0], res.eps_y[..., 0]
             mu4 = mu[..., None]
             lx, ly = fy_s, fx_s  # orbit frame: X along the loads' y axis
-            vx, vy = _squeeze_velocity(lx, ly, res.eps_x, res.eps_y, dia[..., None],
-                                       length[..., None], land[..., None], clear[..., None],
-                                       mu4)
+            vx, vy = mob.squeeze_velocity(lx, ly, res.eps_x, res.eps_y, dia[..., None],
+                                          length[..., None], clear[..., None], mu4,
+                                          full_groove=full[..., None])
             torque, power = bp.film_losses(res.eps_x, res.eps_y, lx, ly, vx, vy, wj_s, wb_s,
                                            dia[..., None], length[..., None], clear[..., None],
                                            mu4)
