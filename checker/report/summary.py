@@ -106,14 +106,12 @@ def rows(res: CheckResult, results: list[RuleResult] | None = None) -> list[Row]
         k = kind(r)
         value = "-" if r.value is None else r.value_text
         note = _note(r)
-        pattern = note
+        pattern, case = note, r.case
         if k == "not_evaluated":
-            # the same missing input on several items (one cell each) is one row
+            # shown with the missing inputs, not by value; the same missing input on several
+            # items (one cell each) is one row
             pattern = _CELL.sub("\x00", note).replace(r.item, "\x01") if r.item else note
-        if k == "not_evaluated":  # shown with the missing inputs, not by value
             value, case = "-", ""
-        else:
-            case = r.case
         key = (k, r.rule, case, value, r.limit, pattern, r.override)
         row = merged.get(key)
         cells.setdefault(key, []).append(_CELL.findall(note))
