@@ -268,18 +268,23 @@ def report(workbook, rules, select, ignore, fail_on, output, html_out, results_o
 @click.option("-o", "--output", "out_dir", type=click.Path(file_okay=False), required=True,
               help="Folder for the results (variants/, results.parquet, results.xlsx,"
               " study.pdf); re-running resumes.")
-@click.option("--workers", type=int, default=None,
-              help="Local worker processes (default: one per core).")
+@click.option("--workers", type=click.IntRange(min=1), default=None,
+              help="Local worker processes, at least 1 (default: one per core).")
 @click.option("--dask", "dask_address", metavar="ADDRESS|local", default=None,
-              help="Run on a Dask distributed cluster (scheduler address), or 'local' for a"
-              " LocalCluster.")
+              help="Run on a Dask distributed cluster (scheduler address tcp://host:port), or"
+              " 'local' for a LocalCluster.")
 @click.option("--no-pdf", is_flag=True, help="Write the results tables only.")
 @click.option("--progress/--no-progress", default=None,
               help="Progress bar on stderr (default: when stderr is a terminal).")
 def study(workbook, study_file, out_dir, workers, dask_address, no_pdf, progress) -> None:
-    """Run a parametric study (variants of WORKBOOK described by STUDY_FILE)."""
-    from .study.results import tidy, write_tables
-    from .study.run import run_study
+    """Run a parametric study (variants of WORKBOOK described by STUDY_FILE).
+
+    Exit codes: 0 done (failing variants are results, not errors); 2 bad study file, base
+    workbook, option or output folder; 130 interrupted (Ctrl-C), 143 terminated (SIGTERM),
+    the finished variants kept for a re-run to resume."""
+    from .interrupt import interruptible
+    from .study.results import write_tables
+    from .study.run import check_output, connect_dask, output_lock, plan_study, run_plan
     from .study.spec import load_study
 
     show = sys.stderr.isatty() if progress is None else progress
@@ -287,27 +292,56 @@ def study(workbook, study_file, out_dir, workers, dask_address, no_pdf, progress
     def say(text: str) -> None:
         click.echo(f"checker: {text}", err=True)
 
-    try:
-        st = load_study(study_file)
-        run = run_study(st, workbook, out_dir, workers=workers, dask=dask_address,
-                        progress=show, say=say)
-        df = tidy(run)
-        written = write_tables(df, out_dir)
-        if not no_pdf:
-            from .study.report import render
+    state: dict = {}
 
-            say("drawing the study report")
-            html, pdf = render(run, df)
-            _atomic_write(Path(out_dir) / "study.pdf", pdf)
-            written.append(str(Path(out_dir) / "study.pdf"))
-    except UsageProblem as exc:
-        raise click.UsageError(str(exc)) from None
-    except Exception as exc:  # noqa: BLE001 - reported without traceback
-        _fail(exc)
-    bad = sum(1 for r in run.records if r["status"] == "input error")
-    say(f"{len(run.records)} variants ({run.computed} computed, {len(run.records) - run.computed}"
-        f" resumed{f', {bad} with input errors' if bad else ''}) in {run.seconds:.1f} s;"
+    def kept() -> str:
+        plan = state.get("plan")
+        n = 0
+        if plan is not None:
+            folder = Path(out_dir) / "variants"
+            n = sum(1 for k in plan.keys if (folder / f"{k}.json").is_file())
+        return f"{n} variant{'s' if n != 1 else ''} kept in {out_dir}; re-run to resume"
+
+    with interruptible(kept, echo=lambda line: click.echo(f"checker: {line}", err=True)):
+        engine = None
+        try:
+            st = load_study(study_file)
+            say(f"reading {workbook} and checking the study {Path(study_file).name}")
+            plan = state["plan"] = plan_study(st, workbook)
+            check_output(out_dir)
+            if dask_address:
+                say(f"connecting to Dask ({dask_address})")
+                engine = connect_dask(dask_address, workers)
+            with output_lock(out_dir):
+                run = run_plan(plan, out_dir, workers=workers, dask=dask_address,
+                               progress=show, say=say, client=engine)
+                say("writing results.parquet and results.xlsx")
+                written = write_tables(run, out_dir, say=say)
+                if not no_pdf:
+                    from .study.report import render
+                    from .study.results import report_frame
+
+                    say("drawing the study report")
+                    html, pdf = render(run, report_frame(out_dir, run))
+                    _atomic_write(Path(out_dir) / "study.pdf", pdf)
+                    written.append(str(Path(out_dir) / "study.pdf"))
+        except UsageProblem as exc:
+            raise click.UsageError(str(exc)) from None
+        except Exception as exc:  # noqa: BLE001 - reported without traceback
+            _fail(exc)
+        finally:
+            if engine is not None:
+                engine.close()
+    bad = run.input_errors()
+    say(f"{len(run.records)} variants ({run.computed} computed,"
+        f" {len(run.records) - run.computed} resumed"
+        f"{f', {len(bad)} with input errors' if bad else ''}) in {run.seconds:.1f} s;"
         f" wrote {', '.join(written)}")
+    if bad:
+        say(f"{len(bad)} variant{'s' if len(bad) != 1 else ''} not checked (input errors):")
+        for b in bad:
+            for e in b["errors"]:
+                click.echo(f"  variant {b['variant']} ({b['name']}): {e}", err=True)
 
 
 @main.command()

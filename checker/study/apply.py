@@ -13,7 +13,7 @@ from typing import Any
 
 from ..workbook.loader import RawWorkbook
 from ..workbook.schema import SHEETS, choice_key
-from .spec import Parameter, Study, StudyFileError
+from .spec import Parameter, Study, StudyFileError, did_you_mean
 
 
 @dataclass(frozen=True)
@@ -33,6 +33,11 @@ def _text(v: Any) -> str:
 def _cell(raw, r: int, c: int) -> Any:
     """Value of cell (row, column) of a sheet's cells (None when empty)."""
     return raw.rows.get(r, {}).get(c, (None, None))[0]
+
+
+def _label(spec, attr: str | None) -> str:
+    """The column heading a user sees for the field ``attr``."""
+    return next((f.label for f in spec.fields if f.attr == attr), str(attr))
 
 
 def _header(raw, spec) -> dict[str, int]:
@@ -83,10 +88,13 @@ def resolve(study: Study, base: RawWorkbook) -> list[Target]:
             kj = cols.get(spec.key) if spec.key else None
             wanted = {choice_key(x) for x in q.rows} if q.rows else None
             found: set[str] = set()
+            keys: list[str] = []
             for r in sorted(raw.rows):
                 if r < 3:
                     continue
                 key = _text(_cell(raw, r, kj)) if kj else str(r)
+                if key:
+                    keys.append(key)
                 if wanted is not None and choice_key(key) not in wanted:
                     continue
                 ok = True
@@ -100,8 +108,11 @@ def resolve(study: Study, base: RawWorkbook) -> list[Target]:
                     items.append(key)
             if wanted is not None and wanted - found:
                 miss = [x for x in q.rows if choice_key(x) not in found]
-                problems.append(f"{pre}: sheet {q.sheet} has no row {', '.join(miss)}"
-                                f" (column '{SHEETS[q.sheet].key}')")
+                hints = "".join(did_you_mean(x, keys) for x in miss)
+                problems.append(f"{pre}: sheet {q.sheet} has no row {', '.join(miss)} in"
+                                f" column '{_label(spec, spec.key)}'" + (
+                                    hints or f" (rows: {', '.join(keys[:20])}"
+                                    + (", ..." if len(keys) > 20 else "") + ")"))
                 continue
             if not cells:
                 problems.append(f"{pre}: no row of sheet {q.sheet} matches "

@@ -5,6 +5,7 @@ from __future__ import annotations
 import hashlib
 import itertools
 import json
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -19,6 +20,7 @@ class Variant:
     index: int
     name: str
     values: tuple[tuple[str, Any], ...]
+    line: int = 0  # study-file line of a table design's [[variant]] (0: the parameters')
 
     def value(self, param: str) -> Any:
         return dict(self.values).get(param)
@@ -32,6 +34,19 @@ class Variant:
 
 def _fmt(v: Any) -> str:
     return f"{v:.6g}" if isinstance(v, float) else str(v)
+
+
+def count_variants(study: Study) -> int:
+    """How many variants the design has, without making them (a 1000 x 1000 x 1000 factorial
+    is counted, not built)."""
+    params = study.parameters
+    if study.design == "one-at-a-time":
+        return 1 + sum(q.n_levels for q in params)
+    if study.design == "full-factorial":
+        return math.prod(q.n_levels for q in params) if params else 0
+    if study.design == "latin-hypercube":
+        return study.samples
+    return len(study.table)
 
 
 def variants(study: Study) -> list[Variant]:
@@ -59,5 +74,6 @@ def variants(study: Study) -> list[Variant]:
     else:  # table
         for name, given in study.table:
             vals = tuple((q.name, given.get(q.name)) for q in params)
-            out.append(Variant(len(out), name, vals))
+            out.append(Variant(len(out), name, vals,
+                               study.table_lines[len(out)] if study.table_lines else 0))
     return out

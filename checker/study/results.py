@@ -27,41 +27,77 @@ def family(rule: str) -> str:
     return rule.split("-")[0]
 
 
+_TAIL = ["rule", "name", "item", "case", "value", "unit", "limit", "margin", "status",
+         "severity", "message"]
+_FLOAT = {"value", "margin"}
+
+
+def _columns(run: StudyRun) -> list[str]:
+    return ["variant", "variant_name", "variant_id",
+            *[q.name for q in run.study.parameters], *_TAIL]
+
+
+def _rows(rec: dict, pnames: list[str]) -> list[dict[str, Any]]:
+    """The tidy rows of one variant's record."""
+    vals = dict((k, v) for k, v in rec["values"])
+    base = {"variant": rec["index"], "variant_name": rec["name"], "variant_id": rec["id"]}
+    for p in pnames:
+        v = vals.get(p)
+        base[p] = np.nan if v is None else v
+    if rec["status"] == "input error":
+        return [{**base, "rule": "", "name": "", "item": "", "case": "",
+                 "value": np.nan, "unit": "", "limit": "", "margin": np.nan,
+                 "status": "input error", "severity": "error",
+                 "message": "; ".join(rec["errors"])}]
+    rows = []
+    for r in rec["results"]:
+        st = r["status"]
+        if st == "fail" and r["severity"] == "warning" and not r.get("internal_error"):
+            st = "warning"
+        rows.append({**base, "rule": r["rule"], "name": r["name"], "item": r["item"],
+                     "case": r["case"],
+                     "value": np.nan if r["value"] is None else r["value"],
+                     "unit": r["unit"], "limit": r["limit_text"],
+                     "margin": np.nan if r["margin"] is None else r["margin"],
+                     "status": st, "severity": r["severity"], "message": r["message"]})
+    return rows
+
+
+def _frame(rows: list[dict], run: StudyRun):
+    import pandas as pd
+
+    df = pd.DataFrame(rows, columns=_columns(run))
+    for q in run.study.parameters:  # baseline values (None) shown as NaN; numbers stay float
+        if q.numeric:
+            df[q.name] = df[q.name].astype(float)
+    for c in _FLOAT:
+        df[c] = df[c].astype(float)
+    df["variant"] = df["variant"].astype("int64")
+    return df
+
+
+def tidy_chunks(run: StudyRun, variants_per_chunk: int = 100):
+    """The tidy table in pieces of ``variants_per_chunk`` variants (records are read from
+    disk one at a time; memory does not grow with the size of the study)."""
+    pnames = [q.name for q in run.study.parameters]
+    rows: list[dict] = []
+    n = 0
+    for rec in run.records:
+        rows.extend(_rows(rec, pnames))
+        n += 1
+        if n % variants_per_chunk == 0:
+            yield _frame(rows, run)
+            rows = []
+    if rows or n == 0:
+        yield _frame(rows, run)
+
+
 def tidy(run: StudyRun):
     """The results as a pandas DataFrame (deterministic order and types)."""
     import pandas as pd
 
-    pnames = [q.name for q in run.study.parameters]
-    rows: list[dict[str, Any]] = []
-    for rec in run.records:
-        vals = dict((k, v) for k, v in rec["values"])
-        base = {"variant": rec["index"], "variant_name": rec["name"], "variant_id": rec["id"]}
-        for p in pnames:
-            v = vals.get(p)
-            base[p] = np.nan if v is None else v
-        if rec["status"] == "input error":
-            rows.append({**base, "rule": "", "name": "", "item": "", "case": "",
-                         "value": np.nan, "unit": "", "limit": "", "margin": np.nan,
-                         "status": "input error", "severity": "error",
-                         "message": "; ".join(rec["errors"])})
-            continue
-        for r in rec["results"]:
-            st = r["status"]
-            if st == "fail" and r["severity"] == "warning" and not r.get("internal_error"):
-                st = "warning"
-            rows.append({**base, "rule": r["rule"], "name": r["name"], "item": r["item"],
-                         "case": r["case"],
-                         "value": np.nan if r["value"] is None else r["value"],
-                         "unit": r["unit"], "limit": r["limit_text"],
-                         "margin": np.nan if r["margin"] is None else r["margin"],
-                         "status": st, "severity": r["severity"], "message": r["message"]})
-    cols = ["variant", "variant_name", "variant_id", *pnames, "rule", "name", "item", "case",
-            "value", "unit", "limit", "margin", "status", "severity", "message"]
-    df = pd.DataFrame(rows, columns=cols)
-    for p in pnames:  # baseline values (None) shown as NaN; numeric columns stay numeric
-        if all(isinstance(x, (int, float)) for x in df[p].dropna()):
-            df[p] = df[p].astype(float)
-    return df
+    parts = list(tidy_chunks(run))
+    return parts[0] if len(parts) == 1 else pd.concat(parts, ignore_index=True)
 
 
 def baseline_values(run: StudyRun) -> dict[str, float | None]:
@@ -188,21 +224,93 @@ def best_variant(vt) -> dict[str, Any] | None:
             "of": "feasible variants" if not feas.empty else "all variants (none feasible)"}
 
 
-def write_tables(df, out_dir) -> list[str]:
-    """results.parquet and results.xlsx (atomic); returns the paths written."""
+#: Rows an Excel sheet holds (with the header row).
+EXCEL_ROWS = 1_048_576
+
+
+def _schema(run: StudyRun):
+    import pyarrow as pa
+
+    fields = [pa.field("variant", pa.int64()), pa.field("variant_name", pa.string()),
+              pa.field("variant_id", pa.string())]
+    fields += [pa.field(q.name, pa.float64() if q.numeric else pa.string())
+               for q in run.study.parameters]
+    fields += [pa.field(c, pa.float64() if c in _FLOAT else pa.string()) for c in _TAIL]
+    return pa.schema(fields)
+
+
+def _tmp(out, name: str) -> str:
+    import os
+    import tempfile
+
+    fd, tmp = tempfile.mkstemp(prefix=f".{name}.", suffix=".tmp", dir=out)
+    os.close(fd)
+    return tmp
+
+
+def write_tables(run: StudyRun, out_dir, say=None) -> list[str]:
+    """results.parquet and results.xlsx (atomic, unique temporary names); returns the paths
+    written. Both are written in pieces (parquet row groups, openpyxl write-only rows), so
+    a large study's table is never all in memory. A table longer than an Excel sheet is
+    kept in results.parquet only (``say`` tells why)."""
     import os
     from pathlib import Path
+
+    import pyarrow as pa
+    import pyarrow.parquet as pq
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     written = []
-    tmp = out / ".results.parquet.tmp"
-    df.to_parquet(tmp, index=False)
-    os.replace(tmp, out / "results.parquet")
+    schema = _schema(run)
+    tmp = _tmp(out, "results.parquet")
+    try:
+        with pq.ParquetWriter(tmp, schema) as w:
+            for df in tidy_chunks(run):
+                w.write_table(pa.Table.from_pandas(df, schema=schema, preserve_index=False))
+        os.replace(tmp, out / "results.parquet")
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
     written.append(str(out / "results.parquet"))
-    tmp = out / ".results.xlsx.tmp"
-    with __import__("pandas").ExcelWriter(tmp, engine="openpyxl") as xw:
-        df.to_excel(xw, sheet_name="results", index=False)
-    os.replace(tmp, out / "results.xlsx")
+    pf = pq.ParquetFile(out / "results.parquet")
+    if pf.metadata.num_rows + 1 > EXCEL_ROWS:
+        old = out / "results.xlsx"
+        if old.exists():
+            old.unlink()  # never leave a table of an earlier run beside the new one
+        if say:
+            say(f"results.xlsx not written: {pf.metadata.num_rows:,} rows exceed an Excel"
+                f" sheet ({EXCEL_ROWS:,}); results.parquet holds them all")
+        return written
+    from openpyxl import Workbook
+
+    tmp = _tmp(out, "results.xlsx")
+    try:
+        wb = Workbook(write_only=True)
+        ws = wb.create_sheet("results")
+        ws.append(schema.names)
+        for batch in pf.iter_batches(batch_size=20_000):
+            cols = [batch.column(i).to_pylist() for i in range(batch.num_columns)]
+            for row in zip(*cols):
+                ws.append([None if isinstance(v, float) and v != v else v for v in row])
+        wb.save(tmp)
+        os.replace(tmp, out / "results.xlsx")
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
     written.append(str(out / "results.xlsx"))
     return written
+
+
+def report_frame(out_dir, run: StudyRun):
+    """The tidy table for the study report, read back from results.parquet (the same
+    table :func:`tidy` builds)."""
+    from pathlib import Path
+
+    import pandas as pd
+
+    df = pd.read_parquet(Path(out_dir) / "results.parquet")
+    for c in df.columns:  # None (not NaN) in text columns, as tidy() gives
+        if df[c].dtype == object:
+            df[c] = df[c].where(df[c].notna(), None)
+    return df

@@ -3,15 +3,29 @@
 Execution engines (no home-made scheduling):
 
 * ``local`` (default): :class:`concurrent.futures.ProcessPoolExecutor` with one worker process
-  per core; each worker loads the base workbook once and keeps a calculation cache
-  (:func:`checker.graph.input_key`), so a variant that changes only bearing clearances
-  reuses the loads computed for an earlier variant in the same worker.
+  per core; each worker loads the base workbook once (pool initializer) and keeps a
+  calculation cache (:func:`checker.graph.input_key`), so a variant that changes only bearing
+  clearances reuses the loads computed for an earlier variant in the same worker.
 * ``dask``: the same task on a Dask distributed cluster (``distributed.Client``, futures,
   ``as_completed``): a scheduler address, or ``"local"`` for a :class:`LocalCluster`.
 
-Each finished variant is written at once to ``<out>/variants/<id>.json`` (atomic rename), so
-a killed study keeps what finished and a re-run skips it (resume). A variant with bad values
-is reported with the study line and the workbook cell and the study goes on (fail-soft).
+A task is a chunk (a list) of variants, evaluated by :func:`evaluate_chunk` in one call, so a
+batched evaluation can later take the whole chunk at once. Only a few chunks per worker are
+queued at a time: memory does not grow with the number of variants, and an interruption
+has little to cancel.
+
+Each finished variant is written at once to ``<out>/variants/<id>.json`` (atomic rename of a
+uniquely named temporary file), so an interrupted study keeps what finished and a re-run
+skips it (resume). Records are read back from disk when needed, never all held in memory.
+A variant with bad values is reported with the study line and the workbook cell and the
+study goes on (fail-soft).
+
+Before any work: the study's size (:data:`checker.study.spec.MAX_VARIANTS`), the rule
+selection, the base workbook, the output folder (writable, a folder, not in use by another
+study: ``<out>/.checker-study.lock``, :func:`fcntl.flock`) and the Dask scheduler (reachable
+within :data:`DASK_CONNECT_TIMEOUT` seconds) are checked; each problem is one sentence.
+On Ctrl-C or SIGTERM (:mod:`checker.interrupt`) pending variants are cancelled, the worker
+processes ended, and the finished variants stay on disk.
 """
 
 from __future__ import annotations
@@ -19,18 +33,59 @@ from __future__ import annotations
 import json
 import os
 import sys
+import tempfile
 import time
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..errors import InputErrors
+from ..errors import CheckerError, InputErrors, UsageProblem
 from .apply import Target, apply_variant, resolve
 from .design import Variant, variants
-from .spec import Study
+from .spec import Study, StudyFileError
 
 _WORKER: dict[str, Any] = {}  # per worker process: base workbook, targets, graph cache
+
+#: Seconds to wait for a Dask scheduler before saying it cannot be reached.
+DASK_CONNECT_TIMEOUT = 8
+#: Variants per task (a worker evaluates a chunk in one call).
+CHUNK = 1
+LOCK_NAME = ".checker-study.lock"
+
+
+class StudyOutputError(CheckerError):
+    """The output folder cannot be used (not writable, a file, in use): one sentence."""
+
+
+class DaskUnreachable(CheckerError):
+    """The Dask scheduler address is malformed or nothing answers there."""
+
+
+class RecordStore(Sequence):
+    """The variants' stored records, read from ``variants/<id>.json`` one at a time (in
+    variant order), so a 1000-variant study never holds every result in memory."""
+
+    def __init__(self, folder: Path, keys: list[str]):
+        self.folder = Path(folder)
+        self.keys = list(keys)
+
+    def __len__(self) -> int:
+        return len(self.keys)
+
+    def __getitem__(self, i):  # type: ignore[override]
+        if isinstance(i, slice):
+            return [self[j] for j in range(*i.indices(len(self)))]
+        return json.loads((self.folder / f"{self.keys[i]}.json").read_text(encoding="utf-8"))
+
+    def __iter__(self) -> Iterator[dict]:
+        for i in range(len(self)):
+            yield self[i]
+
+    def on_disk(self) -> int:
+        """How many of the variants have a stored record."""
+        return sum(1 for k in self.keys if (self.folder / f"{k}.json").is_file())
 
 
 @dataclass
@@ -42,26 +97,47 @@ class StudyRun:
     base_sha256: str
     variants: list[Variant]
     targets: list[Target]
-    records: list[dict]  # one per variant, in variant order
+    records: Sequence[dict]  # one per variant, in variant order (read from disk on access)
     out_dir: Path
     computed: int = 0  # variants computed in this run (the others were resumed)
     seconds: float = 0.0
     engine: str = "local"
     extra: dict[str, Any] = field(default_factory=dict)
 
+    def input_errors(self) -> list[dict]:
+        """The variants with bad values: index, name, errors (each with study line and
+        workbook cell)."""
+        return [{"variant": r["index"], "name": r["name"], "errors": r["errors"]}
+                for r in self.records if r["status"] == "input error"]
+
+
+# ---------------------------------------------------------------------------------------
+# evaluation (in a worker)
+
 
 def _setup(base, targets, select, ignore, fail_on) -> None:
-    if _WORKER.get("sha") != base.sha256:
+    if _WORKER.get("sha") != base.sha256 or _WORKER.get("targets") != targets:
         _WORKER.clear()
         _WORKER.update(sha=base.sha256, base=base, targets=targets, cache={},
                        select=select, ignore=ignore, fail_on=fail_on)
+
+
+def _where(variant: Variant, targets: list[Target], cell: str) -> str:
+    """``study line N (parameter 'x')`` for the study entry that put a value into ``cell``."""
+    if variant.line:
+        return f"study line {variant.line} (variant '{variant.name}')"
+    given = {k for k, v in variant.values if v is not None}
+    for t in targets:
+        if t.param.name in given and cell in t.labels:
+            return f"study line {t.param.line} (parameter '{t.param.name}')"
+    return "the base workbook"
 
 
 def _evaluate(variant: Variant, key: str) -> dict:
     """Check one variant in this worker; never raises for a variant's own bad input."""
     from .. import api
     from ..engine import build_engine
-    from ..ruletable import load_rules, override_problems
+    from ..ruletable import RuleTable, load_rules, override_problems
     from ..workbook.loader import convert_raw
 
     w = _WORKER
@@ -80,13 +156,15 @@ def _evaluate(variant: Variant, key: str) -> dict:
             return errs
 
         engine = build_engine(data, _ovr)
-        from ..ruletable import RuleTable
-
         res = api.check(engine, rules=RuleTable(resolved["r"], table.files, resolved["a"]),
                         select=w["select"], ignore=w["ignore"], fail_on=w["fail_on"],
                         cache=w["cache"])
     except InputErrors as exc:
-        rec.update(status="input error", errors=[str(e) for e in exc.errors], results=[])
+        errs = []
+        for e in exc.errors:
+            cell = getattr(e, "where", "")
+            errs.append(f"{_where(variant, w['targets'], str(cell))}: {e}")
+        rec.update(status="input error", errors=errs, results=[])
         return rec
     rec.update(status="nothing checked" if res.nothing_checked else "checked",
                verdict=res.verdict, complete=res.complete, errors=[],
@@ -96,29 +174,272 @@ def _evaluate(variant: Variant, key: str) -> dict:
     return rec
 
 
-def _local_task(args) -> dict:
-    base, targets, sel, ign, fo, variant, key = args
-    _setup(base, targets, sel, ign, fo)
-    return _evaluate(variant, key)
+def evaluate_chunk(items: list[tuple[Variant, str]]) -> list[dict]:
+    """Check a chunk of variants (``(variant, id)`` pairs) in this worker, one record each.
+
+    The unit of work a worker takes; a batched evaluation of several variants at once
+    replaces the loop here without changing the engines or the callers."""
+    return [_evaluate(v, k) for v, k in items]
 
 
-def _dask_task(base, targets, sel, ign, fo, variant, key) -> dict:
+def _init_local_worker(setup_args) -> None:
+    from ..interrupt import worker_signals
+
+    worker_signals()
+    _die_with_parent()
+    _setup(*setup_args)
+
+
+def _die_with_parent() -> None:
+    """Linux: the kernel ends this worker if the study process dies (even by SIGKILL)."""
+    if not sys.platform.startswith("linux"):
+        return
+    try:
+        import ctypes
+        import signal
+
+        ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, int(signal.SIGTERM))  # PDEATHSIG
+    except (OSError, AttributeError):  # pragma: no cover - another libc
+        pass
+
+
+def _local_chunk(items) -> list[dict]:
+    return evaluate_chunk(items)
+
+
+def _dask_chunk(base, targets, sel, ign, fo, items) -> list[dict]:
     _setup(base, targets, sel, ign, fo)
-    return _evaluate(variant, key)
+    return evaluate_chunk(items)
+
+
+# ---------------------------------------------------------------------------------------
+# output folder: checked before work, locked while a study writes
+
+
+def _short(exc: BaseException) -> str:
+    text = (exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)).strip()
+    return text.splitlines()[0] if text else type(exc).__name__
+
+
+def check_output(out_dir: str | Path) -> None:
+    """Raise :class:`StudyOutputError` (one sentence) unless ``out_dir`` is, or can be
+    created as, a writable folder. Creates nothing."""
+    out = Path(out_dir)
+    if out.exists():
+        if not out.is_dir():
+            raise StudyOutputError(f"the output folder {out} is a file; give a folder name")
+        try:
+            fd, tmp = tempfile.mkstemp(prefix=".checker-write-test-", dir=out)
+            os.close(fd)
+            os.unlink(tmp)
+        except OSError as exc:
+            raise StudyOutputError(f"cannot write to the output folder {out}"
+                                   f" ({_short(exc)})") from None
+        for sub in ("variants",):
+            p = out / sub
+            if p.exists() and (not p.is_dir() or not os.access(p, os.W_OK | os.X_OK)):
+                raise StudyOutputError(f"cannot write to {p} (not a writable folder)")
+        return
+    parent = out.absolute().parent
+    while not parent.exists():
+        parent = parent.parent
+    if not parent.is_dir():
+        raise StudyOutputError(f"cannot create the output folder {out}: {parent} is a file")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise StudyOutputError(f"cannot create the output folder {out}: {parent} is not"
+                               " writable")
+
+
+@contextmanager
+def output_lock(out_dir: str | Path) -> Iterator[Path]:
+    """Create ``out_dir`` and hold its lock file while inside; a second study into the same
+    folder gets :class:`StudyOutputError` ("another study is writing to ...") at once.
+
+    A folder this call created is removed again if the body fails before writing into it
+    (no empty output folders from a refused study)."""
+    import fcntl
+
+    out = Path(out_dir)
+    check_output(out)
+    created = not out.exists()
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        fd = os.open(out / LOCK_NAME, os.O_RDWR | os.O_CREAT, 0o666)
+    except OSError as exc:
+        raise StudyOutputError(f"cannot write to the output folder {out} ({_short(exc)})"
+                               ) from None
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            raise StudyOutputError(f"another study is writing to {out}; wait for it to"
+                                   " finish or choose another output folder") from None
+        try:
+            os.ftruncate(fd, 0)
+            os.write(fd, f"{os.getpid()}\n".encode())
+        except OSError:
+            pass
+        ok = False
+        try:
+            yield out
+            ok = True
+        finally:
+            if created and not ok:
+                try:
+                    names = set(os.listdir(out))
+                    if names <= {LOCK_NAME}:
+                        os.unlink(out / LOCK_NAME)
+                        out.rmdir()
+                except OSError:
+                    pass
+    finally:
+        os.close(fd)  # releases the lock
 
 
 def _write_record(folder: Path, rec: dict) -> None:
     folder.mkdir(parents=True, exist_ok=True)
-    tmp = folder / f".{rec['id']}.tmp"
-    tmp.write_text(json.dumps(rec, sort_keys=True, indent=1, default=str), encoding="utf-8")
-    os.replace(tmp, folder / f"{rec['id']}.json")
+    data = json.dumps(rec, sort_keys=True, indent=1, default=str).encode("utf-8")
+    fd, tmp = tempfile.mkstemp(prefix=f".{rec['id']}.", suffix=".tmp", dir=folder)
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+        os.replace(tmp, folder / f"{rec['id']}.json")
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
 
 
-def _progress_bar(total: int, enabled: bool):
-    from tqdm import tqdm
+# ---------------------------------------------------------------------------------------
+# planning (everything that can be checked before work) and running
 
-    return tqdm(total=total, desc="checker: variants", unit="variant", file=sys.stderr,
-                disable=not enabled, dynamic_ncols=True, leave=True)
+
+@dataclass
+class StudyPlan:
+    """A validated study on a base workbook: its variants and cells, nothing run yet."""
+
+    study: Study
+    base_path: str
+    base: Any  # RawWorkbook
+    targets: list[Target]
+    variants: list[Variant]
+    keys: list[str]
+
+    @property
+    def setup_args(self) -> tuple:
+        return (self.base, self.targets, self.study.select, self.study.ignore,
+                self.study.fail_on)
+
+
+def plan_study(study: Study, workbook: str | Path) -> StudyPlan:
+    """Validate the study against ``workbook``: the base must be a valid workbook
+    (InputErrors), the rule selection and the parameters' cells must exist
+    (:class:`StudyFileError` naming the study lines). Writes nothing."""
+    from ..engine import build_engine
+    from ..ruletable import load_rules, select_rules
+    from ..workbook.loader import convert_raw, read_raw_workbook
+
+    base = read_raw_workbook(workbook)
+    build_engine(convert_raw(base, raise_errors=False))  # the base must be a valid workbook
+    try:
+        select_rules(load_rules(None), study.select, study.ignore)
+    except UsageProblem as exc:
+        raise _selection_error(study, exc) from None
+    targets = resolve(study, base)
+    vs = variants(study)
+    keys = [v.key(base.sha256, study) for v in vs]
+    return StudyPlan(study, str(workbook), base, targets, vs, keys)
+
+
+def _selection_error(study: Study, exc: UsageProblem) -> StudyFileError:
+    """A rule selection problem, named by its study-file line (with a "did you mean")."""
+    from ..ruletable import load_rules
+    from .spec import did_you_mean
+
+    text = str(exc).strip()
+    ids = [r.id for r in load_rules(None).rules]
+    choices = ids + sorted({i.split("-")[0] for i in ids})
+    for k in ("select", "ignore"):
+        bad = [v for v in getattr(study, k) or [] if f"'{v}'" in text]
+        if bad:
+            hint = "".join(did_you_mean(v, choices) for v in bad)
+            return StudyFileError(study.path, [f"{study.line_of(k)}: '{k}': {text}{hint}"])
+    return StudyFileError(study.path, [f"{study.line_of('select')}: {text}"])
+
+
+class _Sink:
+    """Writes each finished record and counts; progress on stderr."""
+
+    def __init__(self, folder: Path, total: int, progress: bool, say):
+        self.folder = folder
+        self.total = total
+        self.count = 0
+        self.say = say
+        self.bar = None
+        if progress:
+            from tqdm import tqdm
+
+            self.bar = tqdm(total=total, desc="checker: variants", unit="variant",
+                            file=sys.stderr, dynamic_ncols=True, leave=True)
+        self.step = max(1, total // 10)
+        self.t0 = time.monotonic()
+
+    def __call__(self, rec: dict) -> None:
+        _write_record(self.folder, rec)
+        self.count += 1
+        if self.bar is not None:
+            self.bar.update(1)
+        elif self.count % self.step == 0 and self.count < self.total:
+            self.say(f"{self.count} of {self.total} variants done"
+                     f" ({time.monotonic() - self.t0:.0f} s)")
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+
+
+def _chunks(todo: list[tuple[Variant, str]], size: int) -> Iterator[list]:
+    for i in range(0, len(todo), size):
+        yield todo[i:i + size]
+
+
+def run_plan(plan: StudyPlan, out_dir: str | Path, workers: int | None = None,
+             dask: str | None = None, progress: bool = False,
+             say: Callable[[str], None] | None = None, client: Any = None) -> StudyRun:
+    """Run the variants of ``plan`` not yet on disk in ``out_dir`` (the caller holds
+    :func:`output_lock`). ``client``: a connected Dask engine from :func:`connect_dask`."""
+    t0 = time.perf_counter()
+    say = say or (lambda s: None)
+    out = Path(out_dir)
+    folder = out / "variants"
+    st = plan.study
+    done = {k for k in plan.keys if (folder / f"{k}.json").is_file()}
+    todo = [(v, k) for v, k in zip(plan.variants, plan.keys) if k not in done]
+    n_local = max(1, min(workers or os.cpu_count() or 1, max(len(todo), 1)))
+    say(f"study '{st.name}': {len(plan.variants)} variants ({st.design}), {len(done)} already"
+        f" done, {len(todo)} to run"
+        + (f" on Dask ({dask})" if dask else
+           f" on {n_local} local worker process{'es' if n_local != 1 else ''}"))
+    sink = _Sink(folder, len(todo), progress, say)
+    engine_name = "dask" if dask else "local"
+    try:
+        if todo:
+            chunks = list(_chunks(todo, CHUNK))
+            if dask:
+                own = client is None
+                eng = client or connect_dask(dask, workers)
+                try:
+                    _run_dask(eng, plan.setup_args, chunks, sink)
+                finally:
+                    if own:
+                        eng.close()
+            else:
+                _run_local(plan.setup_args, chunks, n_local, sink)
+    finally:
+        sink.close()
+    return StudyRun(st, plan.base_path, plan.base.sha256, plan.variants, plan.targets,
+                    RecordStore(folder, plan.keys), out, computed=sink.count,
+                    seconds=time.perf_counter() - t0, engine=engine_name)
 
 
 def run_study(study: Study, workbook: str | Path, out_dir: str | Path,
@@ -126,85 +447,167 @@ def run_study(study: Study, workbook: str | Path, out_dir: str | Path,
               progress: bool = False, say: Callable[[str], None] | None = None) -> StudyRun:
     """Run every variant of ``study`` on ``workbook``; results go to ``out_dir``.
 
-    Raises InputErrors when the base workbook itself is not valid (nothing to vary), and
-    :class:`checker.study.spec.StudyFileError` when a parameter's cells are not in it.
+    Raises InputErrors when the base workbook itself is not valid (nothing to vary),
+    :class:`checker.study.spec.StudyFileError` when a parameter's cells are not in it,
+    :class:`StudyOutputError` when ``out_dir`` cannot be written or another study writes
+    to it, :class:`DaskUnreachable` for a bad scheduler address; all before any work.
     """
-    from ..engine import build_engine
-    from ..ruletable import load_rules, select_rules
-    from ..workbook.loader import convert_raw, read_raw_workbook
+    plan = plan_study(study, workbook)
+    check_output(out_dir)
+    client = connect_dask(dask, workers) if dask else None
+    try:
+        with output_lock(out_dir):
+            return run_plan(plan, out_dir, workers=workers, dask=dask, progress=progress,
+                            say=say, client=client)
+    finally:
+        if client is not None:
+            client.close()
 
-    t0 = time.perf_counter()
-    say = say or (lambda s: None)
-    out = Path(out_dir)
-    base = read_raw_workbook(workbook)
-    build_engine(convert_raw(base, raise_errors=False))  # the base must be a valid workbook
-    select_rules(load_rules(None), study.select, study.ignore)  # usage errors before work
-    targets = resolve(study, base)
-    vs = variants(study)
-    keys = [v.key(base.sha256, study) for v in vs]
-    folder = out / "variants"
-    done = {k for k in keys if (folder / f"{k}.json").is_file()}
-    todo = [(v, k) for v, k in zip(vs, keys) if k not in done]
-    say(f"study '{study.name}': {len(vs)} variants ({study.design}), {len(done)} already"
-        f" done, {len(todo)} to run"
-        + (f" on Dask ({dask})" if dask else f" on {workers or os.cpu_count() or 1} local"
-           " worker processes"))
-    args = (base, targets, study.select, study.ignore, study.fail_on)
-    engine_name = "local"
-    if todo:
-        bar = _progress_bar(len(todo), progress)
+
+# ---------------------------------------------------------------------------------------
+# engines
+
+
+def _drain(futs: Iterable, sink, result: Callable[[Any], list[dict]]) -> None:
+    """Store the records of futures that finished but were not consumed yet (after an
+    interruption): every finished variant is kept."""
+    for f in futs:
         try:
-            if dask:
-                engine_name = "dask"
-                for rec in _run_dask(dask, args, todo, workers):
-                    _write_record(folder, rec)
-                    bar.update(1)
-            else:
-                for rec in _run_local(args, todo, workers):
-                    _write_record(folder, rec)
-                    bar.update(1)
-        finally:
-            bar.close()
-    records = [json.loads((folder / f"{k}.json").read_text(encoding="utf-8")) for k in keys]
-    return StudyRun(study, str(workbook), base.sha256, vs, targets, records, out,
-                    computed=len(todo), seconds=time.perf_counter() - t0, engine=engine_name)
+            if f.done() and not f.cancelled():
+                for rec in result(f):
+                    sink(rec)
+        except Exception:  # noqa: BLE001 - a failed chunk has nothing to keep
+            pass
 
 
-def _run_local(args, todo, workers) -> Iterable[dict]:
-    n = max(1, min(workers or os.cpu_count() or 1, len(todo)))
+def _run_local(setup_args, chunks: list[list], n: int, sink) -> None:
     if n == 1:
-        _setup(*args)
-        for v, k in todo:
-            yield _evaluate(v, k)
+        _setup(*setup_args)
+        for ch in chunks:
+            for rec in evaluate_chunk(ch):
+                sink(rec)
         return
     import multiprocessing as mp
-    from concurrent.futures import ProcessPoolExecutor, as_completed
+    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+    from concurrent.futures.process import BrokenProcessPool
 
     ctx = mp.get_context("fork" if sys.platform.startswith("linux") else "spawn")
-    # contiguous chunks keep a worker's variants together (cache reuse across neighbours)
-    with ProcessPoolExecutor(max_workers=n, mp_context=ctx) as ex:
-        futs = [ex.submit(_local_task, args + (v, k)) for v, k in todo]
-        for f in as_completed(futs):
-            yield f.result()
+    ex = ProcessPoolExecutor(max_workers=n, mp_context=ctx, initializer=_init_local_worker,
+                             initargs=(setup_args,))
+    queue = iter(chunks)
+    pending: set = set()
+    clean = False
+    try:
+        def fill() -> None:
+            while len(pending) < 2 * n:
+                ch = next(queue, None)
+                if ch is None:
+                    return
+                pending.add(ex.submit(_local_chunk, ch))
+
+        fill()
+        while pending:
+            done, rest = wait(pending, return_when=FIRST_COMPLETED)
+            for f in done:
+                try:
+                    recs = f.result()
+                except BrokenProcessPool:
+                    raise CheckerError("a worker process of the study ended unexpectedly"
+                                       " (killed, or out of memory); the finished variants"
+                                       " are kept, re-run to resume") from None
+                pending.discard(f)
+                for rec in recs:
+                    sink(rec)
+            fill()
+        clean = True
+    except BaseException:
+        _drain(list(pending), sink, lambda f: f.result(timeout=0))
+        raise
+    finally:
+        procs = list((getattr(ex, "_processes", None) or {}).values())
+        ex.shutdown(wait=clean, cancel_futures=True)
+        if not clean:  # interrupted or failed: end the workers now, not after their tasks
+            for p in procs:
+                if p.is_alive():
+                    p.terminate()
+            for p in procs:
+                p.join(timeout=3)
+                if p.is_alive():
+                    p.kill()
+                    p.join(timeout=3)
 
 
-def _run_dask(address: str, args, todo, workers) -> Iterable[dict]:
-    from distributed import Client, LocalCluster, as_completed
+class DaskEngine:
+    """A connected Dask client (and the LocalCluster it started, if any)."""
 
-    cluster = None
+    def __init__(self, client, cluster=None, address: str = ""):
+        self.client = client
+        self.cluster = cluster
+        self.address = address
+
+    def close(self) -> None:
+        try:
+            self.client.close(timeout=5)
+        except Exception:  # noqa: BLE001 - closing a broken connection
+            pass
+        if self.cluster is not None:
+            try:
+                self.cluster.close(timeout=5)
+            except Exception:  # noqa: BLE001
+                pass
+
+
+def connect_dask(address: str, workers: int | None = None) -> DaskEngine:
+    """Start a LocalCluster (``"local"``) or connect to the scheduler at ``address`` within
+    :data:`DASK_CONNECT_TIMEOUT` s; :class:`DaskUnreachable` (one sentence) otherwise."""
+    try:
+        from distributed import Client, LocalCluster
+    except ImportError:
+        raise DaskUnreachable("--dask needs the Dask distributed package (pip install"
+                              " 'dask[distributed]')") from None
     if address == "local":
         cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
                                processes=True, dashboard_address=None)
-        client = Client(cluster)
-    else:
-        client = Client(address)
+        return DaskEngine(Client(cluster), cluster, address)
     try:
-        base_f = client.scatter(args[0], broadcast=True)
-        futs = [client.submit(_dask_task, base_f, *args[1:], v, k, key=f"checker-variant-{k}",
-                              pure=False) for v, k in todo]
-        for f in as_completed(futs):
-            yield f.result()
-    finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
+        client = Client(address, timeout=DASK_CONNECT_TIMEOUT)
+    except Exception as exc:  # noqa: BLE001 - any failure to connect is the address's
+        raise DaskUnreachable(f"cannot reach the Dask scheduler at '{address}' ({_short(exc)});"
+                              " give its address as tcp://host:port, or 'local'") from None
+    return DaskEngine(client, None, address)
+
+
+def _run_dask(eng: DaskEngine, setup_args, chunks: list[list], sink) -> None:
+    from distributed import as_completed
+
+    client = eng.client
+    n = max(1, len(client.scheduler_info().get("workers", {})) or 1)
+    base_f = client.scatter(setup_args[0], broadcast=True)
+    queue = iter(chunks)
+    live: set = set()
+
+    def submit(ch):
+        f = client.submit(_dask_chunk, base_f, *setup_args[1:], ch,
+                          key=f"checker-variants-{ch[0][1]}", pure=False)
+        live.add(f)
+        return f
+
+    first = [submit(ch) for ch in (next(queue, None) for _ in range(2 * n)) if ch is not None]
+    ac = as_completed(first)
+    try:
+        for f in ac:
+            recs = f.result()
+            live.discard(f)
+            for rec in recs:
+                sink(rec)
+            ch = next(queue, None)
+            if ch is not None:
+                ac.add(submit(ch))
+    except BaseException:
+        _drain(list(live), sink, lambda f: f.result(timeout=1) if f.status == "finished"
+               else [])
+        try:
+            client.cancel(list(live))
+        except Exception:  # noqa: BLE001
+            pass
+        raise

@@ -44,6 +44,9 @@ from ..errors import CheckerError
 from ..workbook.schema import SHEETS, Field
 
 DESIGNS = ("one-at-a-time", "full-factorial", "latin-hypercube", "table")
+#: The most variants a study may have: each costs about a second of a worker and a file of
+#: results; a larger design is refused before anything runs (say which number is too large).
+MAX_VARIANTS = 100_000
 _STUDY_KEYS = {"name", "design", "select", "ignore", "samples", "seed", "fail_on"}
 _PARAM_KEYS = {"name", "sheet", "row", "rows", "where", "column", "unit", "range", "steps",
                "values"}
@@ -94,6 +97,11 @@ class Parameter:
         return float(self.low + u * (self.high - self.low))
 
     @property
+    def n_levels(self) -> int:
+        """How many levels a grid design gives this parameter."""
+        return len(self.values) if self.values else self.steps
+
+    @property
     def numeric(self) -> bool:
         return self.field.kind not in ("text", "choice", "int_list")
 
@@ -113,6 +121,13 @@ class Study:
     seed: int = 0
     table: list[tuple[str, dict[str, Any]]] = field(default_factory=list)  # (name, values)
     text: str = ""
+    lines: dict[str, int] = field(default_factory=dict)  # [study] key -> line ("select"...)
+    table_lines: list[int] = field(default_factory=list)  # line of each [[variant]]
+
+    def line_of(self, key: str) -> str:
+        """``line N`` of a [study] key (e.g. 'select'), for messages."""
+        n = self.lines.get(key)
+        return f"line {n}" if n else "[study]"
 
 
 def _lines(text: str) -> dict[tuple[str, int, str], int]:
@@ -138,6 +153,18 @@ def _lines(text: str) -> dict[tuple[str, int, str], int]:
         if m and cur:
             out.setdefault((cur, idx, m.group(2).strip()), n)
     return out
+
+
+def did_you_mean(word: str, choices, n: int = 3) -> str:
+    """`` (did you mean 'x'?)`` for the closest of ``choices`` to ``word``, else ``""``."""
+    import difflib
+
+    ch = [str(c) for c in choices]
+    low = {c.lower(): c for c in ch}
+    hit = difflib.get_close_matches(str(word).strip().lower(), list(low), n=n, cutoff=0.6)
+    if not hit:
+        return ""
+    return " (did you mean " + " or ".join(f"'{low[h]}'" for h in hit) + "?)"
 
 
 def _field(sheet: str, column: str | None) -> Field | None:
@@ -172,8 +199,9 @@ def load_study(path: str | Path) -> Study:
         raise StudyFileError(str(p), ["a [study] table with 'design' is required (line 1)"])
     for k in st:
         if k not in _STUDY_KEYS:
-            problems.append(f"{at('study', 0, k)}: unknown key '{k}' in [study] (known: "
-                            + ", ".join(sorted(_STUDY_KEYS)) + ")")
+            problems.append(f"{at('study', 0, k)}: unknown key '{k}' in [study]"
+                            + (did_you_mean(k, sorted(_STUDY_KEYS)) or " (known: "
+                               + ", ".join(sorted(_STUDY_KEYS)) + ")"))
     design = str(st.get("design", "")).strip().lower().replace("_", "-").replace(" ", "-")
     aliases = {"oat": "one-at-a-time", "factorial": "full-factorial", "lhs":
                "latin-hypercube", "explicit": "table"}
@@ -196,9 +224,11 @@ def load_study(path: str | Path) -> Study:
     ignore = str_list(st.get("ignore"), "ignore")
     samples, seed = st.get("samples", 0), st.get("seed", 0)
     if design == "latin-hypercube":
-        if not isinstance(samples, int) or isinstance(samples, bool) or not 2 <= samples <= 100000:
+        if (not isinstance(samples, int) or isinstance(samples, bool)
+                or not 2 <= samples <= MAX_VARIANTS):
             problems.append(f"{at('study', 0, 'samples')}: a latin-hypercube study needs"
-                            f" 'samples' = a whole number from 2 to 100000, found {samples!r}")
+                            f" 'samples' = a whole number from 2 to {MAX_VARIANTS:,}, found"
+                            f" {samples!r}")
         if not isinstance(seed, int) or isinstance(seed, bool):
             problems.append(f"{at('study', 0, 'seed')}: 'seed' must be a whole number")
     params: list[Parameter] = []
@@ -218,6 +248,7 @@ def load_study(path: str | Path) -> Study:
         names.add(prm.name.lower())
         params.append(prm)
     table: list[tuple[str, dict[str, Any]]] = []
+    table_lines: list[int] = []
     if design == "table":
         raw_var = doc.get("variant", [])
         if not isinstance(raw_var, list) or not raw_var:
@@ -232,8 +263,10 @@ def load_study(path: str | Path) -> Study:
                     continue
                 q = by_name.get(k.lower())
                 if q is None:
+                    pn = [x.name for x in params]
                     problems.append(f"{at('variant', i, k)}: '{k}' is not a parameter name"
-                                    " (names: " + ", ".join(x.name for x in params) + ")")
+                                    + (did_you_mean(k, pn) or " (names: " + ", ".join(pn)
+                                       + ")"))
                     continue
                 if q.numeric and (isinstance(v, bool) or not isinstance(v, (int, float))):
                     problems.append(f"{at('variant', i, k)}: '{k}' needs a number (in"
@@ -241,6 +274,7 @@ def load_study(path: str | Path) -> Study:
                     continue
                 vals[q.name] = float(v) if q.numeric else v
             table.append((vname, vals))
+            table_lines.append(lines.get(("variant", i, ""), 0))
     elif doc.get("variant"):
         problems.append(f"{at('variant', 0)}: [[variant]] tables are only used by design"
                         " = 'table'")
@@ -249,11 +283,23 @@ def load_study(path: str | Path) -> Study:
             if q.values and q.numeric:
                 problems.append(f"line {q.line}: a latin-hypercube parameter needs a 'range'"
                                 " (values lists are for grid designs)")
+    study_lines = {k: n for (t, _, k), n in lines.items() if t == "study" and k}
+    out = Study(str(p), str(st.get("name") or p.stem), design, params, select, ignore,
+                str(st.get("fail_on", "error")), int(samples or 0), int(seed or 0), table,
+                text, study_lines, table_lines)
+    if not problems and design != "latin-hypercube":
+        from .design import count_variants
+
+        n = count_variants(out)
+        if n > MAX_VARIANTS:
+            levels = " x ".join(str(q.n_levels) for q in params)
+            how = (f" ({levels} levels)" if design == "full-factorial" else "")
+            problems.append(f"{at('study', 0, 'design')}: the {design} design has {n:,}"
+                            f" variants{how}; at most {MAX_VARIANTS:,} are accepted (fewer"
+                            " 'steps' or 'values', or a latin-hypercube design with 'samples')")
     if problems:
         raise StudyFileError(str(p), problems)
-    return Study(str(p), str(st.get("name") or p.stem), design, params, select, ignore,
-                 str(st.get("fail_on", "error")), int(samples or 0), int(seed or 0), table,
-                 text)
+    return out
 
 
 def _parameter(rp: Any, i: int, at, problems: list[str], design: str) -> Parameter | None:
@@ -266,14 +312,17 @@ def _parameter(rp: Any, i: int, at, problems: list[str], design: str) -> Paramet
     bad = False
     for k in rp:
         if k not in _PARAM_KEYS:
-            problems.append(f"{at('parameter', i, k)}: unknown key '{k}' (known: "
-                            + ", ".join(sorted(_PARAM_KEYS)) + ")")
+            problems.append(f"{at('parameter', i, k)}: unknown key '{k}'"
+                            + (did_you_mean(k, sorted(_PARAM_KEYS)) or " (known: "
+                               + ", ".join(sorted(_PARAM_KEYS)) + ")"))
             bad = True
     sheet_in = str(rp.get("sheet", ""))
     sheet = next((s for s in SHEETS if s.lower() == sheet_in.strip().lower()), None)
     if sheet is None or SHEETS[sheet].shape == "notes":
-        problems.append(f"{at('parameter', i, 'sheet')}: unknown sheet '{sheet_in}' (sheets: "
-                        + ", ".join(s for s in SHEETS if SHEETS[s].shape != "notes") + ")")
+        names = [s for s in SHEETS if SHEETS[s].shape != "notes"]
+        problems.append(f"{at('parameter', i, 'sheet')}: unknown sheet '{sheet_in}'"
+                        + (did_you_mean(sheet_in, names) or " (sheets: " + ", ".join(names)
+                           + ")"))
         return None
     spec = SHEETS[sheet]
     rows: tuple[str, ...] | None = None
@@ -281,15 +330,20 @@ def _parameter(rp: Any, i: int, at, problems: list[str], design: str) -> Paramet
     if spec.shape == "parameters":
         f = _field(sheet, rp.get("row") or rp.get("column"))
         if f is None:
+            word = rp.get("row") or rp.get("column")
             problems.append(f"{at('parameter', i, 'row')}: sheet {sheet} has no parameter"
-                            f" '{rp.get('row') or rp.get('column')}'")
+                            f" '{word}'" + did_you_mean(word or "", [x.label for x in
+                                                                      spec.fields]))
             return None
     else:
         f = _field(sheet, rp.get("column"))
         if f is None:
+            labels = [x.label for x in spec.fields]
             problems.append(f"{at('parameter', i, 'column')}: sheet {sheet} has no column"
-                            f" '{rp.get('column')}' (columns: "
-                            + ", ".join(x.label for x in spec.fields) + ")")
+                            f" '{rp.get('column')}'" + (did_you_mean(rp.get("column") or "",
+                                                                     labels)
+                                                        or " (columns: " + ", ".join(labels)
+                                                        + ")"))
             return None
         if spec.key and f.attr == spec.key:
             problems.append(f"{at('parameter', i, 'column')}: the key column '{f.label}'"
@@ -307,7 +361,8 @@ def _parameter(rp: Any, i: int, at, problems: list[str], design: str) -> Paramet
                 wf = _field(sheet, k)
                 if wf is None:
                     problems.append(f"{at('parameter', i, 'where')}: sheet {sheet} has no"
-                                    f" column '{k}'")
+                                    f" column '{k}'" + did_you_mean(k, [x.label for x in
+                                                                        spec.fields]))
                     return None
                 wl.append((wf.attr, str(v)))
             where = tuple(wl)

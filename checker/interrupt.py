@@ -1,0 +1,95 @@
+"""Interruptions (Ctrl-C, SIGTERM) as exceptions with the conventional exit codes.
+
+Python turns SIGINT into :class:`KeyboardInterrupt`; SIGTERM by default kills the process at
+once, without ``finally`` blocks, so worker processes and temporary files are left behind.
+:func:`sigterm_raises` installs a handler that raises :class:`Terminated` in the main thread
+instead, so the same clean-up path serves both. :func:`interruptible` wraps a command: on
+either exception it prints one line and exits 130 (SIGINT) or 143 (SIGTERM), the shell
+convention 128 + signal number, so CI can tell an interruption from a failed verdict (1)::
+
+    from checker.interrupt import interruptible
+
+    with interruptible(lambda: "3 variants kept; re-run to resume"):
+        long_work()
+"""
+
+from __future__ import annotations
+
+import signal
+import sys
+import threading
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+
+EXIT_SIGINT = 128 + signal.SIGINT  # 130
+EXIT_SIGTERM = 128 + signal.SIGTERM  # 143
+
+
+class Terminated(BaseException):
+    """SIGTERM arrived (raised in the main thread by :func:`sigterm_raises`'s handler).
+
+    A BaseException like KeyboardInterrupt, so ``except Exception`` does not swallow it."""
+
+    exit_code = EXIT_SIGTERM
+
+
+def exit_code(exc: BaseException) -> int | None:
+    """130 for KeyboardInterrupt, 143 for :class:`Terminated`, else None."""
+    if isinstance(exc, Terminated):
+        return EXIT_SIGTERM
+    if isinstance(exc, KeyboardInterrupt):
+        return EXIT_SIGINT
+    return None
+
+
+def _raise_terminated(signum, frame) -> None:  # noqa: ARG001 - signal handler signature
+    raise Terminated()
+
+
+@contextmanager
+def sigterm_raises() -> Iterator[None]:
+    """While inside, SIGTERM raises :class:`Terminated` in the main thread (the previous
+    handler is restored on exit). Outside the main thread this does nothing."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    old = signal.signal(signal.SIGTERM, _raise_terminated)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, old)
+
+
+def worker_signals() -> None:
+    """For a worker process forked from a command: ignore SIGINT (the parent decides what a
+    Ctrl-C to the process group means and ends its workers) and die on SIGTERM (the default
+    action, not the parent's inherited handler)."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
+@contextmanager
+def interruptible(message: Callable[[], str] | str | None = None,
+                  echo: Callable[[str], None] | None = None) -> Iterator[None]:
+    """Run the body with SIGTERM raising :class:`Terminated`; on KeyboardInterrupt or
+    Terminated print ``interrupted[: message]`` on stderr and exit 130 or 143.
+
+    ``message`` may be a callable, evaluated after the interruption (e.g. to count what was
+    kept). Clean-up belongs in the body's own ``finally`` blocks, which run first."""
+    try:
+        with sigterm_raises():
+            yield
+    except (KeyboardInterrupt, Terminated) as exc:
+        code = exit_code(exc)
+        # a second signal while reporting must not turn into a traceback
+        main = threading.current_thread() is threading.main_thread()
+        old = [(s, signal.signal(s, signal.SIG_IGN)) for s in (signal.SIGINT,
+                                                             signal.SIGTERM)] if main else []
+        try:
+            text = message() if callable(message) else message
+            line = "interrupted" + (f": {text}" if text else "")
+            (echo or (lambda s: print(s, file=sys.stderr, flush=True)))(line)
+        finally:
+            for s, h in old:
+                signal.signal(s, h)
+        raise SystemExit(code) from None
