@@ -145,10 +145,7 @@ def context(run: StudyRun, df) -> dict[str, Any]:
                 f"{e['measure']:+.3f}" if s["r2"] is not None else f"{e['measure'] * 100:.1f} %")
     params = [{"name": q.name, "cells": ", ".join(t.labels[:6]) + (
         f" (+{len(t.labels) - 6} more)" if len(t.labels) > 6 else ""),
-        "unit": q.unit or "-", "levels": (", ".join(_fmt(v) for v in q.values) if q.values
-                                          else f"{q.low:g}..{q.high:g}"
-                                          + ("" if run.study.design == "latin-hypercube"
-                                             else f" in {q.steps} steps"))}
+        "unit": q.unit or "-", "levels": _levels(q, run)}
         for q, t in zip(run.study.parameters, run.targets)]
     return {
         "title": f"Parametric study: {run.study.name}",
@@ -162,6 +159,21 @@ def context(run: StudyRun, df) -> dict[str, Any]:
         "select": ", ".join(run.study.select or ["all rules"]),
         "css": (templates_dir() / "report.css").read_text(encoding="utf-8"),
     }
+
+
+def _levels(q, run: StudyRun) -> str:
+    """The levels of a parameter as the design gives them (a table design: the values its
+    variants name, "workbook" where a variant keeps the workbook's value)."""
+    if run.study.design == "table":
+        given = [dict(vals).get(q.name) for _, vals in run.study.table]
+        seen = list(dict.fromkeys("workbook" if v is None else _fmt(v) for v in given))
+        return ", ".join(seen) or "workbook"
+    if q.values:
+        return ", ".join(_fmt(v) for v in q.values)
+    if q.low is None or q.high is None:
+        return "-"
+    return f"{q.low:g}..{q.high:g}" + ("" if run.study.design == "latin-hypercube"
+                                        else f" in {q.steps} steps")
 
 
 def _fmt(v: Any) -> str:

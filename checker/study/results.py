@@ -243,7 +243,10 @@ def _tmp(out, name: str) -> str:
     import os
     import tempfile
 
+    from .run import file_mode
+
     fd, tmp = tempfile.mkstemp(prefix=f".{name}.", suffix=".tmp", dir=out)
+    os.fchmod(fd, file_mode())
     os.close(fd)
     return tmp
 

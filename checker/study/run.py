@@ -296,11 +296,19 @@ def output_lock(out_dir: str | Path) -> Iterator[Path]:
         os.close(fd)  # releases the lock
 
 
+def file_mode() -> int:
+    """The mode a new file gets under the current umask (mkstemp makes 0600 files)."""
+    umask = os.umask(0)
+    os.umask(umask)
+    return 0o666 & ~umask
+
+
 def _write_record(folder: Path, rec: dict) -> None:
     folder.mkdir(parents=True, exist_ok=True)
     data = json.dumps(rec, sort_keys=True, indent=1, default=str).encode("utf-8")
     fd, tmp = tempfile.mkstemp(prefix=f".{rec['id']}.", suffix=".tmp", dir=folder)
     try:
+        os.fchmod(fd, file_mode())
         with os.fdopen(fd, "wb") as f:
             f.write(data)
         os.replace(tmp, folder / f"{rec['id']}.json")
@@ -557,6 +565,24 @@ class DaskEngine:
                 pass
 
 
+@contextmanager
+def _sigint_ignored() -> Iterator[None]:
+    """Ignore SIGINT while inside: processes started meanwhile inherit "ignored" (it survives
+    exec), so a LocalCluster's workers leave a Ctrl-C to the process group to this process,
+    which ends them. A Ctrl-C during these few seconds of start-up is lost."""
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    old = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, old)
+
+
 def connect_dask(address: str, workers: int | None = None) -> DaskEngine:
     """Start a LocalCluster (``"local"``) or connect to the scheduler at ``address`` within
     :data:`DASK_CONNECT_TIMEOUT` s; :class:`DaskUnreachable` (one sentence) otherwise."""
@@ -566,9 +592,12 @@ def connect_dask(address: str, workers: int | None = None) -> DaskEngine:
         raise DaskUnreachable("--dask needs the Dask distributed package (pip install"
                               " 'dask[distributed]')") from None
     if address == "local":
-        cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
-                               processes=True, dashboard_address=None)
-        return DaskEngine(Client(cluster), cluster, address)
+        with _sigint_ignored():  # the workers inherit it: a Ctrl-C is for this process only
+            cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1,
+                                   threads_per_worker=1, processes=True,
+                                   dashboard_address=None)
+            client = Client(cluster)
+        return DaskEngine(client, cluster, address)
     try:
         client = Client(address, timeout=DASK_CONNECT_TIMEOUT)
     except Exception as exc:  # noqa: BLE001 - any failure to connect is the address's
@@ -606,8 +635,13 @@ def _run_dask(eng: DaskEngine, setup_args, chunks: list[list], sink) -> None:
     except BaseException:
         _drain(list(live), sink, lambda f: f.result(timeout=1) if f.status == "finished"
                else [])
-        try:
-            client.cancel(list(live))
-        except Exception:  # noqa: BLE001
-            pass
+        import logging
+
+        # closing a LocalCluster with busy workers is noisy ("still alive, killing")
+        logging.getLogger("distributed").setLevel(logging.ERROR)
+        if eng.cluster is None:  # a shared scheduler: release the pending variants now
+            try:
+                client.cancel(list(live))
+            except Exception:  # noqa: BLE001
+                pass
         raise
