@@ -333,6 +333,16 @@ class StudyPlan:
     variants: list[Variant]
     keys: list[str]
 
+    def base_cells(self) -> dict[tuple[str, int, int], Any]:
+        """The base workbook's value of every targeted cell: (sheet, row, column) -> value
+        (the baseline of a parameter a variant leaves unchanged)."""
+        out = {}
+        for t in self.targets:
+            rows = self.base.sheets[t.param.sheet].rows
+            for r, c, _ in t.cells:
+                out[(t.param.sheet, r, c)] = rows.get(r, {}).get(c, (None, None))[0]
+        return out
+
     @property
     def setup_args(self) -> tuple:
         return (self.base, self.targets, self.study.select, self.study.ignore,
@@ -447,7 +457,8 @@ def run_plan(plan: StudyPlan, out_dir: str | Path, workers: int | None = None,
         sink.close()
     return StudyRun(st, plan.base_path, plan.base.sha256, plan.variants, plan.targets,
                     RecordStore(folder, plan.keys), out, computed=sink.count,
-                    seconds=time.perf_counter() - t0, engine=engine_name)
+                    seconds=time.perf_counter() - t0, engine=engine_name,
+                    extra={"base_cells": plan.base_cells()})
 
 
 def run_study(study: Study, workbook: str | Path, out_dir: str | Path,
