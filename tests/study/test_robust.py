@@ -243,6 +243,34 @@ def test_read_only_output_folder_is_exit_2_before_work(wb, tmp_path):
 # --- item 6: resource bombs ------------------------------------------------------------------
 
 
+def _unwritable_for_root() -> Path | None:
+    """A folder even root cannot write into (sysfs refuses new files), if there is one."""
+    import tempfile
+
+    p = Path("/sys/fs")
+    if not p.is_dir():
+        return None
+    try:
+        fd, tmp = tempfile.mkstemp(dir=p)
+    except OSError:
+        return p
+    os.close(fd)  # pragma: no cover - a writable /sys/fs
+    os.unlink(tmp)
+    return None
+
+
+def test_unwritable_output_folder_is_exit_2_before_work_even_for_root(wb, tmp_path):
+    ro = _unwritable_for_root()
+    if ro is None:
+        pytest.skip("no folder here that refuses root")
+    st = _write(tmp_path, SMALL)
+    for out in (ro, ro / "checker-study-out"):
+        r = CliRunner().invoke(main, ["study", str(wb), str(st), "-o", str(out)])
+        assert r.exit_code == 2, r.output
+        assert f"cannot write to the output folder {out}" in r.output
+        assert "variants" not in r.output and "internal error" not in r.output
+
+
 def test_huge_factorial_is_refused_with_its_size_without_building_it(wb, tmp_path):
     params = "".join(f'\n[[parameter]]\nsheet = "Engine"\nrow = "{r}"\nunit = "mm"\n'
                      f"range = [{lo}, {lo + 5}]\nsteps = 1000\n"
