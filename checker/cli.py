@@ -333,7 +333,8 @@ def study(workbook, study_file, out_dir, workers, dask_address, no_pdf, progress
             if engine is not None:
                 engine.close()
     bad = run.input_errors()
-    say(f"{len(run.records)} variants ({run.computed} computed,"
+    n = len(run.records)
+    say(f"{n} variant{'s' if n != 1 else ''} ({run.computed} computed,"
         f" {len(run.records) - run.computed} resumed"
         f"{f', {len(bad)} with input errors' if bad else ''}) in {run.seconds:.1f} s;"
         f" wrote {', '.join(written)}")

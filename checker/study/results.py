@@ -72,6 +72,9 @@ def _frame(rows: list[dict], run: StudyRun):
             df[q.name] = df[q.name].astype(float)
     for c in _FLOAT:
         df[c] = df[c].astype(float)
+    for c in _TAIL:  # text columns hold text (or None): one type for every parquet piece
+        if c not in _FLOAT:
+            df[c] = df[c].map(lambda x: x if x is None or isinstance(x, str) else str(x))
     df["variant"] = df["variant"].astype("int64")
     return df
 

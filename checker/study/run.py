@@ -126,11 +126,14 @@ def _where(variant: Variant, targets: list[Target], cell: str) -> str:
     """``study line N (parameter 'x')`` for the study entry that put a value into ``cell``."""
     if variant.line:
         return f"study line {variant.line} (variant '{variant.name}')"
-    given = {k for k, v in variant.values if v is not None}
-    for t in targets:
-        if t.param.name in given and cell in t.labels:
-            return f"study line {t.param.line} (parameter '{t.param.name}')"
-    return "the base workbook"
+    given = [t for t in targets if dict(variant.values).get(t.param.name) is not None]
+    own = [t for t in given if cell in t.labels] or given  # else: a cell the values affect
+    if not own:
+        return "the base workbook"
+    if len(own) == 1:
+        return f"study line {own[0].param.line} (parameter '{own[0].param.name}')"
+    return ("study lines " + ", ".join(str(t.param.line) for t in own) + " (parameters "
+            + ", ".join(f"'{t.param.name}'" for t in own) + ")")
 
 
 def _evaluate(variant: Variant, key: str) -> dict:
@@ -257,8 +260,10 @@ def output_lock(out_dir: str | Path) -> Iterator[Path]:
 
     A folder this call created is removed again if the body fails before writing into it
     (no empty output folders from a refused study)."""
-    import fcntl
-
+    try:
+        import fcntl
+    except ImportError:  # pragma: no cover - not POSIX: no lock
+        fcntl = None
     out = Path(out_dir)
     check_output(out)
     created = not out.exists()
@@ -270,7 +275,8 @@ def output_lock(out_dir: str | Path) -> Iterator[Path]:
                                ) from None
     try:
         try:
-            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            if fcntl is not None:
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
             raise StudyOutputError(f"another study is writing to {out}; wait for it to"
                                    " finish or choose another output folder") from None
