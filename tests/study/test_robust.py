@@ -173,7 +173,7 @@ def test_interrupted_dask_study_leaves_no_process(wb, tmp_path):
     rc, err, stop, left, kept, _ = _interrupt(wb, tmp_path, signal.SIGINT, True, "--workers",
                                               "2", "--dask", "local")
     assert rc == 130, err
-    assert stop < 10, f"took {stop:.1f} s to stop"
+    assert stop < 15, f"took {stop:.1f} s to stop"  # a busy Dask worker gets 4 s to stop
     assert left == [], f"processes left behind: {left}"
     assert kept and "Traceback" not in err
 
@@ -181,12 +181,13 @@ def test_interrupted_dask_study_leaves_no_process(wb, tmp_path):
 def test_interruptible_maps_signals_to_exit_codes():
     assert exit_code(KeyboardInterrupt()) == 130 and exit_code(Terminated()) == 143
     lines: list[str] = []
+    before = signal.getsignal(signal.SIGTERM)
     with pytest.raises(SystemExit) as e:
         with interruptible(lambda: "2 kept", echo=lines.append):
             os.kill(os.getpid(), signal.SIGTERM)
             time.sleep(5)  # the handler raises Terminated before this ends
     assert e.value.code == 143 and lines == ["interrupted: 2 kept"]
-    assert signal.getsignal(signal.SIGTERM) is signal.SIG_DFL  # restored
+    assert signal.getsignal(signal.SIGTERM) is before  # restored
     with pytest.raises(SystemExit) as e:
         with interruptible(echo=lines.append):
             raise KeyboardInterrupt
