@@ -415,3 +415,24 @@ def test_tables_are_streamed_from_the_stored_records(wb, tmp_path):
     pd.testing.assert_frame_equal(back, tidy(run))
     xl = pd.read_excel(tmp_path / "o" / "results.xlsx")
     assert len(xl) == len(back) and list(xl.columns) == list(back.columns)
+
+
+# --- examples: every example study is valid against its template workbook -------------------
+
+
+@pytest.mark.parametrize("study", sorted((ROOT / "examples").glob("*.toml")),
+                         ids=lambda p: p.name)
+def test_example_studies_are_valid_for_their_templates(study, tmp_path):
+    from checker.study.design import count_variants
+    from checker.study.run import plan_study
+    from checker.workbook.example import example_content, write_workbook
+    from checker.workbook.example_i6 import i6_content
+    from checker.workbook.example_v8 import v8_content
+
+    content = {"i4": example_content, "i6": lambda: i6_content(damper_ring=True),
+               "v8": v8_content}[study.name[:2]]()
+    wb = tmp_path / "engine.xlsx"
+    write_workbook(wb, content)
+    st = load_study(study)
+    plan = plan_study(st, wb)
+    assert len(plan.variants) == count_variants(st) >= 3
