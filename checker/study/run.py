@@ -609,11 +609,15 @@ def connect_dask(address: str, workers: int | None = None) -> DaskEngine:
         raise DaskUnreachable("--dask needs the Dask distributed package (pip install"
                               " 'dask[distributed]')") from None
     if address == "local":
-        with _sigint_ignored():  # the workers inherit it: a Ctrl-C is for this process only
-            cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1,
-                                   threads_per_worker=1, processes=True,
-                                   dashboard_address=None)
-            client = Client(cluster)
+        try:
+            with _sigint_ignored():  # the workers inherit it: a Ctrl-C is for this process
+                cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1,
+                                       threads_per_worker=1, processes=True,
+                                       dashboard_address=None)
+                client = Client(cluster)
+        except Exception as exc:  # noqa: BLE001 - e.g. no free port, no process allowed
+            raise DaskUnreachable(f"cannot start a local Dask cluster ({_short(exc)})"
+                                  ) from None
         return DaskEngine(client, cluster, address)
     try:
         client = Client(address, timeout=DASK_CONNECT_TIMEOUT)
