@@ -570,7 +570,11 @@ class DaskEngine:
         self.cluster = cluster
         self.address = address
 
+    interrupted = False
+
     def close(self) -> None:
+        if self.interrupted and self.cluster is not None:
+            self._stop_workers_now()
         try:
             self.client.close(timeout=5)
         except Exception:  # noqa: BLE001 - closing a broken connection
@@ -580,6 +584,23 @@ class DaskEngine:
                 self.cluster.close(timeout=5)
             except Exception:  # noqa: BLE001
                 pass
+
+    def _stop_workers_now(self) -> None:
+        """End the LocalCluster's worker processes at once (a busy worker otherwise gets 4 s
+        to finish its variant): each nanny closes its worker with a 1 s grace, then kills it
+        (a closing nanny does not restart it)."""
+        import asyncio
+
+        workers = list(getattr(self.cluster, "workers", {}).values())
+
+        async def stop() -> None:
+            await asyncio.gather(*(w.close(timeout=1) for w in workers if hasattr(w, "close")),
+                                 return_exceptions=True)
+
+        try:
+            self.cluster.sync(stop)
+        except Exception:  # noqa: BLE001 - the cluster's own close follows anyway
+            pass
 
 
 @contextmanager
@@ -609,11 +630,14 @@ def connect_dask(address: str, workers: int | None = None) -> DaskEngine:
         raise DaskUnreachable("--dask needs the Dask distributed package (pip install"
                               " 'dask[distributed]')") from None
     if address == "local":
+        import logging
+
         try:
             with _sigint_ignored():  # the workers inherit it: a Ctrl-C is for this process
                 cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1,
                                        threads_per_worker=1, processes=True,
-                                       dashboard_address=None)
+                                       dashboard_address=None,
+                                       silence_logs=logging.ERROR)
                 client = Client(cluster)
         except Exception as exc:  # noqa: BLE001 - e.g. no free port, no process allowed
             raise DaskUnreachable(f"cannot start a local Dask cluster ({_short(exc)})"
@@ -659,7 +683,8 @@ def _run_dask(eng: DaskEngine, setup_args, chunks: list[list], sink) -> None:
         import logging
 
         # closing a LocalCluster with busy workers is noisy ("still alive, killing")
-        logging.getLogger("distributed").setLevel(logging.ERROR)
+        logging.getLogger("distributed").setLevel(logging.CRITICAL)
+        eng.interrupted = True
         if eng.cluster is None:  # a shared scheduler: release the pending variants now
             try:
                 client.cancel(list(live))
