@@ -41,15 +41,22 @@ def display_unit(res: CheckResult, q) -> str:
     return DEFAULT_DISPLAY.get(q.spec.unit or "", q.spec.unit or "")
 
 
-def _factor(si: str, disp: str) -> float:
+def convert(values, si: str, disp: str) -> tuple[np.ndarray, str]:
+    """SI values in the display unit, through :func:`checker.units.from_si`, which converts
+    offset units affinely (K -> °C subtracts 273.15; a factor from ``from_si(1.0, ...)`` would
+    turn 403.6 K into -109,846 °C). Returns ``(values, unit)``; an exotic unit that cannot be
+    converted stays in SI."""
     from ..units import from_si
 
-    if si in ("", "-") or si == disp:
-        return 1.0
+    v = np.asarray(values, dtype=float)
+    if si in ("", "-") and disp in ("", "-"):
+        return v, disp
+    if si == disp:
+        return v, disp
     try:
-        return float(from_si(1.0, si, disp))
+        return np.asarray(from_si(v, si, disp), dtype=float), disp
     except Exception:  # noqa: BLE001 - an exotic unit: keep SI
-        return float("nan")
+        return v, si
 
 
 def _coord(dim: str, label) -> object:
@@ -74,12 +81,8 @@ def quantity_rows(res: CheckResult, q) -> tuple[list[str], list[list], str]:
     """Header, rows and display unit of one quantity: with a speed dimension (last), one row
     per combination of the other coordinates and one column per speed; otherwise one row per
     point."""
-    disp = display_unit(res, q)
-    f = _factor(q.spec.unit or "", disp)
-    if not np.isfinite(f):
-        disp, f = q.spec.unit or "", 1.0
+    vals, disp = convert(q.values, q.spec.unit or "", display_unit(res, q))
     dims = list(q.spec.dims)
-    vals = np.asarray(q.values, dtype=float) * f
     judged = None if q.applies is None else np.broadcast_to(
         np.asarray(q.applies, dtype=bool), vals.shape)
     if dims and dims[-1] == "speed":
