@@ -383,7 +383,7 @@ class RuleResult:
     def margin_text(self) -> str:
         """The distance to the limit in words ("limit exceeded by 11 %")."""
         return display.margin_words(self.check, self.value, self.limit_values, self.margin,
-                                    self.status == "pass")
+                                    self.status == "pass", self.unit)
 
     def as_dict(self) -> dict[str, Any]:
         return {
@@ -592,12 +592,9 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
         if q.applies is not None:
             app = q.applies[np.ix_(*sel_i)]
             if not app.any():
-                results.append(RuleResult(
-                    **base, item=item, status="pass", value=None, limit=lim_text,
-                    limit_values=list(lim), margin=None, case="",
-                    message=f"{rule.name}: nothing to judge ("
-                    + q.extra.get("applies_text", "no applicable point") + ")",
-                    findings=findings))
+                # nothing this rule applies to for this item (e.g. JNT-008 where no torque
+                # is given): no result, as for an item its 'where' filter excludes. Never a
+                # pass without a value.
                 continue
             m = np.where(app, m, np.inf)
         k = int(np.argmin(m))
@@ -616,8 +613,11 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
             msg += f" (worst at {', '.join(case_parts)})"
         if limit_cell:
             msg += f"; limit from {limit_cell}"
-        compare, judged_on = _compare_at(spec, others, q, tuple(
-            int(sel_i[j][worst[j]]) for j in range(len(dims))), factor)
+        at = tuple(int(sel_i[j][worst[j]]) for j in range(len(dims)))
+        # the findings of the judged point first (a note beside the value describes it)
+        here = _collect(q.findings, [np.array([x]) for x in at])
+        findings = here + [f for f in findings if f not in here]
+        compare, judged_on = _compare_at(spec, others, q, at, factor)
         if compare:
             judged_on = next((lab for lab, n in spec.compare if n == rule.quantity), "")
             parts = [f"{lab} {display.with_unit(v, rule.unit)}" for lab, v in compare.items()]

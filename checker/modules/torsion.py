@@ -52,9 +52,10 @@ undamped amplification >= 10 or a crossing between two swept speeds, where the r
 unbounded although every swept amplitude is finite
 (:func:`checker.calc.torsional.undamped_resonance_band`).
 
-Damper limits: the supplier's limits are per engine (sheet ``Damper``), so the rules compare
-*ratios* (value / supplier limit) with 1 (``damper.*_ratio``); without the limit the ratio is
-missing and the rule is ``not evaluated`` naming the Damper cell.
+Damper limits: the supplier's limits are per engine (sheet ``Damper``): the rules compare the
+shear stress [MPa] and heat per volume [W/cm^3] with the limit carried by the quantity
+(``limit_from = "workbook"``); without the limit the rule is ``not evaluated`` naming the Damper
+cell. The ratios value / limit (``damper.*_ratio``) are reported beside.
 
 Calculations: ``tv_response`` (all ``tv.*`` and ``damper.*`` quantities but the joint torques)
 and ``tv_joint_torque`` (``tv.joint_torque``, needed by the joints module when JointTorques
@@ -533,9 +534,20 @@ def _damper(engine: Engine, data: dict, model: tv.TorsionalModel, orders: np.nda
     geom = dict(base, volume=float(dmp.annulus_volume(ri, ro, ln)),
                 shear_modulus=ks / float(dmp.annulus_stiffness(1.0, ri, ro, ln)),
                 shear_orders=dmp.annulus_shear_stress(np.abs(torque), ri, ln))
-    out["damper.shear_stress"] = q(D_SHEAR, tau, extra=geom)
-    out["damper.heat_density"] = q(D_HEAT, q_mean, extra=geom)
-    out["damper.heat_density_peak"] = q(D_HEAT_PEAK, q_peak, extra=geom)
+    def limit_attrs(lim_attr: str) -> dict:
+        """The supplier's limit of the rules DMP-001..003 (SI, judged in physical units)."""
+        lim = d.get(lim_attr)
+        if lim is None:
+            return {"all": {"limit_missing": [engine.describe_missing(
+                "Damper", lim_attr, what="the damper supplier")]}}
+        return {"all": {"limit": (float(lim),), "limit_cell": engine.cell("Damper", lim_attr)}}
+
+    for name, spec, val, lim_attr in (
+            ("damper.shear_stress", D_SHEAR, tau, "shear_stress_limit"),
+            ("damper.heat_density", D_HEAT, q_mean, "heat_limit"),
+            ("damper.heat_density_peak", D_HEAT_PEAK, q_peak, "heat_limit")):
+        out[name] = q(spec, val, extra=geom)
+        out[name].item_attrs = limit_attrs(lim_attr)
     for name, spec, val, lim_attr in (
             ("damper.shear_stress_ratio", D_SHEAR_RATIO, tau, "shear_stress_limit"),
             ("damper.heat_ratio", D_HEAT_RATIO, q_mean, "heat_limit"),
