@@ -518,14 +518,28 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
             key = str(attrs.get(rule.limit_by) or "").lower()
             lim = rule.limits.get(key)
             if lim is None:
-                why = (f"no {rule.limit_by.replace('_', ' ')} given for '{item}'" if not key
-                       else f"{rule.limit_by.replace('_', ' ')} '{key}' of '{item}' has no"
-                       f" limit in rule {rule.id} (known: {', '.join(rule.limits)}); add a"
-                       " RuleOverrides row")
+                if rule.limit_by == "engine_class" and key:
+                    why = (f"a limit for a {key} engine: the published limit of {rule.id} is"
+                           f" for {' and '.join(rule.limits)} engines"
+                           f" ({_source_short(rule.source)}); enter the project's limit in"
+                           f" RuleOverrides (engine class from"
+                           f" {attrs.get('engine_class_cell') or 'sheet Engine'})")
+                else:
+                    why = (f"no {rule.limit_by.replace('_', ' ')} given for '{item}'"
+                           if not key else
+                           f"{rule.limit_by.replace('_', ' ')} '{key}' of '{item}' has no"
+                           f" limit in rule {rule.id} (known: {', '.join(rule.limits)}); add"
+                           " a RuleOverrides row")
+                # reported but not judged: the worst value in the rule's direction
+                value, where_txt = _unjudged_worst(rule, q, sel_i, dims, factor)
+                msg = "not evaluated: missing " + why
+                if value is not None:
+                    msg += (f" (computed, not judged: {display.with_unit(value, rule.unit)}"
+                            + (f" at {where_txt}" if where_txt else "") + ")")
                 results.append(RuleResult(**base, item=item, status="not_evaluated",
-                                          value=None, limit=rule.limit_text(),
-                                          limit_values=None, margin=None, case="",
-                                          message="not evaluated: " + why, missing=[why]))
+                                          value=value, limit=rule.limit_text(),
+                                          limit_values=None, margin=None, case=where_txt,
+                                          message=msg, missing=[why]))
                 continue
         if rule.limit_from == "workbook":
             # the engine's own limit, carried by the quantity (SI, converted to the rule unit)
@@ -548,6 +562,8 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
                 continue
             lim = tuple(float(factor(float(x))) for x in given)
         lim_text = rule.limit_text(lim)
+        if rule.limit_by == "engine_class":  # say which class the limit is for
+            lim_text += f" ({str(attrs.get('engine_class') or '').lower()})"
         limit_cell = attrs.get("limit_cell") if rule.limit_from == "workbook" else None
         # missing entries and findings within the selection
         missing = _collect(q.missing, sel_i)
@@ -630,6 +646,12 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
                                   case=", ".join(case_parts), message=msg, findings=findings,
                                   compare=compare, judged_on=judged_on))
     return results
+
+
+def _source_short(source: str) -> str:
+    """The first author and year of a rule's source ("Bell 2013")."""
+    m = re.match(r"\s*([A-Z][A-Za-z\-]+)[^0-9]*?(\d{4})", source)
+    return f"{m.group(1)} {m.group(2)}" if m else "its source"
 
 
 def _compare_at(spec, others, q, index: tuple[int, ...], factor

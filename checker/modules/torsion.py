@@ -109,15 +109,15 @@ NOSE_ORDER = quantity(QuantitySpec(
 NOSE_CYL = quantity(QuantitySpec(
     "tv.nose_cylinder_order_amplitude", "rad", ("case", "speed"),
     "Crank-nose TV amplitude of the order equal to the cylinder count (4th for an I4, 6th for"
-    " a V6/I6)", "deg", coords={"case": CASES}))
+    " a V6/I6)", "deg", ("engine_class",), coords={"case": CASES}))
 NOSE_HIGH = quantity(QuantitySpec(
     "tv.nose_higher_order_amplitude", "rad", ("order", "case", "speed"),
     "Crank-nose TV amplitude of each order above the cylinder count", "deg",
-    coords={"case": CASES}))
+    ("engine_class",), coords={"case": CASES}))
 NOSE_LOW = quantity(QuantitySpec(
     "tv.nose_lower_order_elastic_amplitude", "rad", ("order", "case", "speed"),
     "Elastic crank-nose TV amplitude (nose motion less the rigid-body motion) of each order"
-    " below the cylinder count, 0-to-peak", "deg", coords={"case": CASES}))
+    " below the cylinder count, 0-to-peak", "deg", ("engine_class",), coords={"case": CASES}))
 TWIST = quantity(QuantitySpec(
     "tv.crank_twist", "rad", ("case", "speed"),
     "Crankshaft twist crank nose to flywheel, all orders synthesised (half peak-to-peak)", "deg",
@@ -465,6 +465,25 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
     out["tv.nose_lower_order_elastic_amplitude"] = _lower_orders(
         model, theta, nose, orders, speeds, omega, w_flex, n_cyl, order_labels, cs_coords, find_ocs,
         env, common)
+    # engine class (Engine sheet): selects the published TV targets (rules TV-001..003)
+    cls = engine.params.get("engine_class")
+    cls_attrs = {"all": {"engine_class": cls or DEFAULT_ENGINE_CLASS,
+                         "engine_class_cell": engine.cell("Engine", "engine_class")}}
+    if not cls:
+        assumptions.append(
+            f"Engine class not given ({engine.cell('Engine', 'engine_class')}):"
+            f" {DEFAULT_ENGINE_CLASS} assumed, the class of the crank-nose TV targets of Bell"
+            " 2013 (rules TV-001..003).")
+    for n in ("tv.nose_cylinder_order_amplitude", "tv.nose_higher_order_amplitude",
+              "tv.nose_lower_order_elastic_amplitude"):
+        out[n].item_attrs = cls_attrs
+    if not cls:
+        out["tv.nose_cylinder_order_amplitude"].extra["caveats"] = [{
+            "kind": "assumption", "severity": "medium", "rules": ["TV-001", "TV-002", "TV-003"],
+            "text": f"Engine class not given ({engine.cell('Engine', 'engine_class')}): the"
+                    " crank-nose TV targets of a refined passenger-car engine with a rubber"
+                    " damper (Bell 2013) are applied; set the class, or enter the project's"
+                    " limits (RuleOverrides), for any other engine."}]
     out["tv.crank_twist"] = Quantity(TWIST, crank_twist, cs_coords, findings=find_cs,
                                      extra=dict(common, stations=(names[nose], names[rear])))
 
@@ -496,6 +515,9 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
                                  envelope=getattr(cyc, "envelope", None))}
 
 
+DEFAULT_ENGINE_CLASS = "passenger car"
+"""Engine class when the Engine sheet gives none (stated as an assumption): the class of the
+crank-nose TV targets of Bell 2013."""
 MODE_BAND = 0.2
 """Relative distance of an order's frequency from an undamped natural frequency of the model
 within which a peak of its elastic amplitude is a resonance with that mode (TV-003): the
