@@ -467,11 +467,14 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
         env, common)
     # engine class (Engine sheet): selects the published TV targets (rules TV-001..003)
     cls = engine.params.get("engine_class")
+    cls_cell = engine.cell("Engine", "engine_class")
+    if cls_cell == "Engine":  # no such row in the workbook
+        cls_cell = "sheet Engine, parameter 'Engine class'"
     cls_attrs = {"all": {"engine_class": cls or DEFAULT_ENGINE_CLASS,
-                         "engine_class_cell": engine.cell("Engine", "engine_class")}}
+                         "engine_class_cell": cls_cell}}
     if not cls:
         assumptions.append(
-            f"Engine class not given ({engine.cell('Engine', 'engine_class')}):"
+            f"Engine class not given ({cls_cell}):"
             f" {DEFAULT_ENGINE_CLASS} assumed, the class of the crank-nose TV targets of Bell"
             " 2013 (rules TV-001..003).")
     for n in ("tv.nose_cylinder_order_amplitude", "tv.nose_higher_order_amplitude",
@@ -480,7 +483,7 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
     if not cls:
         out["tv.nose_cylinder_order_amplitude"].extra["caveats"] = [{
             "kind": "assumption", "severity": "medium", "rules": ["TV-001", "TV-002", "TV-003"],
-            "text": f"Engine class not given ({engine.cell('Engine', 'engine_class')}): the"
+            "text": f"Engine class not given ({cls_cell}): the"
                     " crank-nose TV targets of a refined passenger-car engine with a rubber"
                     " damper (Bell 2013) are applied; set the class, or enter the project's"
                     " limits (RuleOverrides), for any other engine."}]
