@@ -562,8 +562,9 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
                 continue
             lim = tuple(float(factor(float(x))) for x in given)
         lim_text = rule.limit_text(lim)
-        if rule.limit_by == "engine_class":  # say which class the limit is for
-            lim_text += f" ({str(attrs.get('engine_class') or '').lower()})"
+        name = rule.name
+        if rule.limit_by == "engine_class":  # the row says which class its limit is for
+            name = f"{rule.name} ({str(attrs.get('engine_class') or '').lower()} limit)"
         limit_cell = attrs.get("limit_cell") if rule.limit_from == "workbook" else None
         # missing entries and findings within the selection
         missing = _collect(q.missing, sel_i)
@@ -623,7 +624,7 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
         status = "pass" if ok else "fail"
         verb = "meets" if ok else "violates"
         near = min(lim, key=lambda x: abs(x - value))
-        msg = (f"{rule.name}: {display.with_unit(value, rule.unit, distinct_from=near)} {verb}"
+        msg = (f"{name}: {display.with_unit(value, rule.unit, distinct_from=near)} {verb}"
                f" {lim_text}")
         if case_parts:
             msg += f" (worst at {', '.join(case_parts)})"
@@ -641,8 +642,9 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
             ratio = (f", ratio {max(vals) / min(vals):.2f}" if len(vals) == 2 and min(vals) > 0
                      else "")
             msg += f" [{'; '.join(parts)}{ratio}; judged on {judged_on or rule.quantity}]"
-        results.append(RuleResult(**base, item=item, status=status, value=value,
-                                  limit=lim_text, limit_values=list(lim), margin=margin,
+        results.append(RuleResult(**dict(base, name=name), item=item, status=status,
+                                  value=value, limit=lim_text, limit_values=list(lim),
+                                  margin=margin,
                                   case=", ".join(case_parts), message=msg, findings=findings,
                                   compare=compare, judged_on=judged_on))
     return results

@@ -25,7 +25,7 @@ def test_blank_class_is_a_passenger_car_stated_as_an_assumption(tmp_path):
     rows = _tv(res)
     assert rows["TV-001"].status == "fail" and rows["TV-002"].status == "fail"
     for r in rows.values():
-        assert r.limit.endswith("(passenger car)"), r.limit
+        assert r.name.endswith("(passenger car limit)"), r.name
     assert any("Engine class not given" in a for a in res.assumptions)
     assert any(c["kind"] == "assumption" and "TV-001" in c["rules"] for c in res.caveats)
 
