@@ -129,6 +129,8 @@ def margin_words(check: str, value: float | None, limit: list[float] | tuple | N
         return "-"
     lim = list(limit)
     u = unit_text(unit)
+    if check in ("<=", "<") and passed and lim[0] > 0 and abs(value) < ROUND_OFF:
+        return f"{with_unit(0.0, unit)} (limit {with_unit(lim[0], unit)})"
     if u == "%":
         if check in ("<=", "<"):
             d = value - lim[0]
@@ -143,8 +145,6 @@ def margin_words(check: str, value: float | None, limit: list[float] | tuple | N
                    " nearer end)"
         return (f"{_pts(lim[0] - value)} below the range" if value < lim[0]
                 else f"{_pts(value - lim[1])} above the range")
-    if check in ("<=", "<") and passed and lim[0] > 0 and abs(value) < ROUND_OFF:
-        return f"{with_unit(0.0, unit)} (limit {with_unit(lim[0], unit)})"
     if check in ("<=", "<"):
         if not passed:
             if lim[0] > 0 and value / lim[0] >= 2:

@@ -20,6 +20,7 @@ from checker import display
     # a free force of zero (an inline 4's first order) against a 500 N limit
     ("<=", 0.0, [500], 1.0, True, "N", "0 N (limit 500 N)"),
     ("<=", 1e-12, [0.5], 1.0, True, "kN", "0 kN (limit 0.5 kN)"),
+    ("<=", 0.0, [5], 1.0, True, "%", "0 % (limit 5 %)"),
     # without a percent unit: relative wording as before
     ("<=", 554.5, [500], -0.109, False, "MPa", "limit exceeded by 11 %"),
     ("<=", 0.5728, [0.5], -0.1456, False, "MPa", "limit exceeded by 15 %"),
