@@ -188,3 +188,14 @@ def test_joints_only_workbook_uses_given_torques(tmp_path):
     r6 = by[("JNT-006", "flywheel")]
     assert r6.status == "not_evaluated" and "torsional module could not run" in r6.missing[0]
     assert "Cylinders" in r6.missing[0]
+
+
+def test_findings_of_the_judged_point_come_first():
+    """A note shown beside a result describes its judged point (I6: the JNT-008 row at 'max
+    power' carried the note of 'tv peak')."""
+    rule = Rule("JNT-101", "x", "joint.cover_factor", ">=", "", "error", "s", "r", (1.8,))
+    q = _q([[1.9, 1.7, 2.5]])
+    q.findings = {(0, 0): ["at tv peak"], (0, 1): ["at max power"]}
+    [res] = evaluate_rule(rule, q, None)
+    assert res.case == "max power"
+    assert res.findings == ["at max power", "at tv peak"]
