@@ -193,6 +193,9 @@ def test_joints_only_workbook_uses_given_torques(tmp_path):
 def test_findings_of_the_judged_point_come_first():
     """A note shown beside a result describes its judged point (I6: the JNT-008 row at 'max
     power' carried the note of 'tv peak')."""
+    from checker.graph import ensure_registered
+
+    ensure_registered()
     rule = Rule("JNT-101", "x", "joint.cover_factor", ">=", "", "error", "s", "r", (1.8,))
     q = _q([[1.9, 1.7, 2.5]])
     q.findings = {(0, 0): ["at tv peak"], (0, 1): ["at max power"]}
