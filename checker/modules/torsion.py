@@ -521,6 +521,9 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
 DEFAULT_ENGINE_CLASS = "passenger car"
 """Engine class when the Engine sheet gives none (stated as an assumption): the class of the
 crank-nose TV targets of Bell 2013."""
+ROUND_OFF_FLOOR = 1e-9
+"""Amplitudes below this fraction of the largest are round-off (an order the firing order
+cancels): never a resonant peak."""
 MODE_BAND = 0.2
 """Relative distance of an order's frequency from an undamped natural frequency of the model
 within which a peak of its elastic amplitude is a resonance with that mode (TV-003): the
@@ -562,6 +565,8 @@ def _lower_orders(model: tv.TorsionalModel, theta: np.ndarray, nose: int, orders
     else:
         near = np.zeros(vals.shape, dtype=bool)
     applies = resonant_peaks(vals, axis=-1, envelope=env) & near if vals.size else near
+    if vals.size:  # orders cancelled by the layout (a V8's 6th): round-off wiggles, no peaks
+        applies &= vals > ROUND_OFF_FLOOR * vals.max()
     pos = {int(o): i for i, o in enumerate(low)}
     finds = {(pos[oi], ci, si): v for (oi, ci, si), v in find_ocs.items() if oi in pos}
     text = ("judged at the resonant peaks of each order below the cylinder count whose"
