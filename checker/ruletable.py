@@ -64,6 +64,10 @@ class Rule:
                     return "within the workbook range"
                 sym = {">=": "≥", "<=": "≤", ">": ">", "<": "<"}[self.check]
                 return f"{sym} workbook limit"
+            if self.limit_by == "engine_class":
+                return "; ".join(f"{display.limit_text(self.check, v, self.unit)} ({k})"
+                                 for k, v in self.limits.items()) + "; other classes:" \
+                    " project limit"
             return f"by {self.limit_by.replace('_', ' ')}" if self.limit_by else "-"
         return display.limit_text(self.check, lim, self.unit)
 
@@ -537,7 +541,9 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
                     msg += (f" (computed, not judged: {display.with_unit(value, rule.unit)}"
                             + (f" at {where_txt}" if where_txt else "") + ")")
                 results.append(RuleResult(**base, item=item, status="not_evaluated",
-                                          value=value, limit=rule.limit_text(),
+                                          value=value, limit=("project limit" if
+                                                              rule.limit_by == "engine_class"
+                                                              else rule.limit_text()),
                                           limit_values=None, margin=None, case=where_txt,
                                           message=msg, missing=[why]))
                 continue
