@@ -259,7 +259,7 @@ def test_low_load_calibration_lowers_the_intake_pressure():
     assert not bad.any() and not tr.motored.any()
     imep = indicated_mean_effective_pressure(tr.pressure, vol, vd)
     np.testing.assert_allclose(imep, target, rtol=0.02)  # the 2 % of the issue
-    np.testing.assert_allclose(imep, target, rtol=1e-3)  # what the bisection gives
+    np.testing.assert_allclose(imep, target, rtol=2e-3)  # the bisection (INTAKE_TOLERANCE)
     np.testing.assert_allclose(tr.peak_pressure, peaks, rtol=1e-9)
     assert np.all((tr.intake_pressure > 0.3 * BAR) & (tr.intake_pressure < 2.67 * BAR))
     again = synthesize_trace(th, peaks, intake_pressure=tr.intake_pressure,
