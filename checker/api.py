@@ -150,6 +150,14 @@ class CheckResult:
                      " (not a pass; --fail-on not-evaluated makes them fail)")
         return line
 
+    @property
+    def caveats(self) -> list[dict[str, Any]]:
+        """Model-validity flags and limits applied outside their engine class
+        (:mod:`checker.caveats`): what page 1 shows beside the verdict."""
+        from . import caveats
+
+        return caveats.collect(self.outcome)
+
     def to_frame(self):
         """The rule results as a pandas DataFrame (one row per rule and item)."""
         import pandas as pd
@@ -175,6 +183,7 @@ class CheckResult:
             "assumptions": self.assumptions,
             "input_warnings": [str(w) for w in self.engine.warnings],
             "quantities": quantity_summary(self.outcome.quantities),
+            "caveats": self.caveats,
         }
         if timings:
             d["timings"] = {m: round(t, 6) for m, t in self.outcome.timings.items()}

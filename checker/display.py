@@ -112,13 +112,39 @@ def _pct(p: float) -> str:
     return f"{p:.1f}" if p < 10 else f"{p:.0f}"
 
 
+def _pts(p: float) -> str:
+    p = abs(p)
+    return f"{number(p, 3)} point" + ("" if p == 1 else "s")
+
+
 def margin_words(check: str, value: float | None, limit: list[float] | tuple | None,
-                 margin: float | None, passed: bool) -> str:
+                 margin: float | None, passed: bool, unit: str | None = None) -> str:
     """The distance to the limit in words, e.g. "limit exceeded by 11 %", "27 % below the
-    minimum", "12.4 × the limit", "5.7 % below the limit"; ``-`` without a value."""
+    minimum", "12.4 × the limit", "5.7 % below the limit"; ``-`` without a value.
+
+    With ``unit``: a limit in percent is a distance in percentage points ("4.5 points above the
+    range", never a percentage of a percentage); a value of zero against an upper limit reads
+    "0 N (limit 500 N)" (not "100 % below the limit")."""
     if value is None or margin is None or not limit or not math.isfinite(margin):
         return "-"
     lim = list(limit)
+    u = unit_text(unit)
+    if check in ("<=", "<") and passed and lim[0] > 0 and abs(value) < ROUND_OFF:
+        return f"{with_unit(0.0, unit)} (limit {with_unit(lim[0], unit)})"
+    if u == "%":
+        if check in ("<=", "<"):
+            d = value - lim[0]
+            return (f"{_pts(d)} above the limit" if not passed
+                    else f"{_pts(d)} below the limit")
+        if check in (">=", ">"):
+            d = lim[0] - value
+            return (f"{_pts(d)} below the minimum" if not passed
+                    else f"{_pts(d)} above the minimum")
+        if passed:
+            return f"within the range ({_pts(min(value - lim[0], lim[1] - value))} from its" \
+                   " nearer end)"
+        return (f"{_pts(lim[0] - value)} below the range" if value < lim[0]
+                else f"{_pts(value - lim[1])} above the range")
     if check in ("<=", "<"):
         if not passed:
             if lim[0] > 0 and value / lim[0] >= 2:

@@ -64,6 +64,10 @@ class Rule:
                     return "within the workbook range"
                 sym = {">=": "≥", "<=": "≤", ">": ">", "<": "<"}[self.check]
                 return f"{sym} workbook limit"
+            if self.limit_by == "engine_class":
+                return "; ".join(f"{display.limit_text(self.check, v, self.unit)} ({k})"
+                                 for k, v in self.limits.items()) + "; other classes:" \
+                    " project limit"
             return f"by {self.limit_by.replace('_', ' ')}" if self.limit_by else "-"
         return display.limit_text(self.check, lim, self.unit)
 
@@ -383,7 +387,7 @@ class RuleResult:
     def margin_text(self) -> str:
         """The distance to the limit in words ("limit exceeded by 11 %")."""
         return display.margin_words(self.check, self.value, self.limit_values, self.margin,
-                                    self.status == "pass")
+                                    self.status == "pass", self.unit)
 
     def as_dict(self) -> dict[str, Any]:
         return {
@@ -518,14 +522,30 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
             key = str(attrs.get(rule.limit_by) or "").lower()
             lim = rule.limits.get(key)
             if lim is None:
-                why = (f"no {rule.limit_by.replace('_', ' ')} given for '{item}'" if not key
-                       else f"{rule.limit_by.replace('_', ' ')} '{key}' of '{item}' has no"
-                       f" limit in rule {rule.id} (known: {', '.join(rule.limits)}); add a"
-                       " RuleOverrides row")
+                if rule.limit_by == "engine_class" and key:
+                    why = (f"a limit for a {key} engine: the published limit of {rule.id} is"
+                           f" for {' and '.join(rule.limits)} engines"
+                           f" ({_source_short(rule.source)}); enter the project's limit in"
+                           f" RuleOverrides (engine class from"
+                           f" {attrs.get('engine_class_cell') or 'sheet Engine'})")
+                else:
+                    why = (f"no {rule.limit_by.replace('_', ' ')} given for '{item}'"
+                           if not key else
+                           f"{rule.limit_by.replace('_', ' ')} '{key}' of '{item}' has no"
+                           f" limit in rule {rule.id} (known: {', '.join(rule.limits)}); add"
+                           " a RuleOverrides row")
+                # reported but not judged: the worst value in the rule's direction
+                value, where_txt = _unjudged_worst(rule, q, sel_i, dims, factor)
+                msg = "not evaluated: missing " + why
+                if value is not None:
+                    msg += (f" (computed, not judged: {display.with_unit(value, rule.unit)}"
+                            + (f" at {where_txt}" if where_txt else "") + ")")
                 results.append(RuleResult(**base, item=item, status="not_evaluated",
-                                          value=None, limit=rule.limit_text(),
-                                          limit_values=None, margin=None, case="",
-                                          message="not evaluated: " + why, missing=[why]))
+                                          value=value, limit=("project limit" if
+                                                              rule.limit_by == "engine_class"
+                                                              else rule.limit_text()),
+                                          limit_values=None, margin=None, case=where_txt,
+                                          message=msg, missing=[why]))
                 continue
         if rule.limit_from == "workbook":
             # the engine's own limit, carried by the quantity (SI, converted to the rule unit)
@@ -548,6 +568,9 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
                 continue
             lim = tuple(float(factor(float(x))) for x in given)
         lim_text = rule.limit_text(lim)
+        name = rule.name
+        if rule.limit_by == "engine_class":  # the row says which class its limit is for
+            name = f"{rule.name} ({str(attrs.get('engine_class') or '').lower()} limit)"
         limit_cell = attrs.get("limit_cell") if rule.limit_from == "workbook" else None
         # missing entries and findings within the selection
         missing = _collect(q.missing, sel_i)
@@ -592,12 +615,9 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
         if q.applies is not None:
             app = q.applies[np.ix_(*sel_i)]
             if not app.any():
-                results.append(RuleResult(
-                    **base, item=item, status="pass", value=None, limit=lim_text,
-                    limit_values=list(lim), margin=None, case="",
-                    message=f"{rule.name}: nothing to judge ("
-                    + q.extra.get("applies_text", "no applicable point") + ")",
-                    findings=findings))
+                # nothing this rule applies to for this item (e.g. JNT-008 where no torque
+                # is given): no result, as for an item its 'where' filter excludes. Never a
+                # pass without a value.
                 continue
             m = np.where(app, m, np.inf)
         k = int(np.argmin(m))
@@ -610,14 +630,17 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
         status = "pass" if ok else "fail"
         verb = "meets" if ok else "violates"
         near = min(lim, key=lambda x: abs(x - value))
-        msg = (f"{rule.name}: {display.with_unit(value, rule.unit, distinct_from=near)} {verb}"
+        msg = (f"{name}: {display.with_unit(value, rule.unit, distinct_from=near)} {verb}"
                f" {lim_text}")
         if case_parts:
             msg += f" (worst at {', '.join(case_parts)})"
         if limit_cell:
             msg += f"; limit from {limit_cell}"
-        compare, judged_on = _compare_at(spec, others, q, tuple(
-            int(sel_i[j][worst[j]]) for j in range(len(dims))), factor)
+        at = tuple(int(sel_i[j][worst[j]]) for j in range(len(dims)))
+        # the findings of the judged point first (a note beside the value describes it)
+        here = _collect(q.findings, [np.array([x]) for x in at])
+        findings = here + [f for f in findings if f not in here]
+        compare, judged_on = _compare_at(spec, others, q, at, factor)
         if compare:
             judged_on = next((lab for lab, n in spec.compare if n == rule.quantity), "")
             parts = [f"{lab} {display.with_unit(v, rule.unit)}" for lab, v in compare.items()]
@@ -625,11 +648,18 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
             ratio = (f", ratio {max(vals) / min(vals):.2f}" if len(vals) == 2 and min(vals) > 0
                      else "")
             msg += f" [{'; '.join(parts)}{ratio}; judged on {judged_on or rule.quantity}]"
-        results.append(RuleResult(**base, item=item, status=status, value=value,
-                                  limit=lim_text, limit_values=list(lim), margin=margin,
+        results.append(RuleResult(**dict(base, name=name), item=item, status=status,
+                                  value=value, limit=lim_text, limit_values=list(lim),
+                                  margin=margin,
                                   case=", ".join(case_parts), message=msg, findings=findings,
                                   compare=compare, judged_on=judged_on))
     return results
+
+
+def _source_short(source: str) -> str:
+    """The first author and year of a rule's source ("Bell 2013")."""
+    m = re.match(r"\s*([A-Z][A-Za-z\-]+)[^0-9]*?(\d{4})", source)
+    return f"{m.group(1)} {m.group(2)}" if m else "its source"
 
 
 def _compare_at(spec, others, q, index: tuple[int, ...], factor

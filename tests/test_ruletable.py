@@ -169,8 +169,8 @@ def test_resonant_peak_mask_and_applies():
     [res] = evaluate_rule(rule, q, None)  # the 1.0 point is not judged
     assert res.status == "pass" and res.value == pytest.approx(2.0)
     q.applies = np.zeros((1, 3), bool)
-    [res] = evaluate_rule(rule, q, None)
-    assert res.status == "pass" and res.value is None and "nothing to judge" in res.message
+    # nothing to judge: no result (never a pass without a value)
+    assert evaluate_rule(rule, q, None) == []
 
 
 def test_joints_only_workbook_uses_given_torques(tmp_path):
@@ -188,3 +188,17 @@ def test_joints_only_workbook_uses_given_torques(tmp_path):
     r6 = by[("JNT-006", "flywheel")]
     assert r6.status == "not_evaluated" and "torsional module could not run" in r6.missing[0]
     assert "Cylinders" in r6.missing[0]
+
+
+def test_findings_of_the_judged_point_come_first():
+    """A note shown beside a result describes its judged point (I6: the JNT-008 row at 'max
+    power' carried the note of 'tv peak')."""
+    from checker.graph import ensure_registered
+
+    ensure_registered()
+    rule = Rule("JNT-101", "x", "joint.cover_factor", ">=", "", "error", "s", "r", (1.8,))
+    q = _q([[1.9, 1.7, 2.5]])
+    q.findings = {(0, 0): ["at tv peak"], (0, 1): ["at max power"]}
+    [res] = evaluate_rule(rule, q, None)
+    assert res.case == "max power"
+    assert res.findings == ["at max power", "at tv peak"]

@@ -13,11 +13,14 @@ to its cycle mean (steady state)::
 so the speed over the cycle is ``omega(theta) = sqrt(omega_min^2 + 2 (W - W_min)/J)``. The
 fluctuation energy is ``dE = W_max - W_min`` and the coefficient of cyclic irregularity
 
-    delta = (omega_max - omega_min) / omega_avg,   omega_avg = (omega_max + omega_min)/2
+    delta = (omega_max - omega_min) / w,   w = time-mean speed = 4 pi / t_cycle
 
-(the "kinematic irregularity" of the source). The classical estimate ``delta ~ dE/(J w^2)``
-(exact when ``w = omega_avg``) is returned too; here ``omega_min`` is solved so that the
-*time-mean* speed of the cycle equals the given engine speed, which is exact for the model.
+(the "kinematic irregularity" of the source, whose ``omega_avg = (omega_max + omega_min)/2``
+is the midrange approximation of the mean speed; the time-mean speed is the engine speed the
+check is run at, and the two differ by O(delta^2): for ``omega = w0 (1 + a sin theta)`` the
+time mean is ``w0 sqrt(1 - a^2)``). ``omega_min`` is solved so that the time-mean speed of the
+cycle equals the given engine speed, which is exact for the model. The classical estimate
+``delta ~ dE/(J w^2)`` is returned too.
 """
 
 from __future__ import annotations
@@ -89,7 +92,7 @@ class Irregularity(NamedTuple):
     energy : numpy.ndarray [J]
         Fluctuation energy ``dE = W_max - W_min``.
     irregularity : numpy.ndarray [-]
-        ``(omega_max - omega_min) / ((omega_max + omega_min)/2)``.
+        ``(omega_max - omega_min) / w`` with ``w`` the time-mean speed.
     irregularity_linear : numpy.ndarray [-]
         Classical estimate ``dE / (J w^2)`` with ``w`` the mean speed.
     omega_max, omega_min : numpy.ndarray [rad/s]
@@ -171,7 +174,7 @@ def cyclic_irregularity(theta: ArrayLike, torque: ArrayLike, inertia: ArrayLike,
             break
     omega = np.sqrt(s[..., None] ** 2 + q)
     o_max = np.sqrt(s * s + 2.0 * (w_max - w_min) / j)
-    delta = 2.0 * (o_max - s) / (o_max + s)
+    delta = (o_max - s) / wm  # time-mean speed (module docstring)
     energy = w_max - w_min
     return Irregularity(energy, delta, energy / (j * wm * wm), o_max, s,
                         th[np.argmax(w_cyc, axis=-1)], th[np.argmin(w_cyc, axis=-1)], omega)
@@ -181,12 +184,13 @@ def minimum_inertia(theta: ArrayLike, torque: ArrayLike, mean_speed: ArrayLike,
                     target: ArrayLike) -> np.ndarray:
     """Smallest rotating inertia that keeps the cyclic irregularity at ``target``.
 
-    Closed form of the module's model: with ``rho = (2 + delta)/(2 - delta) = omega_max /
-    omega_min`` and ``u_k = (W_k - W_min)/dE`` in ``[0, 1]``, the speed over the cycle is
-    ``omega_k = omega_min sqrt(1 + (rho^2 - 1) u_k)``; the time-mean speed condition gives
-    ``omega_min = w mean_k (1 + (rho^2 - 1) u_k)^(-1/2)`` and the energy equation
-    ``J = 2 dE / (omega_min^2 (rho^2 - 1))``. For small ``delta`` this is the classical
-    flywheel sizing ``J = dE / (delta w^2)`` (Agostini 2019, "flywheel dimensioning").
+    The module's model: with ``rho = omega_max / omega_min`` and ``u_k = (W_k - W_min)/dE`` in
+    ``[0, 1]``, the speed over the cycle is ``omega_k = omega_min sqrt(1 + (rho^2 - 1) u_k)``;
+    the time-mean speed condition gives ``omega_min = w m(rho)``, ``m(rho) = mean_k (1 +
+    (rho^2 - 1) u_k)^(-1/2)``, so ``delta = (rho - 1) m(rho)``, increasing in ``rho``, solved
+    for ``rho`` by bisection (to 1e-13 relative); the energy equation gives ``J = 2 dE /
+    (omega_min^2 (rho^2 - 1))``. For small ``delta`` this is the classical flywheel sizing
+    ``J = dE / (delta w^2)`` (Agostini 2019, "flywheel dimensioning").
 
     Parameters
     ----------
@@ -214,6 +218,27 @@ def minimum_inertia(theta: ArrayLike, torque: ArrayLike, mean_speed: ArrayLike,
     energy = w.max(axis=-1)
     flat = energy <= 1e-12 * np.abs(tq).max(axis=-1) * _grid_period(th)  # round-off level
     e_safe = np.where(flat, 1.0, energy)
-    rho2m1 = 8.0 * tgt / (2.0 - tgt) ** 2  # rho^2 - 1 without cancellation
-    s = wm * np.mean((1.0 + rho2m1[..., None] * w / e_safe[..., None]) ** -0.5, axis=-1)
+    u = w / e_safe[..., None]
+
+    def delta_of(r: np.ndarray) -> np.ndarray:  # (rho - 1) m(rho), r = rho - 1
+        r2 = r * (r + 2.0)  # rho^2 - 1 without cancellation
+        return r * np.mean((1.0 + r2[..., None] * u) ** -0.5, axis=-1)
+
+    lo = np.zeros(shape)
+    hi = np.ones(shape)
+    for _ in range(200):  # bracket: delta_of grows without bound (u = 0 at the minimum)
+        short = delta_of(hi) < tgt
+        if not short.any():
+            break
+        hi = np.where(short, 2.0 * hi, hi)
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        below = delta_of(mid) < tgt
+        lo = np.where(below, mid, lo)
+        hi = np.where(below, hi, mid)
+        if np.all(hi - lo <= 1e-13 * hi):
+            break
+    r = 0.5 * (lo + hi)
+    rho2m1 = r * (r + 2.0)
+    s = wm * np.mean((1.0 + rho2m1[..., None] * u) ** -0.5, axis=-1)
     return np.where(flat, 0.0, 2.0 * energy / (s * s * rho2m1))

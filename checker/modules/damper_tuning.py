@@ -40,7 +40,57 @@ OPT_NOSE = quantity(QuantitySpec(
     " Hartog's optimum tuning and damping (same model otherwise)", "deg",
     coords={"case": CASES}))
 
-PROVIDES = ("damper.tuning_ratio", "damper.optimum_nose_amplitude")
+
+def _item_spec(name: str, unit: str, description: str, display: str) -> QuantitySpec:
+    return quantity(QuantitySpec(name, unit, ("item",), description, display))
+
+
+# Den Hartog's optimum and the primary system, per damper ring (item): every number the
+# report's damper section prints, so that the JSON and the results workbook carry them too.
+TUNING_VALUES = (
+    _item_spec("damper.crank_mode_frequency", "Hz",
+               "First flexible mode of the crank train without the damper ring (primary"
+               " system of the absorber)", "Hz"),
+    _item_spec("damper.modal_inertia", "kg*m**2",
+               "Modal inertia of that mode at the damper hub, J_eq = sum J_i (phi_i/phi_hub)^2"
+               " (Drapal & Novotny 2017, eq. 3)", "kg*m**2"),
+    _item_spec("damper.mass_ratio", "",
+               "Inertia ratio mu = J_ring / J_eq of the damper", ""),
+    _item_spec("damper.ring_frequency", "Hz",
+               "Damper ring natural frequency sqrt(k/J_ring)", "Hz"),
+    _item_spec("damper.optimum_tuning_ratio", "",
+               "Den Hartog's optimum tuning ratio f_opt = 1/(1 + mu)", ""),
+    _item_spec("damper.optimum_ring_frequency", "Hz",
+               "Ring natural frequency at Den Hartog's optimum tuning, f_opt times the crank"
+               " mode", "Hz"),
+    _item_spec("damper.damping_ratio", "",
+               "Damper damping ratio (equivalent viscous, zeta = eta f/2 + c/(2 J_ring w_n))",
+               ""),
+    _item_spec("damper.optimum_damping_ratio", "",
+               "Den Hartog's optimum damping ratio zeta_opt = sqrt(3 mu / (8 (1 + mu)^3))", ""),
+    _item_spec("damper.optimum_loss_factor", "",
+               "Rubber loss factor at Den Hartog's optimum, eta_opt = 2 zeta_opt / f_opt", ""),
+    _item_spec("damper.optimum_stiffness", "N*m/rad",
+               "Rubber storage stiffness at Den Hartog's optimum, k_opt = J_ring (f_opt w_n)^2",
+               "N*m/rad"),
+)
+PEAK_DESIGNS = ("actual", "optimum")
+PEAK_GROUPS = ("cylinder order", "higher orders")
+PEAK_AMP = quantity(QuantitySpec(
+    "damper.peak_nose_amplitude", "rad", ("design", "orders"),
+    "Largest crank-nose order amplitude at the resonant peaks (as TV-001/TV-002 judge them)"
+    " with the actual damper and with the optimum rubber (same model)", "deg",
+    coords={"design": PEAK_DESIGNS, "orders": PEAK_GROUPS}))
+PEAK_SPEED = quantity(QuantitySpec(
+    "damper.peak_speed", "rad/s", ("design", "orders"),
+    "Engine speed of that largest peak", "rpm",
+    coords={"design": PEAK_DESIGNS, "orders": PEAK_GROUPS}))
+PEAK_ORDER = quantity(QuantitySpec(
+    "damper.peak_order", "", ("design", "orders"), "Order of that largest peak", "",
+    coords={"design": PEAK_DESIGNS, "orders": PEAK_GROUPS}))
+
+PROVIDES = ("damper.tuning_ratio", "damper.optimum_nose_amplitude",
+            *(s.name for s in TUNING_VALUES), PEAK_AMP.name, PEAK_SPEED.name, PEAK_ORDER.name)
 
 
 def peak_summary(orders: np.ndarray, theta: np.ndarray, n_cyl: int, speeds: np.ndarray,
@@ -144,7 +194,36 @@ def damper_tuning(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                                               speeds, list(nose_q.coords["case"])),
                        "optimum": peak_summary(orders, theta_nose, len(engine.cylinders),
                                                speeds, list(nose_q.coords["case"]))}}
+    two_pi = 2.0 * np.pi
+    values = {"damper.crank_mode_frequency": pm.omega / two_pi,
+              "damper.modal_inertia": pm.equivalent_inertia,
+              "damper.mass_ratio": t.mass_ratio,
+              "damper.ring_frequency": t.ring_frequency / two_pi,
+              "damper.optimum_tuning_ratio": t.tuning_optimum,
+              "damper.optimum_ring_frequency": t.tuning_optimum * pm.omega / two_pi,
+              "damper.damping_ratio": t.damping_ratio,
+              "damper.optimum_damping_ratio": t.damping_optimum,
+              "damper.optimum_loss_factor": t.loss_factor_optimum,
+              "damper.optimum_stiffness": t.stiffness_optimum}
+    out = {spec.name: Quantity(spec, np.array([values[spec.name]]), {"item": [item]},
+                               extra=extra) for spec in TUNING_VALUES}
+    peaks = extra["peaks"]
+    pk = {k: np.full((len(PEAK_DESIGNS), len(PEAK_GROUPS)), np.nan)
+          for k in ("value", "speed", "order")}
+    pk_missing: dict[tuple, list[str]] = {}
+    for a, design in enumerate(PEAK_DESIGNS):
+        for b, group in enumerate(PEAK_GROUPS):
+            p = peaks[design].get(group)
+            if p is None:
+                pk_missing[(a, b)] = [f"no resonant peak of the {group} in the speed range"]
+                continue
+            for k in pk:
+                pk[k][a, b] = p[k]
+    pc = {"design": list(PEAK_DESIGNS), "orders": list(PEAK_GROUPS)}
+    for spec, k in ((PEAK_AMP, "value"), (PEAK_SPEED, "speed"), (PEAK_ORDER, "order")):
+        out[spec.name] = Quantity(spec, pk[k], pc, missing=dict(pk_missing), extra=extra)
     return {
+        **out,
         "damper.tuning_ratio": Quantity(TUNING, np.array([t.tuning]), {"item": [item]},
                                         {item: lim}, extra=extra),
         "damper.optimum_nose_amplitude": Quantity(OPT_NOSE, amp_opt, dict(nose_q.coords),

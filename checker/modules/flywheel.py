@@ -28,7 +28,8 @@ CASES = ("full", "no")
 
 IRREG = quantity(QuantitySpec(
     "flywheel.cyclic_irregularity", "", ("case", "speed"),
-    "Coefficient of cyclic irregularity (w_max - w_min)/w_avg of the rigid engine", "%",
+    "Coefficient of cyclic irregularity (w_max - w_min)/w_mean of the rigid engine (w_mean the"
+    " time-mean speed over the cycle)", "%",
     coords={"case": CASES}))
 ENERGY = quantity(QuantitySpec(
     "flywheel.fluctuation_energy", "J", ("case", "speed"),

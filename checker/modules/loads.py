@@ -177,7 +177,18 @@ def build_cycle(engine: Engine, step: float | None = None) -> Cycle:
         if tgt is not None and np.isfinite(tgt).any():
             ok = np.isfinite(tgt)
             tr, _, not_matched = pr.calibrate_combustion_start(
-                theta, peak[ok], tgt[ok], tolerance=CALIBRATION_TOLERANCE, **kw)
+                theta, peak[ok], tgt[ok], tolerance=CALIBRATION_TOLERANCE,
+                intake_floor=pr.INTAKE_FLOOR if case == "no" else None, **kw)
+            low = ok.copy()
+            low[ok] = np.abs(tr.intake_pressure / intake - 1) > 1e-9
+            if case == "no" and low.any():
+                pin = tr.intake_pressure[low[ok]] / 1e5
+                notes.append(f"No-load target IMEP (friction) above what combustion phasing"
+                             f" reaches at the intake pressure {intake / 1e5:.3g} bar and the"
+                             f" no-load peak pressure, at {_speeds_text(speeds[low] / RPM)}:"
+                             f" intake pressure lowered to {pin.min():.3g}-{pin.max():.3g} bar"
+                             " (combustion start 15 deg before TDC) so that the trace meets"
+                             " both.")
             pressure[ci, ok] = tr.pressure
             motored[ci, ok] = tr.motored
             target[ci, ok] = tgt[ok]

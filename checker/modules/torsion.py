@@ -52,9 +52,10 @@ undamped amplification >= 10 or a crossing between two swept speeds, where the r
 unbounded although every swept amplitude is finite
 (:func:`checker.calc.torsional.undamped_resonance_band`).
 
-Damper limits: the supplier's limits are per engine (sheet ``Damper``), so the rules compare
-*ratios* (value / supplier limit) with 1 (``damper.*_ratio``); without the limit the ratio is
-missing and the rule is ``not evaluated`` naming the Damper cell.
+Damper limits: the supplier's limits are per engine (sheet ``Damper``): the rules compare the
+shear stress [MPa] and heat per volume [W/cm^3] with the limit carried by the quantity
+(``limit_from = "workbook"``); without the limit the rule is ``not evaluated`` naming the Damper
+cell. The ratios value / limit (``damper.*_ratio``) are reported beside.
 
 Calculations: ``tv_response`` (all ``tv.*`` and ``damper.*`` quantities but the joint torques)
 and ``tv_joint_torque`` (``tv.joint_torque``, needed by the joints module when JointTorques
@@ -108,11 +109,15 @@ NOSE_ORDER = quantity(QuantitySpec(
 NOSE_CYL = quantity(QuantitySpec(
     "tv.nose_cylinder_order_amplitude", "rad", ("case", "speed"),
     "Crank-nose TV amplitude of the order equal to the cylinder count (4th for an I4, 6th for"
-    " a V6/I6)", "deg", coords={"case": CASES}))
+    " a V6/I6)", "deg", ("engine_class",), coords={"case": CASES}))
 NOSE_HIGH = quantity(QuantitySpec(
     "tv.nose_higher_order_amplitude", "rad", ("order", "case", "speed"),
     "Crank-nose TV amplitude of each order above the cylinder count", "deg",
-    coords={"case": CASES}))
+    ("engine_class",), coords={"case": CASES}))
+NOSE_LOW = quantity(QuantitySpec(
+    "tv.nose_lower_order_elastic_amplitude", "rad", ("order", "case", "speed"),
+    "Elastic crank-nose TV amplitude (nose motion less the rigid-body motion) of each order"
+    " below the cylinder count, 0-to-peak", "deg", ("engine_class",), coords={"case": CASES}))
 TWIST = quantity(QuantitySpec(
     "tv.crank_twist", "rad", ("case", "speed"),
     "Crankshaft twist crank nose to flywheel, all orders synthesised (half peak-to-peak)", "deg",
@@ -163,7 +168,8 @@ _DAMPER_QUANTITIES = ("damper.relative_twist", "damper.torque", "damper.power",
                       "damper.shear_stress_ratio", "damper.heat_ratio", "damper.heat_peak_ratio")
 PROVIDES = ("tv.natural_frequency", "tv.nose_amplitude", "tv.nose_order_amplitude",
             "tv.nose_cylinder_order_amplitude", "tv.nose_higher_order_amplitude",
-            "tv.crank_twist", "tv.element_torque") + _DAMPER_QUANTITIES
+            "tv.nose_lower_order_elastic_amplitude", "tv.crank_twist",
+            "tv.element_torque") + _DAMPER_QUANTITIES
 
 
 def _rpm_text(w: float) -> str:
@@ -456,6 +462,31 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
         {"order": [order_labels[i] for i in higher], **cs_coords}, findings=hi_find,
         extra=dict(common, orders_checked=orders[higher], applies_text=peaks_text),
         applies=resonant_peaks(hi_vals, axis=-1, envelope=env))
+    out["tv.nose_lower_order_elastic_amplitude"] = _lower_orders(
+        model, theta, nose, orders, speeds, omega, w_flex, n_cyl, order_labels, cs_coords, find_ocs,
+        env, common)
+    # engine class (Engine sheet): selects the published TV targets (rules TV-001..003)
+    cls = engine.params.get("engine_class")
+    cls_cell = engine.cell("Engine", "engine_class")
+    if cls_cell == "Engine":  # no such row in the workbook
+        cls_cell = "sheet Engine, parameter 'Engine class'"
+    cls_attrs = {"all": {"engine_class": cls or DEFAULT_ENGINE_CLASS,
+                         "engine_class_cell": cls_cell}}
+    if not cls:
+        assumptions.append(
+            f"Engine class not given ({cls_cell}):"
+            f" {DEFAULT_ENGINE_CLASS} assumed, the class of the crank-nose TV targets of Bell"
+            " 2013 (rules TV-001..003).")
+    for n in ("tv.nose_cylinder_order_amplitude", "tv.nose_higher_order_amplitude",
+              "tv.nose_lower_order_elastic_amplitude"):
+        out[n].item_attrs = cls_attrs
+    if not cls:
+        out["tv.nose_cylinder_order_amplitude"].extra["caveats"] = [{
+            "kind": "assumption", "severity": "medium", "rules": ["TV-001", "TV-002", "TV-003"],
+            "text": f"Engine class not given ({cls_cell}): the"
+                    " crank-nose TV targets of a refined passenger-car engine with a rubber"
+                    " damper (Bell 2013) are applied; set the class, or enter the project's"
+                    " limits (RuleOverrides), for any other engine."}]
     out["tv.crank_twist"] = Quantity(TWIST, crank_twist, cs_coords, findings=find_cs,
                                      extra=dict(common, stations=(names[nose], names[rear])))
 
@@ -485,6 +516,72 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
                                  el_names=el_names, res_text=res_text, fead=fead or 0.0,
                                  assumptions=assumptions,
                                  envelope=getattr(cyc, "envelope", None))}
+
+
+DEFAULT_ENGINE_CLASS = "passenger car"
+"""Engine class when the Engine sheet gives none (stated as an assumption): the class of the
+crank-nose TV targets of Bell 2013."""
+ROUND_OFF_FLOOR = 1e-9
+"""Amplitudes below this fraction of the largest are round-off (an order the firing order
+cancels): never a resonant peak."""
+MODE_BAND = 0.2
+"""Relative distance of an order's frequency from an undamped natural frequency of the model
+within which a peak of its elastic amplitude is a resonance with that mode (TV-003): the
+damped peak of a rubber-damped crank lies between the two coupled modes of ring and crank,
+within about +-20 % of one of them (Den Hartog's optimum split for inertia ratios up to 0.4:
+f = 1/(1+mu) +- sqrt(mu/2), i.e. +-20 to 45 % between the fixed points; +-20 % of the nearer
+mode)."""
+
+
+def _lower_orders(model: tv.TorsionalModel, theta: np.ndarray, nose: int, orders: np.ndarray,
+                  speeds: np.ndarray, omega: np.ndarray, w_flex: np.ndarray, n_cyl: int,
+                  order_labels: list[str], cs_coords: dict, find_ocs: dict, env: np.ndarray | None,
+                  common: dict) -> Quantity:
+    """Elastic crank-nose amplitude of the orders below the cylinder count (rule TV-003).
+
+    The motion of every station splits into the rigid-body mode, the inertia-weighted mean
+    angle ``theta_rb = sum J_i theta_i / sum J_i`` (the modal coordinate of the rigid-body
+    mode, mass-orthogonal to every flexible mode), and the elastic rest. At low speed the low
+    orders move the whole engine as one body (the rolling motion of cyclic irregularity,
+    FLY-001, which Bell 2013's targets leave out); where such an order meets a crank torsional
+    mode inside the speed range the crank twists as at any other resonance. Judged: the
+    resonant peaks (:func:`checker.graph.resonant_peaks`, within each case's envelope) whose
+    order frequency lies within :data:`MODE_BAND` of an undamped natural frequency whose
+    critical speed for that order (natural frequency / order) lies inside the swept speeds.
+    """
+    low = np.nonzero(orders < n_cyl - 1e-9)[0]
+    j = np.asarray(model.inertia, dtype=float)
+    rigid = np.tensordot(theta, j, axes=([2], [0])) / j.sum()  # (C, S, O)
+    elastic = np.abs(theta[:, :, nose, :] - rigid)[:, :, low]  # (C, S, o)
+    vals = np.moveaxis(elastic, -1, 0)  # (o, C, S)
+    om = np.moveaxis(omega[:, :, low], -1, 0)  # (o, C, S) order frequency [rad/s]
+    if w_flex.size:
+        # the nearest mode, and its critical speed for the order inside the sweep
+        k = np.argmin(np.abs(om[..., None] - w_flex) / w_flex, axis=-1)
+        w_k = w_flex[k]
+        crit = w_k / orders[low][:, None, None]
+        near = ((np.abs(om - w_k) <= MODE_BAND * w_k)
+                & (crit >= speeds.min() * (1 - 1e-9)) & (crit <= speeds.max() * (1 + 1e-9)))
+    else:
+        near = np.zeros(vals.shape, dtype=bool)
+    applies = resonant_peaks(vals, axis=-1, envelope=env) & near if vals.size else near
+    if vals.size:  # orders cancelled by the layout (a V8's 6th): round-off wiggles, no peaks
+        applies &= vals > ROUND_OFF_FLOOR * vals.max()
+    pos = {int(o): i for i, o in enumerate(low)}
+    finds = {(pos[oi], ci, si): v for (oi, ci, si), v in find_ocs.items() if oi in pos}
+    text = ("judged at the resonant peaks of each order below the cylinder count whose"
+            f" frequency lies within {MODE_BAND * 100:.0f} % of a natural frequency of the"
+            " torsional model whose critical speed for the order lies inside the swept speeds"
+            " (a resonance with a crank mode), within each load case's"
+            " operating envelope; elsewhere the low orders are the rigid-body rolling motion"
+            " (cyclic irregularity), not judged")
+    return Quantity(NOSE_LOW, vals, {"order": [order_labels[i] for i in low], **cs_coords},
+                    findings=finds,
+                    extra=dict(common, orders_checked=orders[low], applies_text=text,
+                               rigid_body=np.moveaxis(np.abs(rigid[:, :, low]), -1, 0),
+                               nose_total=np.moveaxis(np.abs(theta[:, :, nose, low]), -1, 0),
+                               mode_band=MODE_BAND),
+                    applies=applies)
 
 
 def _damper(engine: Engine, data: dict, model: tv.TorsionalModel, orders: np.ndarray,
@@ -533,9 +630,20 @@ def _damper(engine: Engine, data: dict, model: tv.TorsionalModel, orders: np.nda
     geom = dict(base, volume=float(dmp.annulus_volume(ri, ro, ln)),
                 shear_modulus=ks / float(dmp.annulus_stiffness(1.0, ri, ro, ln)),
                 shear_orders=dmp.annulus_shear_stress(np.abs(torque), ri, ln))
-    out["damper.shear_stress"] = q(D_SHEAR, tau, extra=geom)
-    out["damper.heat_density"] = q(D_HEAT, q_mean, extra=geom)
-    out["damper.heat_density_peak"] = q(D_HEAT_PEAK, q_peak, extra=geom)
+    def limit_attrs(lim_attr: str) -> dict:
+        """The supplier's limit of the rules DMP-001..003 (SI, judged in physical units)."""
+        lim = d.get(lim_attr)
+        if lim is None:
+            return {"all": {"limit_missing": [engine.describe_missing(
+                "Damper", lim_attr, what="the damper supplier")]}}
+        return {"all": {"limit": (float(lim),), "limit_cell": engine.cell("Damper", lim_attr)}}
+
+    for name, spec, val, lim_attr in (
+            ("damper.shear_stress", D_SHEAR, tau, "shear_stress_limit"),
+            ("damper.heat_density", D_HEAT, q_mean, "heat_limit"),
+            ("damper.heat_density_peak", D_HEAT_PEAK, q_peak, "heat_limit")):
+        out[name] = q(spec, val, extra=geom)
+        out[name].item_attrs = limit_attrs(lim_attr)
     for name, spec, val, lim_attr in (
             ("damper.shear_stress_ratio", D_SHEAR_RATIO, tau, "shear_stress_limit"),
             ("damper.heat_ratio", D_HEAT_RATIO, q_mean, "heat_limit"),

@@ -43,13 +43,14 @@ def _series(res, qname: str, case: str, unit: str, reduce: str | None):
     ci = [str(c) for c in q.coords["case"]].index(case)
     rpm = np.array([from_si(float(s), "rad/s", "rpm") for s in q.coords["speed"]])
     vals = np.take(q.values, ci, axis=q.spec.dims.index("case"))
-    scale = from_si(1.0, q.spec.unit or "", unit) if unit else 1.0
+    if unit:  # affine where the unit is (K -> °C), never a factor
+        vals = np.asarray(from_si(np.asarray(vals, dtype=float), q.spec.unit or "", unit))
     if "item" in q.spec.dims:
         if reduce == "min":
             with np.errstate(all="ignore"):
-                return {"all": (rpm, np.nanmin(vals, axis=0) * scale)}
-        return {it: (rpm, vals[i] * scale) for i, it in enumerate(q.coords["item"])}
-    return {"": (rpm, vals * scale)}
+                return {"all": (rpm, np.nanmin(vals, axis=0))}
+        return {it: (rpm, vals[i]) for i, it in enumerate(q.coords["item"])}
+    return {"": (rpm, vals)}
 
 
 def _figures(comps: list[Comparison]) -> list[dict[str, Any]]:

@@ -25,10 +25,26 @@ DEFAULT_DISPLAY = {"Pa": "MPa", "m": "mm", "rad": "deg", "N*m": "N*m", "W/m**3":
 CASE_TEXT = {"full": "full load", "no": "no load", "part": "part load"}
 
 
+SHEET_CHARS = 31
+"""Longest sheet name Excel accepts."""
+ABBREVIATIONS = (("amplitude", "ampl"), ("lower_order", "low_order"), ("pressure", "press"),
+                 ("temperature", "temp"), ("cylinder", "cyl"), ("frequency", "freq"),
+                 ("_order", "_ord"), ("bearing.", "brg."), ("elastic", "elast"))
+"""Word abbreviations applied in turn (only as far as needed) to a quantity name longer than
+a sheet name may be: ``tv.nose_cylinder_order_amplitude`` -> ``tv.nose_cylinder_order_ampl``,
+never a name cut mid-word."""
+
+
 def sheet_name(quantity: str) -> str:
-    """The sheet of a quantity (Excel allows 31 characters, no ``[]:*?/\\``)."""
+    """The sheet of a quantity or a plot's data: the name itself when it fits (Excel allows 31
+    characters, no ``[]:*?/\\``), else shortened word by word (:data:`ABBREVIATIONS`); the
+    workbook's Index sheet maps every sheet to its quantity and description."""
     s = re.sub(r"[\[\]:*?/\\]", "_", quantity)
-    return s if len(s) <= 31 else s[:31]
+    for long, short in ABBREVIATIONS:
+        if len(s) <= SHEET_CHARS:
+            break
+        s = s.replace(long, short)
+    return s if len(s) <= SHEET_CHARS else s[:SHEET_CHARS]
 
 
 def display_unit(res: CheckResult, q) -> str:
@@ -41,15 +57,22 @@ def display_unit(res: CheckResult, q) -> str:
     return DEFAULT_DISPLAY.get(q.spec.unit or "", q.spec.unit or "")
 
 
-def _factor(si: str, disp: str) -> float:
+def convert(values, si: str, disp: str) -> tuple[np.ndarray, str]:
+    """SI values in the display unit, through :func:`checker.units.from_si`, which converts
+    offset units affinely (K -> °C subtracts 273.15; a factor from ``from_si(1.0, ...)`` would
+    turn 403.6 K into -109,846 °C). Returns ``(values, unit)``; an exotic unit that cannot be
+    converted stays in SI."""
     from ..units import from_si
 
-    if si in ("", "-") or si == disp:
-        return 1.0
+    v = np.asarray(values, dtype=float)
+    if si in ("", "-") and disp in ("", "-"):
+        return v, disp
+    if si == disp:
+        return v, disp
     try:
-        return float(from_si(1.0, si, disp))
+        return np.asarray(from_si(v, si, disp), dtype=float), disp
     except Exception:  # noqa: BLE001 - an exotic unit: keep SI
-        return float("nan")
+        return v, si
 
 
 def _coord(dim: str, label) -> object:
@@ -74,12 +97,8 @@ def quantity_rows(res: CheckResult, q) -> tuple[list[str], list[list], str]:
     """Header, rows and display unit of one quantity: with a speed dimension (last), one row
     per combination of the other coordinates and one column per speed; otherwise one row per
     point."""
-    disp = display_unit(res, q)
-    f = _factor(q.spec.unit or "", disp)
-    if not np.isfinite(f):
-        disp, f = q.spec.unit or "", 1.0
+    vals, disp = convert(q.values, q.spec.unit or "", display_unit(res, q))
     dims = list(q.spec.dims)
-    vals = np.asarray(q.values, dtype=float) * f
     judged = None if q.applies is None else np.broadcast_to(
         np.asarray(q.applies, dtype=bool), vals.shape)
     if dims and dims[-1] == "speed":
@@ -119,9 +138,54 @@ def _results_rows(res: CheckResult) -> tuple[list[str], list[list]]:
     return header, rows
 
 
+MAX_TRACE_ROWS = 720
+"""Crank-angle rows of the pressure traces in the workbook (the cycle grid, thinned to at most
+this many points: 1 deg steps or finer)."""
+
+
+def _cycle_rows(q) -> list[list]:
+    """Below the peak pressure of ``loads.cycle``: the IMEP of the trace used, the IMEP target
+    it was calibrated to (brake torque + friction), which trace was used, and the traces
+    themselves (bar over the cycle angle, one column per load case and speed)."""
+    cyc = q.extra.get("cycle")
+    if cyc is None:
+        return []
+    speeds = [_coord("speed", s) for s in cyc.speeds]
+    head = ["case", *[f"{s:g} rpm" for s in speeds]]
+    out: list[list] = []
+
+    def block(title: str, values, fmt) -> None:
+        out.extend([[], [title], head])
+        for ci, c in enumerate(cyc.cases):
+            out.append([_coord("case", c), *[fmt(v) for v in values[ci]]])
+
+    def bar(v) -> float | None:
+        return _cell(float(v) / 1e5)
+
+    block("IMEP of the trace used [bar]", cyc.imep, bar)
+    block("IMEP target (brake torque + friction) [bar]; blank: not calibrated to a target",
+          cyc.target_imep, bar)
+    with np.errstate(all="ignore"):
+        dev = (np.asarray(cyc.imep) / np.asarray(cyc.target_imep) - 1.0) * 100.0
+    block("IMEP of the trace / target - 1 [%]", dev, lambda v: _cell(float(v)))
+    block("trace used", np.where(cyc.synthesized, "synthesized", "workbook"), str)
+    n = len(cyc.theta)
+    step = max(1, -(-n // MAX_TRACE_ROWS))
+    out.extend([[], ["Cylinder pressure traces [bar] over the cycle angle from firing TDC of"
+                     " each load case and speed"],
+                ["crank angle [deg]", *[f"{_coord('case', c)}, {sp:g} rpm" for c in cyc.cases
+                                        for sp in speeds]]])
+    p = np.asarray(cyc.pressure, dtype=float) / 1e5  # (C, S, N)
+    flat = p.reshape(-1, n)
+    deg = np.degrees(np.asarray(cyc.theta, dtype=float))
+    for k in range(0, n, step):
+        out.append([round(float(deg[k]), 6), *[_cell(v) for v in flat[:, k]]])
+    return out
+
+
 def sheet_names(res: CheckResult, extra: list[dict] | None = None) -> set[str]:
     """The sheets :func:`build` writes (for the report's "Data:" notes under plots)."""
-    out = {"Contents", "Rule results"}
+    out = {"Index", "Rule results"}
     for q in res.outcome.quantities.values():
         if q.values is not None and np.size(q.values):
             out.add(sheet_name(q.name))
@@ -143,9 +207,9 @@ def build(res: CheckResult, extra: list[dict] | None = None) -> bytes:
                  " given on each sheet. Where a sheet has a 'judged' block, points marked 0"
                  " are computed but not judged by the rules (the report says why)."],
                 [],
-                ["sheet", "contents", "unit", "dimensions"]]
+                ["sheet", "quantity", "description", "unit", "dimensions"]]
     sheets: list[dict] = []
-    used: set[str] = {"Contents", "Rule results"}
+    used: set[str] = {"Index", "Rule results"}
     for q in res.outcome.quantities.values():
         if q.values is None or not np.size(q.values):
             continue
@@ -156,11 +220,15 @@ def build(res: CheckResult, extra: list[dict] | None = None) -> bytes:
             k += 1
         used.add(name)
         header, rows, disp = quantity_rows(res, q)
+        if q.name == "loads.cycle":
+            rows = rows + _cycle_rows(q)
         sheets.append({"name": name, "rows": [[q.spec.description],
                                               [f"unit: {unit_text(disp) or '-'}"], header,
                                               *rows],
                        "bold_rows": (0, 2), "widths": [18] * len(header[:1])})
-        contents.append([name, q.spec.description, unit_text(disp) or "-",
+        desc = q.spec.description + ("; below: IMEP, its target and the pressure traces"
+                                     if q.name == "loads.cycle" else "")
+        contents.append([name, q.name, desc, unit_text(disp) or "-",
                          " x ".join(q.spec.dims)])
     for e in extra or []:
         name = sheet_name(e["sheet"])
@@ -169,10 +237,11 @@ def build(res: CheckResult, extra: list[dict] | None = None) -> bytes:
         used.add(name)
         sheets.append({"name": name, "rows": [[e.get("title", name)], [], list(e["columns"]),
                                               *e["rows"]], "bold_rows": (0, 2)})
-        contents.append([name, e.get("title", name), "in the column headers", "plot data"])
+        contents.append([name, "", e.get("title", name), "in the column headers",
+                         "plot data"])
     header, rows = _results_rows(res)
-    first = [{"name": "Contents", "rows": contents, "bold_rows": (0, 4),
-              "widths": [32, 90, 10, 24]},
+    first = [{"name": "Index", "rows": contents, "bold_rows": (0, 4),
+              "widths": [32, 36, 90, 10, 24]},
              {"name": "Rule results", "rows": [header, *rows], "bold_rows": (0,),
               "widths": [9, 40, 16, 8, 8, 10, 6, 12, 10, 28, 26, 60, 40]}]
     return write(first + sheets)

@@ -13,12 +13,15 @@ DEG = 180 / np.pi
 CASE_TEXT = {"full": "full load", "no": "no load"}
 
 
-def _peak_text(p: dict | None) -> list[str]:
-    if p is None:
+def _peak_text(q: dict, design: int, group: int, case: str | None) -> list[str]:
+    """The peak of quantity ``damper.peak_nose_amplitude`` with its order and speed."""
+    v = q["damper.peak_nose_amplitude"].values[design, group]
+    if not np.isfinite(v):
         return ["-", "-"]
-    return [fmt(p["value"] * DEG, 4),
-            f"order {p['order']:g}, {CASE_TEXT.get(p['case'], p['case'])},"
-            f" {p['speed'] / RPM:.0f} rpm"]
+    order = q["damper.peak_order"].values[design, group]
+    speed = q["damper.peak_speed"].values[design, group]
+    where = f"order {order:g}, " + (f"{CASE_TEXT.get(case, case)}, " if case else "")
+    return [fmt(v * DEG, 4), f"{where}{speed / RPM:.0f} rpm"]
 
 
 @section("damper")
@@ -30,7 +33,9 @@ def damper_section(res: CheckResult) -> dict:
         why = "; ".join(res.outcome.unavailable.get("damper.tuning_ratio", ["not computed"]))
         return {"id": "damper", "title": title, "intro": f"Not computed: {why}.", "blocks": []}
     ex = tr.extra
-    t = ex["tuning"]
+
+    def v(name: str) -> float:  # a damper-tuning quantity (SI), one damper ring
+        return float(q[name].values[0])
     eng = res.engine
     lim = tr.item_attrs.get(tr.coords["item"][0], {}).get("limit")
     blocks: list[dict] = [{"type": "equations", "items": [
@@ -46,20 +51,21 @@ def damper_section(res: CheckResult) -> dict:
         ["Ring inertia J_ring (" + ex["ring"] + ")", fmt(ex["ring_inertia"] * 1e3, 5),
          "g m²", "-"],
         ["Rubber stiffness k", fmt(ex["stiffness"] / 1e3, 5), "kN m/rad",
-         fmt(t.stiffness_optimum / 1e3, 5)],
+         fmt(v("damper.optimum_stiffness") / 1e3, 5)],
         ["Rubber loss factor η", fmt(ex["loss_factor"], 4), "-",
-         fmt(t.loss_factor_optimum, 4)],
+         fmt(v("damper.optimum_loss_factor"), 4)],
         ["Rubber viscous damping c", fmt(ex["relative_damping"], 4), "N m s/rad", "0"],
-        ["Crank first mode without the ring", fmt(ex["primary_omega"] / (2 * np.pi), 5), "Hz",
+        ["Crank first mode without the ring", fmt(v("damper.crank_mode_frequency"), 5), "Hz",
          "-"],
-        ["Modal inertia at the hub (" + ex["hub"] + ")", fmt(ex["primary_inertia"] * 1e3, 5),
+        ["Modal inertia at the hub (" + ex["hub"] + ")", fmt(v("damper.modal_inertia") * 1e3, 5),
          "g m²", "-"],
-        ["Inertia ratio μ", fmt(t.mass_ratio, 4), "-", "-"],
-        ["Ring natural frequency", fmt(t.ring_frequency / (2 * np.pi), 5), "Hz",
-         fmt(t.tuning_optimum * ex["primary_omega"] / (2 * np.pi), 5)],
-        ["Tuning ratio f", fmt(t.tuning, 4), "-", fmt(t.tuning_optimum, 4)],
-        ["Damping ratio ζ (equivalent viscous)", fmt(t.damping_ratio, 4), "-",
-         fmt(t.damping_optimum, 4)],
+        ["Inertia ratio μ", fmt(v("damper.mass_ratio"), 4), "-", "-"],
+        ["Ring natural frequency", fmt(v("damper.ring_frequency"), 5), "Hz",
+         fmt(v("damper.optimum_ring_frequency"), 5)],
+        ["Tuning ratio f", fmt(v("damper.tuning_ratio"), 4), "-",
+         fmt(v("damper.optimum_tuning_ratio"), 4)],
+        ["Damping ratio ζ (equivalent viscous)", fmt(v("damper.damping_ratio"), 4), "-",
+         fmt(v("damper.optimum_damping_ratio"), 4)],
         ["Project tuning band", "-" if lim is None else f"{lim[0]:g} .. {lim[1]:g}", "-",
          eng.cell("Damper", "tuning_ratio_min")],
     ]
@@ -68,9 +74,9 @@ def damper_section(res: CheckResult) -> dict:
                    "rows": rows})
     pk = ex["peaks"]
     rows = []
-    for name in ("cylinder order", "higher orders"):
-        rows.append([name] + _peak_text(pk["actual"].get(name))
-                    + _peak_text(pk["optimum"].get(name)))
+    for g, name in enumerate(("cylinder order", "higher orders")):
+        cases = [(pk[d].get(name) or {}).get("case") for d in ("actual", "optimum")]
+        rows.append([name] + _peak_text(q, 0, g, cases[0]) + _peak_text(q, 1, g, cases[1]))
     blocks.append({"type": "table", "caption": "Crank-nose amplitude at the resonant peaks"
                    " (as rules TV-001/TV-002 judge them): actual damper and the same model with"
                    " the optimum rubber",
@@ -102,12 +108,15 @@ def damper_section(res: CheckResult) -> dict:
                                   " rubber (dashed): the cylinder-count order and all orders"
                                   " synthesised (the low-speed part is the rigid-body"
                                   " rolling motion, which the damper does not change)"})
-    dev = t.tuning_deviation * 100
+    f, f_opt = v("damper.tuning_ratio"), v("damper.optimum_tuning_ratio")
+    dev = (f / f_opt - 1.0) * 100
     return {"id": "damper", "title": title,
-            "intro": f"The damper ring is tuned to {t.tuning:.3f} of the crank's first mode;"
-                     f" Den Hartog's optimum for its inertia ratio μ = {t.mass_ratio:.3f} is"
-                     f" {t.tuning_optimum:.3f} ({dev:+.1f} % off) with a damping ratio of"
-                     f" {t.damping_optimum:.3f} (actual {t.damping_ratio:.3f}). The"
+            "intro": f"The damper ring is tuned to {f:.3f} of the crank's first mode;"
+                     f" Den Hartog's optimum for its inertia ratio μ ="
+                     f" {v('damper.mass_ratio'):.3f} is"
+                     f" {f_opt:.3f} ({dev:+.1f} % off) with a damping ratio of"
+                     f" {v('damper.optimum_damping_ratio'):.3f} (actual"
+                     f" {v('damper.damping_ratio'):.3f}). The"
                      " crank-nose amplitude with the optimum rubber comes from the same"
                      " torsional model with only the rubber changed.",
             "blocks": blocks}

@@ -20,7 +20,13 @@ def _svg(fig) -> str:
 
 
 def _limit(res: CheckResult, quantity: str, unit: str) -> float | None:
-    """Display limit of the rule (after overrides) on ``quantity`` if its unit is ``unit``."""
+    """Display limit of the rule (after overrides) on ``quantity`` if its unit is ``unit``: the
+    limit its results used (a limit by engine class), else the rule table's."""
+    rules = {r.id: r for r in res.table.rules}
+    for rr in res.results:
+        r = rules.get(rr.rule)
+        if r is not None and r.quantity == quantity and rr.limit_values and rr.unit == unit:
+            return rr.limit_values[0]
     for r in res.table.rules:
         if r.quantity == quantity and r.limit and r.unit == unit:
             return r.limit[0]
@@ -237,11 +243,17 @@ def _nose(res: CheckResult, q: dict) -> list[dict]:
     blocks: list[dict] = [{"type": "figure", "svg": _svg(fig), "caption": caption,
                            "data": [x.name for x in (tot, per, cyl, hi_q) if x is not None]}]
 
+    low_q = q.get("tv.nose_lower_order_elastic_amplitude")
+    lim_low = _limit(res, "tv.nose_lower_order_elastic_amplitude", "deg")
+
     def cells(content, qq, p):
         ci, si = p.index[-2], p.index[-1]
         if qq is hi_q:
             content = f"higher: {hi_q.coords['order'][p.index[0]]}"
-        lim = lim_cyl if qq is cyl else lim_hi if qq is hi_q else None
+        if qq is low_q:
+            content = f"lower, elastic: {low_q.coords['order'][p.index[0]]}"
+        lim = (lim_cyl if qq is cyl else lim_hi if qq is hi_q else lim_low if qq is low_q
+               else None)
         return [content, CASE_TEXT.get(cases[ci], cases[ci]), fmt(p.value * DEG),
                 f"{sp[si]:.0f}", "-" if lim is None else f"< {lim:g}"]
 
@@ -250,6 +262,9 @@ def _nose(res: CheckResult, q: dict) -> list[dict]:
         items.append((f"order {n_cyl}", cyl, [(ci,) for ci in range(len(cases))], "max"))
     if hi_q is not None and hi_q.values.size:
         items.append(("higher orders", hi_q,
+                      [(slice(None), ci) for ci in range(len(cases))], "max"))
+    if low_q is not None and low_q.values.size and jd.mask(low_q).any():
+        items.append(("lower orders, elastic part (TV-003)", low_q,
                       [(slice(None), ci) for ci in range(len(cases))], "max"))
     items.append(("total (half peak-to-peak)", tot, [(ci,) for ci in range(len(cases))],
                   "max"))
@@ -396,30 +411,36 @@ def _damper(res: CheckResult, q: dict) -> list[dict]:
                                "q peak [W/cm³]", "τ max [MPa]", "points"],
                    "rows": rows, "row_css": css, "widths": [9, 11, 9, 8, 9, 10, 10, 9, 25],
                    "detail": True, "sheet": "damper maxima"})
-    ratios = [(n, q.get(n)) for n in ("damper.shear_stress_ratio", "damper.heat_ratio",
-                                      "damper.heat_peak_ratio")]
-    items = [(qq.spec.description.split(" / ")[0], qq, [(ci,) for ci in range(len(cases))],
+    judged_q = [(n, q.get(n), u) for n, u in (("damper.shear_stress", "MPa"),
+                                              ("damper.heat_density", "W/cm³"),
+                                              ("damper.heat_density_peak", "W/cm³"))]
+    items = [(qq.spec.description, qq, [(ci,) for ci in range(len(cases))],
               jd.direction(res, n, "max"))
-             for n, qq in ratios if qq is not None and np.isfinite(qq.values).all()]
+             for n, qq, _ in judged_q if qq is not None and np.isfinite(qq.values).all()
+             and (qq.item_attrs.get("all") or {}).get("limit") is not None]
+    units = {id(qq): u for _, qq, u in judged_q}
     if items:
-        def cells(content, qq, p):
+        def cells(content, qq, p):  # MPa and W/cm³: 1e-6 of the SI values
             ci, si = p.index
-            return [content, CASE_TEXT.get(cases[ci], cases[ci]), fmt(p.value),
-                    f"{sp[si]:.0f}"]
+            lim = qq.item_attrs["all"]["limit"][0]
+            return [content, CASE_TEXT.get(cases[ci], cases[ci]),
+                    f"{fmt(p.value * 1e-6)} {units[id(qq)]}",
+                    f"{fmt(lim * 1e-6)} {units[id(qq)]}", f"{sp[si]:.0f}"]
 
         rows, css = _judged_rows(res, items, cells)
-        blocks.append({"type": "table", "caption": "Damper ratios to the supplier's limits"
+        blocks.append({"type": "table", "caption": "Damper rubber against the supplier's limits"
                        " (rules DMP-001..003): the judged worst first (the value of the rule"
-                       " result), then, marked, larger ratios at points the rules do not judge",
-                       "columns": ["ratio", "case", "value / limit", "speed [rpm]",
-                                   "judged by"], "rows": rows, "row_css": css})
+                       " result), then, marked, larger values at points the rules do not judge",
+                       "columns": ["quantity", "case", "value", "supplier limit",
+                                   "speed [rpm]", "judged by"], "rows": rows, "row_css": css})
     if geo:
         ex = heat.extra
         blocks.append({"type": "list", "items": [
             f"Rubber volume {ex['volume'] * 1e6:.4g} cm³; storage shear modulus implied by the"
             f" element stiffness and the geometry G' = {ex['shear_modulus'] / 1e6:.3g} MPa"
             f" (k' = {ex['stiffness']:.5g} N m/rad, η = {ex['loss_factor']:g}).",
-            "The supplier limits are compared as ratios (value / limit ≤ 1, rules DMP-001..003).",
+            "The rubber's shear stress and heat per volume are judged against the supplier's"
+            " limits (Damper sheet; rules DMP-001..003).",
         ]})
     return blocks
 

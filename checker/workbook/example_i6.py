@@ -137,6 +137,8 @@ _CRANK_R = 137.0 / 2
 ENGINE_ROWS: list[tuple[str, Any, str, str]] = [
     ("Engine name", "Example I6 truck diesel (MWM 6-cyl, Mendes et al. 2008)", "-", MENDES),
     ("Number of cylinders", 6, "-", MENDES),
+    ("Engine class", "commercial vehicle", "-",
+     MENDES + ": a truck diesel (the passenger-car TV targets of Bell 2013 do not apply)"),
     ("Layout", "inline", "-", MENDES),
     ("Bore", 105.0, "mm", OT + ": d_piston = 0.105 m"),
     ("Stroke", 137.0, "mm", OT + ": r = 0.137/2 m"),

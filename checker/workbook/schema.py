@@ -203,6 +203,19 @@ ENGINE = Sheet(
         F("Engine name", "name", "text"),
         F("Number of cylinders", "cylinders", "int", check=">0",
           valid=R(1, 64), usual=R(1, 24)),
+        F("Engine class", "engine_class", "choice",
+          choices=("passenger car", "commercial vehicle", "industrial", "marine"),
+          required=False,
+          note="Selects the published limits that fit the engine (the crank-nose TV targets"
+               " TV-001..003 are Bell 2013's for a refined passenger-car engine with a rubber"
+               " damper); a class without published limits leaves those rules not evaluated"
+               " until the project's limits are entered in RuleOverrides. Blank = passenger"
+               " car (stated as an assumption).",
+          aliases=(("car", "passenger car"), ("passenger", "passenger car"),
+                   ("pc", "passenger car"), ("truck", "commercial vehicle"),
+                   ("heavy duty", "commercial vehicle"), ("commercial", "commercial vehicle"),
+                   ("bus", "commercial vehicle"), ("off highway", "industrial"),
+                   ("genset", "industrial"), ("stationary", "industrial"))),
         F("Layout", "layout", "choice", choices=("inline", "v"), required=False,
           note="inline or V; a V engine gives a bank angle per cylinder in Cylinders.",
           aliases=(("straight", "inline"), ("vee", "v"),
@@ -284,7 +297,8 @@ ENGINE = Sheet(
           note="Highest acceptable counterweight balance ratio per throw (e.g. 100 %)."),
         F("Target cyclic irregularity", "target_irregularity", "ratio", check="0..1",
           required=False, valid=R(1e-6, 1), usual=R(1e-4, 0.5),
-          note="(w_max - w_min)/w_avg allowed at the lowest speed, by"
+          note="(w_max - w_min)/w_mean (w_mean the time-mean speed) allowed at the lowest"
+                               " speed, by"
                                " application (FLY-001; blank = not judged)."),
     ),
 )

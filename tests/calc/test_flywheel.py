@@ -51,8 +51,8 @@ def test_single_cylinder_against_direct_integration_of_the_equation_of_motion():
     t_cyc = sol.t_events[0][0]
     tt = np.linspace(0, t_cyc, 200_001)
     w = sol.sol(tt)[1]
-    delta_ode = (w.max() - w.min()) / ((w.max() + w.min()) / 2)
     mean_speed = FOUR_STROKE_CYCLE / t_cyc
+    delta_ode = (w.max() - w.min()) / mean_speed  # time-mean speed
 
     th = cycle_grid(np.radians(0.25))
     res = fw.cyclic_irregularity(th, _gas_torque(th), j, mean_speed)
@@ -98,3 +98,22 @@ def test_validation():
         fw.cyclic_irregularity(th[::-1], _gas_torque(th), 1.0, 100.0)
     with pytest.raises(ValueError):
         fw.minimum_inertia(th, _gas_torque(th), 100.0, 2.5)
+
+
+def test_irregularity_divides_by_the_time_mean_speed_closed_form():
+    """Closed form: the torque T - T_mean = J w0^2 a cos(theta) (1 + a sin(theta)) drives
+    omega(theta) = w0 (1 + a sin(theta)) (J/2 omega^2 = W + const). Its time-mean speed is
+    2 pi / int dtheta/omega = w0 sqrt(1 - a^2), so delta = 2 a / sqrt(1 - a^2); the midrange
+    (w_max + w_min)/2 = w0 would give 2 a (0.4 for a = 0.2, against 0.40825)."""
+    a, w0, j = 0.2, 150.0, 0.5
+    th = np.linspace(0.0, 2 * np.pi, 2048, endpoint=False)
+    t = 300.0 + j * w0 ** 2 * a * np.cos(th) * (1 + a * np.sin(th))
+    w_mean = w0 * np.sqrt(1 - a * a)
+    res = fw.cyclic_irregularity(th, t, j, w_mean)
+    assert res.omega_max == pytest.approx(w0 * (1 + a), rel=1e-6)
+    assert res.omega_min == pytest.approx(w0 * (1 - a), rel=1e-6)
+    assert res.irregularity == pytest.approx(2 * a / np.sqrt(1 - a * a), rel=1e-6)
+    assert abs(res.irregularity - 2 * a) > 5e-3  # the midrange definition fails here
+    # the minimum inertia for that irregularity is J itself (round trip, closed form)
+    assert fw.minimum_inertia(th, t, w_mean, 2 * a / np.sqrt(1 - a * a)) == pytest.approx(
+        j, rel=1e-6)

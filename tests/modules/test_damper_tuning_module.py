@@ -95,3 +95,46 @@ def test_report_section(result):
                  and b["caption"].startswith("Crank-nose amplitude"))
     assert peaks["rows"][0][1] == "0.1545" and "4300 rpm" in peaks["rows"][0][2]
     assert [b["type"] for b in sec["blocks"]].count("figure") == 1
+
+
+def test_den_hartog_optimum_is_in_the_json_and_the_results_workbook(result):
+    """Every number of the report's damper table is a quantity: in the JSON and in the results
+    workbook. Independent: Den Hartog 1956, eqs. 3.19 and 3.23, from mu; the ring frequency
+    sqrt(k/J) from the workbook's TVModel row."""
+    import io
+    import json
+
+    import openpyxl
+
+    from checker.outputs import to_json
+    from checker.report import results_book
+
+    rows = TV_MODEL[1]
+    j_ring, k_rubber = rows[0][3], rows[0][5]
+    qs = result.outcome.quantities
+    mu = float(qs["damper.mass_ratio"].values[0])
+    f_opt = 1.0 / (1.0 + mu)
+    z_opt = np.sqrt(3.0 * mu / (8.0 * (1.0 + mu) ** 3))
+    wn = 2 * np.pi * float(qs["damper.crank_mode_frequency"].values[0])
+    want = {"damper.optimum_tuning_ratio": f_opt,
+            "damper.optimum_damping_ratio": z_opt,
+            "damper.optimum_loss_factor": 2 * z_opt / f_opt,
+            "damper.optimum_stiffness": j_ring * (f_opt * wn) ** 2,
+            "damper.optimum_ring_frequency": f_opt * wn / (2 * np.pi),
+            "damper.ring_frequency": np.sqrt(k_rubber / j_ring) / (2 * np.pi),
+            "damper.modal_inertia": j_ring / mu}
+    # the issue's numbers for the I4: optimum tuning 0.7197, 348.3 Hz
+    assert want["damper.optimum_tuning_ratio"] == pytest.approx(0.7197, abs=5e-5)
+    assert want["damper.optimum_ring_frequency"] == pytest.approx(348.3, abs=0.05)
+    d = json.loads(to_json(result, timings=False))["quantities"]
+    wb = openpyxl.load_workbook(io.BytesIO(results_book.build(result)), read_only=True)
+    for name, v in want.items():
+        assert qs[name].values[0] == pytest.approx(v, rel=1e-9), name
+        assert d[name]["values"][0] == pytest.approx(v, rel=1e-5), name
+        sheet = list(wb[results_book.sheet_name(name)].iter_rows(values_only=True))
+        assert sheet[3][-1] is not None, name
+    # peaks: actual = the TV-001 value of the torsion module (deg), optimum below it
+    pk = qs["damper.peak_nose_amplitude"]
+    assert pk.values[0, 0] * 180 / np.pi == pytest.approx(0.1545, abs=5e-5)
+    assert pk.values[1, 0] < pk.values[0, 0]
+    assert d["damper.peak_speed"]["values"][0][0] == pytest.approx(450.295, rel=1e-5)  # SI

@@ -61,3 +61,52 @@ def test_pdf_carries_the_workbook_and_results_option_writes_it(example, tmp_path
     assert attached[results_book.ATTACHMENT_NAME][0] == book.read_bytes()
     wb = openpyxl.load_workbook(book, read_only=True)
     assert "joint.cover_factor" in wb.sheetnames
+
+
+def test_sheet_names_readable_unique_and_an_index():
+    """Every quantity's sheet name fits Excel's 31 characters, is unique, and is shortened
+    word by word, never cut mid-word (``tv.nose_cylinder_order_amplitud`` was)."""
+    from checker import graph
+
+    graph.ensure_registered()
+    names = {n: results_book.sheet_name(n) for n in graph.QUANTITIES}
+    assert len(set(names.values())) == len(names)
+    for q, s in names.items():
+        assert len(s) <= results_book.SHEET_CHARS and not set(s) & set("[]:*?/\\"), s
+        if len(q) <= results_book.SHEET_CHARS:
+            assert s == q
+        else:  # every word of the sheet name is a word, or an abbreviation, of the quantity's
+            short = dict(results_book.ABBREVIATIONS)
+            words = q.replace(".", "_").split("_")
+            allowed = set(words) | {short.get(w, w).strip("_.") for w in words} | {"low", "brg"}
+            assert set(s.replace(".", "_").split("_")) <= allowed, (q, s)
+    assert names["tv.nose_cylinder_order_amplitude"] == "tv.nose_cylinder_order_ampl"
+
+
+def test_index_sheet_and_cylinder_pressure_data(result):
+    """The Index lists sheet, quantity, description and unit; the cylinder-pressure sheet the
+    report points to holds the peak, the IMEP, its target and the traces."""
+    wb = openpyxl.load_workbook(io.BytesIO(results_book.build(result)), read_only=True)
+    assert wb.sheetnames[:2] == ["Index", "Rule results"]
+    idx = list(wb["Index"].iter_rows(values_only=True))
+    assert idx[4][:4] == ("sheet", "quantity", "description", "unit")
+    listed = {r[0]: r[1] for r in idx[5:] if r and r[1]}
+    for q in result.outcome.quantities.values():
+        if np.size(q.values):
+            assert listed[results_book.sheet_name(q.name)] == q.name
+    cyc = result.outcome.quantities["loads.cycle"].extra["cycle"]
+    rows = list(wb[results_book.sheet_name("loads.cycle")].iter_rows(values_only=True))
+    titles = [r[0] for r in rows if r and isinstance(r[0], str)]
+    for t in ("IMEP of the trace used [bar]", "IMEP target (brake torque + friction) [bar];"
+              " blank: not calibrated to a target", "trace used"):
+        assert t in titles
+    k = titles.index("IMEP of the trace used [bar]")
+    at = next(i for i, r in enumerate(rows) if r and r[0] == titles[k])
+    full = rows[at + 2]
+    assert full[0] == "full load"
+    np.testing.assert_allclose(np.array(full[1:1 + cyc.speeds.size], float),
+                               cyc.imep[0] / 1e5, rtol=1e-9)
+    tr = next(i for i, r in enumerate(rows) if r and r[0] == "crank angle [deg]")
+    first = rows[tr + 1]
+    np.testing.assert_allclose(np.array(first[1:1 + cyc.speeds.size], float),
+                               cyc.pressure[0, :, 0] / 1e5, rtol=1e-9)

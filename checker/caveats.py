@@ -1,0 +1,90 @@
+"""Caveats of a check: model-validity flags and limits applied outside what they were made for,
+as data for page 1 of the report and for the JSON (``caveats``).
+
+A caveat does not change a verdict; it says what a reviewer must know before trusting one:
+a synthesized pressure trace that misses its IMEP target (every no-load result rests on it), a
+rule limit applied to an engine class its source does not cover. Each caveat is a dict::
+
+    {"kind": "model validity" | "limit outside its class", "severity": "high" | "medium",
+     "text": one sentence, "rules": [rule ids it affects] (may be empty)}
+
+The calculations put caveats into their quantities' ``extra["caveats"]``; :func:`collect`
+gathers them and adds the ones derived here from the computed quantities.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+IMEP_TOLERANCE = 0.02
+"""Largest accepted relative miss of a synthesized trace's IMEP against its target (2 %);
+above it, the miss is a model-validity caveat."""
+
+CASE_TEXT = {"full": "full load", "no": "no load", "part": "part load"}
+
+
+def _rpm_ranges(rpm: np.ndarray) -> str:
+    r = [int(round(x)) for x in np.sort(rpm)]
+    if not r:
+        return ""
+    return f"{r[0]} rpm" if len(r) == 1 else f"{r[0]}-{r[-1]} rpm"
+
+
+def imep_caveats(cycle: Any) -> list[dict[str, Any]]:
+    """A caveat per load case whose synthesized traces miss the IMEP target by more than
+    :data:`IMEP_TOLERANCE` at speeds the rules judge (the operating envelope)."""
+    out: list[dict[str, Any]] = []
+    imep = np.asarray(cycle.imep, dtype=float)
+    target = np.asarray(cycle.target_imep, dtype=float)
+    env = (np.ones(imep.shape, bool) if getattr(cycle, "envelope", None) is None
+           else np.asarray(cycle.envelope, dtype=bool))
+    synth = np.asarray(cycle.synthesized, dtype=bool)
+    rpm = np.asarray(cycle.speeds, dtype=float) * 30.0 / np.pi
+    for ci, case in enumerate(cycle.cases):
+        ok = synth[ci] & env[ci] & np.isfinite(target[ci]) & (target[ci] > 0)
+        if not ok.any():
+            continue
+        dev = np.full(imep.shape[1], np.nan)
+        dev[ok] = imep[ci, ok] / target[ci, ok] - 1.0
+        bad = ok & (np.abs(np.nan_to_num(dev)) > IMEP_TOLERANCE)
+        if not bad.any():
+            continue
+        k = int(np.nanargmax(np.where(bad, np.abs(dev), -np.inf)))
+        word = "above" if dev[k] > 0 else "below"
+        out.append({
+            "kind": "model validity", "severity": "high",
+            "text": (f"{CASE_TEXT.get(case, case).capitalize()}: the synthesized cylinder"
+                     f" pressure misses its IMEP target by up to {abs(dev[k]) * 100:.0f} %"
+                     f" ({imep[ci, k] / 1e5:.2f} bar {word} {target[ci, k] / 1e5:.2f} bar at"
+                     f" {rpm[k]:.0f} rpm; {int(bad.sum())} of {int(ok.sum())} judged speeds,"
+                     f" {_rpm_ranges(rpm[bad])}): the given peak pressure and the"
+                     " IMEP target (brake torque + friction) cannot both be met by the synthesis"
+                     " there, and every"
+                     f" {CASE_TEXT.get(case, case)} result at those speeds rests on that"
+                     " trace (give measured traces or check the peak pressure)."),
+            "rules": [], "case": case, "speeds_rpm": [float(x) for x in rpm[bad]],
+            "worst_deviation": float(dev[k])})
+    return out
+
+
+def collect(outcome: Any) -> list[dict[str, Any]]:
+    """Every caveat of a run (graph outcome): those the calculations attached to their
+    quantities (``extra["caveats"]``) and the IMEP check of the pressure traces; each once."""
+    out: list[dict[str, Any]] = []
+    seen: set[str] = set()
+
+    def add(c: dict[str, Any]) -> None:
+        if c["text"] not in seen:
+            seen.add(c["text"])
+            out.append(c)
+
+    for name in sorted(outcome.quantities):
+        for c in outcome.quantities[name].extra.get("caveats", []) or []:
+            add(c)
+    cyc_q = outcome.quantities.get("loads.cycle")
+    if cyc_q is not None and cyc_q.extra.get("cycle") is not None:
+        for c in imep_caveats(cyc_q.extra["cycle"]):
+            add(c)
+    return out

@@ -1,0 +1,77 @@
+"""Limits by engine class: the crank-nose TV targets (TV-001..003) are Bell 2013's for a
+refined passenger-car engine; another class has no published target, so those rules are not
+evaluated until the project enters its limits (RuleOverrides), and every row says which class
+its limit is for."""
+
+from __future__ import annotations
+
+import openpyxl
+import pytest
+
+from checker import api
+from checker.workbook.example import write_workbook
+from checker.workbook.example_i6 import i6_content
+from tests.helpers import edited, example_path, set_param
+
+TV = ("TV-001", "TV-002", "TV-003")
+
+
+def _tv(res):
+    return {r.rule: r for r in res.results if r.rule in TV}
+
+
+def test_blank_class_is_a_passenger_car_stated_as_an_assumption(tmp_path):
+    res = api.check(example_path(tmp_path), select=["TV"])
+    rows = _tv(res)
+    assert rows["TV-001"].status == "fail" and rows["TV-002"].status == "fail"
+    for r in rows.values():
+        assert r.name.endswith("(passenger car limit)"), r.name
+    assert any("Engine class not given" in a for a in res.assumptions)
+    assert any(c["kind"] == "assumption" and "TV-001" in c["rules"] for c in res.caveats)
+
+
+def test_a_truck_needs_project_limits(tmp_path):
+    p = tmp_path / "i6.xlsx"
+    write_workbook(p, i6_content(damper_ring=True))
+    assert openpyxl.load_workbook(p)["Engine"]["A4"].value == "Engine class"
+    res = api.check(p, select=["TV"])
+    rows = _tv(res)
+    assert set(rows) == set(TV)
+    for r in rows.values():
+        assert r.status == "not_evaluated"
+        assert "commercial vehicle" in r.message and "passenger car" in r.message
+        assert "RuleOverrides" in r.message and "Engine!B4" in r.message
+        assert r.value is not None and r.value > 0  # computed, shown, not judged
+        assert "computed, not judged" in r.message
+    assert not any(c["kind"] == "assumption" for c in res.caveats)
+
+
+def test_a_project_limit_makes_the_rule_evaluated(tmp_path):
+    def edit(wb):
+        set_param(wb, "Engine", "Engine class", "truck")  # an alias of commercial vehicle
+        ws = wb["RuleOverrides"]
+        ws.cell(3, 1).value, ws.cell(3, 2).value = "TV-001", "0.2"
+        ws.cell(3, 3).value, ws.cell(3, 4).value = "deg", "engine maker's truck target"
+
+    def add_row(wb):
+        ws = wb["Engine"]
+        ws.append(["Engine class", "passenger car", "-", "test"])
+        edit(wb)
+
+    res = api.check(edited(tmp_path, add_row), select=["TV"])
+    rows = _tv(res)
+    assert rows["TV-001"].status in ("pass", "fail")
+    assert rows["TV-001"].limit == "< 0.2°" and "overridden" in rows["TV-001"].override
+    assert rows["TV-001"].status == ("fail" if rows["TV-001"].value >= 0.2 else "pass")
+    assert rows["TV-002"].status == "not_evaluated"
+
+
+@pytest.mark.parametrize("bad", ["lorry-ish"])
+def test_unknown_class_is_an_input_error(tmp_path, bad):
+    from checker.errors import InputErrors
+
+    def add_row(wb):
+        wb["Engine"].append(["Engine class", bad, "-", "test"])
+
+    with pytest.raises(InputErrors, match="Engine class"):
+        api.check(edited(tmp_path, add_row), select=["TV"])
