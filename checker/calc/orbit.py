@@ -660,6 +660,67 @@ def _peak_pressure(zh, kh, iwb_steps, bear, n_refine: int = 8):
     return p[best, cols], cand[best, cols]
 
 
+def _quantize(a: np.ndarray, scale: np.ndarray) -> np.ndarray:
+    """Integers equal for values equal to about 6e-11 of ``scale`` (relative)."""
+    return np.rint(a / scale * 2.0**34).astype(np.int64)
+
+
+def _mantissa_key(a: np.ndarray) -> np.ndarray:
+    """Integers equal for positive numbers equal to about 1.5e-11 relative."""
+    m, e = np.frexp(np.asarray(a, dtype=float))
+    return np.rint(m * 2.0**36).astype(np.int64) + (e.astype(np.int64) << 40)
+
+
+def _shared_orbits(prob: _Problem, group: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
+    """Bearings whose periodic orbit is another bearing's orbit shifted in crank angle.
+
+    Two bearings with the same geometry, clearance, viscosity, speed and mobility data whose
+    node loads and whirl terms are the same sequence shifted by a whole number of steps
+    (e.g. the big ends of an in-line engine, or mains 1 and 5 of an I4)
+    solve the same discrete problem relabelled in crank angle; their periodic orbits are the
+    same orbit shifted by that many steps (candidates by a fingerprint of 16 nodes, then every
+    node checked to 1e-10 of the largest load). Returns ``(rep, shift)``: the index of the bearing
+    whose orbit is solved (the first of its kind) and the shift in steps,
+    ``orbit_i[k] = orbit_rep[k - shift]``. Bearings of different ``group`` are never shared.
+    """
+    fk, iwb = prob.arr["fk"], prob.arr["iwb"]
+    n2, size = fk.shape
+    cols = np.arange(size)
+    fe = fk[0::2]
+    o = 2 * np.argmax(fe.real**2 + fe.imag**2, axis=0)  # canonical start node (a step node)
+    sf = np.abs(fe[o // 2, cols])
+    sf[sf == 0.0] = 1.0
+    sw = np.abs(iwb).max(axis=0)
+    sw[sw == 0.0] = 1.0
+    # fingerprint: scalars and 16 nodes from the canonical start (then verified in full)
+    probe = (o[None, :] + np.arange(0, n2, max(1, n2 // 16))[:, None]) % n2
+    fp, wp = fk[probe, cols], iwb[probe, cols]
+    b = prob.bear
+    scal = [b["tid"].astype(np.int64), _mantissa_key(b["lod"]), _mantissa_key(b["clearance"]),
+            _mantissa_key(b["viscosity"]), _mantissa_key(b["land"]), _mantissa_key(b["speed"]),
+            _mantissa_key(sf), _mantissa_key(sw),
+            np.zeros(size, np.int64) if group is None else group.astype(np.int64)]
+    key = np.ascontiguousarray(np.concatenate(
+        [np.stack(scal), _quantize(fp.real, sf), _quantize(fp.imag, sf),
+         _quantize(wp.real, sw), _quantize(wp.imag, sw)]).T)
+    first: dict[bytes, int] = {}
+    rep = np.array([first.setdefault(row.tobytes(), i) for i, row in enumerate(key)],
+                   dtype=np.intp)
+    dup = np.flatnonzero(rep != cols)
+    if dup.size:  # verify every node: the loads and whirl are the shifted sequence
+        r = rep[dup]
+        nodes = np.arange(n2)[:, None]
+        i_d = (nodes + o[dup][None, :]) % n2
+        i_r = (nodes + o[r][None, :]) % n2
+        ok = np.ones(dup.size, dtype=bool)
+        for arr, sc in ((fk, sf), (iwb, sw)):
+            dev = np.abs(arr[i_d, dup] - arr[i_r, r]).max(axis=0)
+            ok &= dev <= 1e-10 * sc[r]
+        rep[dup[~ok]] = dup[~ok]
+    shift = ((o - o[rep]) // 2) % (n2 // 2)
+    return rep, shift
+
+
 def _prepare_eps0(eps0_x, eps0_y, prob: _Problem) -> np.ndarray:
     if eps0_x is None and eps0_y is None:
         return np.zeros(prob.size, dtype=complex)
@@ -699,6 +760,8 @@ def solve_orbit(
     collapse_h_min: float = COLLAPSE_H_MIN,
     solver_grid=None,
     solver_groove=None,
+    share_orbits: bool = True,
+    group: ArrayLike | None = None,
 ) -> OrbitResult:
     """Periodic journal orbit and minimum oil film thickness for a batch of bearings.
 
@@ -765,6 +828,14 @@ def solve_orbit(
         Cycle length, ``4 pi`` for four-stroke engines.
     collapse_h_min : float [m]
         Film-collapse flag threshold on ``h_min`` (see :data:`COLLAPSE_H_MIN`).
+    share_orbits : bool
+        Solve once the orbits that are another bearing's orbit shifted by whole steps (same
+        bearing data, loads and whirl shifted in crank angle, e.g. the big ends of an in-line
+        engine); the others are that orbit shifted. Their initial state is then the first
+        bearing's.
+    group : array_like of int, shape (...), optional
+        Orbits of different groups are never shared (e.g. the variants of a batch, so that
+        each variant's numbers are those of its own evaluation).
 
     Returns
     -------
@@ -795,8 +866,17 @@ def solve_orbit(
     prob = _Problem(load_x, load_y, omega_journal, omega_bearing, speed, diameter, length,
                     clearance, viscosity, model, full_groove, steps_per_cycle, cycle_angle,
                     solver_grid, solver_groove)
-    n, size = prob.n, prob.size
+    n, size_all = prob.n, prob.size
     z = _prepare_eps0(eps0_x, eps0_y, prob)
+    grp = None if group is None else np.broadcast_to(np.asarray(group), prob.shape).reshape(-1)
+    rep, shift = _shared_orbits(prob, grp) if share_orbits and size_all > 1 else (
+        np.arange(size_all), np.zeros(size_all, dtype=np.intp))
+    uniq = np.flatnonzero(rep == np.arange(size_all))
+    rpos = np.searchsorted(uniq, rep)  # position of each bearing's solved orbit
+    if uniq.size < size_all:
+        prob.take(uniq)
+        z = z[uniq]
+    size = prob.size
     gid = np.arange(size)
     out_zh = np.empty((n, size), dtype=complex)
     out_kh = np.empty((n, size), dtype=complex)
@@ -834,14 +914,23 @@ def solve_orbit(
             gid, z = gid[keep], z[keep]
 
     eps_max, pos, zmax = _hermite_max(out_zh, out_kh, prob.h)
-    cl = bear_all["clearance"]
-    h_min = cl * (1.0 - eps_max)
-    collapse = (eps_max >= COLLAPSE_EPS) | out["capped"] | (h_min < collapse_h_min)
     p_max = theta_p = None
     if peak_pressure:
         pm, jp = _peak_pressure(out_zh, out_kh, out_iwb, bear_all)
+    if uniq.size < size_all:  # shared orbits: the solved orbit shifted by whole steps
+        eps_max, zmax = eps_max[rpos], zmax[rpos]
+        pos = (pos[rpos] + shift) % n
+        out = {k: v[rpos] for k, v in out.items()}
+        out_zh = out_zh[(np.arange(n)[:, None] - shift[None, :]) % n, rpos[None, :]]
+        if peak_pressure:
+            pm, jp = pm[rpos], (jp[rpos] + shift) % n
+        size = size_all
+    if peak_pressure:
         p_max = pm.reshape(prob.shape)
         theta_p = (jp * prob.h).reshape(prob.shape)
+    cl = np.broadcast_to(np.asarray(clearance, dtype=float), prob.shape).reshape(-1)
+    h_min = cl * (1.0 - eps_max)
+    collapse = (eps_max >= COLLAPSE_EPS) | out["capped"] | (h_min < collapse_h_min)
     msg = np.full(size, "", dtype=object)
     for i in np.flatnonzero(collapse | ~out["conv"] | out["stiffcap"]):
         parts = []
