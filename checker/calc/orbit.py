@@ -530,6 +530,10 @@ def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: 
     capped = np.zeros(z.size, dtype=bool)
     stiff_cap = np.zeros(z.size, dtype=bool)
     za0 = np.abs(z)
+    thr = np.minimum(za0 * (1.0 - _TRAVEL_FRAC) + _TRAVEL_FRAC, EPS_CAP)
+    # steps where the closed-form stiffness estimate (s <= 2) can exceed the limit somewhere
+    stiff_possible = (np.ones(n, dtype=bool) if map_stiff or not lam.size
+                      else lam.max(axis=1) * 2.0**1.5 > stiff_limit)
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         for j in range(n):
             a, m, b = 2 * j, 2 * j + 1, (2 * j + 2) % (2 * n)
@@ -559,25 +563,45 @@ def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: 
                 k2 = rate(z + hh * k1, fk[m], uc[m], iwb[m])
                 k3 = rate(z + hh * k2, fk[m], uc[m], iwb[m])
                 k4 = rate(z + h * k3, fk[b], uc[b], iwb[b])
-                znew = z + h6 * (k1 + 2.0 * (k2 + k3) + k4)
-                # (1) closed-form stiffness estimate 2.5/pi |f|max h s^1.5, s = 1 - zeta + travel
-                s = np.minimum(1.0 - (z * uc[a]).real + h * np.abs(k1), 2.0)
-                lh = lam[j] * (s * np.sqrt(s))
-                if map_stiff:
-                    # finite length: Jacobian ~ p |f M| / s for M ~ s^p; p = 2.5 for the short
-                    # bearing, 1.5 for the (locally long) finite-length film near the wall
-                    lh = np.maximum(lh, (1.5 * h) * np.abs(k1 - iwb[a] * z) / s)
-                # (2) travel: the step closes more than _TRAVEL_FRAC of the film gap
+                k2 += k3
+                k2 *= 2.0
+                k2 += k1
+                k2 += k4
+                k2 *= h6
+                znew = k2
+                znew += z
                 za = np.abs(znew)
-                travel = (za - za0) / (_TRAVEL_FRAC * (1.0 - za0))
-                flag = (lh > stiff_limit) | (travel > 1.0)
+                # (2) travel: the step closes more than _TRAVEL_FRAC of the film gap
+                # (za - za0 > F (1 - za0); the threshold also catches |eps| > EPS_CAP)
+                flag = za > thr
+                lh = None
+                if stiff_possible[j]:
+                    # (1) closed-form stiffness estimate 2.5/pi |f|max h s^1.5,
+                    # s = 1 - zeta + travel
+                    s = np.minimum(1.0 - (z * uc[a]).real + h * np.abs(k1), 2.0)
+                    lh = lam[j] * (s * np.sqrt(s))
+                    if map_stiff:
+                        # finite length: Jacobian ~ p |f M| / s for M ~ s^p; p = 2.5 for the
+                        # short bearing, 1.5 for the (locally long) finite-length film near
+                        # the wall
+                        lh = np.maximum(lh, (1.5 * h) * np.abs(k1 - iwb[a] * z) / s)
+                    flag |= lh > stiff_limit
                 if flag.any():
                     idx = np.flatnonzero(flag)
-                    need = np.maximum(lh[idx] / stiff_limit, travel[idx])
+                    travel = (za[idx] - za0[idx]) / (_TRAVEL_FRAC * (1.0 - za0[idx]))
+                    lhi = np.zeros(idx.size) if lh is None else lh[idx]
+                    sub = (travel > 1.0) | (lhi > stiff_limit)
+                    if not sub.all():  # only beyond the eccentricity cap: clamp
+                        io = idx[~sub]
+                        capped[io] = True
+                        znew[io] *= EPS_CAP / za[io]
+                        za[io] = EPS_CAP
+                        idx, travel, lhi = idx[sub], travel[sub], lhi[sub]
+                    need = np.maximum(lhi / stiff_limit, travel)
                     # moderately stiff: RK4 sub-steps; very stiff: L-stable ROS2 sub-steps
                     rk = ~(np.nan_to_num(need, nan=np.inf) > _MAX_RK4_SUBSTEPS)
                     nsubs = _nsub_each(need, _MAX_RK4_SUBSTEPS)
-                    need_r = np.maximum(lh[idx] / _ROS2_LAMBDA_H, travel[idx])
+                    need_r = np.maximum(lhi / _ROS2_LAMBDA_H, travel)
                     stiff_cap[idx[~rk & (need_r > max_substeps)]] = True
                     nsubs_r = _nsub_each(need_r, max_substeps)
                     for ros, nsub in sorted({(False, int(v)) for v in nsubs[rk]}
@@ -590,6 +614,16 @@ def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: 
                         else:
                             znew[g] = _rk4_steps(rate, z[g], fk3, iw3, h, nsub, g)
                     za[idx] = np.abs(znew[idx])
+                    over = za[idx] > EPS_CAP
+                    if over.any():
+                        io = idx[over]
+                        capped[io] = True
+                        znew[io] *= EPS_CAP / za[io]
+                        za[io] = EPS_CAP
+                z = znew
+                za0 = za
+                thr = np.minimum(za0 * (1.0 - _TRAVEL_FRAC) + _TRAVEL_FRAC, EPS_CAP)
+                continue
             over = za > EPS_CAP
             if over.any():
                 capped |= over
