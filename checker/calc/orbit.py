@@ -211,7 +211,7 @@ class _Problem:
     def __init__(
         self, load_x, load_y, omega_journal, omega_bearing, speed, diameter, length, clearance,
         viscosity, model, full_groove, steps_per_cycle, cycle_angle, solver_grid=None,
-        solver_groove=None,
+        solver_groove=None, share: bool = False, group=None,
     ):
         if model not in _mob.MOBILITY_MODELS:
             raise ValueError(f"unknown model {model!r}; choose one of {_mob.MOBILITY_MODELS}")
@@ -260,6 +260,23 @@ class _Problem:
         self.shape = lead
         self.n = n
         self.h = cycle_angle / n
+        # orbits that are another's shifted by whole steps: solved once (_shared_rows)
+        size_all = fx.shape[0]
+        self.full_size = size_all
+        self.rep = np.arange(size_all)
+        self.shift = np.zeros(size_all, dtype=np.intp)
+        self.uniq = self.rep
+        if share and size_all > 1 and n_pts % n == 0:
+            grp = (np.zeros(size_all, np.int64) if group is None
+                   else np.broadcast_to(np.asarray(group), lead).reshape(-1))
+            self.rep, self.shift = _shared_rows(fx, fy, wj + wb, (sp, dia, ln, cl, mu),
+                                                grooved, grp, n_pts // n)
+            self.uniq = np.flatnonzero(self.rep == np.arange(size_all))
+            if self.uniq.size < size_all:
+                u = self.uniq
+                fx, fy, wj, wb = fx[u], fy[u], wj[u], wb[u]
+                sp, dia, ln, cl, mu, grooved = sp[u], dia[u], ln[u], cl[u], mu[u], grooved[u]
+        self.rpos = np.searchsorted(self.uniq, self.rep)  # each orbit's solved orbit
         self.cycle_angle = float(cycle_angle)
         self.model = model
         land = np.where(grooved, 0.5 * ln, ln)
@@ -695,7 +712,8 @@ def _peak_pressure(zh, kh, iwb_steps, bear, n_refine: int = 8):
 
 
 def _quantize(a: np.ndarray, scale: np.ndarray) -> np.ndarray:
-    """Integers equal for values equal to about 6e-11 of ``scale`` (relative)."""
+    """Integers equal for values equal to about 6e-11 of ``scale`` (relative; values that
+    round differently are only not shared)."""
     return np.rint(a / scale * 2.0**34).astype(np.int64)
 
 
@@ -705,59 +723,56 @@ def _mantissa_key(a: np.ndarray) -> np.ndarray:
     return np.rint(m * 2.0**36).astype(np.int64) + (e.astype(np.int64) << 40)
 
 
-def _shared_orbits(prob: _Problem, group: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
-    """Bearings whose periodic orbit is another bearing's orbit shifted in crank angle.
+def _shared_rows(fx, fy, w, scalars, grooved, group, p: int):
+    """Orbits that are another orbit shifted in crank angle by whole steps.
 
-    Two bearings with the same geometry, clearance, viscosity, speed and mobility data whose
-    node loads and whirl terms are the same sequence shifted by a whole number of steps
-    (e.g. the big ends of an in-line engine, or mains 1 and 5 of an I4)
-    solve the same discrete problem relabelled in crank angle; their periodic orbits are the
-    same orbit shifted by that many steps (candidates by a fingerprint of 16 nodes, then every
-    node checked to 1e-10 of the largest load). Returns ``(rep, shift)``: the index of the bearing
-    whose orbit is solved (the first of its kind) and the shift in steps,
-    ``orbit_i[k] = orbit_rep[k - shift]``. Bearings of different ``group`` are never shared.
+    Two bearings with the same geometry, clearance, viscosity and speed whose loads and
+    whirl (``omega_journal + omega_bearing``) are the same sequence shifted by a whole number
+    of steps (``p`` load points per step; e.g. the big ends of an in-line engine, or mains 1
+    and 5 of an I4) solve the same discrete problem relabelled in crank angle: their periodic
+    orbits are one orbit shifted by that many steps. Candidates by a fingerprint (scalars and
+    16 load points from the largest load), then every point checked to 1e-10 of the largest
+    load and whirl. Returns ``(rep, shift)``: the index of the orbit that is solved (the first
+    of its kind) and the shift in steps, ``orbit_i[k] = orbit_rep[k - shift]``. Orbits of
+    different ``group`` are never shared.
     """
-    fk, iwb = prob.arr["fk"], prob.arr["iwb"]
-    n2, size = fk.shape
-    cols = np.arange(size)
-    fe = fk[0::2]
-    o = 2 * np.argmax(fe.real**2 + fe.imag**2, axis=0)  # canonical start node (a step node)
-    sf = np.abs(fe[o // 2, cols])
+    size, n_pts = fx.shape
+    rows = np.arange(size)
+    mag = fx[:, ::p] ** 2 + fy[:, ::p] ** 2
+    o = p * np.argmax(mag, axis=1)  # canonical start point (a step point)
+    sf = np.sqrt(mag.max(axis=1))
     sf[sf == 0.0] = 1.0
-    sw = np.abs(iwb).max(axis=0)
+    sw = np.abs(w).max(axis=1)
     sw[sw == 0.0] = 1.0
-    # fingerprint: scalars and 16 nodes from the canonical start (then verified in full)
-    probe = (o[None, :] + np.arange(0, n2, max(1, n2 // 16))[:, None]) % n2
-    fp, wp = fk[probe, cols], iwb[probe, cols]
-    b = prob.bear
-    scal = [b["tid"].astype(np.int64), _mantissa_key(b["lod"]), _mantissa_key(b["clearance"]),
-            _mantissa_key(b["viscosity"]), _mantissa_key(b["land"]), _mantissa_key(b["speed"]),
-            _mantissa_key(sf), _mantissa_key(sw),
-            np.zeros(size, np.int64) if group is None else group.astype(np.int64)]
+    probe = (o[:, None] + np.arange(0, n_pts, max(1, n_pts // 16))[None, :]) % n_pts
+    scal = [_mantissa_key(a) for a in scalars] + [
+        grooved.astype(np.int64), group.astype(np.int64), _mantissa_key(sf),
+        _mantissa_key(sw)]
     key = np.ascontiguousarray(np.concatenate(
-        [np.stack(scal), _quantize(fp.real, sf), _quantize(fp.imag, sf),
-         _quantize(wp.real, sw), _quantize(wp.imag, sw)]).T)
+        [np.stack(scal, axis=1), _quantize(fx[rows[:, None], probe], sf[:, None]),
+         _quantize(fy[rows[:, None], probe], sf[:, None]),
+         _quantize(w[rows[:, None], probe], sw[:, None])], axis=1))
     first: dict[bytes, int] = {}
-    rep = np.array([first.setdefault(row.tobytes(), i) for i, row in enumerate(key)],
+    rep = np.array([first.setdefault(r.tobytes(), i) for i, r in enumerate(key)],
                    dtype=np.intp)
-    dup = np.flatnonzero(rep != cols)
-    if dup.size:  # verify every node: the loads and whirl are the shifted sequence
+    dup = np.flatnonzero(rep != rows)
+    if dup.size:  # verify every point: the loads and whirl are the shifted sequence
         r = rep[dup]
-        nodes = np.arange(n2)[:, None]
-        i_d = (nodes + o[dup][None, :]) % n2
-        i_r = (nodes + o[r][None, :]) % n2
+        k = np.arange(n_pts)[None, :]
+        i_d = (k + o[dup][:, None]) % n_pts
+        i_r = (k + o[r][:, None]) % n_pts
         ok = np.ones(dup.size, dtype=bool)
-        for arr, sc in ((fk, sf), (iwb, sw)):
-            dev = np.abs(arr[i_d, dup] - arr[i_r, r]).max(axis=0)
+        for arr, sc in ((fx, sf), (fy, sf), (w, sw)):
+            dev = np.abs(arr[dup[:, None], i_d] - arr[r[:, None], i_r]).max(axis=1)
             ok &= dev <= 1e-10 * sc[r]
         rep[dup[~ok]] = dup[~ok]
-    shift = ((o - o[rep]) // 2) % (n2 // 2)
+    shift = ((o - o[rep]) // p) % (n_pts // p)
     return rep, shift
 
 
 def _prepare_eps0(eps0_x, eps0_y, prob: _Problem) -> np.ndarray:
     if eps0_x is None and eps0_y is None:
-        return np.zeros(prob.size, dtype=complex)
+        return np.zeros(prob.full_size, dtype=complex)
     ex = np.broadcast_to(np.asarray(0.0 if eps0_x is None else eps0_x, dtype=float), prob.shape)
     ey = np.broadcast_to(np.asarray(0.0 if eps0_y is None else eps0_y, dtype=float), prob.shape)
     z = (ex + 1j * ey).reshape(-1).astype(complex)
@@ -899,17 +914,10 @@ def solve_orbit(
         raise ValueError("max_cycles must be >= 2")
     prob = _Problem(load_x, load_y, omega_journal, omega_bearing, speed, diameter, length,
                     clearance, viscosity, model, full_groove, steps_per_cycle, cycle_angle,
-                    solver_grid, solver_groove)
-    n, size_all = prob.n, prob.size
-    z = _prepare_eps0(eps0_x, eps0_y, prob)
-    grp = None if group is None else np.broadcast_to(np.asarray(group), prob.shape).reshape(-1)
-    rep, shift = _shared_orbits(prob, grp) if share_orbits and size_all > 1 else (
-        np.arange(size_all), np.zeros(size_all, dtype=np.intp))
-    uniq = np.flatnonzero(rep == np.arange(size_all))
-    rpos = np.searchsorted(uniq, rep)  # position of each bearing's solved orbit
-    if uniq.size < size_all:
-        prob.take(uniq)
-        z = z[uniq]
+                    solver_grid, solver_groove, share=share_orbits, group=group)
+    n, size_all = prob.n, prob.full_size
+    uniq, rpos, shift = prob.uniq, prob.rpos, prob.shift
+    z = _prepare_eps0(eps0_x, eps0_y, prob)[uniq]
     size = prob.size
     gid = np.arange(size)
     out_zh = np.empty((n, size), dtype=complex)
