@@ -316,7 +316,7 @@ class _Problem:
         if model in ("reynolds_map", "reynolds"):
             from checker.calc import reynolds_map as _rm
 
-            mob, _, _, tid = _rm._stack(lod)  # ValueError outside the map's L/D range
+            mob, _, _, tid = _rm.stack_tables(lod)  # ValueError outside the map's L/D range
             self.shared["map_mobility"] = mob
             if model == "reynolds":
                 self.shared["solver_grid"] = solver_grid
@@ -380,7 +380,7 @@ def _make_rate(model: str, bear: dict, shared: dict | None = None):
 
         def rate(z, fk, uc, iwb, sel=None):
             t = tid if sel is None else tid[sel]
-            return fk * _rm._m_map(z * uc, mob, t) + iwb * z
+            return fk * _rm.map_kernel(z * uc, mob, t) + iwb * z
 
         return rate
     if model == "reynolds":
@@ -399,7 +399,7 @@ def _make_rate(model: str, bear: dict, shared: dict | None = None):
             w = clip(z * uc)
             aw = np.abs(w)
             w = np.where(aw > _ry.EPS_MAX, w * (_ry.EPS_MAX / np.maximum(aw, _ry.EPS_MAX)), w)
-            guess = _rm._m_map(w, mob, t)  # initial squeeze direction from the map
+            guess = _rm.map_kernel(w, mob, t)  # initial squeeze direction from the map
             alpha0 = np.angle(guess) - np.angle(w)  # M is along V_s: alpha = arg M + chi
             m = np.empty(w.shape, dtype=complex)
             phi = np.angle(z)  # eccentricity direction in the caller's frame
