@@ -150,6 +150,11 @@ class OrbitResult:
     p_max, theta_p_max : numpy.ndarray, shape S [Pa], [rad], or None
         Peak short-bearing film pressure over the cycle and its crank angle (only with
         ``peak_pressure=True``).
+    vs_x, vs_y : numpy.ndarray, shape S + (n_steps,) [1/s], or None
+        Squeeze velocity over clearance ``V_s / c = d eps/dt - omega_bar z_hat x eps`` along
+        the stored orbit (the mobility term of the integrated rate at each step; only with
+        ``squeeze_velocity=True``): :func:`checker.calc.mobility.squeeze_velocity` of the
+        orbit, without evaluating the mobility again.
     converged : numpy.ndarray of bool, shape S
         Orbit periodic within ``tol``.
     collapse : numpy.ndarray of bool, shape S
@@ -183,6 +188,8 @@ class OrbitResult:
     message: np.ndarray
     model: str
     steps_per_cycle: int
+    vs_x: np.ndarray | None = None
+    vs_y: np.ndarray | None = None
 
 
 # --------------------------------------------------------------------------------------------
@@ -811,6 +818,7 @@ def solve_orbit(
     solver_groove=None,
     share_orbits: bool = True,
     group: ArrayLike | None = None,
+    squeeze_velocity: bool = False,
 ) -> OrbitResult:
     """Periodic journal orbit and minimum oil film thickness for a batch of bearings.
 
@@ -885,6 +893,8 @@ def solve_orbit(
     group : array_like of int, shape (...), optional
         Orbits of different groups are never shared (e.g. the variants of a batch, so that
         each variant's numbers are those of its own evaluation).
+    squeeze_velocity : bool
+        Also return the squeeze velocity along the orbit (``vs_x``, ``vs_y``).
 
     Returns
     -------
@@ -959,11 +969,17 @@ def solve_orbit(
     p_max = theta_p = None
     if peak_pressure:
         pm, jp = _peak_pressure(out_zh, out_kh, out_iwb, bear_all)
+    vs = None
+    if squeeze_velocity:
+        vs = (out_kh - out_iwb * out_zh) * bear_all["speed"]
     if uniq.size < size_all:  # shared orbits: the solved orbit shifted by whole steps
         eps_max, zmax = eps_max[rpos], zmax[rpos]
         pos = (pos[rpos] + shift) % n
         out = {k: v[rpos] for k, v in out.items()}
-        out_zh = out_zh[(np.arange(n)[:, None] - shift[None, :]) % n, rpos[None, :]]
+        rows = (np.arange(n)[:, None] - shift[None, :]) % n
+        out_zh = out_zh[rows, rpos[None, :]]
+        if vs is not None:
+            vs = vs[rows, rpos[None, :]]
         if peak_pressure:
             pm, jp = pm[rpos], (jp[rpos] + shift) % n
         size = size_all
@@ -1009,6 +1025,8 @@ def solve_orbit(
         message=msg.reshape(shp),
         model=model,
         steps_per_cycle=n,
+        vs_x=None if vs is None else vs.real.T.reshape(shp + (n,)).copy(),
+        vs_y=None if vs is None else vs.imag.T.reshape(shp + (n,)).copy(),
     )
 
 
