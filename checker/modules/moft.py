@@ -37,6 +37,10 @@ STEPS_PER_CYCLE_FINITE = 240
 """RK steps per cycle for the finite-length map (benchmarks/bench_finite_length.py: MOFT within
 4e-4 of 1440 steps on the example I4)."""
 
+MAX_BATCH_ORBITS = 4096
+"""Largest number of orbits of one kernel call when several variants are solved together
+(:func:`solve_many`; benchmarks/bench_speed.py)."""
+
 METHODS = {"short-bearing guideline": "bearing.moft_short",
            "physical criterion": "bearing.moft_finite"}
 """MOFT limits are method-tagged (rule key ``method``): a guideline calibrated to the
@@ -186,7 +190,18 @@ def solve_many(items: list[tuple[Engine, dict]], model: str,
     for i in live:
         by_len.setdefault(preps[i]["n_pts"], []).append(i)
     for idx in by_len.values():
-        _orbits([preps[i] for i in idx], model)
+        # kernel calls of at most MAX_BATCH_ORBITS orbits (beyond a few thousand the cost
+        # per orbit no longer falls and memory grows; results do not depend on the split)
+        chunk: list[int] = []
+        size = 0
+        for i in idx:
+            m = preps[i]["arg"]["speed"].size
+            if chunk and size + m > MAX_BATCH_ORBITS:
+                _orbits([preps[j] for j in chunk], model)
+                chunk, size = [], 0
+            chunk.append(i)
+            size += m
+        _orbits([preps[j] for j in chunk], model)
     return [p if isinstance(p, MissingInputs) else _finish(p, model, name) for p in preps]
 
 
