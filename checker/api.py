@@ -342,5 +342,76 @@ def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = No
                        _assumptions(engine, outcome))
 
 
+_BATCHED_FILMS = (("moft_short", "closed_form", "bearing.moft_short"),
+                  ("moft_finite", "reynolds_map", "bearing.moft_finite"))
+"""Calculations whose orbits :func:`check_batch` solves for all variants in one kernel call:
+(calculation, mobility model, quantity)."""
+
+
+def check_batch(engines: list[Engine], rules: str | Path | RuleTable | None = None,
+                select: list[str] | None = None, ignore: list[str] | None = None,
+                fail_on: str = "error", cache: dict | None = None) -> list[CheckResult]:
+    """Check several engine variants together; the same results as :func:`check` one by one.
+
+    The journal orbits of the film-thickness calculations (short-bearing and finite-length
+    MOFT) of all variants are solved in one orbit kernel call per model (the variants are one
+    more batch axis: a clearance, oil or width study costs about one check's orbits, not one
+    per variant); every other calculation is evaluated per variant with the calculation cache
+    (:func:`checker.graph.input_key`), so what the variants share (e.g. the loads of a
+    clearance study) is computed once. Orbits are never shared between variants, so each
+    variant's numbers are exactly those of its own :func:`check` (tests).
+
+    Parameters
+    ----------
+    engines : list of Engine
+        The variants (e.g. :func:`checker.engine.build_engine` of each study variant).
+    rules, select, ignore, fail_on
+        As in :func:`check` (workbook limit overrides are applied per engine).
+    cache : dict, optional
+        Calculation cache kept across calls (a study's worker keeps one); a new one is used
+        when not given.
+
+    Returns
+    -------
+    list of CheckResult
+        One per engine, in order.
+    """
+    from .modules import moft as _moft
+
+    fail_on = parse_fail_on(fail_on)
+    cache = {} if cache is None else cache
+    base = rules if isinstance(rules, RuleTable) else load_rules(rules)
+    graph.ensure_registered()
+    # 1. the loads (and what else the films need) of every variant, then the film orbits of
+    #    all variants whose film calculation is not cached yet, one kernel call per model
+    todo: dict[str, list[tuple[Engine, str]]] = {c: [] for c, _, _ in _BATCHED_FILMS}
+    for engine in engines:
+        table = apply_overrides(base, engine)
+        chosen = _select(table, select, ignore)
+        wanted = {r.quantity for r in chosen}
+        wanted |= {n for r in chosen for _, n in graph.QUANTITIES[r.quantity].compare}
+        order = graph.plan(engine, wanted)
+        keys = graph.input_keys(engine, order)
+        for cname, _, _ in _BATCHED_FILMS:
+            if cname in order and keys[cname] not in cache:
+                todo[cname].append((engine, keys[cname]))
+    for cname, model, qname in _BATCHED_FILMS:
+        items = []
+        for engine, key in todo[cname]:
+            deps = graph.CALCULATIONS[cname].needs(engine)
+            pre = graph.run(engine, deps, cache=cache)
+            if any(d not in pre.quantities for d in deps):
+                continue  # an input is missing: the variant's own run reports it
+            items.append((engine, key, {d: pre.quantities[d] for d in deps}))
+        outs = _moft.solve_many([(e, inp) for e, _, inp in items], model, qname)
+        for (_, key, _), out in zip(items, outs):
+            if isinstance(out, graph.MissingInputs):
+                cache[key] = ({}, {qname: out.reasons})
+            else:
+                cache[key] = ({qname: out}, {})
+    # 2. every variant, its film quantities from the cache
+    return [check(engine, base, select, ignore, fail_on, cache=cache) for engine in engines]
+
+
 def today() -> str:
     return _dt.date.today().isoformat()

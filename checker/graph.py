@@ -235,6 +235,16 @@ def input_key(engine: Engine, calc: Calculation, upstream: Iterable[str]) -> str
     return h.hexdigest()
 
 
+def input_keys(engine: Engine, order: Iterable[str]) -> dict[str, str]:
+    """:func:`input_key` of every calculation of ``order`` (dependency order, as returned by
+    :func:`plan`): the keys :func:`run` uses for its cache."""
+    keys: dict[str, str] = {}
+    for cname in order:
+        calc = CALCULATIONS[cname]
+        keys[cname] = input_key(engine, calc, [keys[PROVIDER[d]] for d in calc.needs(engine)])
+    return keys
+
+
 @dataclass
 class RunOutcome:
     quantities: dict[str, Quantity]

@@ -223,11 +223,15 @@ def groove_feed_flow(
     span = np.asarray(t2 - t1, dtype=float)
     if np.any(span <= 0.0) or np.any(span > 2.0 * np.pi + 1e-9):
         raise ValueError("groove arc must satisfy 0 < arc_end - arc_start <= 2 pi")
-    eps = np.hypot(ex, ey)
-    if np.any(eps >= 1.0):
+    eps2 = ex * ex + ey * ey
+    if np.any(eps2 >= 1.0):
         raise ValueError("eccentricity ratio must be < 1")
-    phi = np.arctan2(ey, ex)
-    integral = _cubed_film_integral(eps, np.asarray(t1, dtype=float) - phi, span)
+    if np.all(span == 2.0 * np.pi):  # full groove: 2 pi (1 + 1.5 eps^2), no trigonometry
+        integral = (2.0 * np.pi) * (1.0 + 1.5 * eps2)
+    else:
+        phi = np.arctan2(ey, ex)
+        integral = _cubed_film_integral(np.sqrt(eps2), np.asarray(t1, dtype=float) - phi,
+                                        span)
     return ps * 0.5 * dia * cl**3 * integral / (6.0 * mu * b)
 
 

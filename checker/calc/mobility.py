@@ -52,6 +52,13 @@ import functools
 import numpy as np
 from numpy.typing import ArrayLike
 
+from checker.calc import pi_film as _pf
+from checker.calc import reynolds_map as _rm
+from checker.calc.pi_film import check_in_disk as _check_in_disk
+from checker.calc.pi_film import j_integrals as _j_integrals
+from checker.calc.pi_film import m_closed as _m_closed
+from checker.calc.pi_film import solve_alpha as _solve_alpha
+
 __all__ = [
     "MOBILITY_MODELS",
     "EXACT_TABLE_MAX_REL_ERROR",
@@ -81,8 +88,7 @@ on 4000 random points biased towards ``eps -> 1``: 2.1e-4; re-checked in the tes
 BUTENSCHOEN_B_OVER_D_RANGE = (0.125, 1.0)
 """Range of width/diameter ratios covered by Butenschoen's tables and fits."""
 
-_FOUR_OVER_PI = 4.0 / np.pi
-_GL_X, _GL_W = np.polynomial.legendre.leggauss(16)
+_FOUR_OVER_PI = _pf.FOUR_OVER_PI
 
 
 # --------------------------------------------------------------------------------------------
@@ -91,13 +97,6 @@ _GL_X, _GL_W = np.polynomial.legendre.leggauss(16)
 def _check_positive(name: str, value: np.ndarray) -> None:
     if not np.all(np.isfinite(value)) or np.any(value <= 0.0):
         raise ValueError(f"{name} must be finite and > 0, got {value!r}")
-
-
-def _check_in_disk(zeta: np.ndarray, kappa: np.ndarray) -> None:
-    if not (np.all(np.isfinite(zeta)) and np.all(np.isfinite(kappa))):
-        raise ValueError("eccentricity components must be finite")
-    if np.any(zeta * zeta + kappa * kappa >= 1.0):
-        raise ValueError("eccentricity ratio must be < 1 (journal touching the bearing)")
 
 
 def _check_model(model: str) -> None:
@@ -117,12 +116,6 @@ def _check_b_over_d(b_over_d: np.ndarray) -> None:
 # --------------------------------------------------------------------------------------------
 # closed form (Booker)
 # --------------------------------------------------------------------------------------------
-def _m_closed(w: np.ndarray) -> np.ndarray:
-    """Closed-form mobility in the load frame times (L/D)**2, complex ``M_zeta + i M_kappa``."""
-    s = 1.0 - w.real
-    return s * np.sqrt(s) * (s - 1j * _FOUR_OVER_PI * w.imag) / np.pi
-
-
 def mobility_closed_form(
     zeta: ArrayLike, kappa: ArrayLike, l_over_d: ArrayLike
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -171,47 +164,6 @@ def mobility_closed_form(
 # --------------------------------------------------------------------------------------------
 # exact short-bearing pi-film mobility
 # --------------------------------------------------------------------------------------------
-def _j_integrals(eps: np.ndarray, alpha: np.ndarray):
-    """Force integrals of the short-bearing pi-film, see :func:`squeeze_load_integral`.
-
-    Returns ``(g_r, g_t, h_r, h_t)``: ``G`` and ``dG/dalpha`` in the eccentricity frame.
-    The integrals are evaluated with 16-point Gauss-Legendre quadrature in the Sommerfeld
-    variable ``gamma`` (``1 - eps cos(theta) = (1 - eps**2) / (1 + eps cos(gamma))``), in which
-    the integrands are trigonometric polynomials of degree 2, so the quadrature is exact to
-    rounding; ``cos(gamma) + eps`` is evaluated as ``2 cos(gamma/2)**2 - (1 - eps)`` to keep
-    full relative precision up to ``eps = 1 - 1e-12``.
-    """
-    e = eps[..., None]
-    a = alpha[..., None]
-    d = 1.0 - e
-    sp = np.sqrt(1.0 + e)
-    sd = np.sqrt(d)
-
-    def gam(th):
-        return 2.0 * np.arctan2(sp * np.sin(0.5 * th), sd * np.cos(0.5 * th))
-
-    g1 = gam(a - 0.5 * np.pi)
-    g2 = gam(a + 0.5 * np.pi)
-    hw = 0.5 * (g2 - g1)
-    g = 0.5 * (g1 + g2) + hw * _GL_X
-    wq = hw * _GL_W
-    cg = 2.0 * np.cos(0.5 * g) ** 2 - d  # cos(gamma) + eps
-    sg = np.sin(g)
-    q = np.sqrt(d * (1.0 + e))[..., 0]
-    q2 = q * q
-    j_ss = (wq * sg * sg).sum(-1) / (q2 * q)
-    j_sc = (wq * sg * cg).sum(-1) / (q2 * q2)
-    j_cc = (wq * cg * cg).sum(-1) / (q2 * q2 * q)
-    ca = np.cos(alpha)
-    sa = np.sin(alpha)
-    return (
-        ca * j_cc + sa * j_sc,
-        ca * j_sc + sa * j_ss,
-        ca * j_sc - sa * j_cc,
-        ca * j_ss - sa * j_sc,
-    )
-
-
 def squeeze_load_integral(eps: ArrayLike, alpha: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Dimensionless load of a short pi-film bearing squeezed in direction ``alpha``.
 
@@ -278,38 +230,6 @@ def squeeze_load_radial(eps: ArrayLike) -> np.ndarray:
     if np.any(np.abs(e) >= 1.0) or not np.all(np.isfinite(e)):
         raise ValueError("|eps| must be < 1")
     return 2.0 * _squeeze_bracket(e) / _one_minus_sq(e) ** 2.5
-
-
-def _solve_alpha(eps: np.ndarray, chi: np.ndarray, alpha0: np.ndarray) -> np.ndarray:
-    """Squeeze direction ``alpha`` whose pi-film load points at ``chi`` (both from e).
-
-    ``f(alpha) = wrap(arg G - alpha) + alpha - chi`` is continuous and increasing (F . V_s > 0
-    keeps ``arg G - alpha`` inside (-pi/2, pi/2)); the root lies in ``chi +- pi/2``.
-    Safeguarded Newton, applied to the not-yet-converged entries only.
-    """
-    lo = chi - 0.5 * np.pi
-    hi = chi + 0.5 * np.pi
-    a = np.clip(alpha0, lo + 1e-12, hi - 1e-12)
-    act = np.arange(a.size)
-    a = a.ravel().copy()
-    e_f, c_f, lo, hi = eps.ravel(), chi.ravel(), lo.ravel().copy(), hi.ravel().copy()
-    for _ in range(200):
-        if act.size == 0:
-            break
-        ea, aa, ca = e_f[act], a[act], c_f[act]
-        g_r, g_t, h_r, h_t = _j_integrals(ea, aa)
-        f = np.angle(np.exp(1j * (np.arctan2(g_t, g_r) - aa))) + aa - ca
-        la = np.where(f < 0.0, aa, lo[act])
-        ha = np.where(f > 0.0, aa, hi[act])
-        fp = (g_r * h_t - g_t * h_r) / (g_r * g_r + g_t * g_t)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            an = aa - f / fp
-        bad = ~((an > la) & (an < ha))
-        an = np.where(bad, 0.5 * (la + ha), an)
-        done = (np.abs(an - aa) < 1e-14) | (ha - la < 1e-14) | (f == 0.0)
-        a[act], lo[act], hi[act] = an, la, ha
-        act = act[~done]
-    return a.reshape(eps.shape)
 
 
 def _m_exact(w: np.ndarray) -> np.ndarray:
@@ -786,8 +706,7 @@ def mobility(
 
 def _mobility_finite(zeta, kappa, l_over_d, model: str) -> tuple[np.ndarray, np.ndarray]:
     """Finite-length Reynolds mobility: stored map, or the solver itself (per point)."""
-    from checker.calc import reynolds as _ry
-    from checker.calc import reynolds_map as _rm
+    from checker.calc import reynolds as _ry  # scipy: only for the direct solution
 
     if model == "reynolds_map":
         return _rm.mobility_map(zeta, kappa, l_over_d)

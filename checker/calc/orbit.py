@@ -7,8 +7,10 @@ for some bearings (journal near the wall under a large load) or that would close
 half of the remaining film gap are redone for those bearings only, with up to 8 RK4 sub-steps
 or, when stiffer, with L-stable Rosenbrock (ROS2) sub-steps. The Butenschoen model, whose
 receding-squeeze branch makes it stiff almost everywhere near the wall, is advanced with ROS2
-(sub-steps of at most 0.5 deg) for all bearings. Cycles are repeated until the orbit is periodic;
-converged bearings leave the active set. ``|eps|`` is clamped at :data:`EPS_CAP`.
+(sub-steps of at most 0.5 deg) for all bearings. Sub-step counts are chosen per bearing, so a
+bearing's orbit does not depend on the other bearings of the batch. Cycles are repeated until
+the orbit closes (``|eps(end of cycle) - eps(start)| < tol``); converged bearings leave the
+active set. ``|eps|`` is clamped at :data:`EPS_CAP`.
 
 Equation (notes ``bearings.md`` 1.1-1.2, Booker 1965), integrated in crank angle
 ``theta`` (``d theta / dt = speed``)::
@@ -81,10 +83,14 @@ machine): MOFT error against a converged reference (2880 steps, tol 1e-7) at mos
 For ``"butenschoen"`` steps are at most 1 deg regardless (self-convergence 0.55 % max)."""
 
 DEFAULT_PERIODIC_TOL = 1e-4
-"""Periodicity criterion: max over the cycle of ``|eps_k(n) - eps_k(n-1)|`` (vector
-difference at the same crank angle in successive cycles) below this value. Benchmark: 3 cycles
-for every example bearing (the first from the centred journal); tolerances 1e-3 and 1e-5 give
-the same MOFT to 1e-6."""
+"""Periodicity criterion: closure of the stored cycle, ``|eps(cycle end) - eps(cycle start)|``
+(vector difference) below this value. The cycle map contracts strongly (the example bearings:
+a factor 1e-4..1e-5 per cycle), so the closure of cycle n equals the change of the whole orbit
+from cycle n to n+1 (its largest value is at the cycle start) and the stored cycle is within
+about ``tol`` of the periodic orbit at its start, much closer further on. Benchmark
+(benchmarks/bench_speed.py, example I4/I6/V8 against the orbit of the earlier criterion, the
+cycle-to-cycle change over the whole cycle, one cycle more): MOFT within 1e-5 relative,
+2 cycles from the centred journal instead of 3."""
 
 DEFAULT_MAX_CYCLES = 40
 """Cycles after which an orbit that is still not periodic is reported as not converged."""
@@ -144,6 +150,11 @@ class OrbitResult:
     p_max, theta_p_max : numpy.ndarray, shape S [Pa], [rad], or None
         Peak short-bearing film pressure over the cycle and its crank angle (only with
         ``peak_pressure=True``).
+    vs_x, vs_y : numpy.ndarray, shape S + (n_steps,) [1/s], or None
+        Squeeze velocity over clearance ``V_s / c = d eps/dt - omega_bar z_hat x eps`` along
+        the stored orbit (the mobility term of the integrated rate at each step; only with
+        ``squeeze_velocity=True``): :func:`checker.calc.mobility.squeeze_velocity` of the
+        orbit, without evaluating the mobility again.
     converged : numpy.ndarray of bool, shape S
         Orbit periodic within ``tol``.
     collapse : numpy.ndarray of bool, shape S
@@ -152,7 +163,8 @@ class OrbitResult:
     n_cycles : numpy.ndarray of int, shape S
         Cycles integrated.
     periodic_error : numpy.ndarray, shape S [-]
-        Last cycle-to-cycle change ``max_k |eps_k(n) - eps_k(n-1)|``.
+        Closure of the stored cycle ``|eps(end) - eps(start)|`` (= the change of the orbit in
+        one more cycle, at the cycle start).
     message : numpy.ndarray of str (object), shape S
         Empty, or why the bearing is flagged.
     model : str
@@ -176,6 +188,8 @@ class OrbitResult:
     message: np.ndarray
     model: str
     steps_per_cycle: int
+    vs_x: np.ndarray | None = None
+    vs_y: np.ndarray | None = None
 
 
 # --------------------------------------------------------------------------------------------
@@ -204,7 +218,7 @@ class _Problem:
     def __init__(
         self, load_x, load_y, omega_journal, omega_bearing, speed, diameter, length, clearance,
         viscosity, model, full_groove, steps_per_cycle, cycle_angle, solver_grid=None,
-        solver_groove=None,
+        solver_groove=None, share: bool = False, group=None,
     ):
         if model not in _mob.MOBILITY_MODELS:
             raise ValueError(f"unknown model {model!r}; choose one of {_mob.MOBILITY_MODELS}")
@@ -253,6 +267,23 @@ class _Problem:
         self.shape = lead
         self.n = n
         self.h = cycle_angle / n
+        # orbits that are another's shifted by whole steps: solved once (_shared_rows)
+        size_all = fx.shape[0]
+        self.full_size = size_all
+        self.rep = np.arange(size_all)
+        self.shift = np.zeros(size_all, dtype=np.intp)
+        self.uniq = self.rep
+        if share and size_all > 1 and n_pts % n == 0:
+            grp = (np.zeros(size_all, np.int64) if group is None
+                   else np.broadcast_to(np.asarray(group), lead).reshape(-1))
+            self.rep, self.shift = _shared_rows(fx, fy, wj + wb, (sp, dia, ln, cl, mu),
+                                                grooved, grp, n_pts // n)
+            self.uniq = np.flatnonzero(self.rep == np.arange(size_all))
+            if self.uniq.size < size_all:
+                u = self.uniq
+                fx, fy, wj, wb = fx[u], fy[u], wj[u], wb[u]
+                sp, dia, ln, cl, mu, grooved = sp[u], dia[u], ln[u], cl[u], mu[u], grooved[u]
+        self.rpos = np.searchsorted(self.uniq, self.rep)  # each orbit's solved orbit
         self.cycle_angle = float(cycle_angle)
         self.model = model
         land = np.where(grooved, 0.5 * ln, ln)
@@ -292,7 +323,7 @@ class _Problem:
         if model in ("reynolds_map", "reynolds"):
             from checker.calc import reynolds_map as _rm
 
-            mob, _, _, tid = _rm._stack(lod)  # ValueError outside the map's L/D range
+            mob, _, _, tid = _rm.stack_tables(lod)  # ValueError outside the map's L/D range
             self.shared["map_mobility"] = mob
             if model == "reynolds":
                 self.shared["solver_grid"] = solver_grid
@@ -356,7 +387,7 @@ def _make_rate(model: str, bear: dict, shared: dict | None = None):
 
         def rate(z, fk, uc, iwb, sel=None):
             t = tid if sel is None else tid[sel]
-            return fk * _rm._m_map(z * uc, mob, t) + iwb * z
+            return fk * _rm.map_kernel(z * uc, mob, t) + iwb * z
 
         return rate
     if model == "reynolds":
@@ -375,7 +406,7 @@ def _make_rate(model: str, bear: dict, shared: dict | None = None):
             w = clip(z * uc)
             aw = np.abs(w)
             w = np.where(aw > _ry.EPS_MAX, w * (_ry.EPS_MAX / np.maximum(aw, _ry.EPS_MAX)), w)
-            guess = _rm._m_map(w, mob, t)  # initial squeeze direction from the map
+            guess = _rm.map_kernel(w, mob, t)  # initial squeeze direction from the map
             alpha0 = np.angle(guess) - np.angle(w)  # M is along V_s: alpha = arg M + chi
             m = np.empty(w.shape, dtype=complex)
             phi = np.angle(z)  # eccentricity direction in the caller's frame
@@ -490,10 +521,13 @@ def _rk4_steps(rate, z, fk3, iw3, h, nsub, sel=None):
     return z
 
 
-def _nsub_for(need: np.ndarray, max_substeps: int) -> tuple[int, float]:
-    ratio = float(np.nan_to_num(need, nan=np.inf, posinf=1e300).max())
-    nsub = 2 ** int(np.ceil(np.log2(min(max(ratio, 1.0), 1e6))))
-    return int(min(max_substeps, nsub)), ratio
+def _nsub_each(need: np.ndarray, max_substeps: int) -> np.ndarray:
+    """Sub-steps per bearing: the power of two >= ``need`` (at least 1, at most
+    ``max_substeps``). Per bearing, so that a bearing's orbit does not depend on the other
+    bearings of the batch (batched and one-by-one evaluation give identical numbers)."""
+    r = np.nan_to_num(need, nan=1e6, posinf=1e6)
+    k = np.ceil(np.log2(np.clip(r, 1.0, 1e6)))
+    return np.minimum(max_substeps, 2 ** k.astype(np.int64))
 
 
 def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: int):
@@ -520,6 +554,10 @@ def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: 
     capped = np.zeros(z.size, dtype=bool)
     stiff_cap = np.zeros(z.size, dtype=bool)
     za0 = np.abs(z)
+    thr = np.minimum(za0 * (1.0 - _TRAVEL_FRAC) + _TRAVEL_FRAC, EPS_CAP)
+    # steps where the closed-form stiffness estimate (s <= 2) can exceed the limit somewhere
+    stiff_possible = (np.ones(n, dtype=bool) if map_stiff or not lam.size
+                      else lam.max(axis=1) * 2.0**1.5 > stiff_limit)
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         for j in range(n):
             a, m, b = 2 * j, 2 * j + 1, (2 * j + 2) % (2 * n)
@@ -533,47 +571,83 @@ def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: 
                 flag = need > 1.0
                 if flag.any():
                     idx = np.flatnonzero(flag)
-                    nsub, ratio = _nsub_for(nbase * need[idx], max_substeps)
-                    if nsub > nbase:
-                        if ratio > max_substeps:
-                            stiff_cap[idx[nbase * need[idx] > max_substeps]] = True
-                        znew[idx], _, _ = _ros2_steps(
-                            rate, z[idx], (fk[a, idx], fk[m, idx], fk[b, idx]),
-                            (iwb[a, idx], iwb[m, idx], iwb[b, idx]), idx, h, nsub)
-                        za[idx] = np.abs(znew[idx])
+                    stiff_cap[idx[nbase * need[idx] > max_substeps]] = True
+                    nsubs = _nsub_each(nbase * need[idx], max_substeps)
+                    for nsub in np.unique(nsubs):
+                        if nsub <= nbase:
+                            continue
+                        g = idx[nsubs == nsub]
+                        znew[g], _, _ = _ros2_steps(
+                            rate, z[g], (fk[a, g], fk[m, g], fk[b, g]),
+                            (iwb[a, g], iwb[m, g], iwb[b, g]), g, h, int(nsub))
+                        za[g] = np.abs(znew[g])
             else:
                 k1 = rate(z, fk[a], uc[a], iwb[a])
                 kh[j] = k1
                 k2 = rate(z + hh * k1, fk[m], uc[m], iwb[m])
                 k3 = rate(z + hh * k2, fk[m], uc[m], iwb[m])
                 k4 = rate(z + h * k3, fk[b], uc[b], iwb[b])
-                znew = z + h6 * (k1 + 2.0 * (k2 + k3) + k4)
-                # (1) closed-form stiffness estimate 2.5/pi |f|max h s^1.5, s = 1 - zeta + travel
-                s = np.minimum(1.0 - (z * uc[a]).real + h * np.abs(k1), 2.0)
-                lh = lam[j] * (s * np.sqrt(s))
-                if map_stiff:
-                    # finite length: Jacobian ~ p |f M| / s for M ~ s^p; p = 2.5 for the short
-                    # bearing, 1.5 for the (locally long) finite-length film near the wall
-                    lh = np.maximum(lh, (1.5 * h) * np.abs(k1 - iwb[a] * z) / s)
-                # (2) travel: the step closes more than _TRAVEL_FRAC of the film gap
+                k2 += k3
+                k2 *= 2.0
+                k2 += k1
+                k2 += k4
+                k2 *= h6
+                znew = k2
+                znew += z
                 za = np.abs(znew)
-                travel = (za - za0) / (_TRAVEL_FRAC * (1.0 - za0))
-                flag = (lh > stiff_limit) | (travel > 1.0)
+                # (2) travel: the step closes more than _TRAVEL_FRAC of the film gap
+                # (za - za0 > F (1 - za0); the threshold also catches |eps| > EPS_CAP)
+                flag = za > thr
+                lh = None
+                if stiff_possible[j]:
+                    # (1) closed-form stiffness estimate 2.5/pi |f|max h s^1.5,
+                    # s = 1 - zeta + travel
+                    s = np.minimum(1.0 - (z * uc[a]).real + h * np.abs(k1), 2.0)
+                    lh = lam[j] * (s * np.sqrt(s))
+                    if map_stiff:
+                        # finite length: Jacobian ~ p |f M| / s for M ~ s^p; p = 2.5 for the
+                        # short bearing, 1.5 for the (locally long) finite-length film near
+                        # the wall
+                        lh = np.maximum(lh, (1.5 * h) * np.abs(k1 - iwb[a] * z) / s)
+                    flag |= lh > stiff_limit
                 if flag.any():
                     idx = np.flatnonzero(flag)
-                    fk3 = (fk[a, idx], fk[m, idx], fk[b, idx])
-                    iw3 = (iwb[a, idx], iwb[m, idx], iwb[b, idx])
-                    need = np.maximum(lh[idx] / stiff_limit, travel[idx])
-                    nsub, ratio = _nsub_for(need, _MAX_RK4_SUBSTEPS)
-                    if ratio <= _MAX_RK4_SUBSTEPS:  # moderately stiff: RK4 sub-steps
-                        znew[idx] = _rk4_steps(rate, z[idx], fk3, iw3, h, nsub, idx)
-                    else:  # very stiff: L-stable ROS2 sub-steps
-                        need = np.maximum(lh[idx] / _ROS2_LAMBDA_H, travel[idx])
-                        nsub, ratio = _nsub_for(need, max_substeps)
-                        if ratio > max_substeps:
-                            stiff_cap[idx[need > max_substeps]] = True
-                        znew[idx], _, _ = _ros2_steps(rate, z[idx], fk3, iw3, idx, h, nsub)
+                    travel = (za[idx] - za0[idx]) / (_TRAVEL_FRAC * (1.0 - za0[idx]))
+                    lhi = np.zeros(idx.size) if lh is None else lh[idx]
+                    sub = (travel > 1.0) | (lhi > stiff_limit)
+                    if not sub.all():  # only beyond the eccentricity cap: clamp
+                        io = idx[~sub]
+                        capped[io] = True
+                        znew[io] *= EPS_CAP / za[io]
+                        za[io] = EPS_CAP
+                        idx, travel, lhi = idx[sub], travel[sub], lhi[sub]
+                    need = np.maximum(lhi / stiff_limit, travel)
+                    # moderately stiff: RK4 sub-steps; very stiff: L-stable ROS2 sub-steps
+                    rk = ~(np.nan_to_num(need, nan=np.inf) > _MAX_RK4_SUBSTEPS)
+                    nsubs = _nsub_each(need, _MAX_RK4_SUBSTEPS)
+                    need_r = np.maximum(lhi / _ROS2_LAMBDA_H, travel)
+                    stiff_cap[idx[~rk & (need_r > max_substeps)]] = True
+                    nsubs_r = _nsub_each(need_r, max_substeps)
+                    for ros, nsub in sorted({(False, int(v)) for v in nsubs[rk]}
+                                            | {(True, int(v)) for v in nsubs_r[~rk]}):
+                        g = idx[(~rk & (nsubs_r == nsub)) if ros else (rk & (nsubs == nsub))]
+                        fk3 = (fk[a, g], fk[m, g], fk[b, g])
+                        iw3 = (iwb[a, g], iwb[m, g], iwb[b, g])
+                        if ros:
+                            znew[g], _, _ = _ros2_steps(rate, z[g], fk3, iw3, g, h, nsub)
+                        else:
+                            znew[g] = _rk4_steps(rate, z[g], fk3, iw3, h, nsub, g)
                     za[idx] = np.abs(znew[idx])
+                    over = za[idx] > EPS_CAP
+                    if over.any():
+                        io = idx[over]
+                        capped[io] = True
+                        znew[io] *= EPS_CAP / za[io]
+                        za[io] = EPS_CAP
+                z = znew
+                za0 = za
+                thr = np.minimum(za0 * (1.0 - _TRAVEL_FRAC) + _TRAVEL_FRAC, EPS_CAP)
+                continue
             over = za > EPS_CAP
             if over.any():
                 capped |= over
@@ -644,9 +718,68 @@ def _peak_pressure(zh, kh, iwb_steps, bear, n_refine: int = 8):
     return p[best, cols], cand[best, cols]
 
 
+def _quantize(a: np.ndarray, scale: np.ndarray) -> np.ndarray:
+    """Integers equal for values equal to about 6e-11 of ``scale`` (relative; values that
+    round differently are only not shared)."""
+    return np.rint(a / scale * 2.0**34).astype(np.int64)
+
+
+def _mantissa_key(a: np.ndarray) -> np.ndarray:
+    """Integers equal for positive numbers equal to about 1.5e-11 relative."""
+    m, e = np.frexp(np.asarray(a, dtype=float))
+    return np.rint(m * 2.0**36).astype(np.int64) + (e.astype(np.int64) << 40)
+
+
+def _shared_rows(fx, fy, w, scalars, grooved, group, p: int):
+    """Orbits that are another orbit shifted in crank angle by whole steps.
+
+    Two bearings with the same geometry, clearance, viscosity and speed whose loads and
+    whirl (``omega_journal + omega_bearing``) are the same sequence shifted by a whole number
+    of steps (``p`` load points per step; e.g. the big ends of an in-line engine, or mains 1
+    and 5 of an I4) solve the same discrete problem relabelled in crank angle: their periodic
+    orbits are one orbit shifted by that many steps. Candidates by a fingerprint (scalars and
+    16 load points from the largest load), then every point checked to 1e-10 of the largest
+    load and whirl. Returns ``(rep, shift)``: the index of the orbit that is solved (the first
+    of its kind) and the shift in steps, ``orbit_i[k] = orbit_rep[k - shift]``. Orbits of
+    different ``group`` are never shared.
+    """
+    size, n_pts = fx.shape
+    rows = np.arange(size)
+    mag = fx[:, ::p] ** 2 + fy[:, ::p] ** 2
+    o = p * np.argmax(mag, axis=1)  # canonical start point (a step point)
+    sf = np.sqrt(mag.max(axis=1))
+    sf[sf == 0.0] = 1.0
+    sw = np.abs(w).max(axis=1)
+    sw[sw == 0.0] = 1.0
+    probe = (o[:, None] + np.arange(0, n_pts, max(1, n_pts // 16))[None, :]) % n_pts
+    scal = [_mantissa_key(a) for a in scalars] + [
+        grooved.astype(np.int64), group.astype(np.int64), _mantissa_key(sf),
+        _mantissa_key(sw)]
+    key = np.ascontiguousarray(np.concatenate(
+        [np.stack(scal, axis=1), _quantize(fx[rows[:, None], probe], sf[:, None]),
+         _quantize(fy[rows[:, None], probe], sf[:, None]),
+         _quantize(w[rows[:, None], probe], sw[:, None])], axis=1))
+    first: dict[bytes, int] = {}
+    rep = np.array([first.setdefault(r.tobytes(), i) for i, r in enumerate(key)],
+                   dtype=np.intp)
+    dup = np.flatnonzero(rep != rows)
+    if dup.size:  # verify every point: the loads and whirl are the shifted sequence
+        r = rep[dup]
+        k = np.arange(n_pts)[None, :]
+        i_d = (k + o[dup][:, None]) % n_pts
+        i_r = (k + o[r][:, None]) % n_pts
+        ok = np.ones(dup.size, dtype=bool)
+        for arr, sc in ((fx, sf), (fy, sf), (w, sw)):
+            dev = np.abs(arr[dup[:, None], i_d] - arr[r[:, None], i_r]).max(axis=1)
+            ok &= dev <= 1e-10 * sc[r]
+        rep[dup[~ok]] = dup[~ok]
+    shift = ((o - o[rep]) // p) % (n_pts // p)
+    return rep, shift
+
+
 def _prepare_eps0(eps0_x, eps0_y, prob: _Problem) -> np.ndarray:
     if eps0_x is None and eps0_y is None:
-        return np.zeros(prob.size, dtype=complex)
+        return np.zeros(prob.full_size, dtype=complex)
     ex = np.broadcast_to(np.asarray(0.0 if eps0_x is None else eps0_x, dtype=float), prob.shape)
     ey = np.broadcast_to(np.asarray(0.0 if eps0_y is None else eps0_y, dtype=float), prob.shape)
     z = (ex + 1j * ey).reshape(-1).astype(complex)
@@ -683,6 +816,9 @@ def solve_orbit(
     collapse_h_min: float = COLLAPSE_H_MIN,
     solver_grid=None,
     solver_groove=None,
+    share_orbits: bool = True,
+    group: ArrayLike | None = None,
+    squeeze_velocity: bool = False,
 ) -> OrbitResult:
     """Periodic journal orbit and minimum oil film thickness for a batch of bearings.
 
@@ -690,7 +826,7 @@ def solve_orbit(
     fixed-step RK4 (``steps_per_cycle`` steps; the RK mid-stage loads are the load samples
     half-way between steps, so a 1-deg load grid with 360 steps is used without
     interpolation; other grids are resampled periodically-linearly) until
-    ``max_k |eps_k(n) - eps_k(n-1)| < tol``. Stiff steps (estimated
+    the cycle closes, ``|eps(end) - eps(start)| < tol``. Stiff steps (estimated
     ``2.5/pi |F|psi^2/(mu L D speed) (D/L)^2 (1-zeta)^1.5 h > stiff_limit``) are redone for the
     affected bearings with ROS2 sub-steps; ``|eps|`` is clamped to ``EPS_CAP`` so the film never
     closes.
@@ -733,7 +869,7 @@ def solve_orbit(
         [rad] in that frame, half width over the radius); ``length`` is then the total width
         including the groove. For measuring what the effective-width model costs.
     tol : float [-]
-        Periodicity tolerance on the eccentricity ratio.
+        Periodicity tolerance on the eccentricity ratio (closure of the cycle).
     max_cycles : int
         Maximum number of cycles.
     stiff_limit : float [-]
@@ -749,6 +885,16 @@ def solve_orbit(
         Cycle length, ``4 pi`` for four-stroke engines.
     collapse_h_min : float [m]
         Film-collapse flag threshold on ``h_min`` (see :data:`COLLAPSE_H_MIN`).
+    share_orbits : bool
+        Solve once the orbits that are another bearing's orbit shifted by whole steps (same
+        bearing data, loads and whirl shifted in crank angle, e.g. the big ends of an in-line
+        engine); the others are that orbit shifted. Their initial state is then the first
+        bearing's.
+    group : array_like of int, shape (...), optional
+        Orbits of different groups are never shared (e.g. the variants of a batch, so that
+        each variant's numbers are those of its own evaluation).
+    squeeze_velocity : bool
+        Also return the squeeze velocity along the orbit (``vs_x``, ``vs_y``).
 
     Returns
     -------
@@ -778,9 +924,11 @@ def solve_orbit(
         raise ValueError("max_cycles must be >= 2")
     prob = _Problem(load_x, load_y, omega_journal, omega_bearing, speed, diameter, length,
                     clearance, viscosity, model, full_groove, steps_per_cycle, cycle_angle,
-                    solver_grid, solver_groove)
-    n, size = prob.n, prob.size
-    z = _prepare_eps0(eps0_x, eps0_y, prob)
+                    solver_grid, solver_groove, share=share_orbits, group=group)
+    n, size_all = prob.n, prob.full_size
+    uniq, rpos, shift = prob.uniq, prob.rpos, prob.shift
+    z = _prepare_eps0(eps0_x, eps0_y, prob)[uniq]
+    size = prob.size
     gid = np.arange(size)
     out_zh = np.empty((n, size), dtype=complex)
     out_kh = np.empty((n, size), dtype=complex)
@@ -793,15 +941,11 @@ def solve_orbit(
         "stiffcap": np.zeros(size, dtype=bool),
     }
     bear_all = {k: v.copy() for k, v in prob.bear.items()}
-    prev = None
     for cyc in range(1, int(max_cycles) + 1):
+        z_start = z
         z, zh, kh, capped, stiff_cap = _run_cycle(prob, z, stiff_limit, max_substeps)
-        if prev is not None:
-            err = np.abs(zh - prev).max(axis=0)
-            done = err < tol
-        else:
-            err = np.full(z.size, np.inf)
-            done = np.zeros(z.size, dtype=bool)
+        err = np.abs(z - z_start)  # closure of the cycle
+        done = err < tol
         last = cyc == int(max_cycles)
         fin = np.ones(z.size, dtype=bool) if last else done
         if fin.any():
@@ -817,18 +961,34 @@ def solve_orbit(
         if last or fin.all():
             break
         keep = ~fin
-        prob.take(keep)
-        gid, z, prev = gid[keep], z[keep], zh[:, keep]
+        if fin.any():
+            prob.take(keep)
+            gid, z = gid[keep], z[keep]
 
     eps_max, pos, zmax = _hermite_max(out_zh, out_kh, prob.h)
-    cl = bear_all["clearance"]
-    h_min = cl * (1.0 - eps_max)
-    collapse = (eps_max >= COLLAPSE_EPS) | out["capped"] | (h_min < collapse_h_min)
     p_max = theta_p = None
     if peak_pressure:
         pm, jp = _peak_pressure(out_zh, out_kh, out_iwb, bear_all)
+    vs = None
+    if squeeze_velocity:
+        vs = (out_kh - out_iwb * out_zh) * bear_all["speed"]
+    if uniq.size < size_all:  # shared orbits: the solved orbit shifted by whole steps
+        eps_max, zmax = eps_max[rpos], zmax[rpos]
+        pos = (pos[rpos] + shift) % n
+        out = {k: v[rpos] for k, v in out.items()}
+        rows = (np.arange(n)[:, None] - shift[None, :]) % n
+        out_zh = out_zh[rows, rpos[None, :]]
+        if vs is not None:
+            vs = vs[rows, rpos[None, :]]
+        if peak_pressure:
+            pm, jp = pm[rpos], (jp[rpos] + shift) % n
+        size = size_all
+    if peak_pressure:
         p_max = pm.reshape(prob.shape)
         theta_p = (jp * prob.h).reshape(prob.shape)
+    cl = np.broadcast_to(np.asarray(clearance, dtype=float), prob.shape).reshape(-1)
+    h_min = cl * (1.0 - eps_max)
+    collapse = (eps_max >= COLLAPSE_EPS) | out["capped"] | (h_min < collapse_h_min)
     msg = np.full(size, "", dtype=object)
     for i in np.flatnonzero(collapse | ~out["conv"] | out["stiffcap"]):
         parts = []
@@ -865,6 +1025,8 @@ def solve_orbit(
         message=msg.reshape(shp),
         model=model,
         steps_per_cycle=n,
+        vs_x=None if vs is None else vs.real.T.reshape(shp + (n,)).copy(),
+        vs_y=None if vs is None else vs.imag.T.reshape(shp + (n,)).copy(),
     )
 
 

@@ -46,7 +46,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike
 
-from checker.calc import mobility as _mob
+from checker.calc import pi_film as _pf
 
 __all__ = [
     "MAP_FILE",
@@ -61,6 +61,8 @@ __all__ = [
     "load_map",
     "MapTable",
     "table_for",
+    "stack_tables",
+    "map_kernel",
     "mobility_map",
     "film_kernels",
     "film_state_map",
@@ -136,8 +138,8 @@ def map_directions(eps: float, n_t: int = MAP_N_T) -> tuple[np.ndarray, np.ndarr
     e = np.full(n_t, float(eps))
     th = _theta_of_t(t, e)
     chi = -th
-    a0 = np.angle(_mob._m_closed(eps * np.exp(1j * th))) + chi
-    return th, _mob._solve_alpha(e, chi, a0)
+    a0 = np.angle(_pf.m_closed(eps * np.exp(1j * th))) + chi
+    return th, _pf.solve_alpha(e, chi, a0)
 
 
 # --------------------------------------------------------------------------------------------
@@ -314,7 +316,7 @@ def _node_values(data: dict, k: int) -> tuple[np.ndarray, np.ndarray, np.ndarray
     th = np.abs(np.angle(np.exp(-1j * chi)))  # e from the load, 0..pi
     wl = eps * np.exp(1j * th)  # eccentricity in the load frame
     m = 4.0 * lod**3 / wabs * np.exp(1j * (alpha - chi))  # mobility * (L/D)^2, load frame
-    log_r = np.log(m / _mob._m_closed(wl))
+    log_r = np.log(m / _pf.m_closed(wl))
     log_r.imag = np.unwrap(log_r.imag, axis=1)
     with np.errstate(divide="ignore", invalid="ignore"):
         t = np.where(eps > 0.0, _t_of_theta(th, np.broadcast_to(eps, th.shape)),
@@ -427,7 +429,7 @@ def table_for(l_over_d: float) -> MapTable:
     log_g = s @ np.tensordot(wts, data["rows_log_gamma"], axes=1)
     d = (1.0 - eps_fine)[:, None]
     wl = eps_fine[:, None] * ((1.0 - qf) + 1j * sin_th)  # load-frame eccentricity, kappa >= 0
-    m = np.exp(log_r) * _mob._m_closed(wl) / d**1.5
+    m = np.exp(log_r) * _pf.m_closed(wl) / d**1.5
     kap = eps_fine[:, None] * sin_th
     with np.errstate(divide="ignore", invalid="ignore"):
         b = np.where(kap > 0.0, m.imag / kap, np.nan)
@@ -475,7 +477,7 @@ def _bilinear(flat: np.ndarray, i0: np.ndarray, tx: np.ndarray, tt: np.ndarray) 
     return v0 + tx * (v1 - v0)
 
 
-def _stack(l_over_d: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def stack_tables(l_over_d: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Distinct width ratios -> stacked flat tables and the flat offset of each entry's table.
 
     Returns ``(mobility, log_pi, log_gamma, offset)``; raises ValueError for a ratio outside
@@ -489,7 +491,7 @@ def _stack(l_over_d: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np
             (inv * size).reshape(np.shape(l_over_d)))
 
 
-def _m_map(w: np.ndarray, mob_flat: np.ndarray, offset: np.ndarray) -> np.ndarray:
+def map_kernel(w: np.ndarray, mob_flat: np.ndarray, offset: np.ndarray) -> np.ndarray:
     """Map mobility in the load frame times (L/D)**2 (complex); ``w`` may lie slightly
     outside the unit disk (RK stages): the wall distance is floored at 1e-7.
 
@@ -497,7 +499,7 @@ def _m_map(w: np.ndarray, mob_flat: np.ndarray, offset: np.ndarray) -> np.ndarra
     (this is the inner loop of the finite-length orbits)."""
     if w.ndim != 1:
         shape = w.shape
-        return _m_map(w.reshape(-1), mob_flat, np.broadcast_to(offset, shape).reshape(-1)
+        return map_kernel(w.reshape(-1), mob_flat, np.broadcast_to(offset, shape).reshape(-1)
                       ).reshape(shape)
     z = w.real
     e = np.abs(w)
@@ -578,9 +580,9 @@ def mobility_map(zeta: ArrayLike, kappa: ArrayLike, l_over_d: ArrayLike
     """
     z, k, lod = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (zeta, kappa,
                                                                            l_over_d)))
-    _mob._check_in_disk(z, k)
-    mob, _, _, off = _stack(lod)
-    m = _m_map(z + 1j * k, mob, off) / lod**2
+    _pf.check_in_disk(z, k)
+    mob, _, _, off = stack_tables(lod)
+    m = map_kernel(z + 1j * k, mob, off) / lod**2
     return m.real, m.imag
 
 
@@ -610,8 +612,8 @@ def film_kernels(zeta: ArrayLike, kappa: ArrayLike, l_over_d: ArrayLike
     """
     z, k, lod = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (zeta, kappa,
                                                                            l_over_d)))
-    _mob._check_in_disk(z, k)
-    _, lp, lg, off = _stack(lod)
+    _pf.check_in_disk(z, k)
+    _, lp, lg, off = stack_tables(lod)
     i0, tx, tt, _, _ = _coords(z + 1j * k)
     return np.exp(_bilinear(lp, i0 + off, tx, tt)), np.exp(_bilinear(lg, i0 + off, tx, tt))
 

@@ -6,7 +6,6 @@ from __future__ import annotations
 import numpy as np
 
 from ..calc import bearing_performance as bp
-from ..calc import mobility as mob
 from ..calc import orbit as ob
 from ..calc import reynolds_map as rm
 from ..calc import viscosity as vs
@@ -269,13 +268,11 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                 ex["omega_bearing"][rows], speeds[None, None, :], *bdim[:3], mu,
                 model="closed_form", full_groove=bdim[3], steps_per_cycle=n_steps,
                 eps0_x=warm.get("x"),
-                eps0_y=warm.get("y"))
+                eps0_y=warm.get("y"), squeeze_velocity=True)
             warm["x"], warm["y"] = res.eps_x[..., 0], res.eps_y[..., 0]
             mu4 = mu[..., None]
             lx, ly = fy_s, fx_s  # orbit frame: X along the loads' y axis
-            vx, vy = mob.squeeze_velocity(lx, ly, res.eps_x, res.eps_y, dia[..., None],
-                                          length[..., None], clear[..., None], mu4,
-                                          full_groove=full[..., None])
+            vx, vy = res.vs_x, res.vs_y  # mobility.squeeze_velocity along the orbit
             torque, power = bp.film_losses(res.eps_x, res.eps_y, lx, ly, vx, vy, wj_s, wb_s,
                                            dia[..., None], length[..., None], clear[..., None],
                                            mu4)

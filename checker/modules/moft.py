@@ -37,6 +37,10 @@ STEPS_PER_CYCLE_FINITE = 240
 """RK steps per cycle for the finite-length map (benchmarks/bench_finite_length.py: MOFT within
 4e-4 of 1440 steps on the example I4)."""
 
+MAX_BATCH_ORBITS = 4096
+"""Largest number of orbits of one kernel call when several variants are solved together
+(:func:`solve_many`; benchmarks/bench_speed.py)."""
+
 METHODS = {"short-bearing guideline": "bearing.moft_short",
            "physical criterion": "bearing.moft_finite"}
 """MOFT limits are method-tagged (rule key ``method``): a guideline calibrated to the
@@ -161,6 +165,48 @@ def moft_finite(engine: Engine, inputs: dict) -> dict[str, Quantity]:
 
 def _solve(engine: Engine, inputs: dict, model: str, name: str) -> Quantity:
     """Periodic journal orbits of all bearings x load cases x speeds in one batch."""
+    out = solve_many([(engine, inputs)], model, name)[0]
+    if isinstance(out, MissingInputs):
+        raise out
+    return out
+
+
+def solve_many(items: list[tuple[Engine, dict]], model: str,
+               name: str) -> list[Quantity | MissingInputs]:
+    """The film-thickness quantity ``name`` of several engines (variants) with one orbit
+    kernel call per load-grid length: the orbits of all variants form one batch (each
+    variant's own orbits are shared only within the variant, so every variant's numbers are
+    those of its own evaluation, :func:`checker.calc.orbit.solve_orbit` ``group``). Returns,
+    per item, the quantity or the :class:`MissingInputs` it raised."""
+    preps: list = []
+    for engine, inputs in items:
+        try:
+            preps.append(_prepare(engine, inputs, model))
+        except MissingInputs as exc:
+            preps.append(exc)
+    live = [i for i, p in enumerate(preps) if not isinstance(p, MissingInputs)
+            and p["sel"].size]
+    by_len: dict[int, list[int]] = {}
+    for i in live:
+        by_len.setdefault(preps[i]["n_pts"], []).append(i)
+    for idx in by_len.values():
+        # kernel calls of at most MAX_BATCH_ORBITS orbits (beyond a few thousand the cost
+        # per orbit no longer falls and memory grows; results do not depend on the split)
+        chunk: list[int] = []
+        size = 0
+        for i in idx:
+            m = preps[i]["arg"]["speed"].size
+            if chunk and size + m > MAX_BATCH_ORBITS:
+                _orbits([preps[j] for j in chunk], model)
+                chunk, size = [], 0
+            chunk.append(i)
+            size += m
+        _orbits([preps[j] for j in chunk], model)
+    return [p if isinstance(p, MissingInputs) else _finish(p, model, name) for p in preps]
+
+
+def _prepare(engine: Engine, inputs: dict, model: str) -> dict:
+    """Inputs of one engine's orbits (rows with complete data) and what the quantity needs."""
     bl = inputs["loads.bearing_load"]
     if not bl.coords["item"]:
         raise MissingInputs(["Bearings: no bearings given (sheet Bearings)"])
@@ -196,6 +242,71 @@ def _solve(engine: Engine, inputs: dict, model: str, name: str) -> Quantity:
                     f" {lod:.3g} outside the range {lo:.3g}..{hi:.3g} of the"
                     f" {MODEL_TEXT[model].split(' (')[0]}"]
     ok_rows = np.where(ok)[0]
+    sel = ok_rows
+    nsel = sel.size
+    n_pts = ex["fx"].shape[-1]
+    shp = (nsel, nc, ns)
+    arg = {}
+    if nsel:
+        col = (slice(None), None, None)
+        arg = {
+            "fy": np.broadcast_to(ex["fy"][sel], shp + (n_pts,)).reshape(-1, n_pts),
+            "fx": np.broadcast_to(ex["fx"][sel], shp + (n_pts,)).reshape(-1, n_pts),
+            "wj": np.broadcast_to(ex["omega_journal"][sel], shp + (n_pts,)).reshape(-1, n_pts),
+            "wb": np.broadcast_to(ex["omega_bearing"][sel], shp + (n_pts,)).reshape(-1, n_pts),
+            "speed": np.broadcast_to(speeds[None, None, :], shp).reshape(-1),
+            "d": np.broadcast_to(np.array([bearings[names[i]].diameter for i in sel])[col],
+                                 shp).reshape(-1),
+            "length": np.broadcast_to(np.array([bearings[names[i]].length for i in sel])[col],
+                                      shp).reshape(-1),
+            "c": np.broadcast_to(np.array([bearings[names[i]].clearance for i in sel])[col],
+                                 shp).reshape(-1),
+            "mu": np.broadcast_to(mu if np.ndim(mu) == 0 else mu[sel], shp).reshape(-1),
+            "full": np.broadcast_to(np.array([bearings[names[i]].groove == "full"
+                                              for i in sel])[col], shp).reshape(-1),
+        }
+    return {"engine": engine, "bl": bl, "names": names, "bearings": bearings, "speeds": speeds,
+            "shape": (nb, nc, ns), "sel": sel, "n_pts": n_pts, "arg": arg, "res": None,
+            "missing": missing, "notes": notes, "t_film": t_film, "mu": mu}
+
+
+def _orbits(preps: list[dict], model: str) -> None:
+    """One orbit kernel call for the prepared engines (same load-grid length); the result of
+    each is stored in its ``res`` (arrays over its rows x cases x speeds)."""
+    cat = {k: np.concatenate([p["arg"][k] for p in preps]) for k in preps[0]["arg"]}
+    group = np.concatenate([np.full(p["arg"]["speed"].size, g) for g, p in enumerate(preps)])
+    # orbit frame: X along the loads' y axis, Y along their x axis, so that angles are
+    # positive in the direction of crank rotation in both (checker.calc.crank_forces)
+    res = ob.solve_orbit(cat["fy"], cat["fx"], cat["wj"], cat["wb"], cat["speed"], cat["d"],
+                         cat["length"], cat["c"], cat["mu"], model=model,
+                         full_groove=cat["full"], peak_pressure=model == "closed_form",
+                         group=group, **_steps(model))
+    start = 0
+    for p in preps:
+        m = p["arg"]["speed"].size
+        shp = (p["sel"].size,) + p["shape"][1:]
+        part = slice(start, start + m)
+        start += m
+        p["res"] = {
+            "h_min": res.h_min[part].reshape(shp), "eps_max": res.eps_max[part].reshape(shp),
+            "theta_h_min": res.theta_h_min[part].reshape(shp),
+            "p_max": None if res.p_max is None else res.p_max[part].reshape(shp),
+            "theta_p_max": None if res.theta_p_max is None
+            else res.theta_p_max[part].reshape(shp),
+            "collapse": res.collapse[part].reshape(shp),
+            "converged": res.converged[part].reshape(shp),
+            "n_cycles": res.n_cycles[part].reshape(shp),
+            "message": res.message[part].reshape(shp), "theta": res.theta,
+            "eps_x": res.eps_x[part].reshape(shp + (-1,)),
+            "eps_y": res.eps_y[part].reshape(shp + (-1,)),
+        }
+
+
+def _finish(p: dict, model: str, name: str) -> Quantity:
+    """The quantity of one prepared engine from its orbits."""
+    bl, names, bearings, speeds = p["bl"], p["names"], p["bearings"], p["speeds"]
+    nb, nc, ns = p["shape"]
+    missing, notes, t_film, mu = p["missing"], p["notes"], p["t_film"], p["mu"]
     h = np.full((nb, nc, ns), np.nan)
     eps = np.full((nb, nc, ns), np.nan)
     th_min = np.full((nb, nc, ns), np.nan)
@@ -203,40 +314,29 @@ def _solve(engine: Engine, inputs: dict, model: str, name: str) -> Quantity:
     th_p = np.full((nb, nc, ns), np.nan) if model == "closed_form" else None
     findings: dict[tuple, list[str]] = {}
     orbit_store = {}
-    if ok_rows.size:
-        sel = ok_rows
-        d = np.array([bearings[names[i]].diameter for i in sel])[:, None, None]
-        length = np.array([bearings[names[i]].length for i in sel])[:, None, None]
-        c = np.array([bearings[names[i]].clearance for i in sel])[:, None, None]
-        full = np.array([bearings[names[i]].groove == "full" for i in sel])[:, None, None]
-        # orbit frame: X along the loads' y axis, Y along their x axis, so that angles are
-        # positive in the direction of crank rotation in both (checker.calc.crank_forces)
-        res = ob.solve_orbit(
-            ex["fy"][sel], ex["fx"][sel], ex["omega_journal"][sel], ex["omega_bearing"][sel],
-            speeds[None, None, :], np.broadcast_to(d, (sel.size, nc, ns)),
-            np.broadcast_to(length, (sel.size, nc, ns)), np.broadcast_to(c, (sel.size, nc, ns)),
-            mu if np.ndim(mu) == 0 else mu[sel], model=model,
-            full_groove=np.broadcast_to(full, (sel.size, nc, ns)),
-            peak_pressure=p_max is not None, **_steps(model))
+    res = p["res"]
+    if res is not None:
+        sel = p["sel"]
         if p_max is not None:
-            p_max[sel] = res.p_max
-            th_p[sel] = res.theta_p_max
-        h[sel] = res.h_min
-        eps[sel] = res.eps_max
-        th_min[sel] = res.theta_h_min
+            p_max[sel] = res["p_max"]
+            th_p[sel] = res["theta_p_max"]
+        h[sel] = res["h_min"]
+        eps[sel] = res["eps_max"]
+        th_min[sel] = res["theta_h_min"]
+        collapse, converged = res["collapse"], res["converged"]
         # only the flagged points (film collapse, not periodic) are visited
-        for a, ci, si in np.argwhere(res.collapse | ~res.converged):
+        for a, ci, si in np.argwhere(collapse | ~converged):
             rpm = speeds[si] * 30 / np.pi
-            if res.collapse[a, ci, si]:
+            if collapse[a, ci, si]:
                 text = (f"film collapse at {rpm:.0f} rpm ({CASES[ci]} load): eccentricity"
-                        f" {res.eps_max[a, ci, si]:.4f}; {res.message[a, ci, si]}")
+                        f" {res['eps_max'][a, ci, si]:.4f}; {res['message'][a, ci, si]}")
             else:
-                text = (f"orbit not periodic after {res.n_cycles[a, ci, si]} cycles at"
+                text = (f"orbit not periodic after {res['n_cycles'][a, ci, si]} cycles at"
                         f" {rpm:.0f} rpm ({CASES[ci]} load)")
             findings.setdefault((int(sel[a]), int(ci), int(si)), []).append(text)
-        orbit_store = {"rows": sel, "theta": res.theta, "eps_x": res.eps_x,
-                       "eps_y": res.eps_y, "converged": res.converged,
-                       "collapse": res.collapse, "n_cycles": res.n_cycles}
+        orbit_store = {"rows": sel, "theta": res["theta"], "eps_x": res["eps_x"],
+                       "eps_y": res["eps_y"], "converged": converged,
+                       "collapse": collapse, "n_cycles": res["n_cycles"]}
     assumptions = [
         f"MOFT by the mobility method: {MODEL_TEXT[model]}; rigid journal and housing,"
         " statically determinate loads, mean cold radial clearance (Bell, Ricardo 2013 concept"
