@@ -460,6 +460,10 @@ class _Reader:
         if spec.max_rows is not None and len(out) > spec.max_rows:
             self.err(name, f"{len(out)} data rows; at most {spec.max_rows} are accepted (the"
                      " calculation time grows with them)")
+        elif spec.dense_rows is not None and len(out) > spec.dense_rows:
+            self.warn(name, f"{len(out)} data rows, unusually dense (more than"
+                      f" {spec.dense_rows}); accepted and interpolated, but check that the"
+                      " sheet holds what you meant")
         for text, rws in notes.items():
             rr = f"row {rws[0]}" if len(rws) == 1 else f"rows {', '.join(map(str, rws))}"
             data.assumptions.append(f"{name} {rr}: {text}")
