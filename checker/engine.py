@@ -186,7 +186,19 @@ class Engine:
         where = self.cell(sheet, attr, row)
         if where == sheet:
             where = f"{sheet} ({'column' if spec.shape == 'table' else 'parameter'} '{label}')"
-        return f"{where}: {label}{' of ' + what if what else ''}"
+        return f"{where}: {label}{' of ' + what if what else ''}{_unit_words(f)}"
+
+
+def _unit_words(f) -> str:
+    """What to type in a missing input cell: " (a length, e.g. mm)", " (a number, no unit)"."""
+    from .units import KINDS
+
+    if f is None or f.kind not in KINDS:
+        return ""
+    if f.kind in ("dimensionless", "ratio"):
+        return " (a number, no unit)"
+    k = KINDS[f.kind]
+    return f" ({k.name.replace('_', ' ')}, e.g. {k.example})"
 
 
 def _rows(data: WorkbookData, sheet: str) -> list[dict[str, Any]]:

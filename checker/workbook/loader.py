@@ -15,6 +15,7 @@ Nothing is written and the file is never modified.
 
 from __future__ import annotations
 
+import datetime as _dt
 import hashlib
 import math
 import re
@@ -82,6 +83,16 @@ def _letter(col: int) -> str:
 def _describe(v: Any) -> str:
     if isinstance(v, str):
         return f"text '{v}'"
+    if isinstance(v, (_dt.datetime, _dt.date, _dt.time, _dt.timedelta)):
+        # Excel turned the entry into a date or time (e.g. "1-5" -> 1 May): say so in words
+        if isinstance(v, _dt.datetime):
+            text = (v.date().isoformat() if (v.hour, v.minute, v.second) == (0, 0, 0)
+                    else v.isoformat(sep=" ", timespec="seconds"))
+        else:
+            text = v.isoformat() if not isinstance(v, _dt.timedelta) else str(v)
+        what = "time" if isinstance(v, (_dt.time, _dt.timedelta)) else "date"
+        return (f"the {what} {text} (the cell holds a {what}, not a number: type the number"
+                " and format the cell as a number)")
     return repr(v)
 
 
