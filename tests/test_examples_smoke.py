@@ -118,6 +118,9 @@ def test_compare_on_clearance_oil_temperature_and_bolt_torque(runs, engine):
     assert ": radial clearance" in text and ": tightening torque" in text
     assert "Oil supply temperature" in text
 
-# The studies of examples/ (examples/*.toml) and one study of each design are run by
-# tests/study/test_examples_studies.py (the study command's own smoke test).
+# --- studies ---------------------------------------------------------------------------------
+# The studies of examples/ (examples/*.toml, one per design) belong here too, run through
+# ``checker study`` with their PDF; tests/study/test_robust.py checks each is valid for its
+# template (test_example_studies_are_valid_for_their_templates) and runs a table design with
+# its PDF. Add them to _engine_run (after "compare") when the study smoke runs are wanted.
 
