@@ -103,8 +103,6 @@ def _short(exc: BaseException, limit: int = 300) -> str:
 def _fail(exc: BaseException) -> None:
     if os.environ.get("CHECKER_DEBUG"):
         raise exc
-    if isinstance(exc, UsageProblem) and not isinstance(exc, OutputError):
-        raise click.UsageError(str(exc))
     if isinstance(exc, CheckerError) and not isinstance(exc, InternalError):
         click.echo(f"error: {exc}", err=True)
     else:
