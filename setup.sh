@@ -32,14 +32,30 @@ if [ -n "$(missing_libs)" ]; then
   fi
 fi
 
+# pip's output goes to a log, shown only when a step fails (errors stay visible)
+LOG=$(mktemp "${TMPDIR:-/tmp}/checker-setup.XXXXXX")
+trap 'rm -f "$LOG"' EXIT
+quietly() {
+  if ! "$@" >"$LOG" 2>&1; then
+    echo "setup: failed: $*" >&2
+    tail -n 40 "$LOG" >&2
+    exit 2
+  fi
+}
+
+echo "setup: creating the virtual environment .venv" >&2
 rm -rf .venv
-"$PY" -m venv .venv
-.venv/bin/python -m pip install -q --upgrade pip >/dev/null
-.venv/bin/python -m pip install -q -e ".[test]"
+quietly "$PY" -m venv .venv
+echo "setup: updating pip" >&2
+quietly .venv/bin/python -m pip install --upgrade pip
+echo "setup: installing checker and its dependencies (a few minutes on a fresh machine)" >&2
+quietly .venv/bin/python -m pip install --progress-bar off -e ".[test]"
 
 if [ "${1:-}" != "--no-example" ]; then
-  .venv/bin/checker template engine.xlsx --force
+  echo "setup: writing the example workbook engine.xlsx" >&2
+  .venv/bin/checker template engine.xlsx --force 2>/dev/null
+  echo "setup: rendering the example report engine.pdf (about 15 s)" >&2
   # exit code 1 is the verdict (the seed's example joints fail their guidelines), not an error
-  .venv/bin/checker report engine.xlsx -o engine.pdf --html engine.html || [ $? -eq 1 ]
-  echo "setup: wrote engine.xlsx and engine.pdf" >&2
+  .venv/bin/checker report engine.xlsx -o engine.pdf --html engine.html -q || [ $? -eq 1 ]
 fi
+echo "setup: done; run .venv/bin/checker --help" >&2

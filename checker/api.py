@@ -143,7 +143,8 @@ class CheckResult:
         """One line: verdict, counts and completeness (text output, report command)."""
         c = self.counts()
         line = (f"{self.verdict_text} - {c['pass']} passed, {c['fail']} failed,"
-                f" {c['warning']} warnings, {c['not_evaluated']} not evaluated")
+                f" {c['warning']} warning{'s' if c['warning'] != 1 else ''},"
+                f" {c['not_evaluated']} not evaluated")
         if not self.complete and "not-evaluated" not in self.fail_on:
             line += (f"; incomplete: {c['not_evaluated']} result"
                      f"{'s' if c['not_evaluated'] != 1 else ''} could not be evaluated"

@@ -1,7 +1,9 @@
 """Command line: ``checker template | check | report | rules``.
 
-Exit codes: 0 no error-severity rule fails; 1 a rule fails; 2 bad input, bad rule file or usage
-error. Problems are printed without a traceback (set ``CHECKER_DEBUG=1`` to see one).
+Exit codes: 0 no error-severity rule fails; 1 a rule fails; 2 bad input, bad rule file,
+unwritable output or usage error; 130 interrupted (SIGINT, Ctrl-C); 143 terminated (SIGTERM).
+Problems are printed without a traceback (set ``CHECKER_DEBUG=1`` to see one). Every output
+is probed for writability before the work starts and written whole or not at all.
 """
 
 from __future__ import annotations
@@ -15,12 +17,38 @@ from pathlib import Path
 import click
 
 from . import __version__
-from .errors import CheckerError, InternalError, UsageProblem
+from .errors import CheckerError, InternalError, OutputError, UsageProblem
+from .interrupt import EXIT_SIGINT, EXIT_SIGTERM, Terminated, sigterm_raises
+from .outputs_io import check_writable, write_files
 
 
 def _split(values: tuple[str, ...]) -> list[str] | None:
     out = [v.strip() for s in values for v in s.split(",") if v.strip()]
     return out or None
+
+
+# what each calculation of the graph computes, in words (progress lines)
+STEP_WORDS = {
+    "balance": "the balance of the rotating and reciprocating masses",
+    "pressure_traces": "the cylinder pressure traces",
+    "bearing_loads": "the bearing loads",
+    "specific_load": "the specific bearing loads",
+    "bearing_heat_balance": "the oil-film temperatures (bearing heat balance)",
+    "film_pressure": "the peak oil-film pressures",
+    "moft": "the minimum oil film thickness",
+    "moft_short": "the minimum oil film thickness (short-bearing theory)",
+    "moft_finite": "the minimum oil film thickness (finite-length bearing)",
+    "tv_response": "the torsional vibration of the crank train",
+    "tv_joint_torque": "the joint torques from the torsional model",
+    "damper_tuning": "the damper tuning",
+    "crank_fatigue": "the crankshaft fatigue safety factors",
+    "crank_nose_fatigue": "the crank-nose fatigue safety factor",
+    "flywheel": "the cyclic irregularity and flywheel inertia",
+    "joint_bolts": "the bolt preloads and stresses of the joints",
+    "joint_applied_torque": "the torques the joints must transmit",
+    "joint_cover_factor": "the joints' slip safety (cover factors)",
+    "joint_computed_torque": "the joint torques from the engine loads",
+}
 
 
 class _Progress:
@@ -42,7 +70,8 @@ class _Progress:
             return
         m = self.STEP.match(text)
         if m:  # a calculation of the graph ("loads: pressure_traces")
-            text = f"Computing the {m.group(2).replace('_', ' ')} ({m.group(1)})"
+            text = "Computing " + STEP_WORDS.get(m.group(2), "the " + m.group(2).replace(
+                "_", " "))
         if text.startswith(self.COUNTER):
             n = int(text[len(self.COUNTER):].split()[0])
             if n <= self.page:  # a page laid out again (page references): no news
@@ -101,30 +130,33 @@ def _run_check(workbook, rules, select, ignore, fail_on, progress):
 
 
 def _atomic_write(path: Path, data: bytes) -> None:
-    """Write via a temporary file in the same folder, so no half-written output remains.
+    """Write one output whole (via a temporary file in the same folder); a problem writing it
+    is exit code 2 with one sentence (see :mod:`checker.outputs_io`)."""
+    _write_all([(path, data)])
 
-    Only a regular file (or a new path) is replaced atomically; anything else that exists
-    (a device such as /dev/null, a FIFO, a terminal) is written to, never replaced.
-    """
-    if path.exists() and not path.is_file():
-        if path.is_dir():
-            raise click.UsageError(f"output {path} is a folder; give a file name")
-        with open(path, "wb") as f:
-            f.write(data)
-        return
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=".checker-", dir=path.parent)
+
+def _write_all(files: list[tuple[Path, bytes]]) -> None:
+    """Write several outputs all or none; an OSError is exit code 2 with one sentence."""
     try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+        write_files(files)
+    except OutputError as exc:
+        _fail(exc)
+
+
+def _outputs_writable(paths, workbook: str | None = None) -> None:
+    """Before any work: each output is a distinct file, not the input workbook, and its folder
+    is writable; otherwise exit code 2 with one sentence."""
+    paths = [Path(p) for p in paths]
+    if workbook is not None:
+        for p in paths:
+            if p.resolve() == Path(workbook).resolve():
+                raise click.UsageError(f"output {p} would overwrite the input workbook")
+    if len({p.resolve() for p in paths}) < len(paths):
+        raise click.UsageError("the output files must be different files")
+    try:
+        check_writable(paths)
+    except OutputError as exc:
+        _fail(exc)
 
 
 _common = [
@@ -149,7 +181,24 @@ def common(f):
 WORKBOOK = click.argument("workbook", type=click.Path(exists=True, dir_okay=False))
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+class _Group(click.Group):
+    """The command group: an interruption is exit code 130 (SIGINT, Ctrl-C) or 143 (SIGTERM)
+    with one line, never click's "Aborted!" with exit code 1 (the verdict code). Outputs are
+    written whole or not at all, so an interruption leaves no partial file."""
+
+    def invoke(self, ctx: click.Context):
+        try:
+            with sigterm_raises():
+                return super().invoke(ctx)
+        except KeyboardInterrupt:
+            click.echo("\ninterrupted", err=True)
+            sys.exit(EXIT_SIGINT)
+        except Terminated:
+            click.echo("terminated", err=True)
+            sys.exit(EXIT_SIGTERM)
+
+
+@click.group(cls=_Group, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="checker")
 def main() -> None:
     """Design-rule checker for engine crank trains."""
@@ -158,7 +207,8 @@ def main() -> None:
 @main.command()
 @click.argument("path", type=click.Path(dir_okay=False), required=False)
 @click.option("--force", is_flag=True, help="Overwrite an existing file.")
-@click.option("--engine", "which", type=click.Choice(["i4", "i6", "v8"]), default="i4",
+@click.option("--engine", "which", type=click.Choice(["i4", "i6", "v8"], case_sensitive=False),
+              default="i4",
               show_default=True, help="i4: the gasoline engine of Bell, Ricardo 2013; i6: a"
               " truck diesel from Mendes et al. 2008 with an assumed rubber damper; v8: a"
               " 90-degree cross-plane V8 from GM LS1 service data; assumptions labelled in each.")
@@ -169,9 +219,14 @@ def template(path: str, force: bool, which: str) -> None:
     from .workbook.example_i6 import i6_content
     from .workbook.example_v8 import v8_content
 
+    which = which.lower()
     p = Path(path or ("engine.xlsx" if which == "i4" else f"engine-{which}.xlsx"))
+    if p.suffix.lower() != ".xlsx":
+        raise click.UsageError(f"{p} is not an .xlsx file name; the workbook is an Excel file"
+                               f" (e.g. {p.with_suffix('.xlsx').name})")
     if p.exists() and not force:
         raise click.UsageError(f"{p} exists; use --force to overwrite it")
+    _outputs_writable([p])
     content = {"i4": example_content, "i6": lambda: i6_content(damper_ring=True),
                "v8": v8_content}[which]()
     with tempfile.TemporaryDirectory() as d:
@@ -194,6 +249,8 @@ def check(workbook, rules, select, ignore, fail_on, fmt, no_timings, output, pro
     """Run the check as a CI gate: results on stdout, exit code 0/1/2, no PDF."""
     from . import outputs
 
+    if output:
+        _outputs_writable([output], workbook)
     prog = _Progress(sys.stderr.isatty() if progress is None else progress)
     res = _run_check(workbook, rules, select, ignore, fail_on, prog)
     if fmt == "json":
@@ -203,8 +260,6 @@ def check(workbook, rules, select, ignore, fail_on, fmt, no_timings, output, pro
     else:
         text = outputs.to_text(res)
     if output:
-        if Path(output).resolve() == Path(workbook).resolve():
-            raise click.UsageError("the output file would overwrite the input workbook")
         _atomic_write(Path(output), text.encode("utf-8"))
         click.echo(f"{output}: {res.summary_text()}", err=True)
     else:
@@ -233,11 +288,7 @@ def report(workbook, rules, select, ignore, fail_on, output, html_out, results_o
                      else progress)
     pdf_path = Path(output) if output else Path(workbook).with_suffix(".pdf")
     outs = [pdf_path] + [Path(x) for x in (html_out, results_out) if x]
-    for p in outs:
-        if p.resolve() == Path(workbook).resolve():
-            raise click.UsageError(f"output {p} would overwrite the input workbook")
-    if len({p.resolve() for p in outs}) < len(outs):
-        raise click.UsageError("the PDF, HTML and results files must be different files")
+    _outputs_writable(outs, workbook)
     prog("Reading the workbook and running the analyses")
     res = _run_check(workbook, rules, select, ignore, fail_on, prog)
     try:
@@ -249,14 +300,13 @@ def report(workbook, rules, select, ignore, fail_on, output, html_out, results_o
         prog.done()
         _fail(exc)
     prog.done()
-    written = [str(pdf_path)]
-    _atomic_write(pdf_path, rep.pdf)
+    files = [(pdf_path, rep.pdf)]
     if html_out:
-        _atomic_write(Path(html_out), rep.html.encode("utf-8"))
-        written.append(str(html_out))
+        files.append((Path(html_out), rep.html.encode("utf-8")))
     if results_out:
-        _atomic_write(Path(results_out), rep.results)
-        written.append(str(results_out))
+        files.append((Path(results_out), rep.results))
+    _write_all(files)  # all or none
+    written = [str(p) for p, _ in files]
     click.echo(f"wrote {', '.join(written)} ({rep.pages} pages): {res.summary_text()}",
                err=True)
     sys.exit(res.exit_code)
@@ -362,6 +412,13 @@ def compare(baseline, variants, rules, select, ignore, fail_on, fmt, output) -> 
 
     from . import compare as cmp
 
+    if output or fmt == "pdf":
+        out = Path(output) if output else Path(baseline).with_name(
+            Path(baseline).stem + "-compare.pdf")
+        _outputs_writable([out])
+        for w in (baseline, *variants):
+            if out.resolve() == Path(w).resolve():
+                raise click.UsageError(f"output {out} would overwrite the input workbook {w}")
     try:
         comps = cmp.compare(baseline, list(variants), select=_split(select),
                             ignore=_split(ignore),
@@ -376,7 +433,7 @@ def compare(baseline, variants, rules, select, ignore, fail_on, fmt, output) -> 
                             "comparisons": [c.to_dict() for c in comps]}, indent=2,
                            sort_keys=True, ensure_ascii=False) + "\n"
         if output:
-            _atomic_write(Path(output), text.encode("utf-8"))
+            _atomic_write(out, text.encode("utf-8"))
         else:
             click.echo(text, nl=False)
     else:
@@ -386,14 +443,12 @@ def compare(baseline, variants, rules, select, ignore, fail_on, fmt, output) -> 
             html, pdf = render(comps)
         except Exception as exc:  # noqa: BLE001
             _fail(exc)
-        out = Path(output) if output else Path(baseline).with_name(
-            Path(baseline).stem + "-compare.pdf")
         _atomic_write(out, pdf)
         click.echo(f"wrote {out}", err=True)
     for c in comps:
         n = sum(1 for r in c.results if r["change"] == "newly failing")
         click.echo(f"{Path(c.variant.engine.source).name}: {c.variant.verdict_text}"
-                   f" ({len(c.inputs)} input changes, {n} newly failing)", err=True)
+                   f" ({c.inputs_text()}; {n} newly failing)", err=True)
     sys.exit(1 if worse else 0)
 
 
@@ -409,10 +464,10 @@ def rules_cmd(rules, explain) -> None:
     except CheckerError as exc:
         _fail(exc)
     if explain:
-        try:
-            r = table.get(explain.strip())
-        except KeyError:
-            raise click.UsageError(f"no rule '{explain}' (see 'checker rules')") from None
+        want = explain.strip().upper()  # rule ids are case-insensitive, as in --select
+        r = next((x for x in table.rules if x.id.upper() == want), None)
+        if r is None:
+            raise click.UsageError(f"no rule '{explain}' (see 'checker rules')")
         where = ", ".join(f"{k} = {'/'.join(v)}" for k, v in r.where.items()) or "-"
         lines = [f"{r.id}  {r.name}", f"  quantity:   {r.quantity}",
                  f"  applies to: {r.applies_to or where}", f"  where:      {where}",

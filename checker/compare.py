@@ -11,11 +11,13 @@ from pathlib import Path
 from typing import Any
 
 from .api import CheckResult
+from .errors import InputErrors
 from .workbook.schema import SHEETS
 
 # status change classes, in the order a reviewer reads them
 CHANGE_ORDER = ("newly failing", "newly passing", "newly not evaluated", "now evaluated",
-                "warning changed", "margin changed", "new result", "result gone")
+                "warning changed", "margin changed", "value changed (not evaluated)",
+                "new result", "result gone")
 
 
 @dataclass
@@ -24,6 +26,23 @@ class Comparison:
     variant: CheckResult
     inputs: list[dict[str, Any]] = field(default_factory=list)
     results: list[dict[str, Any]] = field(default_factory=list)
+    n_compared: int = 0  # input cells compared (for "these look like different engines")
+
+    @property
+    def different_engines(self) -> bool:
+        """Whether so many inputs differ that the two workbooks are rather different engines
+        than a variant of one (more than a third of the compared cells, at least 30)."""
+        n = len(self.inputs)
+        return n >= 30 and n > self.n_compared / 3
+
+    def inputs_text(self) -> str:
+        """How many inputs changed, in words (with a hint when the engines differ)."""
+        n = len(self.inputs)
+        text = f"{n} input change{'s' if n != 1 else ''}"
+        if self.different_engines:
+            text += (f"; these look like different engines ({n} of {self.n_compared}"
+                     " inputs differ)")
+        return text
 
     def to_dict(self) -> dict[str, Any]:
         return {"baseline": Path(self.baseline.engine.source).name,
@@ -32,7 +51,9 @@ class Comparison:
                             "variant": self.variant.verdict},
                 "complete": {"baseline": self.baseline.complete,
                              "variant": self.variant.complete},
-                "input_changes": self.inputs, "result_changes": self.results}
+                "input_changes": self.inputs, "result_changes": self.results,
+                "inputs_compared": self.n_compared,
+                "different_engines": self.different_engines}
 
 
 def _text(v: Any) -> str:
@@ -43,16 +64,31 @@ def _text(v: Any) -> str:
     return str(v).strip()
 
 
+def _with_unit(value: str, unit: str) -> str:
+    """A cell's text with its unit as the user reads it ("30 um"; no unit for "-" or blank)."""
+    if not value:
+        return "(blank)"
+    u = unit.strip() if unit else ""
+    return f"{value} {u}" if u and u not in ("-", "1") else value
+
+
 def input_changes(base_raw, var_raw) -> list[dict[str, Any]]:
     """Every differing input cell (value or unit), addressed as the user sees it."""
+    return _input_diff(base_raw, var_raw)[0]
+
+
+def _input_diff(base_raw, var_raw) -> tuple[list[dict[str, Any]], int]:
+    """(the differing input cells, how many input cells were compared)."""
     from openpyxl.utils import get_column_letter
 
     out: list[dict[str, Any]] = []
+    total = [0]
     for name, spec in SHEETS.items():
         a, b = base_raw.sheets.get(name), var_raw.sheets.get(name)
         if spec.shape == "notes":
             continue
         if (a is None) != (b is None):
+            total[0] += 1
             out.append({"sheet": name, "cell": name, "what": "sheet",
                         "baseline": "present" if a else "missing",
                         "variant": "present" if b else "missing"})
@@ -73,11 +109,11 @@ def input_changes(base_raw, var_raw) -> list[dict[str, Any]]:
                 (r1, x), (r2, y) = ra.get(label, (None, None)), rb.get(label, (None, None))
                 va = (x[1], x[2]) if x else ("", "")
                 vb = (y[1], y[2]) if y else ("", "")
+                total[0] += 1
                 if va != vb:
                     nm = (x or y)[0]
                     out.append({"sheet": name, "cell": f"{name}!B{r2 or r1}", "what": nm,
-                                "baseline": " ".join(t for t in va if t) or "(blank)",
-                                "variant": " ".join(t for t in vb if t) or "(blank)"})
+                                "baseline": _with_unit(*va), "variant": _with_unit(*vb)})
             continue
         def line(raw, r):
             row = raw.rows.get(r, {})
@@ -97,35 +133,41 @@ def input_changes(base_raw, var_raw) -> list[dict[str, Any]]:
                 if r < 3:
                     continue
                 vals = line(raw, r)
-                k = vals[j].lower() if j is not None and j < len(vals) else f"row {r}"
-                d[k] = (r, {hdr[i]: v for i, v in enumerate(vals) if i < len(hdr) and hdr[i]})
+                shown = vals[j] if j is not None and j < len(vals) and vals[j] else f"row {r}"
+                # matched case-insensitively, shown as the user typed it
+                d[shown.lower()] = (r, {hdr[i]: v for i, v in enumerate(vals)
+                                        if i < len(hdr) and hdr[i]}, shown)
             return d
         da, db = keyed(a, ha), keyed(b, hb)
         for c in cols:
             i, k = (ha.index(c) if c in ha else None), (hb.index(c) if c in hb else None)
             u1 = ua[i] if i is not None and i < len(ua) else ""
             u2 = ub[k] if k is not None and k < len(ub) else ""
+            total[0] += 1
             if u1 != u2:
                 col = get_column_letter((k if k is not None else i) + 1)
                 out.append({"sheet": name, "cell": f"{name}!{col}2", "what": f"unit of '{c}'",
                             "baseline": u1 or "(blank)", "variant": u2 or "(blank)"})
         for rk in list(da) + [x for x in db if x not in da]:
-            (r1, x), (r2, y) = da.get(rk, (None, None)), db.get(rk, (None, None))
+            (r1, x, s1), (r2, y, s2) = (da.get(rk, (None, None, None)),
+                                        db.get(rk, (None, None, None)))
+            shown = s2 or s1
             if x is None or y is None:
+                total[0] += 1
                 out.append({"sheet": name, "cell": f"{name}!A{r2 or r1}",
-                            "what": f"row '{rk}'", "baseline": "present" if x else "missing",
+                            "what": f"row '{shown}'", "baseline": "present" if x else "missing",
                             "variant": "present" if y else "missing"})
                 continue
             for c in cols:
+                total[0] += 1
                 if x.get(c, "") != y.get(c, ""):
                     k = hb.index(c) if c in hb else ha.index(c)
                     unit = (ub[k] if k < len(ub) else "") if c in hb else ""
-                    u = f" {unit}" if unit and unit != "-" else ""
                     out.append({"sheet": name, "cell": f"{name}!{get_column_letter(k + 1)}{r2}",
-                                "what": f"{rk}: {c}",
-                                "baseline": (x.get(c) or "(blank)") + (u if x.get(c) else ""),
-                                "variant": (y.get(c) or "(blank)") + (u if y.get(c) else "")})
-    return out
+                                "what": f"{shown}: {c}",
+                                "baseline": _with_unit(x.get(c, ""), unit),
+                                "variant": _with_unit(y.get(c, ""), unit)})
+    return out, total[0]
 
 
 def _state(r) -> str:
@@ -163,9 +205,15 @@ def result_changes(base: CheckResult, var: CheckResult) -> list[dict[str, Any]]:
         ma = None if ra is None else ra.margin
         mb = None if rb is None else rb.margin
         dm = None if ma is None or mb is None else mb - ma
-        if kind == "margin changed" and (dm is None or abs(dm) < 1e-6) and \
-                (ra.value == rb.value):
-            continue
+        if kind == "margin changed":
+            if dm is None:
+                # no margin on one side (both not evaluated: a computed value without a
+                # limit): only a moved value is worth a line, and never as a margin change
+                if ra.value == rb.value:
+                    continue
+                kind = "value changed (not evaluated)"
+            elif abs(dm) < 1e-6 and ra.value == rb.value:
+                continue
         r0 = rb or ra
         out.append({"rule": k[0], "item": k[1], "name": r0.name, "change": kind,
                     "baseline": _side(ra), "variant": _side(rb),
@@ -189,11 +237,17 @@ def compare(baseline: str | Path, variants: list[str | Path], select=None, ignor
     from . import api
     from .workbook.loader import read_raw_workbook
 
-    base_res = api.check(baseline, select=select, ignore=ignore, fail_on=fail_on)
+    def checked(path):
+        try:
+            return api.check(path, select=select, ignore=ignore, fail_on=fail_on)
+        except InputErrors as exc:  # say which of the workbooks it is
+            raise InputErrors(exc.errors, exc.warnings, source=Path(path).name) from None
+
+    base_res = checked(baseline)
     base_raw = read_raw_workbook(baseline)
     out = []
     for v in variants:
-        res = api.check(v, select=select, ignore=ignore, fail_on=fail_on)
-        out.append(Comparison(base_res, res, input_changes(base_raw, read_raw_workbook(v)),
-                              result_changes(base_res, res)))
+        res = checked(v)
+        diff, n = _input_diff(base_raw, read_raw_workbook(v))
+        out.append(Comparison(base_res, res, diff, result_changes(base_res, res), n))
     return out

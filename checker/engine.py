@@ -186,7 +186,19 @@ class Engine:
         where = self.cell(sheet, attr, row)
         if where == sheet:
             where = f"{sheet} ({'column' if spec.shape == 'table' else 'parameter'} '{label}')"
-        return f"{where}: {label}{' of ' + what if what else ''}"
+        return f"{where}: {label}{' of ' + what if what else ''}{_unit_words(f)}"
+
+
+def _unit_words(f) -> str:
+    """What to type in a missing input cell: " (a length, e.g. mm)", " (a number, no unit)"."""
+    from .units import KINDS
+
+    if f is None or f.kind not in KINDS:
+        return ""
+    if f.kind in ("dimensionless", "ratio"):
+        return " (a number, no unit)"
+    k = KINDS[f.kind]
+    return f" ({k.name.replace('_', ' ')}, e.g. {k.example})"
 
 
 def _rows(data: WorkbookData, sheet: str) -> list[dict[str, Any]]:
@@ -566,6 +578,23 @@ def build_engine(data: WorkbookData,
                         r["axial"], r["reference"])
     )
     n_pins = max((c.pin for c in cylinders), default=0)
+    bearing_rows = [r for r in _rows(data, "Bearings") if r["type"] is not None]
+    if complete and cylinders and bearing_rows:
+        # the crank needs a main bearing on each side of every throw and a big end per rod:
+        # a missing row is an input error, like a missing cylinder row (not "not evaluated")
+        for kind, need, why in (
+                ("main", n_pins + 1, f"a crank with {n_pins} throws needs {n_pins + 1}, one on"
+                 f" each side of every throw (M1..M{n_pins + 1}, front to rear)"),
+                ("big-end", len(cylinders), f"{len(cylinders)} cylinders need"
+                 f" {len(cylinders)}, one per connecting rod (BE1..BE{len(cylinders)})")):
+            names = [str(r["name"]) for r in bearing_rows
+                     if r["type"] == kind.replace("-", " ")]
+            if names and len(names) != need:
+                fix = (f"add the missing {kind} bearing row" if len(names) < need
+                       else "remove the extra rows")
+                errs.append(InputError("Bearings", f"{len(names)} {kind} bearing"
+                                       f"{'s' if len(names) != 1 else ''} given"
+                                       f" ({', '.join(names)}), but {why}; {fix}"))
     for i, r in enumerate(_rows(data, "CrankMass")):
         if r["throw"] is not None and n_pins and r["throw"] > n_pins:
             err("CrankMass", "throw", i, f"throw {r['throw']} does not exist (the engine has"

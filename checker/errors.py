@@ -25,14 +25,17 @@ class CheckerError(Exception):
 class InputErrors(CheckerError):
     """All problems found in one workbook."""
 
-    def __init__(self, errors: list[InputError], warnings: list[InputError] | tuple = ()):
+    def __init__(self, errors: list[InputError], warnings: list[InputError] | tuple = (),
+                 source: str = ""):
         self.errors = list(errors)
         self.warnings = list(warnings)
+        self.source = source  # the file's name when several workbooks are read (compare)
         super().__init__("\n".join(str(e) for e in self.errors))
 
     def __str__(self) -> str:
         n = len(self.errors)
-        head = f"{n} problem{'s' if n != 1 else ''} in the input:"
+        where = f" {self.source}" if self.source else ""
+        head = f"{n} problem{'s' if n != 1 else ''} in the input{where}:"
         text = head + "\n" + "\n".join(f"  {e}" for e in self.errors)
         if self.warnings:
             m = len(self.warnings)
@@ -61,3 +64,8 @@ class UsageProblem(CheckerError, ValueError):
 class InternalError(CheckerError):
     """A calculation failed on input it should never have received (a bug in checker):
     reported with a short message and exit code 2, never as a usage error."""
+
+
+class OutputError(CheckerError):
+    """An output cannot be written (read-only folder, a folder where a file is wanted):
+    exit code 2, found before any long work starts (:mod:`checker.outputs_io`)."""

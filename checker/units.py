@@ -187,6 +187,7 @@ def _dimension_words(unit: pint.Unit) -> str:
         "[temperature]": "temperature",
         "1 / [time]": "frequency/speed",
         "dimensionless": "dimensionless",
+        "[substance] / [length] ** 3": "a molar concentration",
     }
     return known.get(str(dim), str(dim))
 
@@ -272,8 +273,44 @@ def _affine(unit: str, kind: str, percent_formatted: bool) -> tuple[float, float
     return scale, offset
 
 
+# units engineers type, in their usual spelling: a unit typed in another case ("MM", read by
+# pint as megamolar; "Mpa") that fails is hinted at with the spelling that works
+_COMMON_UNITS = ("mm", "um", "µm", "m", "cm", "MPa", "kPa", "GPa", "Pa", "bar", "N", "kN",
+                 "N m", "Nm", "kN m", "kg", "g", "kg m^2", "kg*m**2", "rpm", "deg", "rad",
+                 "l/min", "°C", "K", "Hz", "N m/rad", "N m/deg", "N/mm", "W", "kW", "s", "ms")
+
+
+def _case_hint(unit: str, kind: str, percent_formatted: bool) -> str | None:
+    """A common spelling of ``unit`` that differs only in letter case and is a valid unit of
+    ``kind`` (``MM`` -> ``mm``), or None."""
+    low = unit.strip().lower()
+    for cand in dict.fromkeys([*(c for c in _COMMON_UNITS if c.lower() == low), low]):
+        if cand == unit.strip():
+            continue
+        try:
+            _to_si_pint_checked(1.0, cand, kind, percent_formatted)
+        except UnitProblem:
+            continue
+        return cand
+    return None
+
+
 def _to_si_pint(value: float, unit: str, kind: str, percent_formatted: bool) -> float:
-    """The conversion itself (pint); :func:`to_si` caches it as a factor and an offset."""
+    """The conversion itself (pint); :func:`to_si` caches it as a factor and an offset. A
+    unit refused only because of its letter case gets a "did you mean" hint."""
+    try:
+        return _to_si_pint_checked(value, unit, kind, percent_formatted)
+    except UnitProblem as exc:
+        hint = _case_hint(unit, kind, percent_formatted) if unit.strip() else None
+        if hint is None:
+            raise
+        raise UnitProblem(f"{exc}; did you mean '{hint}'? (units are case-sensitive)"
+                          ) from None
+
+
+def _to_si_pint_checked(value: float, unit: str, kind: str, percent_formatted: bool
+                        ) -> float:
+    """:func:`_to_si_pint` without the hint."""
     k = KINDS[kind]
     u = unit
     expected = f"a {k.name.replace('_', ' ')} (e.g. {k.example})"

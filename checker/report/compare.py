@@ -14,6 +14,7 @@ import numpy as np
 
 from .. import __version__
 from ..compare import Comparison
+from ..display import with_unit
 from ..resources import templates_dir
 from ..units import from_si
 
@@ -29,6 +30,7 @@ CURVES = (
      "Goodman SF [-]", "", "min"),
 )
 _STYLES = ("-", "--", ":", "-.")
+_NOT_STATUS = ("margin changed", "value changed (not evaluated)")
 
 
 def _label(text: str) -> str:
@@ -98,8 +100,7 @@ def _figures(comps: list[Comparison]) -> list[dict[str, Any]]:
 def _fmt_side(s: dict | None) -> str:
     if s is None:
         return "-"
-    v = "-" if s["value"] is None else f"{s['value']:.4g}" + (f" {s['unit']}" if s["unit"]
-                                                               else "")
+    v = with_unit(s["value"], s["unit"], sig=4)
     m = "" if s["margin"] is None else f" ({s['margin'] * 100:+.1f} %)"
     return f"{s['status'].replace('_', ' ').upper()}: {v}{m}"
 
@@ -119,11 +120,19 @@ def render(comps: list[Comparison]) -> tuple[str, bytes]:
             "variant": Path(c.variant.engine.source).name,
             "verdicts": (c.baseline.verdict_text, c.variant.verdict_text),
             "inputs": c.inputs,
+            "inputs_text": c.inputs_text(),
             "status_changes": [dict(r, b=_fmt_side(r["baseline"]), v=_fmt_side(r["variant"]))
-                               for r in c.results if r["change"] != "margin changed"],
+                               for r in c.results if r["change"] not in _NOT_STATUS],
+            # a margin change needs a margin on both sides; a not-evaluated result whose
+            # computed value moved is listed as such, never as a margin change
             "margin_changes": [dict(r, b=_fmt_side(r["baseline"]), v=_fmt_side(r["variant"]))
-                               for r in c.results if r["change"] == "margin changed"][:40],
-            "n_margin": sum(1 for r in c.results if r["change"] == "margin changed"),
+                               for r in c.results if r["change"] == "margin changed"
+                               and r["margin_change"] is not None][:40],
+            "n_margin": sum(1 for r in c.results if r["change"] == "margin changed"
+                            and r["margin_change"] is not None),
+            "value_changes": [dict(r, b=_fmt_side(r["baseline"]), v=_fmt_side(r["variant"]))
+                              for r in c.results
+                              if r["change"] == "value changed (not evaluated)"][:40],
         } for c in comps],
         "figures": _figures(comps),
     }

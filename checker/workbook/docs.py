@@ -85,6 +85,8 @@ def workbook_markdown() -> str:
             extra.append(f"Values of `{s.key}` must be unique.")
         if s.max_rows is not None:
             extra.append(f"At most {s.max_rows} data rows.")
+        if s.dense_rows is not None:
+            extra.append(f"Any number of data rows (more than {s.dense_rows}: a warning).")
         for f in s.fields:
             shown = [(a, c) for a, c in f.aliases if choice_key(a) != choice_key(c)]
             if shown:

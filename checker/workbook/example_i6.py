@@ -58,6 +58,7 @@ from .example import (
     CYLINDER_COLUMNS,
     JOINT_COLUMNS,
     JOINT_TORQUE_COLUMNS,
+    NOSE_ROWS,
     RULE_OVERRIDE_COLUMNS,
     TV_MODEL_COLUMNS,
 )
@@ -518,7 +519,7 @@ def i6_content(damper_ring: bool = False) -> dict[str, Any]:
         "Oil": OIL_ROWS,
         "TVModel": _tv_model(damper_ring),
         "Damper": DAMPER_ROWS,
-        "Fatigue": FATIGUE_ROWS,
+        "Fatigue": FATIGUE_ROWS + NOSE_ROWS,
         "Joints": JOINTS,
         "JointTorques": JOINT_TORQUES,
         "RuleOverrides": RULE_OVERRIDES,

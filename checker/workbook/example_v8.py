@@ -58,6 +58,7 @@ from .example import (
     CYLINDER_COLUMNS,
     JOINT_COLUMNS,
     JOINT_TORQUE_COLUMNS,
+    NOSE_ROWS,
     RULE_OVERRIDE_COLUMNS,
     TV_MODEL_COLUMNS,
 )
@@ -485,7 +486,7 @@ def v8_content(split_stations: bool = False, link: float = 1e13) -> dict[str, An
         "Oil": OIL_ROWS,
         "TVModel": (TV_MODEL_COLUMNS, _tv_rows(split_stations, link)),
         "Damper": DAMPER_ROWS,
-        "Fatigue": FATIGUE_ROWS,
+        "Fatigue": FATIGUE_ROWS + NOSE_ROWS,
         "Joints": JOINTS,
         "JointTorques": JOINT_TORQUES,
         "RuleOverrides": RULE_OVERRIDES,

@@ -15,6 +15,7 @@ Nothing is written and the file is never modified.
 
 from __future__ import annotations
 
+import datetime as _dt
 import hashlib
 import math
 import re
@@ -82,6 +83,16 @@ def _letter(col: int) -> str:
 def _describe(v: Any) -> str:
     if isinstance(v, str):
         return f"text '{v}'"
+    if isinstance(v, (_dt.datetime, _dt.date, _dt.time, _dt.timedelta)):
+        # Excel turned the entry into a date or time (e.g. "1-5" -> 1 May): say so in words
+        if isinstance(v, _dt.datetime):
+            text = (v.date().isoformat() if (v.hour, v.minute, v.second) == (0, 0, 0)
+                    else v.isoformat(sep=" ", timespec="seconds"))
+        else:
+            text = v.isoformat() if not isinstance(v, _dt.timedelta) else str(v)
+        what = "time" if isinstance(v, (_dt.time, _dt.timedelta)) else "date"
+        return (f"the {what} {text} (the cell holds a {what}, not a number: type the number"
+                " and format the cell as a number)")
     return repr(v)
 
 
@@ -460,6 +471,10 @@ class _Reader:
         if spec.max_rows is not None and len(out) > spec.max_rows:
             self.err(name, f"{len(out)} data rows; at most {spec.max_rows} are accepted (the"
                      " calculation time grows with them)")
+        elif spec.dense_rows is not None and len(out) > spec.dense_rows:
+            self.warn(name, f"{len(out)} data rows, unusually dense (more than"
+                      f" {spec.dense_rows}); accepted and interpolated, but check that the"
+                      " sheet holds what you meant")
         for text, rws in notes.items():
             rr = f"row {rws[0]}" if len(rws) == 1 else f"rows {', '.join(map(str, rws))}"
             data.assumptions.append(f"{name} {rr}: {text}")

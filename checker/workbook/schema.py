@@ -113,6 +113,9 @@ class Sheet:
     note: str = ""
     extra_columns: tuple[str, ...] = field(default=("note", "notes", "source", "comment"))
     max_rows: int | None = None  # more data rows than this is an input error (run time)
+    # more data rows than this is a warning (unusually dense, e.g. a logged curve); only for
+    # tables the calculations merely interpolate, whose cost is linear in the rows
+    dense_rows: int | None = None
 
 
 # ---------------------------------------------------------------------------- choices
@@ -584,8 +587,11 @@ PRESSURE_TRACES = Sheet(
 BRAKE_TORQUE = Sheet(
     "BrakeTorque",
     "table",
-    max_rows=2000,
-    note="Full-load brake torque vs speed (mean torque for stress and joints).",
+    # a logged dyno curve is normal input: only interpolated (linear in the rows), so no
+    # limit beyond Excel's own; more than dense_rows rows is a warning
+    dense_rows=2000,
+    note="Full-load brake torque vs speed (mean torque for stress and joints); a dense"
+         " measured curve (thousands of rows) is accepted and interpolated.",
     fields=(
         F("speed", "speed", "speed", check=">0",
           valid=R(1, 100000, "rpm"), usual=R(30, 20000, "rpm")),

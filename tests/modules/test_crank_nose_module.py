@@ -16,8 +16,13 @@ def _add_nose(wb, belt=True):
             ("Crank nose fatigue strength", 420, "MPa")]
     if belt:
         rows += [("Belt load on crank nose", 2.5, "kN"), ("Belt load overhang", 35, "mm")]
-    for r in rows:
-        ws.append([*r, "test data"])
+    labels = {str(c.value).strip().lower(): c.row for c in ws["A"] if c.value}
+    for r in rows:  # the template has the nose rows blank: fill them, append the others
+        if r[0].lower() in labels:
+            for j, v in enumerate([*r, "test data"], start=1):
+                ws.cell(labels[r[0].lower()], j).value = v
+        else:
+            ws.append([*r, "test data"])
 
 
 def test_not_evaluated_without_nose_data(tmp_path):

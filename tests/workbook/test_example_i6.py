@@ -60,6 +60,8 @@ def test_every_value_has_a_source_or_an_assumption():
             continue
         rows = body if isinstance(body, list) else body[1]
         for row in rows:
+            if isinstance(body, list) and row[1] is None:
+                continue  # a blank for the user to fill (FAT-003's nose inputs): no value
             note = str(row[-1])
             assert "ASSUMPTION" in note or "Mendes" in note or "MaxxForce" in note, (name, row)
 

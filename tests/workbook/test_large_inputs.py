@@ -113,3 +113,45 @@ def test_formula_without_stored_value_in_an_otherwise_empty_row_is_reported(tmp_
     where = sorted(e.where for e in info.value.errors)
     assert where == [f"BrakeTorque!A{r}", f"BrakeTorque!B{r}"]
     assert all("no stored result" in e.message for e in info.value.errors)
+
+
+N_DENSE = 50_000
+
+
+def test_dense_brake_torque_table_is_accepted_with_a_warning(tmp_path):
+    """A logged dyno curve of 50,000 rows is normal input (issue 21, item 14): accepted (it is
+    only interpolated), with a warning that it is unusually dense, and the loads computed from
+    it equal those of the sparse curve it samples (linear interpolation of a piecewise-linear
+    curve reproduces it)."""
+    import numpy as np
+
+    from checker import api
+
+    src = example_path(tmp_path)
+    wb = openpyxl.load_workbook(src)
+    ws = wb["BrakeTorque"]
+    pts = [(ws.cell(r, 1).value, ws.cell(r, 2).value) for r in range(3, ws.max_row + 1)
+           if ws.cell(r, 1).value is not None]
+    rpm = np.linspace(pts[0][0], pts[-1][0], N_DENSE)
+    torque = np.interp(rpm, [p[0] for p in pts], [p[1] for p in pts])
+    ws.delete_rows(3, ws.max_row)
+    wb.save(src)
+    dense = _copy_write_only(src, tmp_path / "dense.xlsx",
+                             {"BrakeTorque": [[float(n), float(t)] for n, t in
+                                              zip(rpm, torque)]})
+    load_engine(example_path(tmp_path, "warm.xlsx"))  # imports outside the measurement
+    t0 = time.process_time()
+    e = load_engine(dense)
+    elapsed = time.process_time() - t0
+    assert len(e.brake_torque) == N_DENSE
+    assert any("BrakeTorque" in str(w) and "50000 data rows" in str(w) for w in e.warnings)
+    assert elapsed < 30.0, elapsed  # linear: a few seconds of CPU for 100,000 cells
+
+    base = api.check(example_path(tmp_path, "base.xlsx"), select=["JNT"])
+    res = api.check(dense, select=["JNT"])
+    a = {(r.rule, r.item): r.value for r in base.results}
+    b = {(r.rule, r.item): r.value for r in res.results}
+    assert a.keys() == b.keys()
+    for k, v in a.items():
+        if v is not None:
+            assert b[k] == pytest.approx(v, rel=1e-6), k
