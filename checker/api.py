@@ -323,7 +323,7 @@ def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = No
             return errs
 
         engine = load_engine(source, check_overrides=_check_overrides)
-        table = RuleTable(resolved["rules"], table.files, resolved["applied"])
+        table = RuleTable(resolved["rules"], table.files, resolved["applied"], table.levers)
     chosen = _select(table, select, ignore)
     wanted = {r.quantity for r in chosen}
     # quantities a result is shown beside (the film thickness by the other method)
