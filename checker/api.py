@@ -72,6 +72,8 @@ class CheckResult:
     outcome: graph.RunOutcome
     fail_on: str = "error"
     assumptions: list[str] = field(default_factory=list)
+    remedies: Any = None  # checker.remedies: what it takes to pass (--remedies)
+    corners: Any = None  # checker.remedies: the verdict at the tolerance corners (--corners)
 
     @property
     def not_evaluated(self) -> list[RuleResult]:
@@ -187,6 +189,10 @@ class CheckResult:
         }
         if timings:
             d["timings"] = {m: round(t, 6) for m, t in self.outcome.timings.items()}
+        if self.remedies is not None or self.corners is not None:
+            from .remedies import add_to_json
+
+            add_to_json(self, d, timings)
         return d
 
 

@@ -386,6 +386,8 @@ class RuleResult:
     judged_on: str = ""  # which of ``compare`` the rule judged (method-tagged quantities)
     check: str = ""  # the rule's comparison (">=", "<=", ">", "<", "between")
     override: str = ""  # how the workbook's RuleOverrides changed the limit ("" if not)
+    what_it_takes: str = ""  # smallest lever change that passes + side effects (--remedies)
+    worst_corner: str = ""  # value and corner at the tolerance corners (--corners)
 
     @property
     def value_text(self) -> str:

@@ -71,8 +71,10 @@ class Remedy:
             return None
         return 100.0 * c / abs(float(self.nominal))
 
-    def value_text(self, v: Any = None) -> str:
-        v = self.value if v is None else v
+    def value_text(self, v: Any = "__value__") -> str:
+        v = self.value if isinstance(v, str) and v == "__value__" else v
+        if v is None:
+            return "blank"
         if isinstance(v, dict):
             d = v.get("nominal diameter")
             p = v.get("thread pitch")
@@ -93,7 +95,8 @@ class Remedy:
         if ch is not None:
             parts = f" ({'+' if ch >= 0 else ''}{with_unit(ch, self.lever.unit)}"
             pct = self.change_pct
-            parts += (f", {'+' if pct >= 0 else ''}{pct:.1f} %)" if pct is not None else ")")
+            parts += (f", {'+' if pct >= 0 else '−'}{abs(pct):.1f} %)" if pct is not None
+                      else ")")
         return f"{name} {self.value_text(self.nominal)} → {self.value_text()}{parts}"
 
     def as_dict(self) -> dict:
@@ -138,6 +141,8 @@ class ResultRemedies:
         if self.status == "pass":
             return ""
         b = self.best()
+        if not self.remedies:
+            return "What it takes to pass: no design lever is listed for this rule"
         if b is None:
             txt = "no lever of the table passes it within its bounds"
         else:
@@ -145,7 +150,8 @@ class ResultRemedies:
             eff = [f"{e['rule']} {e['item']} {e['to']}" for e in b.side_effects]
             txt += ("; side effects: " + ", ".join(eff)) if eff else "; no other result changes"
         if self.conflicts:
-            txt += "; " + " ".join(self.conflicts)
+            txt += (". " + self.conflicts[0].split(" (")[0]
+                    + ": see 'What it takes to pass'")
         return "To pass: " + txt
 
     def as_dict(self) -> dict:
@@ -340,8 +346,12 @@ def _advance(job: _Job, evaluated: list[tuple[Any, float | None]]) -> None:
     job.queue = [x]
 
 
-def _pack(requests: list[tuple[_Job, Any]]) -> list[list[tuple[_Job, Any]]]:
-    """Variants: requests of separable jobs on different items share one; others alone."""
+def _pack(requests: list[tuple[_Job, Any]], pack: bool = True
+          ) -> list[list[tuple[_Job, Any]]]:
+    """Variants: requests of separable jobs on different items share one; others alone
+    (``pack=False``: every request alone, the one-by-one path)."""
+    if not pack:
+        return [[r] for r in requests]
     variants: list[list[tuple[_Job, Any]]] = []
     keys: list[set[str]] = []
     cells: list[set] = []
@@ -364,7 +374,7 @@ def _pack(requests: list[tuple[_Job, Any]]) -> list[list[tuple[_Job, Any]]]:
     return variants
 
 
-def _run(jobs: list[_Job], ev: Evaluator) -> None:
+def _run(jobs: list[_Job], ev: Evaluator, pack: bool = True) -> None:
     while True:
         requests = []
         for j in jobs:
@@ -373,7 +383,7 @@ def _run(jobs: list[_Job], ev: Evaluator) -> None:
                 j.queue = []
         if not requests:
             return
-        variants = _pack(requests)
+        variants = _pack(requests, pack)
         changes = []
         for v in variants:
             ch: dict = {}
@@ -391,7 +401,7 @@ def _run(jobs: list[_Job], ev: Evaluator) -> None:
                 _advance(j, got[id(j)])
 
 
-def _side_effects(jobs: list[_Job], ev: Evaluator, nominal) -> None:
+def _side_effects(jobs: list[_Job], ev: Evaluator, nominal, pack: bool = True) -> None:
     """Run the whole check at each answer: the results whose status changes."""
     base = {(r.rule, r.item): r.status for r in nominal.results}
     done = [j for j in jobs if j.remedy.found and not j.lever.discrete or
@@ -403,7 +413,7 @@ def _side_effects(jobs: list[_Job], ev: Evaluator, nominal) -> None:
         uniq.setdefault(tuple(sorted(ch.items(), key=repr)), []).append(j)
     groups = list(uniq.items())
     reqs = [(js[0], js[0].remedy.value) for _, js in groups]
-    variants = _pack(reqs)
+    variants = _pack(reqs, pack)
     changes = []
     for v in variants:
         ch: dict = {}
@@ -457,25 +467,27 @@ def _conflicts(out: list[ResultRemedies]) -> None:
         names = sorted({rr.rule for rr, _ in lst})
         others = []
         for rr, _ in lst:
-            for rm in rr.remedies:
-                if rm.lever.id != lid and rm.found and rm.lever.name not in others:
-                    bad = [e for e in rm.side_effects if e["to"] != "pass"
-                           and e["item"] == rr.item]
-                    if not bad:
-                        others.append(rm.lever.name)
+            can = [f"{rm.lever.name} {rm.value_text()}" for rm in rr.remedies
+                   if rm.lever.id != lid and rm.found and not any(
+                       e["to"] != "pass" and e["item"] == rr.item for e in rm.side_effects)]
+            if can:
+                others.append(f"{rr.rule}: {' or '.join(can)}")
         text = (f"Conflict: no {lever.name.lower()} passes {', '.join(names)} together"
                 f" ({needs}).")
-        text += (f" Levers without this conflict: {', '.join(others)}." if others
+        text += (f" Levers that can: {'; '.join(others)}." if others
                  else " Change another input (see the lever table).")
         for rr, _ in lst:
             if text not in rr.conflicts:
                 rr.conflicts.append(text)
 
 
-def find_remedies(nominal, ev: Evaluator, levers: list[Lever], near: float = NEAR
-                  ) -> list[ResultRemedies]:
+def find_remedies(nominal, ev: Evaluator, levers: list[Lever], near: float = NEAR,
+                  pack: bool = True) -> list[ResultRemedies]:
     """Remedies for the failing results of ``nominal`` (a CheckResult) and for the passing
-    ones within ``near`` of their limit, by every applicable lever."""
+    ones within ``near`` of their limit, by every applicable lever.
+
+    ``pack=False`` evaluates every trial value of every job on its own (the one-by-one path;
+    the answers are the same, with more evaluations)."""
     out: list[ResultRemedies] = []
     jobs: list[_Job] = []
     bindings: dict[tuple, Any] = {}
@@ -519,7 +531,7 @@ def find_remedies(nominal, ev: Evaluator, levers: list[Lever], near: float = NEA
                 jobs.append(job)
                 rr.remedies.append(rm)
         out.append(rr)
-    _run(jobs, ev)
+    _run(jobs, ev, pack)
     # both directions of an 'either' lever: keep the found one nearest to today
     for rr in out:
         keep: list[Remedy] = []
@@ -535,7 +547,7 @@ def find_remedies(nominal, ev: Evaluator, levers: list[Lever], near: float = NEA
                 keep.append(lst[0])
         rr.remedies = keep
     kept = {id(rm) for rr in out for rm in rr.remedies}
-    _side_effects([j for j in jobs if id(j.remedy) in kept], ev, nominal)
+    _side_effects([j for j in jobs if id(j.remedy) in kept], ev, nominal, pack)
     _conflicts(out)
     return out
 
