@@ -251,7 +251,7 @@ def _start(job: _Job, value: float | None, limits: list[float] | None, check: st
     job.x0, job.xb = x0, xb
     pts = [x0 + (xb - x0) * f for f in FRACTIONS]
     # proportional starting guess (value ~ input^p, p = +-1): only a guess, always checked
-    if value and limits and lv.kind != "temperature" and x0 != 0:
+    if value and limits and lv.kind != "temperature" and x0 != 0 and lv.separable:
         target = min(limits, key=lambda L: abs(L - value))
         up = target > value  # the value must rise
         ratio = target / value if value else None
@@ -263,13 +263,27 @@ def _start(job: _Job, value: float | None, limits: list[float] | None, check: st
             if (g - x0) * job.sign > 0 and abs(g - x0) < abs(xb - x0):
                 job.guess = g
                 pts = [g] + pts
-    job.queue = sorted(pts, key=lambda x: abs(x - x0))
+    job.queue = sorted((float(f"{x:.10g}") for x in pts), key=lambda x: abs(x - x0))
 
 
 def _advance(job: _Job, evaluated: list[tuple[Any, float | None]]) -> None:
-    """Take the margins of the job's trial values and queue the next ones."""
+    """Take the margins of the job's trial values (and points shared by other jobs of the
+    same lever) and queue the next ones."""
+    own = [p for p in evaluated if len(p) == 2]
+    shared = [(p[0], p[1]) for p in evaluated if len(p) == 3]
+    if job.done:
+        return
+    if not job.lever.discrete and job.x0 is not None:
+        # shared points count only on this job's side of today's value, within its bound
+        shared = [(x, m) for x, m in shared if (x - job.x0) * job.sign > 0
+                  and abs(x - job.x0) <= abs(job.xb - job.x0) * (1 + 1e-12)]
+    if job.queue and not own:
+        # the job's own trial values are still to come: keep what others learnt for later
+        job.pts += shared
+        return
+    evaluated = own + shared
     job.pts += evaluated
-    job.remedy.evaluations += len(evaluated)
+    job.remedy.evaluations += len(own)
     if job.lever.discrete:
         for x, m in evaluated:  # candidates in order
             if job.ok(m):
@@ -285,6 +299,7 @@ def _advance(job: _Job, evaluated: list[tuple[Any, float | None]]) -> None:
     if job.bracket is None:
         # points ordered by distance from today: first one on the other side
         prev = (job.x0, job.res.margin)
+        evaluated = [p for p in job.pts]
         for x, m in sorted(evaluated, key=lambda p: abs(p[0] - job.x0)):
             if m is None:  # invalid input there: treat as the end of the range
                 break
@@ -306,7 +321,9 @@ def _advance(job: _Job, evaluated: list[tuple[Any, float | None]]) -> None:
             return
     else:
         (xa, ma), (xg, mg) = job.bracket
-        for x, m in evaluated:
+        for x, m in sorted(evaluated, key=lambda p: abs(p[0] - xg)):
+            if not (min(xa, xg) < x < max(xa, xg)):
+                continue  # a shared point outside the bracket
             if m is None:
                 job.done, job.remedy.reason = True, "the input becomes invalid"
                 return
@@ -329,21 +346,40 @@ def _advance(job: _Job, evaluated: list[tuple[Any, float | None]]) -> None:
         job.done, job.remedy.reason = True, "root finding did not converge"
         return
     (xa, ma), (xg, mg) = job.bracket
-    if mg == ma:
-        x = 0.5 * (xa + xg)
-    else:
-        x = xg - mg * (xg - xa) / (mg - ma)
-        lo, hi = sorted((xa, xg))
-        w = hi - lo
-        if not (lo + 1e-3 * w < x < hi - 1e-3 * w):
+    lo, hi = sorted((xa, xg))
+    w = hi - lo
+    x = _iqi(job, lo, hi)
+    if x is None:
+        if mg == ma:
             x = 0.5 * (xa + xg)
+        else:
+            x = xg - mg * (xg - xa) / (mg - ma)
+    if not (lo + 1e-3 * w < x < hi - 1e-3 * w):
+        x = 0.5 * (xa + xg)
     if job.want_pass:
         x = x + (xg - xa) * 1e-9  # nudge to the passing side
+    x = float(f"{x:.10g}")  # equal jobs (four identical big ends) share their evaluations
     if abs(xg - xa) <= 1e-12 * max(abs(xg), 1.0):
         job.remedy.value, job.remedy.margin, job.remedy.found = xg, mg, True
         job.done = True
         return
     job.queue = [x]
+
+
+def _iqi(job: _Job, lo: float, hi: float) -> float | None:
+    """Inverse quadratic interpolation through the three evaluated points nearest to the
+    root (x as a quadratic in the margin, at margin 0); None when not inside the bracket."""
+    pts = [(x, m) for x, m in job.pts if m is not None and lo <= x <= hi]
+    ends = {(x, m) for (x, m) in (job.bracket or ())}
+    pts = sorted(set(pts) | ends, key=lambda p: abs(p[1]))[:3]
+    if len(pts) < 3:
+        return None
+    (x0, f0), (x1, f1), (x2, f2) = pts
+    if len({f0, f1, f2}) < 3:
+        return None
+    x = (x0 * f1 * f2 / ((f0 - f1) * (f0 - f2)) + x1 * f0 * f2 / ((f1 - f0) * (f1 - f2))
+         + x2 * f0 * f1 / ((f2 - f0) * (f2 - f1)))
+    return x if lo < x < hi and math.isfinite(x) else None
 
 
 def _pack(requests: list[tuple[_Job, Any]], pack: bool = True
@@ -375,6 +411,10 @@ def _pack(requests: list[tuple[_Job, Any]], pack: bool = True
 
 
 def _run(jobs: list[_Job], ev: Evaluator, pack: bool = True) -> None:
+    """Rounds of evaluations until every job is done. Identical variants are evaluated once;
+    a variant that moves one lever alone serves every job of that lever (its other results
+    are in the same check), so the jobs of a global lever such as the oil temperature share
+    their trial values."""
     while True:
         requests = []
         for j in jobs:
@@ -384,18 +424,37 @@ def _run(jobs: list[_Job], ev: Evaluator, pack: bool = True) -> None:
         if not requests:
             return
         variants = _pack(requests, pack)
-        changes = []
+        changes, uniq, index = [], {}, []
         for v in variants:
             ch: dict = {}
             for j, x in v:
                 ch.update(j.binding.changes(x))
-            changes.append(ch)
-        select = sorted({j.rule for v in variants for j, _ in v})
+            key = tuple(sorted(ch.items(), key=repr))
+            if key not in uniq:
+                uniq[key] = len(changes)
+                changes.append(ch)
+            index.append(uniq[key])
+        active = [j for j in jobs if not j.done]
+        select = sorted({j.rule for j in active} | {j.rule for v in variants for j, _ in v})
         results = ev.evaluate_variants(changes, select=select)
         got: dict[int, list] = {}
-        for v, res in zip(variants, results):
+        seen: set[tuple[int, Any]] = set()
+        for v, k in zip(variants, index):
+            res = results[k]
             for j, x in v:
-                got.setdefault(id(j), []).append((x, _margin_of(res, j.rule, j.item)))
+                if (id(j), repr(x)) not in seen:
+                    seen.add((id(j), repr(x)))
+                    got.setdefault(id(j), []).append((x, _margin_of(res, j.rule, j.item)))
+            if pack and len(v) == 1 and not v[0][0].lever.discrete:
+                j0, x0 = v[0]
+                for j in active:  # the same lever's other jobs learn from this point
+                    if j is j0 or j.lever.discrete or j.binding.cells != j0.binding.cells:
+                        continue
+                    if (id(j), repr(x0)) in seen:
+                        continue
+                    seen.add((id(j), repr(x0)))
+                    got.setdefault(id(j), []).append((x0, _margin_of(res, j.rule, j.item),
+                                                      "shared"))
         for j in jobs:
             if id(j) in got:
                 _advance(j, got[id(j)])
