@@ -85,7 +85,7 @@ def read_tolerances(base: Any) -> list[Tolerance]:
         if r < 3:
             continue
 
-        def get(name: str):
+        def get(name: str, r: int = r):
             j = cols.get(name)
             return None if j is None else _cell(raw, r, j)
         sheet_in = _text(get("sheet"))

@@ -157,7 +157,8 @@ def parse_lever(raw: Any, origin: str, problems: list[str], rule_ids: set[str] |
         name = raw.get("row") if spec.shape == "parameters" else raw.get("column")
         f = _field(sheet, name)
         if f is None:
-            problems.append(f"{pre}: sheet {sheet} has no {'parameter' if spec.shape == 'parameters' else 'column'} '{name}'")
+            what = "parameter" if spec.shape == "parameters" else "column"
+            problems.append(f"{pre}: sheet {sheet} has no {what} '{name}'")
             return None
         cols.append(f)
     row = raw.get("row") if spec.shape == "table" else None

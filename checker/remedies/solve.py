@@ -511,7 +511,7 @@ def _conflicts(out: list[ResultRemedies]) -> None:
         for rm in rr.remedies:
             if rm.found and isinstance(rm.value, (int, float)) and not rm.lever.discrete:
                 by.setdefault((rm.lever.id, rm.where), []).append((rr, rm))
-    for (lid, where), lst in by.items():
+    for (lid, _where), lst in by.items():
         lows = [(rm.value, rr) for rr, rm in lst if rm.direction > 0]  # needs >= value
         highs = [(rm.value, rr) for rr, rm in lst if rm.direction < 0]  # needs <= value
         if not lows or not highs:
