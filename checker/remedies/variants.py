@@ -71,6 +71,12 @@ class Evaluator:
                                      fail_on=self.fail_on, cache=self.cache))
             except InputErrors as exc:
                 out.append(exc)
+            except (ValueError, ArithmeticError) as exc:
+                # a calculation refused the variant's values (outside its validity range):
+                # the variant is not a valid design, like an input error
+                from ..errors import InputError
+
+                out.append(InputErrors([InputError("variant", f"{type(exc).__name__}: {exc}")]))
             self.evaluations += 1
         self.seconds += time.perf_counter() - t0
         return out

@@ -294,6 +294,9 @@ TOLERANCES = (
          " Ricardo 2013"],
         ["PeakPressure", "all", "peak pressure", -3, 3, "% of nominal",
          ASSUMPTION + ": cycle-to-cycle and cylinder-to-cylinder scatter of the peak pressure"],
+        ["Fatigue", "", "Pin oil hole fatigue strength", 304, None, "N/mm^2",
+         ASSUMPTION + ": material minimum, 326 N/mm^2 x 700/750 (minimum against typical UTS"
+         " of the steel; fatigue strength proportional to UTS)"],
     ],
 )
 
