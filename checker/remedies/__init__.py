@@ -49,7 +49,8 @@ def attach(res, remedies: bool = False, corners: bool = False, levers_file: str 
         from .solve import find_remedies
 
         t0 = time.perf_counter()
-        levers = list(table.levers) or load_levers(None, {r.id for r in table.rules})
+        # a user rule file without levers: the default levers (those of absent rules idle)
+        levers = list(table.levers) or load_levers(None)
         if levers_file:
             levers = merge(levers, load_levers(levers_file, {r.id for r in table.rules}))
         n0 = ev.evaluations
