@@ -134,7 +134,9 @@ def to_text(res) -> str:
         for x in res.remedies["results"]:
             if x.status == "pass" and not x.remedies:
                 continue
-            lines.append(f"  {x.rule} {x.item} ({x.status}):")
+            lines.append(f"  {x.rule} {x.item} ({x.status}"
+                         + ("; the margin reaches zero at" if x.status == "pass" else "; passes at")
+                         + "):")
             for rm in x.remedies:
                 fx = ", ".join(f"{e['rule']} {e['item']} -> {e['to']}" for e in rm.side_effects)
                 lines.append(f"    - {rm.text()}" + (f"; side effects: {fx}" if fx else ""))

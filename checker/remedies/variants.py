@@ -41,6 +41,10 @@ class Evaluator:
     cache: dict = field(default_factory=dict)
     evaluations: int = 0
     seconds: float = 0.0
+    keep: int = 48
+    """Calculation results of variants kept in the cache beyond the check's own (the oldest
+    are dropped: a film calculation of all bearings holds tens of megabytes)."""
+    _pinned: set | None = None
 
     def evaluate_variants(self, changes: list[Changes], select: list[str] | None = None
                           ) -> list[Any]:
@@ -63,6 +67,8 @@ class Evaluator:
             sel = [s for s in sel if any(s.startswith(x) or x.startswith(s)
                                          for x in self.select)]
         t0 = time.perf_counter()
+        if self._pinned is None:
+            self._pinned = set(self.cache)
         for ch in changes:
             raw = self.base.with_values(ch)
             try:
@@ -78,6 +84,9 @@ class Evaluator:
 
                 out.append(InputErrors([InputError("variant", f"{type(exc).__name__}: {exc}")]))
             self.evaluations += 1
+            extra = [k for k in self.cache if k not in self._pinned]
+            for k in extra[:max(0, len(extra) - self.keep)]:
+                del self.cache[k]
         self.seconds += time.perf_counter() - t0
         return out
 

@@ -60,8 +60,9 @@ def remedies_section(res: CheckResult) -> dict:
                     css.append("fail")
         if rows:
             blocks.append({"type": "table", "caption": "What it takes to pass: per result and"
-                           " lever, the value at which the margin reaches zero",
-                           "columns": ["result", "lever", "today", "passes at", "change",
+                           " lever, the value at which the margin reaches zero (a failing"
+                           " result passes there, a passing one near its limit fails beyond)",
+                           "columns": ["result", "lever", "today", "margin zero at", "change",
                                        "side effects"],
                            "rows": rows, "row_css": css,
                            "widths": [15, 22, 11, 14, 14, 24]})
