@@ -238,7 +238,15 @@ def evaluate_corners(nominal, ev: Evaluator, tols: list[Tolerance]) -> list[Corn
         return []
     # 1. one at a time (all selected rules)
     oat_points = [{i: 0.0} for i in range(len(tols))] + [{i: 1.0} for i in range(len(tols))]
-    oat = ev.evaluate_variants([_changes(tols, u) for u in oat_points])
+    known: dict[tuple, Any] = {}  # every evaluated point: its check (reused at the end)
+
+    def run(points: list[dict], select=None) -> list:
+        out_r = ev.evaluate_variants([_changes(tols, u) for u in points], select=select)
+        for u, r in zip(points, out_r):
+            known.setdefault(tuple(sorted(u.items())), r)
+        return out_r
+
+    oat = run(oat_points)
     oat_m = [_margins(r) for r in oat]
     n = len(tols)
     affects: dict[tuple[str, str], list[int]] = {}
@@ -278,8 +286,7 @@ def evaluate_corners(nominal, ev: Evaluator, tols: list[Tolerance]) -> list[Corn
             cm = [oat_m[idx[0]], oat_m[n + idx[0]]]
         else:
             sel = sorted({k[0] for k in keys})
-            cm = [_margins(r) for r in ev.evaluate_variants(
-                [_changes(tols, c) for c in corners], select=sel)]
+            cm = [_margins(r) for r in run(corners, select=sel)]
         for key in keys:
             ms = [(m.get(key), c) for m, c in zip(cm, corners) if m.get(key) is not None]
             if not ms:
@@ -307,8 +314,7 @@ def evaluate_corners(nominal, ev: Evaluator, tols: list[Tolerance]) -> list[Corn
             uniq[k] = len(pts)
             pts.append(u)
     sel = sorted({k[0] for k in out})
-    pm = [_margins(r) for r in ev.evaluate_variants([_changes(tols, u) for u in pts],
-                                                    select=sel)] if pts else []
+    pm = [_margins(r) for r in run(pts, select=sel)] if pts else []
     refine: dict[tuple[str, str], list[int]] = {}
     for key, i, u in probes:
         m = pm[uniq[tuple(sorted(u.items()))]].get(key)
@@ -323,16 +329,18 @@ def evaluate_corners(nominal, ev: Evaluator, tols: list[Tolerance]) -> list[Corn
     for key, dims in refine.items():
         cr = out[key]
         for i in dims:
-            _golden(cr, key, i, tols, ev)
+            _golden(cr, key, i, run)
     # values and statuses at the worst point (one evaluation per distinct point)
     pts2: dict[tuple, dict] = {}
     for cr in out.values():
         pts2.setdefault(tuple(sorted(cr._u.items())), cr._u)
-    keys2 = list(pts2)
-    evald = ev.evaluate_variants([_changes(tols, pts2[k]) for k in keys2], select=sel)
-    by_pt = dict(zip(keys2, evald))
+    need = {k: u for k, u in pts2.items() if k != () and k not in known}
+    run(list(need.values()), select=sel)
     for key, cr in out.items():
-        r = find(by_pt[tuple(sorted(cr._u.items()))], *key)
+        pk = tuple(sorted(cr._u.items()))
+        r = find(nominal, *key) if pk == () else find(known.get(pk), *key)
+        if r is None:
+            r = find(run([cr._u], select=[key[0]])[0], *key)
         if r is not None:
             cr.worst_value, cr.worst_margin, cr.worst_status = r.value, r.margin, r.status
         cr.corner = [tols[i].end_text(u) for i, u in sorted(cr._u.items())] or [
@@ -346,7 +354,7 @@ def evaluate_corners(nominal, ev: Evaluator, tols: list[Tolerance]) -> list[Corn
     return sorted(out.values(), key=lambda c: order.get((c.rule, c.item), 0))
 
 
-def _golden(cr: CornerResult, key, i: int, tols, ev: Evaluator) -> None:
+def _golden(cr: CornerResult, key, i: int, run) -> None:
     """Refine the worst point along tolerance ``i`` (golden-section search on [0, 1])."""
     g = (math.sqrt(5) - 1) / 2
     a, b = 0.0, 1.0
@@ -354,7 +362,7 @@ def _golden(cr: CornerResult, key, i: int, tols, ev: Evaluator) -> None:
     def f(x: float) -> float:
         u = dict(cr._u)
         u[i] = x
-        m = _margins(ev.evaluate_variants([_changes(tols, u)], select=[key[0]])[0]).get(key)
+        m = _margins(run([u], select=[key[0]])[0]).get(key)
         m = math.inf if m is None else m
         if m < cr.worst_margin:
             cr.worst_margin, cr._u = m, u
