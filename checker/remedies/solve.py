@@ -435,8 +435,21 @@ def _run(jobs: list[_Job], ev: Evaluator, pack: bool = True) -> None:
                 changes.append(ch)
             index.append(uniq[key])
         active = [j for j in jobs if not j.done]
-        select = sorted({j.rule for j in active} | {j.rule for v in variants for j, _ in v})
-        results = ev.evaluate_variants(changes, select=select)
+        # each variant is checked on its own jobs' rules (and those of the other jobs of the
+        # same lever, which learn from it): a bearing variant does not run the torsion
+        sels: list[frozenset] = [frozenset()] * len(changes)
+        for v, k in zip(variants, index):
+            sel = {j.rule for j, _ in v}
+            if len(v) == 1:
+                cells = v[0][0].binding.cells
+                sel |= {j.rule for j in active if j.binding.cells == cells}
+            sels[k] = sels[k] | sel
+        results: list[Any] = [None] * len(changes)
+        for sel in dict.fromkeys(sels):
+            ks = [k for k in range(len(changes)) if sels[k] == sel]
+            for k, r in zip(ks, ev.evaluate_variants([changes[k] for k in ks],
+                                                     select=sorted(sel))):
+                results[k] = r
         got: dict[int, list] = {}
         seen: set[tuple[int, Any]] = set()
         for v, k in zip(variants, index):
