@@ -287,8 +287,8 @@ TOLERANCES = (
         ["Oil", "", "Oil supply temperature", 120, 140, "°C",
          ASSUMPTION + ": gallery temperature range at full load, hot day to cold day"],
         ["Joints", "crank nose", "tightening factor", None, 1.6, "-",
-         "VDI 2230 Part 1 (2015), Table A8: alpha_A = 1.4..1.6 for a torque wrench with"
-         " estimated friction; 1.6 taken"],
+         ASSUMPTION + ": tightening by torque wrench with estimated friction; VDI 2230"
+         " Part 1 (2015), Table A8: alpha_A = 1.4..1.6, 1.6 taken"],
         ["Joints", "crank nose", "friction coefficient", 0.15, 0.25, "-",
          ASSUMPTION + ": friction of a dry steel face 0.15..0.25 around the 0.2 of Bell,"
          " Ricardo 2013"],

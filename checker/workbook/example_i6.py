@@ -513,8 +513,8 @@ TOLERANCES = (
         ["Oil", "", "Oil supply temperature", 100, 120, "°C",
          ASSUMPTION + ": gallery temperature range at full load"],
         ["Joints", "crank nose", "tightening factor", None, 1.6, "-",
-         "VDI 2230 Part 1 (2015), Table A8: alpha_A = 1.4..1.6 for a torque wrench with"
-         " estimated friction; 1.6 taken"],
+         ASSUMPTION + ": tightening by torque wrench with estimated friction; VDI 2230"
+         " Part 1 (2015), Table A8: alpha_A = 1.4..1.6, 1.6 taken"],
         ["PeakPressure", "all", "peak pressure", -3, 3, "% of nominal",
          ASSUMPTION + ": cycle-to-cycle and cylinder-to-cylinder scatter of the peak pressure"],
     ],
