@@ -72,6 +72,8 @@ class CheckResult:
     outcome: graph.RunOutcome
     fail_on: str = "error"
     assumptions: list[str] = field(default_factory=list)
+    remedies: Any = None  # checker.remedies: what it takes to pass (--remedies)
+    corners: Any = None  # checker.remedies: the verdict at the tolerance corners (--corners)
 
     @property
     def not_evaluated(self) -> list[RuleResult]:
@@ -188,6 +190,10 @@ class CheckResult:
         }
         if timings:
             d["timings"] = {m: round(t, 6) for m, t in self.outcome.timings.items()}
+        if self.remedies is not None or self.corners is not None:
+            from .remedies import add_to_json
+
+            add_to_json(self, d, timings)
         return d
 
 
@@ -324,7 +330,7 @@ def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = No
             return errs
 
         engine = load_engine(source, check_overrides=_check_overrides)
-        table = RuleTable(resolved["rules"], table.files, resolved["applied"])
+        table = RuleTable(resolved["rules"], table.files, resolved["applied"], table.levers)
     chosen = _select(table, select, ignore)
     wanted = {r.quantity for r in chosen}
     # quantities a result is shown beside (the film thickness by the other method)

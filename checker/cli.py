@@ -112,12 +112,13 @@ def _fail(exc: BaseException) -> None:
     sys.exit(2)
 
 
-def _run_check(workbook, rules, select, ignore, fail_on, progress):
+def _run_check(workbook, rules, select, ignore, fail_on, progress, cache=None):
     from . import api
 
     try:
         res = api.check(workbook, rules=rules, select=_split(select), ignore=_split(ignore),
-                        fail_on=",".join(fail_on) if fail_on else None, progress=progress)
+                        fail_on=",".join(fail_on) if fail_on else None, progress=progress,
+                        cache=cache)
     except UsageProblem as exc:
         raise click.UsageError(str(exc)) from None
     except Exception as exc:  # noqa: BLE001 - reported without traceback
@@ -127,6 +128,46 @@ def _run_check(workbook, rules, select, ignore, fail_on, progress):
         click.echo(f"error: {res.nothing_checked_reason()}", err=True)
         sys.exit(2)
     return res
+
+
+_extras = [
+    click.option("--remedies", is_flag=True, help="What it takes to pass: per failing result"
+                 " (and passing ones within 10 % of the limit) and design lever, the input"
+                 " value at which the margin reaches zero, with side effects."),
+    click.option("--corners", is_flag=True, help="Judge each result at the worst corner of the"
+                 " workbook's Tolerances; the verdict uses the worst corner."),
+    click.option("--levers", "levers_file", type=click.Path(exists=True, dir_okay=False),
+                 help="Lever file ([[lever]] tables) adding to or restricting rules/levers.toml."),
+]
+
+
+def extras(f):
+    for opt in reversed(_extras):
+        f = opt(f)
+    return f
+
+
+def _attach_extras(res, workbook, rules, select, ignore, remedies, corners, levers_file, cache,
+                   progress=None):
+    """Remedies and tolerance corners on a finished check (checker.remedies)."""
+    if not (remedies or corners):
+        return
+    from .remedies import attach
+
+    if progress is not None:
+        progress("Finding what it takes to pass and the tolerance corners")
+    try:
+        attach(res, remedies, corners, levers_file, cache, _split(select), _split(ignore), rules)
+    except UsageProblem as exc:
+        raise click.UsageError(str(exc)) from None
+    except Exception as exc:  # noqa: BLE001 - reported without traceback
+        _fail(exc)
+
+
+def _exit_code(res) -> int:
+    from .remedies import corners_fail
+
+    return max(res.exit_code, 1 if corners_fail(res) else 0)
 
 
 def _atomic_write(path: Path, data: bytes) -> None:
@@ -245,26 +286,34 @@ def template(path: str, force: bool, which: str) -> None:
 @click.option("-o", "--output", type=click.Path(dir_okay=False),
               help="Write the output to a file instead of stdout.")
 @click.option("--progress/--no-progress", default=None, help="Stage lines on stderr.")
-def check(workbook, rules, select, ignore, fail_on, fmt, no_timings, output, progress) -> None:
+@extras
+def check(workbook, rules, select, ignore, fail_on, fmt, no_timings, output, progress,
+          remedies, corners, levers_file) -> None:
     """Run the check as a CI gate: results on stdout, exit code 0/1/2, no PDF."""
     from . import outputs
 
     if output:
         _outputs_writable([output], workbook)
     prog = _Progress(sys.stderr.isatty() if progress is None else progress)
-    res = _run_check(workbook, rules, select, ignore, fail_on, prog)
+    cache: dict | None = {} if (remedies or corners) else None
+    res = _run_check(workbook, rules, select, ignore, fail_on, prog, cache)
+    _attach_extras(res, workbook, rules, select, ignore, remedies, corners, levers_file, cache)
     if fmt == "json":
         text = outputs.to_json(res, timings=not no_timings)
     elif fmt == "junit":
         text = outputs.to_junit(res)
     else:
         text = outputs.to_text(res)
+        if remedies or corners:
+            from .remedies import to_text as _extra_text
+
+            text += _extra_text(res)
     if output:
         _atomic_write(Path(output), text.encode("utf-8"))
         click.echo(f"{output}: {res.summary_text()}", err=True)
     else:
         click.echo(text, nl=False)
-    sys.exit(res.exit_code)
+    sys.exit(_exit_code(res))
 
 
 @main.command()
@@ -281,8 +330,9 @@ def check(workbook, rules, select, ignore, fail_on, fmt, no_timings, output, pro
               " and errors).")
 @click.option("--progress/--no-progress", default=None,
               help="Progress in words on stderr (default: when stderr is a terminal).")
+@extras
 def report(workbook, rules, select, ignore, fail_on, output, html_out, results_out, quiet,
-           progress) -> None:
+           progress, remedies, corners, levers_file) -> None:
     """Render the pass/fail PDF report for the design-review pack."""
     prog = _Progress(False if quiet else sys.stderr.isatty() if progress is None
                      else progress)
@@ -290,7 +340,10 @@ def report(workbook, rules, select, ignore, fail_on, output, html_out, results_o
     outs = [pdf_path] + [Path(x) for x in (html_out, results_out) if x]
     _outputs_writable(outs, workbook)
     prog("Reading the workbook and running the analyses")
-    res = _run_check(workbook, rules, select, ignore, fail_on, prog)
+    cache: dict | None = {} if (remedies or corners) else None
+    res = _run_check(workbook, rules, select, ignore, fail_on, prog, cache)
+    _attach_extras(res, workbook, rules, select, ignore, remedies, corners, levers_file, cache,
+                   prog)
     try:
         from .report.render import build_report
 
@@ -309,7 +362,7 @@ def report(workbook, rules, select, ignore, fail_on, output, html_out, results_o
     written = [str(p) for p, _ in files]
     click.echo(f"wrote {', '.join(written)} ({rep.pages} pages): {res.summary_text()}",
                err=True)
-    sys.exit(res.exit_code)
+    sys.exit(_exit_code(res))
 
 
 @main.command()

@@ -86,6 +86,7 @@ class RuleTable:
     rules: list[Rule]
     files: list[str]
     overrides: list[Override] = field(default_factory=list)
+    levers: list = field(default_factory=list)  # design levers (checker.remedies.levers)
 
     def get(self, rule_id: str) -> Rule:
         for r in self.rules:
@@ -244,11 +245,15 @@ def load_rules(path: str | Path | None = None) -> RuleTable:
         raise RuleFileError([f"{p}: rule file not found"])
     problems: list[str] = []
     rules: list[Rule] = []
+    lever_docs: list[tuple[dict, str]] = []
     for f in files:
         try:
             doc = tomllib.loads(f.read_text(encoding="utf-8"))
         except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
             problems.append(f"{f.name}: not valid TOML: {exc}")
+            continue
+        if "lever" in doc and "rule" not in doc:  # design levers (rules/levers.toml)
+            lever_docs.append((doc, f.name))
             continue
         entries = doc.get("rule")
         if not isinstance(entries, list) or not entries:
@@ -266,10 +271,17 @@ def load_rules(path: str | Path | None = None) -> RuleTable:
         if r.id in seen:
             problems.append(f"{r.origin}: duplicate rule id {r.id} (also in {seen[r.id]})")
         seen[r.id] = r.origin
+    levers = []
+    if lever_docs:
+        from .remedies.levers import parse_lever_doc
+
+        for doc, name in lever_docs:
+            levers += parse_lever_doc(doc, name, problems, set(seen))
     if problems:
         raise RuleFileError(problems)
     rules.sort(key=lambda r: r.id)
-    return RuleTable(rules, [str(f) for f in files])
+    return RuleTable(rules, [str(f) for f in files if f.name not in
+                             {n for _, n in lever_docs}], levers=levers)
 
 
 def _parse_limit(text: str) -> tuple[float, ...] | None:
@@ -329,7 +341,7 @@ def apply_overrides(table: RuleTable, engine: Engine) -> RuleTable:
     rules, applied, errs = override_problems(table, engine.overrides)
     if errs:
         raise InputErrors(errs)
-    return RuleTable(rules, table.files, applied)
+    return RuleTable(rules, table.files, applied, table.levers)
 
 
 def select_rules(table: RuleTable, select: list[str] | None, ignore: list[str] | None
@@ -374,6 +386,8 @@ class RuleResult:
     judged_on: str = ""  # which of ``compare`` the rule judged (method-tagged quantities)
     check: str = ""  # the rule's comparison (">=", "<=", ">", "<", "between")
     override: str = ""  # how the workbook's RuleOverrides changed the limit ("" if not)
+    what_it_takes: str = ""  # smallest lever change that passes + side effects (--remedies)
+    worst_corner: str = ""  # value and corner at the tolerance corners (--corners)
 
     @property
     def value_text(self) -> str:

@@ -76,6 +76,7 @@ from ..calc import excitation as exc
 from ..calc import torsional as tv
 from ..engine import Engine
 from ..graph import (
+    ENGINE_PARTS,
     MissingInputs,
     Quantity,
     QuantitySpec,
@@ -289,7 +290,9 @@ def tv_response(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     return dict(_solution(engine, inputs["loads.cycle"])["quantities"])
 
 
-@calculation("tv_joint_torque", "torsion", provides=("tv.joint_torque",), needs=("loads.cycle",))
+@calculation("tv_joint_torque", "torsion", provides=("tv.joint_torque",), needs=("loads.cycle",),
+             reads=tuple(p for p in ENGINE_PARTS if p != "joints") + ("joints.name",
+                                                                      "joints.location"))
 def tv_joint_torque(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Peak TV torque through each bolted joint at the three operating points.
 

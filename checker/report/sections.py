@@ -68,7 +68,8 @@ def load_sections() -> None:
 
 def modules_with_sections(res: CheckResult) -> list[str]:
     load_sections()
-    return [m for m in res.outcome.modules_run if m in SECTIONS]
+    extra = ["remedies"] if res.remedies is not None or res.corners is not None else []
+    return [m for m in res.outcome.modules_run if m in SECTIONS] + extra
 
 
 def build_sections(res: CheckResult, progress: Callable[[str], None] | None = None

@@ -69,12 +69,16 @@ def _note(r: RuleResult) -> str:
         return re.sub(r" \(computed, not judged: [^)]*\)$", "", r.message)
     if r.internal_error:
         return r.message
+    # --remedies / --corners (checker.remedies): what it takes to pass, the worst corner
+    extra = " ".join(x for x in (r.what_it_takes and r.what_it_takes + ".", r.worst_corner
+                                 and "At the tolerance corners: " + r.worst_corner + ".")
+                     if x and r.status != "pass")
     if not r.findings or r.status == "pass":
-        return ""
+        return extra
     first = r.findings[0]
     more = len(r.findings) - 1
     return first + (f" (and {more} more finding{'s' if more > 1 else ''} in the module"
-                    " section)" if more else "")
+                    " section)" if more else "") + (" " + extra if extra else "")
 
 
 _CELL = re.compile(r"\b[A-Za-z][A-Za-z0-9_]*![A-Z]{1,3}[0-9]+\b")

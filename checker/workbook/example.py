@@ -283,6 +283,34 @@ RULE_OVERRIDES = (
     [],
 )
 
+TOLERANCE_COLUMNS = [
+    ("sheet", "-"), ("row", "-"), ("column", "-"), ("min", "-"), ("max", "-"), ("unit", "-"),
+    ("source", ""),
+]
+TOLERANCES = (
+    TOLERANCE_COLUMNS,
+    [
+        ["Bearings", "type = main", "radial clearance", 17, 27, "um",
+         ASSUMPTION + ": production range of the radial clearance, journal and bore tolerances"
+         " (IT5/IT6 at these diameters) around the nominal clearance"],
+        ["Bearings", "type = big end", "radial clearance", 19, 29, "um", ASSUMPTION
+         + ": as above"],
+        ["Oil", "", "Oil supply temperature", 120, 140, "°C",
+         ASSUMPTION + ": gallery temperature range at full load, hot day to cold day"],
+        ["Joints", "crank nose", "tightening factor", None, 1.6, "-",
+         ASSUMPTION + ": tightening by torque wrench with estimated friction; VDI 2230"
+         " Part 1 (2015), Table A8: alpha_A = 1.4..1.6, 1.6 taken"],
+        ["Joints", "crank nose", "friction coefficient", 0.15, 0.25, "-",
+         ASSUMPTION + ": friction of a dry steel face 0.15..0.25 around the 0.2 of Bell,"
+         " Ricardo 2013"],
+        ["PeakPressure", "all", "peak pressure", -3, 3, "% of nominal",
+         ASSUMPTION + ": cycle-to-cycle and cylinder-to-cylinder scatter of the peak pressure"],
+        ["Fatigue", "", "Pin oil hole fatigue strength", 304, None, "N/mm^2",
+         ASSUMPTION + ": material minimum, 326 N/mm^2 x 700/750 (minimum against typical UTS"
+         " of the steel; fatigue strength proportional to UTS)"],
+    ],
+)
+
 NOTES = [
     "Example engine workbook for checker.",
     "Source: D. Bell, 'Cranktrain Analysis Using ENGDYN and VALDYN', Ricardo, 4 Feb 2013.",
@@ -321,6 +349,7 @@ def example_content() -> dict[str, Any]:
         "Joints": JOINTS,
         "JointTorques": JOINT_TORQUES,
         "RuleOverrides": RULE_OVERRIDES,
+        "Tolerances": TOLERANCES,
         "Notes": NOTES,
     }
 

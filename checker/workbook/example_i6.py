@@ -60,6 +60,7 @@ from .example import (
     JOINT_TORQUE_COLUMNS,
     NOSE_ROWS,
     RULE_OVERRIDE_COLUMNS,
+    TOLERANCE_COLUMNS,
     TV_MODEL_COLUMNS,
 )
 
@@ -504,6 +505,23 @@ ASSUMED = {
 }
 
 
+TOLERANCES = (
+    TOLERANCE_COLUMNS,
+    [
+        ["Bearings", "all", "radial clearance", -20, 20, "% of nominal",
+         ASSUMPTION + ": production range of the radial clearance (journal and bore"
+         " tolerances), +-20 % of the nominal clearance"],
+        ["Oil", "", "Oil supply temperature", 100, 120, "°C",
+         ASSUMPTION + ": gallery temperature range at full load"],
+        ["Joints", "crank nose", "tightening factor", None, 1.6, "-",
+         ASSUMPTION + ": tightening by torque wrench with estimated friction; VDI 2230"
+         " Part 1 (2015), Table A8: alpha_A = 1.4..1.6, 1.6 taken"],
+        ["PeakPressure", "all", "peak pressure", -3, 3, "% of nominal",
+         ASSUMPTION + ": cycle-to-cycle and cylinder-to-cylinder scatter of the peak pressure"],
+    ],
+)
+
+
 def i6_content(damper_ring: bool = False) -> dict[str, Any]:
     """The I6 diesel workbook as ``{sheet: rows}`` (parameter sheets) or ``(columns, rows)``.
 
@@ -523,6 +541,7 @@ def i6_content(damper_ring: bool = False) -> dict[str, Any]:
         "Joints": JOINTS,
         "JointTorques": JOINT_TORQUES,
         "RuleOverrides": RULE_OVERRIDES,
+        "Tolerances": TOLERANCES,
         "Notes": NOTES,
     }
 

@@ -821,6 +821,30 @@ RULE_OVERRIDES = Sheet(
     ),
 )
 
+TOLERANCES = Sheet(
+    "Tolerances",
+    "table",
+    max_rows=200,
+    note="Tolerance ranges of inputs (production, operating, tightening scatter): each result is"
+         " also judged at its worst corner (checker check --corners). Blank table = nominal only.",
+    fields=(
+        F("sheet", "sheet", "text", note="Sheet of the input, e.g. Bearings, Oil, Joints."),
+        F("row", "row", "text", required=False,
+          note="Row key (M1, crank nose), several keys separated by commas, 'all', or"
+               " 'column = value' (type = main); blank on parameter sheets."),
+        F("column", "column", "text",
+          note="Column (table sheet) or parameter name; on Joints also 'tightening factor'"
+               " (VDI 2230 alpha_A = F_max/F_min: the preload range around today's torque)."),
+        F("min", "low", "ratio", required=False,
+          note="Lowest value (blank = today's value), in 'unit'."),
+        F("max", "high", "ratio", required=False,
+          note="Highest value (blank = today's value), in 'unit'."),
+        F("unit", "unit", "text", required=False,
+          note="Unit of min and max (as a unit cell), or '% of nominal' for deviations from"
+               " today's value in percent (e.g. -5 and 5)."),
+    ),
+)
+
 NOTES = Sheet("Notes", "notes", note="Free text; not read.")
 
 #: Largest number of speeds in the swept speed grid (minimum..maximum in speed steps, plus the
@@ -835,7 +859,8 @@ SHEETS: dict[str, Sheet] = {
     s.name: s
     for s in (
         ENGINE, CYLINDERS, PEAK_PRESSURE, PRESSURE_TRACES, BRAKE_TORQUE, BEARINGS, CRANK_MASS,
-        OIL, TV_MODEL, DAMPER, FATIGUE, JOINTS, JOINT_TORQUES, RULE_OVERRIDES, NOTES,
+        OIL, TV_MODEL, DAMPER, FATIGUE, JOINTS, JOINT_TORQUES, RULE_OVERRIDES, TOLERANCES,
+        NOTES,
     )
 }
 

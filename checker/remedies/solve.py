@@ -1,0 +1,628 @@
+"""What it takes to pass: per result and lever, the input value at which the margin is zero.
+
+For every failing result and every passing one within :data:`NEAR` of its limit, each lever
+of the lever table that applies to it (:mod:`checker.remedies.levers`) is moved from today's
+value in its allowed direction until the result's margin reaches zero:
+
+* continuous levers: a few trial values are evaluated at once (a starting guess from the
+  proportionality of value and input, then 1/8, 1/4, 1/2 and all of the way to the bound),
+  the first sign change brackets the root, which regula falsi (Illinois variant) refines
+  until the passing end of the bracket has a margin below :data:`TOL` (each step a direct
+  evaluation: the answer is always a value that was checked);
+* discrete levers (bolt size, number of bolts, oil grade): the first choice beyond today's
+  value that passes;
+* "no value within the bounds" is an answer, with the best margin reached.
+
+Jobs of separable levers (a result depends only on its own row, e.g. the clearance of one
+bearing) on different items share one evaluation per step. At each answer the check is run
+again with every selected rule: the other results whose status changes are its side effects.
+Results of one item that need one lever in opposite directions are a conflict, stated with
+the levers that do not have it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+from ..display import with_unit
+from ..ruletable import REL_TOL
+from .levers import ITEM, Lever
+from .variants import Binding, Evaluator, bind, find
+
+NEAR = 0.10
+"""Passing results within this relative margin of their limit get remedies too."""
+TOL = 1e-3
+"""A remedy value's margin lies in [0, TOL] (relative margin, as the rule table's)."""
+MAX_STEPS = 40
+FRACTIONS = (0.125, 0.25, 0.5, 1.0)
+
+
+@dataclass
+class Remedy:
+    """The answer of one lever for one result."""
+
+    lever: Lever
+    where: str  # cells, e.g. Joints!I3
+    nominal: Any
+    value: Any = None  # lever unit (None: no value within the bounds)
+    margin: float | None = None  # at value
+    found: bool = False
+    reason: str = ""
+    best_margin: float | None = None
+    side_effects: list[dict] = field(default_factory=list)
+    evaluations: int = 0
+    direction: int = 0  # +1 the lever rises, -1 it falls
+
+    @property
+    def change(self) -> float | None:
+        if not self.found or not isinstance(self.value, (int, float)) or not isinstance(
+                self.nominal, (int, float)):
+            return None
+        return float(self.value) - float(self.nominal)
+
+    @property
+    def change_pct(self) -> float | None:
+        c = self.change
+        if c is None or not self.nominal:
+            return None
+        if self.lever.kind == "temperature":
+            return None
+        return 100.0 * c / abs(float(self.nominal))
+
+    def value_text(self, v: Any = "__value__") -> str:
+        v = self.value if isinstance(v, str) and v == "__value__" else v
+        if v is None:
+            return "blank"
+        if isinstance(v, dict):
+            d = v.get("nominal diameter")
+            p = v.get("thread pitch")
+            if d is not None and p is not None:
+                return f"M{d:g}x{p:g}"
+            return ", ".join(f"{k} {x:g}" for k, x in v.items())
+        if isinstance(v, (int, float)):
+            return with_unit(float(v), self.lever.unit)
+        return str(v)
+
+    def text(self) -> str:
+        """``tightening torque 400 → 376.9 N·m (-23.1 N·m, -5.8 %)``."""
+        name = self.lever.name
+        if not self.found:
+            return f"{name}: {self.reason or 'no value within the bounds'}"
+        ch = self.change
+        parts = ""
+        if ch is not None:
+            parts = f" ({'+' if ch >= 0 else ''}{with_unit(ch, self.lever.unit)}"
+            pct = self.change_pct
+            parts += (f", {'+' if pct >= 0 else '−'}{abs(pct):.1f} %)" if pct is not None
+                      else ")")
+        return f"{name} {self.value_text(self.nominal)} → {self.value_text()}{parts}"
+
+    def as_dict(self) -> dict:
+        def num(x):
+            return None if x is None else (float(f"{x:.6g}") if isinstance(x, float) else x)
+        return {
+            "lever": self.lever.id, "name": self.lever.name, "input": self.where,
+            "unit": self.lever.unit, "nominal": num(self.nominal),
+            "value": num(self.value) if self.found else None, "found": self.found,
+            "change": num(self.change), "change_percent": num(self.change_pct),
+            "margin_at_value": num(self.margin), "reason": self.reason or None,
+            "best_margin": num(self.best_margin), "side_effects": self.side_effects,
+            "text": self.text(),
+        }
+
+
+@dataclass
+class ResultRemedies:
+    rule: str
+    item: str
+    status: str
+    margin: float | None
+    remedies: list[Remedy] = field(default_factory=list)
+    conflicts: list[str] = field(default_factory=list)
+
+    def best(self) -> Remedy | None:
+        """The smallest relative change among the levers that reach a passing value."""
+        ok = [r for r in self.remedies if r.found]
+        if not ok:
+            return None
+        def size(r: Remedy) -> float:
+            p = r.change_pct
+            if p is not None:
+                return abs(p)
+            if r.change is not None and r.lever.kind == "temperature" and r.nominal:
+                return abs(100.0 * r.change / (float(r.nominal) + 273.15))
+            return 1e9  # discrete choices last
+        return min(ok, key=size)
+
+    def line(self) -> str:
+        """The page-1 line: what it takes to pass (the smallest change) and its effects."""
+        if self.status == "pass":
+            return ""
+        b = self.best()
+        if not self.remedies:
+            return "What it takes to pass: no design lever is listed for this rule"
+        if b is None:
+            txt = "no lever of the table passes it within its bounds"
+        else:
+            txt = b.text()
+            eff = [f"{e['rule']} {e['item']} {e['to']}" for e in b.side_effects]
+            txt += ("; side effects: " + ", ".join(eff)) if eff else "; no other result changes"
+        if self.conflicts:
+            txt += (". " + self.conflicts[0].split(" (")[0]
+                    + ": see 'What it takes to pass'")
+        return "To pass: " + txt
+
+    def as_dict(self) -> dict:
+        b = self.best()
+        return {"rule": self.rule, "item": self.item, "status": self.status,
+                "levers": [r.as_dict() for r in self.remedies],
+                "best": b.lever.id if b is not None else None,
+                "conflicts": self.conflicts, "what_it_takes": self.line() or None}
+
+
+# ---------------------------------------------------------------- jobs (one lever, one result)
+@dataclass
+class _Job:
+    res: ResultRemedies
+    rule: str
+    item: str
+    lever: Lever
+    binding: Binding
+    remedy: Remedy
+    sign: int  # +1 lever rises, -1 it falls
+    want_pass: bool  # True: find the first passing value (a failing result)
+    x0: float | None = None
+    xb: float | None = None
+    guess: float | None = None
+    pts: list[tuple[Any, float | None]] = field(default_factory=list)
+    bracket: tuple[tuple[float, float], tuple[float, float]] | None = None  # (bad, good)
+    side: int = 0  # Illinois: which end was kept last
+    done: bool = False
+    queue: list[Any] = field(default_factory=list)
+
+    @property
+    def key(self) -> str:
+        return self.item if self.lever.separable else f"__{self.lever.id}"
+
+    def ok(self, m: float | None) -> bool:
+        if m is None:
+            return False
+        return (m >= -REL_TOL) if self.want_pass else (m < -REL_TOL)
+
+
+def _margin_of(res, rule, item) -> float | None:
+    r = find(res, rule, item)
+    if r is None or r.status == "not_evaluated" or r.margin is None:
+        return None
+    return float(r.margin)
+
+
+def _discrete_candidates(job: _Job) -> list[Any]:
+    lv = job.lever
+    cur = job.binding.nominal
+    choices = list(lv.choices)
+    if isinstance(choices[0], dict):
+        keys = [f.label for f in job.binding.fields]
+        now = tuple(cur)
+        def rank(c):
+            return tuple(float(c[k]) for k in keys)
+        ordered = sorted(choices, key=rank)
+        pos = [i for i, c in enumerate(ordered) if rank(c) == now]
+        if pos:
+            i = pos[0]
+        else:
+            i = sum(1 for c in ordered if rank(c) < now) - (0 if job.sign > 0 else 1)
+            i = i - 1 if job.sign > 0 else i + 1
+        return ordered[i + 1:] if job.sign > 0 else ordered[:max(i, 0)][::-1]
+    if all(isinstance(c, (int, float)) for c in choices):
+        now = float(cur[0]) if cur[0] is not None else None
+        if now is None:
+            return []
+        vals = sorted(float(c) for c in choices)
+        return [v for v in vals if v > now] if job.sign > 0 else [v for v in vals
+                                                                 if v < now][::-1]
+    # texts in the order given (e.g. oil grades, thinner to thicker)
+    names = [str(c) for c in choices]
+    now = str(cur[0] or "").strip().upper()
+    up = [n.upper() for n in names]
+    if now not in up:
+        return []
+    i = up.index(now)
+    return names[i + 1:] if job.sign > 0 else names[:i][::-1]
+
+
+def _start(job: _Job, value: float | None, limits: list[float] | None, check: str) -> None:
+    """Trial values of a continuous job: the proportional guess and fractions to the bound."""
+    lv = job.lever
+    x0 = job.binding.nominal[0]
+    if not isinstance(x0, (int, float)):
+        job.done, job.remedy.reason = True, "today's value is blank (no default)"
+        return
+    x0 = float(x0)
+    if lv.limits is not None:
+        xb = lv.limits[1] if job.sign > 0 else lv.limits[0]
+    else:
+        xb = x0 * (lv.bounds[1] if job.sign > 0 else lv.bounds[0])
+    if (xb - x0) * job.sign <= 0:
+        job.done, job.remedy.reason = True, "today's value is at the lever's bound"
+        return
+    job.x0, job.xb = x0, xb
+    pts = [x0 + (xb - x0) * f for f in FRACTIONS]
+    # proportional starting guess (value ~ input^p, p = +-1): only a guess, always checked
+    if value and limits and lv.kind != "temperature" and x0 != 0 and lv.separable:
+        target = min(limits, key=lambda L: abs(L - value))
+        up = target > value  # the value must rise
+        ratio = target / value if value else None
+        if ratio and ratio > 0:
+            p = 1.0 if ((job.sign > 0) == up) else -1.0
+            g = x0 * ratio ** (1.0 / p)
+            if job.want_pass:
+                g = x0 + (g - x0) * (1 + 1e-6)
+            if (g - x0) * job.sign > 0 and abs(g - x0) < abs(xb - x0):
+                job.guess = g
+                pts = [g] + pts
+    job.queue = sorted((float(f"{x:.10g}") for x in pts), key=lambda x: abs(x - x0))
+
+
+def _advance(job: _Job, evaluated: list[tuple[Any, float | None]]) -> None:
+    """Take the margins of the job's trial values (and points shared by other jobs of the
+    same lever) and queue the next ones."""
+    own = [p for p in evaluated if len(p) == 2]
+    shared = [(p[0], p[1]) for p in evaluated if len(p) == 3]
+    if job.done:
+        return
+    if not job.lever.discrete and job.x0 is not None:
+        # shared points count only on this job's side of today's value, within its bound
+        shared = [(x, m) for x, m in shared if (x - job.x0) * job.sign > 0
+                  and abs(x - job.x0) <= abs(job.xb - job.x0) * (1 + 1e-12)]
+    if job.queue and not own:
+        # the job's own trial values are still to come: keep what others learnt for later
+        job.pts += shared
+        return
+    evaluated = own + shared
+    job.pts += evaluated
+    job.remedy.evaluations += len(own)
+    if job.lever.discrete:
+        for x, m in evaluated:  # candidates in order
+            if job.ok(m):
+                job.remedy.value, job.remedy.margin, job.remedy.found = x, m, True
+                job.done = True
+                return
+        best = [m for _, m in evaluated if m is not None]
+        job.remedy.best_margin = max(best) if best else None
+        job.remedy.reason = ("no standard choice within the table passes" if job.want_pass
+                             else "no choice reaches the limit")
+        job.done = True
+        return
+    if job.bracket is None:
+        # points ordered by distance from today: first one on the other side
+        prev = (job.x0, job.res.margin)
+        evaluated = [p for p in job.pts]
+        for x, m in sorted(evaluated, key=lambda p: abs(p[0] - job.x0)):
+            if m is None:  # invalid input there: treat as the end of the range
+                break
+            if job.ok(m):
+                if abs(m) <= TOL and (m >= -REL_TOL):
+                    job.remedy.value, job.remedy.margin, job.remedy.found = x, m, True
+                    job.done = True
+                    return
+                job.bracket = ((prev[0], prev[1]), (x, m))
+                break
+            prev = (x, m)
+        if job.bracket is None:
+            ms = [m for _, m in evaluated if m is not None]
+            job.remedy.best_margin = max(ms) if ms and job.want_pass else (
+                min(ms) if ms else None)
+            job.remedy.reason = "no value within the bounds" + (
+                f" ({with_unit(job.xb, job.lever.unit)})" if job.xb is not None else "")
+            job.done = True
+            return
+    else:
+        (xa, ma), (xg, mg) = job.bracket
+        for x, m in sorted(evaluated, key=lambda p: abs(p[0] - xg)):
+            if not (min(xa, xg) < x < max(xa, xg)):
+                continue  # a shared point outside the bracket
+            if m is None:
+                job.done, job.remedy.reason = True, "the input becomes invalid"
+                return
+            if job.ok(m):
+                if m >= -REL_TOL and m <= TOL or (not job.want_pass and abs(m) <= TOL):
+                    job.remedy.value, job.remedy.margin, job.remedy.found = x, m, True
+                    job.done = True
+                    return
+                xg, mg = x, m
+                if job.side == 1:
+                    ma /= 2.0
+                job.side = 1
+            else:
+                xa, ma = x, m
+                if job.side == -1:
+                    mg /= 2.0
+                job.side = -1
+        job.bracket = ((xa, ma), (xg, mg))
+    if job.remedy.evaluations >= MAX_STEPS:
+        job.done, job.remedy.reason = True, "root finding did not converge"
+        return
+    (xa, ma), (xg, mg) = job.bracket
+    lo, hi = sorted((xa, xg))
+    w = hi - lo
+    x = _iqi(job, lo, hi)
+    if x is None:
+        if mg == ma:
+            x = 0.5 * (xa + xg)
+        else:
+            x = xg - mg * (xg - xa) / (mg - ma)
+    if not (lo + 1e-3 * w < x < hi - 1e-3 * w):
+        x = 0.5 * (xa + xg)
+    if job.want_pass:
+        x = x + (xg - xa) * 1e-9  # nudge to the passing side
+    x = float(f"{x:.10g}")  # equal jobs (four identical big ends) share their evaluations
+    if abs(xg - xa) <= 1e-12 * max(abs(xg), 1.0):
+        job.remedy.value, job.remedy.margin, job.remedy.found = xg, mg, True
+        job.done = True
+        return
+    job.queue = [x]
+
+
+def _iqi(job: _Job, lo: float, hi: float) -> float | None:
+    """Inverse quadratic interpolation through the three evaluated points nearest to the
+    root (x as a quadratic in the margin, at margin 0); None when not inside the bracket."""
+    pts = [(x, m) for x, m in job.pts if m is not None and lo <= x <= hi]
+    ends = {(x, m) for (x, m) in (job.bracket or ())}
+    pts = sorted(set(pts) | ends, key=lambda p: abs(p[1]))[:3]
+    if len(pts) < 3:
+        return None
+    (x0, f0), (x1, f1), (x2, f2) = pts
+    if len({f0, f1, f2}) < 3:
+        return None
+    x = (x0 * f1 * f2 / ((f0 - f1) * (f0 - f2)) + x1 * f0 * f2 / ((f1 - f0) * (f1 - f2))
+         + x2 * f0 * f1 / ((f2 - f0) * (f2 - f1)))
+    return x if lo < x < hi and math.isfinite(x) else None
+
+
+def _pack(requests: list[tuple[_Job, Any]], pack: bool = True
+          ) -> list[list[tuple[_Job, Any]]]:
+    """Variants: requests of separable jobs on different items share one; others alone
+    (``pack=False``: every request alone, the one-by-one path)."""
+    if not pack:
+        return [[r] for r in requests]
+    variants: list[list[tuple[_Job, Any]]] = []
+    keys: list[set[str]] = []
+    cells: list[set] = []
+    for job, x in requests:
+        placed = False
+        if job.lever.separable:
+            for v, ks, cs in zip(variants, keys, cells):
+                if job.key in ks or (cs & job.binding.cells) or any(
+                        not j.lever.separable for j, _ in v):
+                    continue
+                v.append((job, x))
+                ks.add(job.key)
+                cs |= job.binding.cells
+                placed = True
+                break
+        if not placed:
+            variants.append([(job, x)])
+            keys.append({job.key})
+            cells.append(set(job.binding.cells))
+    return variants
+
+
+def _run(jobs: list[_Job], ev: Evaluator, pack: bool = True) -> None:
+    """Rounds of evaluations until every job is done. Identical variants are evaluated once;
+    a variant that moves one lever alone serves every job of that lever (its other results
+    are in the same check), so the jobs of a global lever such as the oil temperature share
+    their trial values."""
+    while True:
+        requests = []
+        for j in jobs:
+            if not j.done and j.queue:
+                requests += [(j, x) for x in j.queue]
+                j.queue = []
+        if not requests:
+            return
+        variants = _pack(requests, pack)
+        changes, uniq, index = [], {}, []
+        for v in variants:
+            ch: dict = {}
+            for j, x in v:
+                ch.update(j.binding.changes(x))
+            key = tuple(sorted(ch.items(), key=repr))
+            if key not in uniq:
+                uniq[key] = len(changes)
+                changes.append(ch)
+            index.append(uniq[key])
+        active = [j for j in jobs if not j.done]
+        # each variant is checked on its own jobs' rules (and those of the other jobs of the
+        # same lever, which learn from it): a bearing variant does not run the torsion
+        sels: list[frozenset] = [frozenset()] * len(changes)
+        for v, k in zip(variants, index):
+            sel = {j.rule for j, _ in v}
+            if len(v) == 1:
+                cells = v[0][0].binding.cells
+                sel |= {j.rule for j in active if j.binding.cells == cells}
+            sels[k] = sels[k] | sel
+        results: list[Any] = [None] * len(changes)
+        for sel in dict.fromkeys(sels):
+            ks = [k for k in range(len(changes)) if sels[k] == sel]
+            for k, r in zip(ks, ev.evaluate_variants([changes[k] for k in ks],
+                                                     select=sorted(sel))):
+                results[k] = r
+        got: dict[int, list] = {}
+        seen: set[tuple[int, Any]] = set()
+        for v, k in zip(variants, index):
+            res = results[k]
+            for j, x in v:
+                if (id(j), repr(x)) not in seen:
+                    seen.add((id(j), repr(x)))
+                    got.setdefault(id(j), []).append((x, _margin_of(res, j.rule, j.item)))
+            if pack and len(v) == 1 and not v[0][0].lever.discrete:
+                j0, x0 = v[0]
+                for j in active:  # the same lever's other jobs learn from this point
+                    if j is j0 or j.lever.discrete or j.binding.cells != j0.binding.cells:
+                        continue
+                    if (id(j), repr(x0)) in seen:
+                        continue
+                    seen.add((id(j), repr(x0)))
+                    got.setdefault(id(j), []).append((x0, _margin_of(res, j.rule, j.item),
+                                                      "shared"))
+        for j in jobs:
+            if id(j) in got:
+                _advance(j, got[id(j)])
+
+
+def _side_effects(jobs: list[_Job], ev: Evaluator, nominal, pack: bool = True) -> None:
+    """Run the whole check at each answer: the results whose status changes."""
+    base = {(r.rule, r.item): r.status for r in nominal.results}
+    done = [j for j in jobs if j.remedy.found and not j.lever.discrete or
+            (j.remedy.found and j.lever.discrete)]
+    # one evaluation per distinct answer (the same cells at the same value)
+    uniq: dict[tuple, list[_Job]] = {}
+    for j in done:
+        ch = j.binding.changes(j.remedy.value)
+        uniq.setdefault(tuple(sorted(ch.items(), key=repr)), []).append(j)
+    groups = list(uniq.items())
+    reqs = [(js[0], js[0].remedy.value) for _, js in groups]
+    variants = _pack(reqs, pack)
+    changes = []
+    for v in variants:
+        ch: dict = {}
+        for j, x in v:
+            ch.update(j.binding.changes(x))
+        changes.append(ch)
+    results = ev.evaluate_variants(changes, select=None)
+    by_first = {id(js[0]): js for _, js in groups}
+    for v, res in zip(variants, results):
+        if not hasattr(res, "results"):
+            continue
+        items = {j.item for j, _ in v if j.lever.separable}
+        for j0, _ in v:
+            for j in by_first[id(j0)]:
+                eff = []
+                for r in res.results:
+                    if (r.rule, r.item) == (j.rule, j.item):
+                        continue
+                    if j.lever.separable and len(v) > 1 and r.item in items and \
+                            r.item != j.item:
+                        continue
+                    was = base.get((r.rule, r.item))
+                    if was is not None and was != r.status:
+                        eff.append({"rule": r.rule, "item": r.item, "from": was,
+                                    "to": r.status, "value": None if r.value is None else
+                                    float(f"{r.value:.6g}"), "unit": r.unit})
+                j.remedy.side_effects = eff
+
+
+def _conflicts(out: list[ResultRemedies]) -> None:
+    """One lever on one item needed in opposite directions by failing results."""
+    by: dict[tuple[str, str], list[tuple[ResultRemedies, Remedy]]] = {}
+    for rr in out:
+        if rr.status == "pass":
+            continue
+        for rm in rr.remedies:
+            if rm.found and isinstance(rm.value, (int, float)) and not rm.lever.discrete:
+                by.setdefault((rm.lever.id, rm.where), []).append((rr, rm))
+    for (lid, _where), lst in by.items():
+        lows = [(rm.value, rr) for rr, rm in lst if rm.direction > 0]  # needs >= value
+        highs = [(rm.value, rr) for rr, rm in lst if rm.direction < 0]  # needs <= value
+        if not lows or not highs:
+            continue
+        lo = max(lows, key=lambda t: t[0])
+        hi = min(highs, key=lambda t: t[0])
+        if lo[0] <= hi[0]:
+            continue
+        lever = lst[0][1].lever
+        needs = "; ".join(f"{rr.rule} needs {'≥' if rm.direction > 0 else '≤'}"
+                          f" {rm.value_text()}" for rr, rm in lst)
+        names = sorted({rr.rule for rr, _ in lst})
+        others = []
+        for rr, _ in lst:
+            can = [f"{rm.lever.name} {rm.value_text()}" for rm in rr.remedies
+                   if rm.lever.id != lid and rm.found and not any(
+                       e["to"] != "pass" and e["item"] == rr.item for e in rm.side_effects)]
+            if can:
+                others.append(f"{rr.rule}: {' or '.join(can)}")
+        text = (f"Conflict: no {lever.name.lower()} passes {', '.join(names)} together"
+                f" ({needs}).")
+        text += (f" Levers that can: {'; '.join(others)}." if others
+                 else " Change another input (see the lever table).")
+        for rr, _ in lst:
+            if text not in rr.conflicts:
+                rr.conflicts.append(text)
+
+
+def find_remedies(nominal, ev: Evaluator, levers: list[Lever], near: float = NEAR,
+                  pack: bool = True) -> list[ResultRemedies]:
+    """Remedies for the failing results of ``nominal`` (a CheckResult) and for the passing
+    ones within ``near`` of their limit, by every applicable lever.
+
+    ``pack=False`` evaluates every trial value of every job on its own (the one-by-one path;
+    the answers are the same, with more evaluations)."""
+    out: list[ResultRemedies] = []
+    jobs: list[_Job] = []
+    bindings: dict[tuple, Any] = {}
+    for r in nominal.results:
+        if r.status == "not_evaluated" or r.margin is None or r.internal_error:
+            continue
+        if r.status == "pass" and not (r.margin < near):
+            continue
+        rr = ResultRemedies(r.rule, r.item, r.status, r.margin)
+        for lv in levers:
+            if not lv.applies(r.rule, r.item):
+                continue
+            rows = (r.item,) if lv.row == ITEM else ((lv.row,) if lv.row else None)
+            key = (lv.id, rows)
+            if key not in bindings:
+                bindings[key] = bind(ev.base, lv.sheet, lv.columns, lv.unit, rows, lv.where,
+                                     lv.default)
+            b = bindings[key]
+            if isinstance(b, str):
+                continue  # the lever's input is not in this workbook (e.g. another row)
+            signs = {"increase": [1], "decrease": [-1], "either": [1, -1]}[lv.direction]
+            if r.status == "pass":
+                signs = [1, -1]
+                if lv.discrete:
+                    continue
+            for s in signs:
+                rm = Remedy(lv, ", ".join(b.labels), b.nominal[0] if len(b.nominal) == 1
+                            else dict(zip([f.label for f in b.fields], b.nominal)),
+                            direction=s)
+                if lv.discrete and len(b.fields) > 1:
+                    rm.nominal = {f.label: v for f, v in zip(b.fields, b.nominal)}
+                job = _Job(rr, r.rule, r.item, lv, b, rm, s, r.status != "pass")
+                if lv.discrete:
+                    cands = _discrete_candidates(job)
+                    if not cands:
+                        rm.reason = "no further choice in that direction"
+                        job.done = True
+                    job.queue = cands
+                else:
+                    _start(job, r.value, r.limit_values, r.check)
+                jobs.append(job)
+                rr.remedies.append(rm)
+        out.append(rr)
+    _run(jobs, ev, pack)
+    # both directions of an 'either' lever: keep the found one nearest to today
+    for rr in out:
+        keep: list[Remedy] = []
+        by_lever: dict[str, list[Remedy]] = {}
+        for rm in rr.remedies:
+            by_lever.setdefault(rm.lever.id, []).append(rm)
+        for lst in by_lever.values():
+            found = [x for x in lst if x.found]
+            if found:
+                keep.append(min(found, key=lambda x: abs(x.change or 0.0)
+                                if x.change is not None else 0.0))
+            else:
+                keep.append(lst[0])
+        rr.remedies = keep
+    kept = {id(rm) for rr in out for rm in rr.remedies}
+    _side_effects([j for j in jobs if id(j.remedy) in kept], ev, nominal, pack)
+    _conflicts(out)
+    return out
+
+
+def is_finite(x) -> bool:
+    return x is not None and math.isfinite(x)

@@ -1,0 +1,223 @@
+"""Variants of a workbook's inputs evaluated through one function.
+
+Every remedy and tolerance-corner evaluation goes through :meth:`Evaluator.evaluate_variants`:
+a list of cell changes ``{(sheet, row, column): value in the cell's unit}`` (the mechanism of
+the parametric study, :func:`checker.study.apply.resolve` and
+:meth:`checker.workbook.loader.RawWorkbook.with_values`), each converted and built like a
+workbook and checked with a shared calculation cache (:func:`checker.graph.input_key`), so a
+joint-torque variant recomputes only the joints. ``checker.api.check_batch`` (batched orbit
+kernels) can replace the per-variant loop here without changing any caller.
+
+:class:`Binding` ties a lever or a tolerance to the cells it moves (one value, in the lever's
+unit, for every targeted cell: one cell takes it as given, several cells keep their ratios,
+or their differences for a temperature).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from ..errors import InputErrors
+from ..study.apply import Target, cell_value, resolve
+from ..study.spec import Parameter, Study
+from ..workbook.schema import SHEETS, Field
+
+Changes = dict[tuple[str, int, int], Any]
+
+OFFSET_KINDS = ("temperature",)
+"""Kinds whose cells move together by a difference (°C), not by a ratio."""
+
+
+@dataclass
+class Evaluator:
+    """The base workbook, the rule table and the shared calculation cache of one check."""
+
+    base: Any  # RawWorkbook
+    table: Any  # RuleTable (without workbook overrides: check applies them)
+    select: list[str] | None = None
+    ignore: list[str] | None = None
+    fail_on: str = "error"
+    cache: dict = field(default_factory=dict)
+    evaluations: int = 0
+    seconds: float = 0.0
+    keep: int = 48
+    """Calculation results of variants kept in the cache beyond the check's own (the oldest
+    are dropped: a film calculation of all bearings holds tens of megabytes)."""
+    _pinned: set | None = None
+
+    def evaluate_variants(self, changes: list[Changes], select: list[str] | None = None
+                          ) -> list[Any]:
+        """Check every variant (cell changes on the base workbook).
+
+        Returns per variant a :class:`checker.api.CheckResult`, or the
+        :class:`InputErrors` of a variant whose values are not a valid workbook (outside a
+        field's valid range, a cross-sheet check). ``select`` restricts the rules (rule id
+        prefixes); the check's own ``ignore`` always applies.
+        """
+        import time
+
+        from .. import api
+        from ..engine import build_engine
+        from ..workbook.loader import convert_raw
+
+        out: list[Any] = []
+        sel = self.select if select is None else select
+        if sel is not None and self.select is not None:
+            sel = [s for s in sel if any(s.startswith(x) or x.startswith(s)
+                                         for x in self.select)]
+        t0 = time.perf_counter()
+        if self._pinned is None:
+            self._pinned = set(self.cache)
+        for ch in changes:
+            raw = self.base.with_values(ch)
+            try:
+                engine = build_engine(convert_raw(raw, raise_errors=False))
+                out.append(api.check(engine, rules=self.table, select=sel, ignore=self.ignore,
+                                     fail_on=self.fail_on, cache=self.cache))
+            except InputErrors as exc:
+                out.append(exc)
+            except (ValueError, ArithmeticError) as exc:
+                # a calculation refused the variant's values (outside its validity range):
+                # the variant is not a valid design, like an input error
+                from ..errors import InputError
+
+                out.append(InputErrors([InputError("variant", f"{type(exc).__name__}: {exc}")]))
+            self.evaluations += 1
+            extra = [k for k in self.cache if k not in self._pinned]
+            for k in extra[:max(0, len(extra) - self.keep)]:
+                del self.cache[k]
+        self.seconds += time.perf_counter() - t0
+        return out
+
+
+def find(res: Any, rule: str, item: str):
+    """The result (rule, item) of a check, or None."""
+    if isinstance(res, InputErrors) or res is None:
+        return None
+    for r in res.results:
+        if r.rule == rule and r.item == item:
+            return r
+    return None
+
+
+def _affine_from(unit: str | None, kind: str) -> tuple[float, float]:
+    """``si = a x + b`` for values ``x`` in ``unit``."""
+    from ..units import to_si
+
+    b = to_si(0.0, unit or None, kind)
+    return to_si(1.0, unit or None, kind) - b, b
+
+
+def _raw_number(v: Any) -> float | None:
+    if v is None or (isinstance(v, str) and not v.strip()):
+        return None
+    if isinstance(v, bool):
+        return None
+    try:
+        return float(v)
+    except (TypeError, ValueError):
+        return None
+
+
+@dataclass
+class Binding:
+    """The cells one lever or tolerance moves, with today's values."""
+
+    sheet: str
+    fields: tuple[Field, ...]
+    unit: str
+    targets: list[Target]  # one per field, same rows
+    nominal: list[Any]  # per field: today's value (lever unit) of the first cell
+    nominal_si: list[list[float | None]]  # per field, per cell: today's SI value
+    labels: tuple[str, ...]
+
+    @property
+    def cells(self) -> set[tuple[str, int, int]]:
+        return {(self.sheet, r, c) for t in self.targets for r, c, _ in t.cells}
+
+    def _fmt(self, r: int, c: int) -> str | None:
+        return self._base.sheets[self.sheet].rows.get(r, {}).get(c, (None, None))[1]
+
+    def changes(self, value: Any) -> Changes:
+        """Cell changes that put ``value`` (lever unit; a dict per column for a
+        several-column choice; a text for a choice field) into the cells."""
+        out: Changes = {}
+        for k, (f, t) in enumerate(zip(self.fields, self.targets)):
+            v = value.get(f.label) if isinstance(value, dict) else value
+            if f.kind in ("text", "choice") or not isinstance(v, (int, float)):
+                for r, c, _ in t.cells:
+                    out[(self.sheet, r, c)] = v
+                continue
+            if f.kind == "int":
+                for r, c, _ in t.cells:
+                    out[(self.sheet, r, c)] = int(round(v))
+                continue
+            a, b = _affine_from(self.unit, f.kind)
+            want0 = a * float(v) + b
+            nom = self.nominal_si[k]
+            for (r, c, unit), n_si in zip(t.cells, nom):
+                if n_si is None or nom[0] is None:
+                    new_si = want0
+                elif f.kind in OFFSET_KINDS:
+                    new_si = n_si + (want0 - nom[0])
+                elif nom[0] == 0:
+                    new_si = want0
+                else:
+                    new_si = n_si * want0 / nom[0]
+                x = (new_si - b) / a  # in the lever unit
+                out[(self.sheet, r, c)] = cell_value(t, unit, x, self._fmt(r, c))
+        return out
+
+
+def bind(base: Any, sheet: str, fields: tuple[Field, ...], unit: str, rows: tuple[str, ...] | None,
+         where: tuple[tuple[str, str], ...], default: float | None = None) -> Binding | str:
+    """Resolve the cells of (sheet, rows/where, fields) in the base workbook; a text saying
+    why not (no such row or column) otherwise."""
+    from ..errors import CheckerError
+    from ..units import to_si
+
+    spec = SHEETS[sheet]
+    targets: list[Target] = []
+    params = [Parameter(f.label, sheet, f, rows if spec.shape == "table" else None, where,
+                        unit, values=(0.0,)) for f in fields]
+    try:
+        targets = resolve(Study(base.path, "remedies", "table", params), base)
+    except CheckerError as exc:
+        return "; ".join(getattr(exc, "problems", [str(exc)]))
+    nominal: list[Any] = []
+    nominal_si: list[list[float | None]] = []
+    raw = base.sheets[sheet]
+    for f, t in zip(fields, targets):
+        per: list[float | None] = []
+        first: Any = None
+        for i, (r, c, cu) in enumerate(t.cells):
+            v = raw.rows.get(r, {}).get(c, (None, None))
+            if f.kind in ("text", "choice", "int_list"):
+                per.append(None)
+                if i == 0:
+                    first = v[0]
+                continue
+            x = _raw_number(v[0])
+            if x is None:
+                si = None if default is None else to_si(default, unit or None, f.kind)
+            elif f.kind == "int":
+                si = x
+            else:
+                try:
+                    si = to_si(x, cu, f.kind, percent_formatted="%" in (v[1] or ""))
+                except Exception:  # noqa: BLE001 - the loader reports bad cells
+                    si = None
+            per.append(si)
+            if i == 0 and si is not None:
+                if f.kind == "int":
+                    first = si
+                else:
+                    a, b = _affine_from(unit, f.kind)
+                    first = (si - b) / a
+        nominal.append(first)
+        nominal_si.append(per)
+    labels = tuple(x for t in targets for x in t.labels)
+    b = Binding(sheet, fields, unit, targets, nominal, nominal_si, labels)
+    b._base = base
+    return b
