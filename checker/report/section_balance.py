@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..api import CheckResult
-from .plots import LIMIT_STYLE, figure, to_svg
+from .plots import LIMIT_STYLE, figure, to_image
 from .sections import fmt, section
 
 RPM = 2 * np.pi / 60
@@ -109,7 +109,7 @@ def balance_section(res: CheckResult) -> dict:
         ax.set_xlabel("Order")
         ax.set_ylabel(f"Free {lim_key} [{unit}]")
     fig.subplots_adjust(wspace=0.35)
-    blocks.append({"type": "figure", "svg": to_svg(fig),
+    blocks.append({"type": "figure", "png": to_image(fig),
                    "data": ["balance.free_force", "balance.free_moment"],
                    "caption": f"Free forces and moments per order at {w / RPM:.0f} rpm (log"
                               " scale; '0' = zero to round-off; dashed: project limits)"})
@@ -168,7 +168,7 @@ def balance_section(res: CheckResult) -> dict:
         ax.set_title("Unbalance per throw [kg mm], crank frame (throw 1 up)", fontsize=7,
                      pad=14)
         ax.legend(fontsize=6, loc="lower left", bbox_to_anchor=(-0.2, -0.2))
-        blocks.append({"type": "figure", "svg": to_svg(fig),
+        blocks.append({"type": "figure", "png": to_image(fig),
                        "data": ["balance.balance_ratio", "balance.internal_moment"],
                        "caption": "Polar diagram of each throw's unbalance seen from the front:"
                                   " net (arrows), without counterweights (circles) and of the"

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..api import CheckResult
-from .plots import figure, to_svg
+from .plots import figure, to_image
 from .sections import fmt, section
 
 RPM = 2 * np.pi / 60
@@ -96,7 +96,7 @@ def damper_section(res: CheckResult) -> dict:
             ax.set_xlabel("Engine speed [rpm]")
             ax.legend(fontsize=6)
         fig.subplots_adjust(wspace=0.35)
-        blocks.append({"type": "figure", "svg": to_svg(fig),
+        blocks.append({"type": "figure", "png": to_image(fig),
                        "data": ["tv.nose_amplitude", "damper.optimum_nose_amplitude"],
                        "caption": "Crank-nose amplitude, actual damper (solid) and optimum"
                                   " rubber (dashed): the cylinder-count order and all orders"

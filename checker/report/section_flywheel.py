@@ -6,7 +6,7 @@ import numpy as np
 
 from ..api import CheckResult
 from . import judged as jd
-from .plots import LIMIT_STYLE, figure, to_svg
+from .plots import LIMIT_STYLE, figure, to_image
 from .sections import fmt, section
 
 RPM = 2 * np.pi / 60
@@ -108,7 +108,7 @@ def flywheel_section(res: CheckResult) -> dict:
     ax.set_xticks(np.arange(0, 721, 180))
     ax.legend(fontsize=6)
     fig.subplots_adjust(wspace=0.35)
-    blocks.append({"type": "figure", "svg": to_svg(fig),
+    blocks.append({"type": "figure", "png": to_image(fig),
                    "data": ["flywheel.cyclic_irregularity"],
                    "caption": "Left: cyclic irregularity against speed (dashed: target)."
                               f" Right: speed over the cycle at {sp[k0] / RPM:.0f} rpm"})

@@ -7,7 +7,7 @@ import numpy as np
 from ..api import CheckResult
 from ..display import unit_text
 from . import judged as jd
-from .plots import every, figure, legend_below, limit_line, literal, to_svg
+from .plots import every, figure, legend_below, limit_line, literal, to_image
 from .sections import fmt, merge_items, param_table, section
 
 RPM = 2 * np.pi / 60
@@ -75,7 +75,7 @@ def bearing_speed_figure(res: CheckResult, q, scale: float, ylabel: str, unit: s
     for ax in axes[-1]:
         ax.set_xlabel("Engine speed [rpm]")
     legend_below(fig, ncols=7)
-    return to_svg(fig)
+    return to_image(fig)
 
 
 CURVE_COLORS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#17becf",
@@ -185,7 +185,7 @@ def loads_section(res: CheckResult) -> dict:
             " not judge",
             ["bearing", "case", "p [MPa]", "speed [rpm]", "crank angle [°]", "load [kN]"]))
         blocks.append({"type": "heading", "text": "Plots"})
-        blocks.append({"type": "figure", "svg": bearing_speed_figure(
+        blocks.append({"type": "figure", "png": bearing_speed_figure(
             res, sl, 1e-6, "Peak specific load [MPa]", "MPa"),
             "caption": "Peak specific load against speed, full and no load." + shade_caption(sl),
             "data": [sl.name]})
@@ -248,7 +248,7 @@ def _pressure_figure(cyc, sp, cs_judged, ref) -> dict:
     data = {"sheet": "pressure traces", "title": "Cylinder pressure traces of the report's"
             " plot", "columns": names,
             "rows": [[float(cols[k][j]) for k in names] for j in range(deg.size)]}
-    return {"type": "figure", "svg": to_svg(fig), "data": ["loads.cycle", data],
+    return {"type": "figure", "png": to_image(fig), "data": ["loads.cycle", data],
             "caption": "Cylinder pressure at the lowest, middle and highest speed (own cycle"
                        " angle)" + ("" if cs_judged.all() else
                                     f"; dotted: not judged by the rules ({jd.reason(ref)})")
@@ -306,7 +306,7 @@ def _polar(res: CheckResult, sl, bl) -> list[dict]:
                                         for j in range(cols["crank angle [°]"].size)]}
     shown = [sl_judged[names.index(n), ci, k] for n in choose
              for ci in range(len(cases)) for k in speeds_pick]
-    return [{"type": "figure", "svg": to_svg(fig), "data": [data],
+    return [{"type": "figure", "png": to_image(fig), "data": [data],
              "caption": "Polar load diagrams: force of the journal on the bearing in kN (0° ="
                         " frame y axis, angle in the direction of rotation), at rated and top"
                         " speed" + ("" if all(shown) else

@@ -6,7 +6,7 @@ import numpy as np
 
 from ..api import CheckResult
 from . import judged as jd
-from .plots import figure, legend_below, limit_line, literal, to_svg
+from .plots import figure, legend_below, limit_line, literal, to_image
 from .sections import fmt, section
 
 RPM = 2 * np.pi / 60
@@ -14,9 +14,9 @@ DEG = 180 / np.pi
 CASE_TEXT = {"full": "full load", "no": "no load"}
 
 
-def _svg(fig) -> str:
+def _svg(fig) -> bytes:
     """SVG of a figure (margins fixed in :func:`plots.figure`)."""
-    return to_svg(fig)
+    return to_image(fig)
 
 
 def _limit(res: CheckResult, quantity: str, unit: str) -> float | None:
@@ -96,7 +96,7 @@ def _modes(res: CheckResult, nf, sp: np.ndarray) -> list[dict]:
         ax.set_ylabel("Relative amplitude [-]")
         ax.set_xlabel("Station of the torsional model (front to rear)", labelpad=1)
         legend_below(fig, ncols=3)
-        blocks.append({"type": "figure", "svg": _svg(fig), "data": [nf.name],
+        blocks.append({"type": "figure", "png": _svg(fig), "data": [nf.name],
                        "caption": "Mode shapes of the first flexible modes, normalised to the"
                                   " largest station amplitude."})
     # Campbell diagram
@@ -149,7 +149,7 @@ def _modes(res: CheckResult, nf, sp: np.ndarray) -> list[dict]:
     ax.set_xlabel("Engine speed [rpm]")
     ax.set_ylabel("Frequency [Hz]")
     legend_below(fig, ncols=5)
-    blocks.append({"type": "figure", "svg": _svg(fig), "data": [nf.name],
+    blocks.append({"type": "figure", "png": _svg(fig), "data": [nf.name],
                    "caption": "Campbell diagram: engine orders (numbered at the ends of the"
                               " lines) against the natural frequencies; dots mark major-order"
                               " resonances inside the speed range."})
@@ -234,7 +234,7 @@ def _nose(res: CheckResult, q: dict) -> list[dict]:
         + (" Circles: the points the rules judge; the rest of each order curve is computed"
            " but not judged (" + "; ".join(dict.fromkeys(why)) + ")." if marked else "")
         + (jd.shade_caption([jd.reason(tot)]) if shaded else ""))
-    blocks: list[dict] = [{"type": "figure", "svg": _svg(fig), "caption": caption,
+    blocks: list[dict] = [{"type": "figure", "png": _svg(fig), "caption": caption,
                            "data": [x.name for x in (tot, per, cyl, hi_q) if x is not None]}]
 
     def cells(content, qq, p):
@@ -292,7 +292,7 @@ def _elements(res: CheckResult, q: dict) -> list[dict]:
     ax.set_title("element torque, half peak-to-peak, full load")
     legend_below(fig, ncols=5)
     dotted = not et_j.all() or (tw is not None and not jd.mask(tw).all())
-    blocks: list[dict] = [{"type": "figure", "svg": _svg(fig), "caption": (
+    blocks: list[dict] = [{"type": "figure", "png": _svg(fig), "caption": (
         "Crankshaft twist (crank nose to flywheel) and vibratory torque in every element of"
         " the TV model against speed"
         + (f"; dotted: computed but not judged ({jd.reason(et)})" if dotted else "") + "."),
@@ -366,7 +366,7 @@ def _damper(res: CheckResult, q: dict) -> list[dict]:
         ax.set_xlabel("Engine speed [rpm]")
     legend_below(fig, ncols=6)
     faint = not jd.mask(pw).all()
-    blocks: list[dict] = [{"type": "figure", "svg": _svg(fig), "caption": (
+    blocks: list[dict] = [{"type": "figure", "png": _svg(fig), "caption": (
         "TV damper rubber: dissipated power (sum of orders), heat per unit rubber volume (mean"
         " P/V and peak at the inner radius) and shear-stress amplitude at the inner radius"
         + (f"; faint dotted: computed but not judged ({jd.reason(pw)})" if faint else "")
