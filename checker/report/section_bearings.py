@@ -8,7 +8,7 @@ from ..api import CheckResult
 from . import judged as jd
 from .film_methods import film_method_blocks
 from .plots import every, figure, to_image
-from .section_loads import bearing_speed_figure, shade_caption, worst_table
+from .section_loads import bearing_speed_figure, lining_text, shade_caption, worst_table
 from .sections import fmt, merge_items, section
 
 RPM = 2 * np.pi / 60
@@ -31,7 +31,7 @@ def bearings_section(res: CheckResult) -> dict:
         b = bearings[n]
         rows.append([n, b.type, fmt(b.diameter * 1e3), fmt(b.length * 1e3),
                      fmt(b.clearance * 1e6), fmt(ex["l_over_d"][n]), b.groove,
-                     str(b.oil_holes or 0), b.lining or "-"])
+                     str(b.oil_holes or 0), lining_text(b.lining) if b.lining else "-"])
     rows, _ = merge_items(rows, [""] * len(rows))
     blocks.append({"type": "table", "caption": "Bearings (sheet Bearings; bearings with equal"
                    " data share a row)",

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 from ..api import CheckResult
@@ -22,6 +24,11 @@ def _rule_limits(res: CheckResult, quantity: str, case: str) -> dict[str, float]
             if r.limit:
                 return {"*": r.limit[0]}
     return {}
+
+
+def lining_text(name: str) -> str:
+    """A lining material as a reader knows it: supplier grade codes (``as15``) in capitals."""
+    return name.upper() if re.fullmatch(r"[a-z]{1,3}\d+", name) else name
 
 
 def bearing_speed_figure(res: CheckResult, q, scale: float, ylabel: str, unit: str,
@@ -51,10 +58,14 @@ def bearing_speed_figure(res: CheckResult, q, scale: float, ylabel: str, unit: s
                         color=CURVE_COLORS[k % len(CURVE_COLORS)],
                         ls="-" if typ == "main" else "--")
                 linings.add(q.item_attrs[n]["lining"])
+            by_value: dict[float, list[str]] = {}
             for ln in sorted(x for x in linings if x):
                 v = lim.get(ln, lim.get("*"))
                 if v is not None:
-                    limit_line(ax, v, f"limit, {ln}: {v:g} {u}")
+                    by_value.setdefault(v, []).append(lining_text(ln))
+            for v, lns in by_value.items():
+                limit_line(ax, v, f"limit, {' and '.join(lns)} lining{'s' if len(lns) > 1 else ''}"
+                           f": {v:g} {u}")
             ax.set_title(f"{typ} bearings, {c} load")
             if ci == 0:
                 ax.set_ylabel(ylabel)
