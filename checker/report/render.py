@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 from .. import __version__
 from ..api import CheckResult
 from ..resources import templates_dir
-from . import results_book, summary
+from . import results_book, review, summary
 from .sections import SectionJob
 
 WEASYPRINT_HELP = (
@@ -45,7 +45,7 @@ FIGURE_SCHEME = "checker-figure:"
 
 def _figure_sources(sections: list[dict], figures: dict[str, bytes] | None = None
                     ) -> list[dict]:
-    """Figures as PNG images. With ``figures`` (the PDF), each image is a short
+    """Figures as JPEG images. With ``figures`` (the PDF), each image is a short
     ``checker-figure:N`` URL served from that dict by :class:`_Fetcher`: the HTML parser then
     never reads the base64 text that data URIs would add. Without it (the standalone HTML
     file), data URIs."""
@@ -59,7 +59,7 @@ def _figure_sources(sections: list[dict], figures: dict[str, bytes] | None = Non
                     figures[f"{FIGURE_SCHEME}{n}"] = data
                     b["src"] = f"{FIGURE_SCHEME}{n}"
                 else:
-                    b["src"] = "data:image/png;base64," + base64.b64encode(data).decode(
+                    b["src"] = "data:image/jpeg;base64," + base64.b64encode(data).decode(
                         "ascii")
     return sections
 
@@ -67,7 +67,7 @@ def _figure_sources(sections: list[dict], figures: dict[str, bytes] | None = Non
 def standalone_html(html: str, figures: dict[str, bytes]) -> str:
     """The PDF's HTML with its figure URLs replaced by data URIs (a self-contained file)."""
     for url, data in figures.items():
-        html = html.replace(f'src="{url}"', 'src="data:image/png;base64,'
+        html = html.replace(f'src="{url}"', 'src="data:image/jpeg;base64,'
                             + base64.b64encode(data).decode("ascii") + '"')
     return html
 
@@ -79,7 +79,7 @@ def _fetcher(wp, figures: dict[str, bytes]):
         def fetch(self, url, headers=None):
             if url.startswith(FIGURE_SCHEME):
                 return wp.urls.URLFetcherResponse(url, body=figures[url],
-                                                  headers={"Content-Type": "image/png"})
+                                                  headers={"Content-Type": "image/jpeg"})
             return super().fetch(url, headers)
 
     return Fetcher()
@@ -149,26 +149,73 @@ def _split_details(sections: list[dict]) -> tuple[list[dict], list[dict]]:
 
 def _fail_on_text(fail_on: str) -> str:
     modes = fail_on.split(",")
-    parts = ["failed errors"]
+    parts = ["a rule of severity error fails"]
     if "warning" in modes:
-        parts.append("failed warnings")
+        parts.append("a warning-severity rule fails")
     if "not-evaluated" in modes:
-        parts.append("results that could not be evaluated")
-    return ", ".join(parts[:-1]) + (" and " if len(parts) > 1 else "") + parts[-1]
+        parts.append("a result cannot be evaluated")
+    return ", ".join(parts[:-1]) + (" or " if len(parts) > 1 else "") + parts[-1]
 
 
 def _verdict_words(res: CheckResult) -> str:
     c = res.counts()
     if res.verdict == "fail":
         n = len(res.failed)
-        head = f"{n} result{'s' if n != 1 else ''} fail{'s' if n == 1 else ''} the check."
+        head = (f"{n} results fail their limits." if n != 1 else "1 result fails its limit.")
     else:
-        head = "No result fails the check."
+        head = "No result fails its limit."
     if res.complete:
         return head + " Complete: every selected result was evaluated."
     ne = c["not_evaluated"]
     return (head + f" Incomplete: {ne} result{'s' if ne != 1 else ''} could not be evaluated"
-            " (missing inputs, listed below); they are not passes.")
+            " (missing inputs, listed after this page); they are not passes.")
+
+
+PLAIN = ((re.compile(r"\bTV module\b"), "torsional model"),
+         (re.compile(r"\btv peak\b"), "TV peak"),
+         (re.compile(r"\bthe TV model\b"), "the torsional model"))
+"""Internal names in texts written by the analyses, as a reader says them."""
+
+
+def plain(text: str) -> str:
+    """``text`` with the analyses' internal names in engineering words."""
+    for pat, rep in PLAIN:
+        text = pat.sub(rep, text)
+    return text
+
+
+def _short_source(src: str) -> str:
+    return src
+
+
+def _assumption_groups(res: CheckResult) -> list[dict]:
+    """Assumptions by sheet (workbook order; the model's own last), source text cut at
+    about two lines (full text in the results workbook)."""
+    out: dict[str, list[dict]] = {}
+    for a in review.assumption_rows(res):
+        sheet = a["sheet"] or "Model (checker's own assumptions)"
+        src = plain(a["source"])
+        if len(src) > 230:
+            src = src[:225].rsplit(" ", 1)[0] + " …"
+        out.setdefault(sheet, []).append(dict(a, source=src))
+    return [{"sheet": k if k.startswith("Model") else f"Sheet {k}", "rows": v}
+            for k, v in out.items()]
+
+
+def _extra_sheets(res: CheckResult) -> list[dict]:
+    """Sheets of the results workbook for what the PDF shortens: the full rule table and
+    the full assumption texts."""
+    rules = [[r.id, r.name, r.severity, r.applies_to or "-", r.limit_text(), r.source,
+              r.rationale] for r in res.table.rules]
+    assum = [[a["sheet"] or "model", a["cell"], a["parameter"], a["value"], a["source"]]
+             for a in review.assumption_rows(res)]
+    return [{"sheet": "Rule table", "title": "Every rule: what it checks, where it applies,"
+             " its limit, source and rationale", "columns": ["rule", "name", "severity",
+                                                              "applies to", "limit", "source",
+                                                              "rationale"], "rows": rules},
+            {"sheet": "Assumptions", "title": "Inputs marked as assumptions and the model's"
+             " own assumptions", "columns": ["sheet", "cell", "parameter", "value",
+                                              "source or reason"], "rows": assum}]
 
 
 def context(res: CheckResult, sections: list[dict] | None = None,
@@ -186,9 +233,17 @@ def context(res: CheckResult, sections: list[dict] | None = None,
                       f"{k} {'..'.join(f'{x:g}' for x in v)}" for k, v in r.limits.items())
                       + ")"),
                   "severity": r.severity, "source": r.source, "rationale": r.rationale,
+                  "source_short": _short_source(r.source),
                   "selected": r.id in selected} for r in res.table.rules]
-    timings = [{"module": m, "seconds": f"{res.outcome.timings.get(m, 0.0) * 1e3:.0f} ms"}
+    from .sections import LABELS, load_sections
+
+    load_sections()
+    timings = [{"module": LABELS.get(m, m.replace("_", " ")),
+                "seconds": f"{res.outcome.timings.get(m, 0.0) * 1e3:.0f} ms"}
                for m in res.outcome.modules_run]
+    fails = [r for g in groups if g["kind"] == "fail" for r in g["rows"]]
+    for r in fails:
+        r.note = plain(r.note)
     return {
         "title": f"Crank-train design-rule check: {res.engine.name}",
         "engine": res.engine.name,
@@ -206,7 +261,12 @@ def context(res: CheckResult, sections: list[dict] | None = None,
         "groups": groups,
         "cover_groups": [g for g in groups if g["kind"] != "pass"],
         "look_first": summary.look_first(res),
-        "failed": [r for g in groups if g["kind"] == "fail" for r in g["rows"]],
+        "failed": fails,
+        "failures": review.rank_failures(fails),
+        "caveats": review.caveats(res),
+        "doc_control": review.document_control(res),
+        "rule_count": len(res.table.rules),
+        "assumption_groups": _assumption_groups(res),
         "sections": [dict(x, groups=_groups(x["blocks"]))
                      for x in _figure_sources(sections, figures)],
         "rule_rows": rule_rows,
@@ -215,7 +275,8 @@ def context(res: CheckResult, sections: list[dict] | None = None,
         "assumptions": res.assumptions,
         "input_warnings": [str(w) for w in res.engine.warnings],
         "modules_run": res.outcome.modules_run,
-        "modules_skipped": res.outcome.modules_skipped,
+        "modules_skipped": [LABELS.get(m, m.replace("_", " "))
+                            for m in res.outcome.modules_skipped],
         "timings": timings,
         "attachment": results_book.ATTACHMENT_NAME,
         "results_file": results_file,
@@ -301,6 +362,7 @@ def build_report(res: CheckResult, progress: Progress | None = None,
     sections = job.result()
     clock.stage("figures", extra_cpu=_children_cpu() - children)
     sections, extra = _split_details(sections)
+    extra += _extra_sheets(res)
     say("Writing the results workbook")
     book = results_book.build(res, extra)
     clock.stage("results workbook")

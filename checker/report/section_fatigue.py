@@ -140,7 +140,7 @@ def _scf(ex: dict) -> list[dict]:
                        " d_G = D_BG/D, d_H = D_BH/D (r_journal_torsion = R_G/D_G is used only"
                        " when D ≠ D_G or R_H ≠ R_G)",
                        "columns": ["ratio", "value", "validity range", "inside"],
-                       "rows": rows})
+                       "rows": rows, "detail": True, "sheet": "M53 dimensions"})
     return blocks
 
 

@@ -220,10 +220,12 @@ def _pressure_text(cyc, sp, cs_judged, ref) -> dict:
                 if not cyc.synthesized[ci].any() else "workbook traces and synthesized")
         txt = (f"{c} load: peak {fmt(pk.min())} to {fmt(pk.max())} bar over"
                f" {sp[0]:.0f} to {sp[-1]:.0f} rpm ({kind}")
-        ok = np.isfinite(cyc.target_imep[ci])
+        ok = np.isfinite(cyc.target_imep[ci]) & (cs_judged[ci] if cs_judged is not None
+                                                 else True)
         if ok.any():
             dev = np.abs(cyc.imep[ci, ok] / cyc.target_imep[ci, ok] - 1).max() * 100
-            txt += f"; IMEP within {fmt(dev, 2)} % of the brake-torque target"
+            txt += (f"; IMEP within {fmt(dev, 2)} % of the brake-torque target at the judged"
+                    " speeds")
         if cyc.extrapolated[ci].any():
             ex = sp[cyc.extrapolated[ci]]
             txt += (f"; peak pressure extrapolated at {ex.size} speed{'s' if ex.size > 1 else ''}"
