@@ -161,6 +161,7 @@ class Png(bytes):
     processing (what the reader sees), for tests of the figures' text."""
 
     texts: list[str]
+    width_mm: float
 
 
 def to_image(fig, dpi: float = PNG_DPI) -> Png:
@@ -194,6 +195,7 @@ def to_image(fig, dpi: float = PNG_DPI) -> Png:
     img.save(buf, format="JPEG", quality=JPEG_QUALITY, subsampling=0, optimize=False)
     png = Png(buf.getvalue())
     png.texts = drawn
+    png.width_mm = fig.get_figwidth() * 25.4
     return png
 
 

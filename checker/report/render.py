@@ -53,6 +53,9 @@ def _figure_sources(sections: list[dict], figures: dict[str, bytes] | None = Non
     for s in sections:
         for b in s["blocks"]:
             if b["type"] == "figure" and b.get("png"):
+                w = getattr(b["png"], "width_mm", None)
+                if w is not None and w < 165 and "width_mm" not in b:
+                    b["width_mm"] = round(w, 1)  # a narrow figure keeps its size
                 data = bytes(b["png"])
                 if figures is not None:
                     n += 1
@@ -113,6 +116,34 @@ def _groups(blocks: list[dict]) -> list[list[dict]]:
     return out
 
 
+def _collapse_constant_column(b: dict, header: str = "judged by") -> dict:
+    """A ``header`` column with the same text in every row (e.g. "not judged: no limit
+    given for BRG-007" on 34 rows) leaves the table: the caption says it once."""
+    cols = b.get("columns") or []
+    if header not in cols or len(b.get("rows") or []) < 3:
+        return b
+    k = cols.index(header)
+    css = b.get("row_css") or [""] * len(b["rows"])
+    plain_rows = [row for row, c in zip(b["rows"], css) if "not-judged" not in (c or "")]
+    vals = {row[k] for row in plain_rows if len(row) > k}
+    if len(vals) != 1 or len(plain_rows) < 3:
+        return b
+    v = vals.pop()
+    if len(plain_rows) != len(b["rows"]):  # marked rows keep their own text
+        rows = [row[:k] + ["-"] + row[k + 1:] if "not-judged" not in (c or "") else row
+                for row, c in zip(b["rows"], css)]
+        return dict(b, rows=rows, caption=(b.get("caption") or "").rstrip(".")
+                    + f". Unmarked rows: {v}.")
+    out = dict(b, columns=cols[:k] + cols[k + 1:],
+               rows=[row[:k] + row[k + 1:] for row in b["rows"]],
+               caption=(b.get("caption") or "").rstrip(".") + f". Every row: {v}.")
+    if b.get("widths") and len(b["widths"]) == len(cols):
+        w = b["widths"][:k] + b["widths"][k + 1:]
+        scale = sum(b["widths"]) / max(sum(w), 1e-9)
+        out["widths"] = [round(x * scale, 1) for x in w]
+    return out
+
+
 def _data_text(data, sheets: set[str]) -> str:
     """Where the numbers behind a plot are (the results workbook's sheets)."""
     names = []
@@ -133,6 +164,8 @@ def _split_details(sections: list[dict]) -> tuple[list[dict], list[dict]]:
     for s in sections:
         keep = []
         for b in s["blocks"]:
+            if b["type"] == "table":
+                b = _collapse_constant_column(b)
             if b["type"] == "table" and b.get("detail"):
                 sheet = results_book.sheet_name(b.get("sheet") or f"{s['id']} table")
                 extra.append({"sheet": sheet, "title": b.get("caption", ""),
@@ -171,9 +204,11 @@ def _verdict_words(res: CheckResult) -> str:
             " (missing inputs, listed after this page); they are not passes.")
 
 
-PLAIN = ((re.compile(r"\bTV module\b"), "torsional model"),
+PLAIN = ((re.compile(r"\bTV (module|model)\b"), "torsional model"),
          (re.compile(r"\btv peak\b"), "TV peak"),
-         (re.compile(r"\bthe TV model\b"), "the torsional model"))
+         (re.compile(r"\bsigma_DW\b"), "σ_DW"),
+         (re.compile(r"\bthe loads module\b"), "the load analysis"),
+         (re.compile(r"\bworkbook \(JointTorques\)"), "workbook (sheet JointTorques)"))
 """Internal names in texts written by the analyses, as a reader says them."""
 
 
@@ -182,6 +217,24 @@ def plain(text: str) -> str:
     for pat, rep in PLAIN:
         text = pat.sub(rep, text)
     return text
+
+
+def _plain_sections(sections: list[dict]) -> list[dict]:
+    """Every text of the sections (intro, captions, cells, lists) in engineering words."""
+    for sec in sections:
+        sec["intro"] = plain(sec.get("intro") or "")
+        for b in sec["blocks"]:
+            for key in ("text", "caption", "title"):
+                if isinstance(b.get(key), str):
+                    b[key] = plain(b[key])
+            if b["type"] == "list":
+                b["items"] = [plain(str(x)) for x in b["items"]]
+            elif b["type"] == "table":
+                b["rows"] = [[plain(c) if isinstance(c, str) else c for c in row]
+                             for row in b["rows"]]
+            elif b["type"] == "equations":
+                b["items"] = [tuple(plain(x) for x in it) for it in b["items"]]
+    return sections
 
 
 def _short_source(src: str) -> str:
@@ -361,7 +414,7 @@ def build_report(res: CheckResult, progress: Progress | None = None,
     children = _children_cpu()
     sections = job.result()
     clock.stage("figures", extra_cpu=_children_cpu() - children)
-    sections, extra = _split_details(sections)
+    sections, extra = _split_details(_plain_sections(sections))
     extra += _extra_sheets(res)
     say("Writing the results workbook")
     book = results_book.build(res, extra)
