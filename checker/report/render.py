@@ -116,6 +116,20 @@ def _groups(blocks: list[dict]) -> list[list[dict]]:
     return out
 
 
+def _nothing_judged(b: dict, header: str = "judged by") -> str:
+    """Why no row of a judged-worst-case table is judged by a rule ('' if one is): such a
+    table is computed information, which the results workbook carries."""
+    cols = b.get("columns") or []
+    if header not in cols or not b.get("rows"):
+        return ""
+    k = cols.index(header)
+    vals = [str(row[k]) for row in b["rows"] if len(row) > k]
+    if not vals or not all(v.startswith(("not judged", "no rule")) for v in vals):
+        return ""
+    reasons = dict.fromkeys(re.sub(r"^not judged:\s*", "", v) for v in vals)
+    return "; ".join(reasons)
+
+
 def _collapse_constant_column(b: dict, header: str = "judged by") -> dict:
     """A ``header`` column with the same text in every row (e.g. "not judged: no limit
     given for BRG-007" on 34 rows) leaves the table: the caption says it once."""
@@ -163,15 +177,23 @@ def _split_details(sections: list[dict]) -> tuple[list[dict], list[dict]]:
     extra: list[dict] = []
     for s in sections:
         keep = []
+        n_table = 0
         for b in s["blocks"]:
+            why = ""
             if b["type"] == "table":
-                b = _collapse_constant_column(b)
+                n_table += 1
+                why = _nothing_judged(b)
+                if why:
+                    b = dict(b, detail=True, sheet=b.get("sheet") or f"{s['id']} {n_table}")
+                else:
+                    b = _collapse_constant_column(b)
             if b["type"] == "table" and b.get("detail"):
                 sheet = results_book.sheet_name(b.get("sheet") or f"{s['id']} table")
                 extra.append({"sheet": sheet, "title": b.get("caption", ""),
                               "columns": b["columns"], "rows": b["rows"]})
                 keep.append({"type": "text", "text": (b.get("caption") or "Table").rstrip(".")
-                             + f": in {results_book.ATTACHMENT_NAME}, sheet {sheet}."})
+                             + f": in {results_book.ATTACHMENT_NAME}, sheet {sheet}"
+                             + (f" (no row is judged: {why})." if why else ".")})
                 continue
             if b["type"] == "figure":
                 extra += [d for d in b.get("data") or [] if isinstance(d, dict)]
@@ -248,8 +270,9 @@ def _assumption_groups(res: CheckResult) -> list[dict]:
     for a in review.assumption_rows(res):
         sheet = a["sheet"] or "Model (checker's own assumptions)"
         src = plain(a["source"])
-        if len(src) > 230:
-            src = src[:225].rsplit(" ", 1)[0] + " …"
+        cut = 230 if a["sheet"] else 150  # the model's notes: their gist (sections say more)
+        if len(src) > cut:
+            src = src[:cut - 5].rsplit(" ", 1)[0] + " …"
         out.setdefault(sheet, []).append(dict(a, source=src))
     return [{"sheet": k if k.startswith("Model") else f"Sheet {k}", "rows": v}
             for k, v in out.items()]

@@ -87,7 +87,8 @@ def flywheel_section(res: CheckResult) -> dict:
                    " irregularity (exact and classical estimate) and the minimum flywheel"
                    " inertia for the target (negative: the rest of the engine suffices)",
                    "columns": ["case", "speed [rpm]", "ΔE [J]", "Δω [rpm]", "δ [%]",
-                               "ΔE/(Jω²) [%]", "min. flywheel [kg m²]"], "rows": rows})
+                               "ΔE/(Jω²) [%]", "min. flywheel [kg m²]"], "rows": rows,
+                   "detail": True, "sheet": "Flywheel per speed"})
     fig, axes = figure(170, 65, ncols=2, legend_rows=1)
     ax = axes[0]
     for c_i, c in enumerate(cases):
