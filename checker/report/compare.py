@@ -196,8 +196,17 @@ def _trade(c: Comparison) -> dict[str, Any]:
 
 def render(comps: list[Comparison]) -> tuple[str, bytes]:
     """(HTML, PDF bytes) of the pack."""
-    from jinja2 import Environment, FileSystemLoader, StrictUndefined, select_autoescape
     from weasyprint import HTML
+
+    html = pack_html(comps)
+    ident = hashlib.sha256(html.encode("utf-8")).hexdigest()[:32].encode()
+    return html, HTML(string=html, base_url=str(templates_dir())).write_pdf(
+        pdf_identifier=ident)
+
+
+def pack_html(comps: list[Comparison]) -> str:
+    """The pack as HTML (what :func:`render` lays out)."""
+    from jinja2 import Environment, FileSystemLoader, StrictUndefined, select_autoescape
 
     base = comps[0].baseline
 
@@ -224,7 +233,4 @@ def render(comps: list[Comparison]) -> tuple[str, bytes]:
     }
     env = Environment(loader=FileSystemLoader(str(templates_dir())),
                       autoescape=select_autoescape(["html"]), undefined=StrictUndefined)
-    html = env.get_template("compare.html").render(**ctx)
-    ident = hashlib.sha256(html.encode("utf-8")).hexdigest()[:32].encode()
-    return html, HTML(string=html, base_url=str(templates_dir())).write_pdf(
-        pdf_identifier=ident)
+    return env.get_template("compare.html").render(**ctx)

@@ -325,6 +325,7 @@ def context(run: StudyRun, df) -> dict[str, Any]:
             f" (+{len(t.labels) - 6} more)" if len(t.labels) > 6 else ""),
             "unit": q.unit or "-", "levels": levels, "baseline": _fmt(base.get(q.name)),
             "items": ", ".join(t.items) if t.items else "-"})
+    widths = _feas_widths(pnames, fams, rows)
     best = best_variant(vt)
     if best:
         g = gov.get(best["variant"])
@@ -336,7 +337,7 @@ def context(run: StudyRun, df) -> dict[str, Any]:
         "base_file": run.base_path.replace("\\", "/").split("/")[-1],
         "sha256": run.base_sha256, "n_variants": len(run.records),
         "n_errors": len(errors), "errors": errors, "params": params, "pnames": pnames,
-        "baseline": [_fmt(base.get(p)) for p in pnames],
+        "baseline": [_fmt(base.get(p)) for p in pnames], "widths": widths,
         "fams": fams, "rows": rows, "n_feasible": int(vt["feasible"].sum()),
         "sensitivity": sens, "best": best, "answer": _answer(vt, df, run, fams, gov),
         "figures": _margin_figures(vt, run, fams, df), "map": _map_figure(vt, run, fams),
@@ -345,22 +346,53 @@ def context(run: StudyRun, df) -> dict[str, Any]:
     }
 
 
+CHAR_MM = 1.3
+"""Width of a character of the feasibility table (6.5 pt DejaVu Sans) [mm], padding aside."""
+
+
+def _feas_widths(pnames: list[str], fams: list[str], rows: list[dict]) -> list[float]:
+    """Column widths [% of the text width] of the feasibility table: each column at least as
+    wide as its longest word (header or cell; words never break), the rest shared out."""
+    def word(texts) -> int:
+        return max((len(w) for t in texts for w in str(t).split()), default=1)
+
+    mins = [3 * CHAR_MM, word(["Variant"] + [r["name"] for r in rows]) * CHAR_MM]
+    for k, p in enumerate(pnames):
+        mins.append(word([p] + [r["values"][k] for r in rows]) * CHAR_MM)
+    for k, f in enumerate(fams):
+        mins.append(max(word([f]), max((len(r["cells"][k]["status"].replace("_", " "))
+                                        for r in rows), default=4), 7) * CHAR_MM)
+    mins.append(word(["governing result"] + [r["governing"] for r in rows]) * CHAR_MM)
+    mins = [m + 2.8 for m in mins]  # cell padding
+    total = 180.0
+    spare = max(total - sum(mins), 0.0)
+    weights = [0.2, 1.5] + [1.0] * len(pnames) + [0.6] * len(fams) + [2.0]
+    w = [m + spare * x / sum(weights) for m, x in zip(mins, weights)]
+    return [round(100 * x / sum(w), 1) for x in w]
+
+
 def _fmt(v: Any) -> str:
     if v is None or (isinstance(v, float) and not np.isfinite(v)):
         return "-"
     return f"{v:.4g}" if isinstance(v, float) else str(v)
 
 
-def render(run: StudyRun, df) -> tuple[str, bytes]:
-    """(HTML, PDF bytes) of the study report."""
+def html(run: StudyRun, df) -> str:
+    """The study report as HTML (what :func:`render` lays out)."""
     from jinja2 import Environment, FileSystemLoader, StrictUndefined, select_autoescape
-    from weasyprint import HTML
 
     env = Environment(loader=FileSystemLoader(str(templates_dir())),
                       autoescape=select_autoescape(["html"]), undefined=StrictUndefined)
+    return env.get_template("study.html").render(**context(run, df))
+
+
+def render(run: StudyRun, df) -> tuple[str, bytes]:
+    """(HTML, PDF bytes) of the study report."""
     import hashlib
 
-    html = env.get_template("study.html").render(**context(run, df))
-    ident = hashlib.sha256(html.encode("utf-8")).hexdigest()[:32].encode()
-    pdf = HTML(string=html, base_url=str(templates_dir())).write_pdf(pdf_identifier=ident)
-    return html, pdf
+    from weasyprint import HTML
+
+    text = html(run, df)
+    ident = hashlib.sha256(text.encode("utf-8")).hexdigest()[:32].encode()
+    pdf = HTML(string=text, base_url=str(templates_dir())).write_pdf(pdf_identifier=ident)
+    return text, pdf
