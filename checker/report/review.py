@@ -32,7 +32,8 @@ MECHANISMS: dict[str, str] = {
     "BRG-007": "Hot film: lower viscosity and load capacity; lining and oil degrade above the"
                " supplier's temperature (ISO 7902-1:2020).",
     "BRG-008": "Peak film pressure above the lining's strength: lining fatigue under the"
-               " hydrodynamic pressure (J. Lubrication Technology, as cited by the rule).",
+               " hydrodynamic pressure ('Hydrodynamic aspects of fatigue in plain journal"
+               " bearings', J. Lubrication Technology 103(1), 1981).",
     "BRG-009": "Too little oil through the bearing: it carries less friction heat away and the"
                " film runs hotter (Budynas and Nisbett, Shigley's, ch. 12).",
     "DMP-001": "Rubber shear stress above the supplier's limit: the rubber tears or its bond"
