@@ -11,9 +11,9 @@ written by ``checker template``) it measures, each in a fresh process, ``--runs`
   the figure drawing in worker processes), figures, results workbook, HTML, PDF layout, PDF
   write: wall time and processor time per stage.
 
-It prints the medians, the page count and the targets (I4 report <= 4 s, I6 <= 5 s, check
-<= 1.5 s). On a machine shared with other work, compare processor times: the wall time of a
-stage grows with the load, its processor time much less. Run it once, not in a loop.
+It prints the medians, the page count and the targets of issue 25 (I4 report <= 8 s, stretch
+5 s; check <= 1.5 s). On a machine shared with other work, compare processor times: the wall
+time of a stage grows with the load, its processor time much less. Run it once, not in a loop.
 """
 
 from __future__ import annotations
@@ -29,7 +29,8 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-TARGETS = {"i4": 4.0, "i6": 5.0}
+TARGETS = {"i4": 8.0, "i6": 8.0}
+STRETCH = {"i4": 5.0}
 CHECK_TARGET = 1.5
 
 DRIVER = r"""
@@ -97,6 +98,8 @@ def main() -> None:
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
     print(f"median of {args.runs} runs; load average {load:.1f} on {os.cpu_count()} cores\n")
     print("| stage | " + " | ".join(f"{e} wall [s] | {e} cpu [s]" for e in out) + " |")
+    # processor time is the number to compare on a shared machine (the wall time of a stage
+    # grows with the load); the sum of the stages' processor times is the report's work
     print("|---|" + "---|---|" * len(out))
     for s in next(iter(out.values()))["wall"]:
         print(f"| {s} | " + " | ".join(f"{v['wall'][s]:.2f} | {v['cpu'][s]:.2f}"
@@ -104,8 +107,11 @@ def main() -> None:
     print()
     for e, v in out.items():
         tgt = TARGETS.get(e)
+        st = STRETCH.get(e)
         print(f"{e}: report whole process {v['report']:.2f} s (target {tgt} s"
-              f" {'met' if tgt and v['report'] <= tgt else 'NOT met'}), {v['pages']} pages;"
+              f" {'met' if tgt and v['report'] <= tgt else 'NOT met'}"
+              + (f", stretch {st} s {'met' if v['report'] <= st else 'not met'}" if st else "")
+              + f"), {v['pages']} pages;"
               f" check whole process {v['check']:.2f} s (target {CHECK_TARGET} s"
               f" {'met' if v['check'] <= CHECK_TARGET else 'NOT met'})")
 

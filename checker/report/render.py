@@ -270,7 +270,9 @@ def _assumption_groups(res: CheckResult) -> list[dict]:
     for a in review.assumption_rows(res):
         sheet = a["sheet"] or "Model (checker's own assumptions)"
         src = plain(a["source"])
-        cut = 230 if a["sheet"] else 150  # the model's notes: their gist (sections say more)
+        # a parameter's reason in full (two lines); a table row's and the model's notes their
+        # gist (full texts in the results workbook; the sections describe the model)
+        cut = 230 if a["parameter"] != "table rows" and a["sheet"] else 140
         if len(src) > cut:
             src = src[:cut - 5].rsplit(" ", 1)[0] + " …"
         out.setdefault(sheet, []).append(dict(a, source=src))
