@@ -303,12 +303,15 @@ def context(res: CheckResult, sections: list[dict] | None = None,
     :func:`_figure_sources`; default: data URIs)."""
     if sections is None:
         sections = SectionJob(res).result()
+    from .section_loads import lining_text
+
     groups = summary.groups(res)
     selected = {r.id for r in res.rules}
     rule_rows = [{"id": r.id, "name": r.name, "quantity": r.quantity,
                   "applies": r.applies_to or "-", "limit": r.limit_text()
                   + ("" if not r.limits else " (" + "; ".join(
-                      f"{k} {'..'.join(f'{x:g}' for x in v)}" for k, v in r.limits.items())
+                      f"{lining_text(k)} {'..'.join(f'{x:g}' for x in v)}"
+                      for k, v in r.limits.items())
                       + ")"),
                   "severity": r.severity, "source": r.source, "rationale": r.rationale,
                   "source_short": _short_source(r.source),
@@ -320,8 +323,10 @@ def context(res: CheckResult, sections: list[dict] | None = None,
                 "seconds": f"{res.outcome.timings.get(m, 0.0) * 1e3:.0f} ms"}
                for m in res.outcome.modules_run]
     fails = [r for g in groups if g["kind"] == "fail" for r in g["rows"]]
-    for r in fails:
+    near = summary.look_first(res)
+    for r in [r for g in groups for r in g["rows"]] + near:
         r.note = plain(r.note)
+    caveats = [dict(c, items=[plain(x) for x in c["items"]]) for c in review.caveats(res)]
     return {
         "title": f"Crank-train design-rule check: {res.engine.name}",
         "engine": res.engine.name,
@@ -338,10 +343,10 @@ def context(res: CheckResult, sections: list[dict] | None = None,
         "counts": res.counts(),
         "groups": groups,
         "cover_groups": [g for g in groups if g["kind"] != "pass"],
-        "look_first": summary.look_first(res),
+        "look_first": near,
         "failed": fails,
         "failures": review.rank_failures(fails),
-        "caveats": review.caveats(res),
+        "caveats": caveats,
         "doc_control": review.document_control(res),
         "rule_count": len(res.table.rules),
         "assumption_groups": _assumption_groups(res),

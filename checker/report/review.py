@@ -245,12 +245,18 @@ def caveats(res: CheckResult) -> list[dict]:
     if rows:
         by: dict[str, int] = {}
         for r in rows:
-            by[r["sheet"] or "other"] = by.get(r["sheet"] or "other", 0) + 1
-        out.append({"title": "Inputs that are assumptions", "items": [
-            f"{len(rows)} input{'s are' if len(rows) != 1 else ' is'} marked as assumption"
-            f"{'s' if len(rows) != 1 else ''} in the workbook ("
-            + ", ".join(f"{k} {v}" for k, v in by.items())
-            + "), not data of this engine; listed with value and source under Assumptions."]})
+            if r["sheet"]:
+                by[r["sheet"]] = by.get(r["sheet"], 0) + 1
+        n = sum(by.values())
+        model = len(rows) - n
+        if n:
+            out.append({"title": "Inputs that are assumptions", "items": [
+                f"{n} input{'s are' if n != 1 else ' is'} marked as assumption"
+                f"{'s' if n != 1 else ''} in the workbook (sheets "
+                + ", ".join(f"{k} {v}" for k, v in by.items())
+                + "), not data of this engine" + (f"; the model adds {model} assumptions of"
+                                                  " its own" if model else "")
+                + "; listed with value and source under Assumptions."]})
     return out
 
 

@@ -31,7 +31,8 @@ def flywheel_section(res: CheckResult) -> dict:
     j_tot, j_fw = ex["inertia_total"], ex["inertia_flywheel"]
     blocks: list[dict] = [{"type": "table", "caption": "Inputs (sheets TVModel, Engine)",
                            "columns": ["parameter", "value", "unit", "cell"], "rows": [
-        ["Total rotating inertia (all TVModel stations)", fmt(j_tot, 5), "kg m²", "TVModel"],
+        ["Total rotating inertia (all stations of sheet TVModel)", fmt(j_tot, 5), "kg m²",
+         "TVModel"],
         ["Flywheel station inertia (" + (", ".join(ex["flywheel_stations"]) or "none") + ")",
          fmt(j_fw, 5), "kg m²", "TVModel"],
         ["Target cyclic irregularity", "-" if target is None else fmt(target * 100, 4), "%",
