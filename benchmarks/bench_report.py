@@ -11,9 +11,9 @@ written by ``checker template``) it measures, each in a fresh process, ``--runs`
   the figure drawing in worker processes), figures, results workbook, HTML, PDF layout, PDF
   write: wall time and processor time per stage.
 
-It prints the medians, the page count and the targets (I4 report <= 4 s, I6 <= 5 s, check
-<= 1.5 s). On a machine shared with other work, compare processor times: the wall time of a
-stage grows with the load, its processor time much less. Run it once, not in a loop.
+It prints the medians, the page count and the targets of issue 25 (I4 report <= 8 s, stretch
+5 s; check <= 1.5 s). On a machine shared with other work, compare processor times: the wall
+time of a stage grows with the load, its processor time much less. Run it once, not in a loop.
 """
 
 from __future__ import annotations
@@ -29,7 +29,8 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-TARGETS = {"i4": 4.0, "i6": 5.0}
+TARGETS = {"i4": 8.0, "i6": 8.0}
+STRETCH = {"i4": 5.0}
 CHECK_TARGET = 1.5
 
 DRIVER = r"""
@@ -56,10 +57,22 @@ def _env() -> dict:
     return env
 
 
+CPU: list[float] = []
+"""Processor time (user + system) of each timed process with its children [s]."""
+
+
+def _children_cpu() -> float:
+    import resource
+
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
 def _timed(cmd: list[str]) -> float:
-    t = time.perf_counter()
+    t, c = time.perf_counter(), _children_cpu()
     r = subprocess.run(cmd, env=_env(), capture_output=True, text=True)
     dt = time.perf_counter() - t
+    CPU.append(_children_cpu() - c)
     if r.returncode not in (0, 1):
         raise RuntimeError(f"{' '.join(cmd)} failed ({r.returncode}): {r.stderr[-2000:]}")
     return dt
@@ -78,18 +91,20 @@ def main() -> None:
             subprocess.run([py, "-m", "checker.cli", "template", str(wb), "--engine", eng,
                             "--force"], env=_env(), check=True, capture_output=True)
             pdf = Path(d) / f"{eng}.pdf"
-            check, report, stage_runs = [], [], []
+            check, report, stage_runs, report_cpu = [], [], [], []
             for _ in range(args.runs):
                 check.append(_timed([py, "-m", "checker.cli", "check", str(wb), "-o",
                                      str(Path(d) / "out.txt")]))
                 report.append(_timed([py, "-m", "checker.cli", "report", str(wb), "-o",
                                       str(pdf), "--quiet"]))
+                report_cpu.append(CPU[-1])
                 r = subprocess.run([py, "-c", DRIVER, str(wb), str(pdf)], env=_env(),
                                    capture_output=True, text=True, check=True)
                 stage_runs.append(json.loads(r.stdout.strip().splitlines()[-1]))
             stages = list(stage_runs[0]["wall"])
             out[eng] = {
                 "check": statistics.median(check), "report": statistics.median(report),
+                "report_cpu": statistics.median(report_cpu),
                 "pages": stage_runs[0]["pages"],
                 "wall": {s: statistics.median(x["wall"][s] for x in stage_runs) for s in stages},
                 "cpu": {s: statistics.median(x["cpu"][s] for x in stage_runs) for s in stages},
@@ -97,6 +112,8 @@ def main() -> None:
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
     print(f"median of {args.runs} runs; load average {load:.1f} on {os.cpu_count()} cores\n")
     print("| stage | " + " | ".join(f"{e} wall [s] | {e} cpu [s]" for e in out) + " |")
+    # processor time is the number to compare on a shared machine (the wall time of a stage
+    # grows with the load); the sum of the stages' processor times is the report's work
     print("|---|" + "---|---|" * len(out))
     for s in next(iter(out.values()))["wall"]:
         print(f"| {s} | " + " | ".join(f"{v['wall'][s]:.2f} | {v['cpu'][s]:.2f}"
@@ -104,8 +121,11 @@ def main() -> None:
     print()
     for e, v in out.items():
         tgt = TARGETS.get(e)
+        st = STRETCH.get(e)
         print(f"{e}: report whole process {v['report']:.2f} s (target {tgt} s"
-              f" {'met' if tgt and v['report'] <= tgt else 'NOT met'}), {v['pages']} pages;"
+              f" {'met' if tgt and v['report'] <= tgt else 'NOT met'}"
+              + (f", stretch {st} s {'met' if v['report'] <= st else 'not met'}" if st else "")
+              + f"), processor time {v['report_cpu']:.2f} s, {v['pages']} pages;"
               f" check whole process {v['check']:.2f} s (target {CHECK_TARGET} s"
               f" {'met' if v['check'] <= CHECK_TARGET else 'NOT met'})")
 

@@ -136,10 +136,12 @@ def test_report_pdf_and_html(example, tmp_path):
     assert "79.51" in text and "554.5" in text and "359.5" in text
     assert "64.49" in text and "67.47" in text and "2154" in text
     assert "Page 1 of" in text
-    # figures are vector graphics with real (searchable) text
-    assert "Cover factor (slip torque capacity / applied torque)" in text
+    # figures are raster images (the PDF engine draws vector figures in pure Python: seconds
+    # per report); their captions are text
+    assert "Joint cover factors coloured by the result" in text
+    assert any(p.images for p in PdfReader(pdf).pages)
     outline = [o.title for o in PdfReader(pdf).outline if not isinstance(o, list)]
-    assert "Summary of rule results" in outline and "Bolted joints" in outline
+    assert "Warnings and results not evaluated" in outline and "Bolted joints" in outline
     h = html.read_text()
     assert 'id="summary"' in h and "sec-joints" in h
 
@@ -159,7 +161,6 @@ def test_whole_check_is_deterministic_and_exit_1(example):
 
 def test_report_figures_use_display_units(example, tmp_path):
     # the specific-load and MOFT plots are in MPa and um: their axis tick labels stay small
-    import re
 
     from checker import api
     from checker.report.section_bearings import bearings_section
@@ -167,9 +168,8 @@ def test_report_figures_use_display_units(example, tmp_path):
 
     res = api.check(example, select=["BRG"])
     for sec in (loads_section(res), bearings_section(res)):
-        svgs = [b["svg"] for b in sec["blocks"] if b["type"] == "figure"]
-        text = " ".join(svgs)
-        assert "1e" not in " ".join(re.findall(r">([^<]{1,12})</text>", text)), sec["id"]
+        texts = [t for b in sec["blocks"] if b["type"] == "figure" for t in b["png"].texts]
+        assert "1e" not in " ".join(t for t in texts if len(t) <= 12), sec["id"]
 
 
 def test_template_i6_engine(tmp_path):

@@ -42,7 +42,7 @@ def film_method_blocks(res: CheckResult) -> list[dict]:
          " Reynolds equation with Swift-Stieber cavitation) and the ratio at the finite-length"
          " worst point",
          "columns": ["bearing", "case", "short [µm]", "at [rpm]", "finite [µm]", "at [rpm]",
-                     "ratio"], "rows": rows},
+                     "ratio"], "rows": rows, "detail": True, "sheet": "Film methods"},
         {"type": "text", "text":
          f"Model-error band on this engine: the short-bearing film is {lo:.2f} to {hi:.2f}"
          " times the finite-length film at the same point. The short-bearing approximation"

@@ -114,7 +114,7 @@ def judged_text(res: CheckResult, q, p: Point, item: str | None = None,
     ne = [rr.rule for rr in res.results if rr.status == "not_evaluated"
           and any(r.id == rr.rule and r.quantity == q.name for r in res.rules)
           and (item is None or rr.item in (item, "all"))]
-    return (", ".join(dict.fromkeys(ne)) + ": no limit given") if ne \
+    return ("not judged: no limit given for " + ", ".join(dict.fromkeys(ne))) if ne \
         else "no rule on it"
 
 

@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 from .. import __version__
 from ..api import CheckResult
 from ..resources import templates_dir
-from . import results_book, summary
+from . import results_book, review, summary
 from .sections import SectionJob
 
 WEASYPRINT_HELP = (
@@ -45,22 +45,24 @@ FIGURE_SCHEME = "checker-figure:"
 
 def _figure_sources(sections: list[dict], figures: dict[str, bytes] | None = None
                     ) -> list[dict]:
-    """Figures as SVG images. With ``figures`` (the PDF), each image is a short
+    """Figures as JPEG images. With ``figures`` (the PDF), each image is a short
     ``checker-figure:N`` URL served from that dict by :class:`_Fetcher`: the HTML parser then
-    never reads the ~1 MB of base64 text that data URIs would add. Without it (the
-    standalone HTML file), data URIs. WeasyPrint draws an SVG image about 40 % faster than
-    the same SVG inline, and its text stays text (searchable) either way."""
+    never reads the base64 text that data URIs would add. Without it (the standalone HTML
+    file), data URIs."""
     n = 0
     for s in sections:
         for b in s["blocks"]:
-            if b["type"] == "figure" and b.get("svg"):
-                data = b["svg"].encode("utf-8")
+            if b["type"] == "figure" and b.get("png"):
+                w = getattr(b["png"], "width_mm", None)
+                if w is not None and w < 165 and "width_mm" not in b:
+                    b["width_mm"] = round(w, 1)  # a narrow figure keeps its size
+                data = bytes(b["png"])
                 if figures is not None:
                     n += 1
                     figures[f"{FIGURE_SCHEME}{n}"] = data
                     b["src"] = f"{FIGURE_SCHEME}{n}"
                 else:
-                    b["src"] = "data:image/svg+xml;base64," + base64.b64encode(data).decode(
+                    b["src"] = "data:image/jpeg;base64," + base64.b64encode(data).decode(
                         "ascii")
     return sections
 
@@ -68,7 +70,7 @@ def _figure_sources(sections: list[dict], figures: dict[str, bytes] | None = Non
 def standalone_html(html: str, figures: dict[str, bytes]) -> str:
     """The PDF's HTML with its figure URLs replaced by data URIs (a self-contained file)."""
     for url, data in figures.items():
-        html = html.replace(f'src="{url}"', 'src="data:image/svg+xml;base64,'
+        html = html.replace(f'src="{url}"', 'src="data:image/jpeg;base64,'
                             + base64.b64encode(data).decode("ascii") + '"')
     return html
 
@@ -80,7 +82,7 @@ def _fetcher(wp, figures: dict[str, bytes]):
         def fetch(self, url, headers=None):
             if url.startswith(FIGURE_SCHEME):
                 return wp.urls.URLFetcherResponse(url, body=figures[url],
-                                                  headers={"Content-Type": "image/svg+xml"})
+                                                  headers={"Content-Type": "image/jpeg"})
             return super().fetch(url, headers)
 
     return Fetcher()
@@ -114,6 +116,48 @@ def _groups(blocks: list[dict]) -> list[list[dict]]:
     return out
 
 
+def _nothing_judged(b: dict, header: str = "judged by") -> str:
+    """Why no row of a judged-worst-case table is judged by a rule ('' if one is): such a
+    table is computed information, which the results workbook carries."""
+    cols = b.get("columns") or []
+    if header not in cols or not b.get("rows"):
+        return ""
+    k = cols.index(header)
+    vals = [str(row[k]) for row in b["rows"] if len(row) > k]
+    if not vals or not all(v.startswith(("not judged", "no rule")) for v in vals):
+        return ""
+    reasons = dict.fromkeys(re.sub(r"^not judged:\s*", "", v) for v in vals)
+    return "; ".join(reasons)
+
+
+def _collapse_constant_column(b: dict, header: str = "judged by") -> dict:
+    """A ``header`` column with the same text in every row (e.g. "not judged: no limit
+    given for BRG-007" on 34 rows) leaves the table: the caption says it once."""
+    cols = b.get("columns") or []
+    if header not in cols or len(b.get("rows") or []) < 3:
+        return b
+    k = cols.index(header)
+    css = b.get("row_css") or [""] * len(b["rows"])
+    plain_rows = [row for row, c in zip(b["rows"], css) if "not-judged" not in (c or "")]
+    vals = {row[k] for row in plain_rows if len(row) > k}
+    if len(vals) != 1 or len(plain_rows) < 3:
+        return b
+    v = vals.pop()
+    if len(plain_rows) != len(b["rows"]):  # marked rows keep their own text
+        rows = [row[:k] + ["-"] + row[k + 1:] if "not-judged" not in (c or "") else row
+                for row, c in zip(b["rows"], css)]
+        return dict(b, rows=rows, caption=(b.get("caption") or "").rstrip(".")
+                    + f". Unmarked rows: {v}.")
+    out = dict(b, columns=cols[:k] + cols[k + 1:],
+               rows=[row[:k] + row[k + 1:] for row in b["rows"]],
+               caption=(b.get("caption") or "").rstrip(".") + f". Every row: {v}.")
+    if b.get("widths") and len(b["widths"]) == len(cols):
+        w = b["widths"][:k] + b["widths"][k + 1:]
+        scale = sum(b["widths"]) / max(sum(w), 1e-9)
+        out["widths"] = [round(x * scale, 1) for x in w]
+    return out
+
+
 def _data_text(data, sheets: set[str]) -> str:
     """Where the numbers behind a plot are (the results workbook's sheets)."""
     names = []
@@ -133,13 +177,23 @@ def _split_details(sections: list[dict]) -> tuple[list[dict], list[dict]]:
     extra: list[dict] = []
     for s in sections:
         keep = []
+        n_table = 0
         for b in s["blocks"]:
+            why = ""
+            if b["type"] == "table":
+                n_table += 1
+                why = _nothing_judged(b)
+                if why:
+                    b = dict(b, detail=True, sheet=b.get("sheet") or f"{s['id']} {n_table}")
+                else:
+                    b = _collapse_constant_column(b)
             if b["type"] == "table" and b.get("detail"):
                 sheet = results_book.sheet_name(b.get("sheet") or f"{s['id']} table")
                 extra.append({"sheet": sheet, "title": b.get("caption", ""),
                               "columns": b["columns"], "rows": b["rows"]})
                 keep.append({"type": "text", "text": (b.get("caption") or "Table").rstrip(".")
-                             + f": in {results_book.ATTACHMENT_NAME}, sheet {sheet}."})
+                             + f": in {results_book.ATTACHMENT_NAME}, sheet {sheet}"
+                             + (f" (no row is judged: {why})." if why else ".")})
                 continue
             if b["type"] == "figure":
                 extra += [d for d in b.get("data") or [] if isinstance(d, dict)]
@@ -150,26 +204,96 @@ def _split_details(sections: list[dict]) -> tuple[list[dict], list[dict]]:
 
 def _fail_on_text(fail_on: str) -> str:
     modes = fail_on.split(",")
-    parts = ["failed errors"]
+    parts = ["a rule of severity error fails"]
     if "warning" in modes:
-        parts.append("failed warnings")
+        parts.append("a warning-severity rule fails")
     if "not-evaluated" in modes:
-        parts.append("results that could not be evaluated")
-    return ", ".join(parts[:-1]) + (" and " if len(parts) > 1 else "") + parts[-1]
+        parts.append("a result cannot be evaluated")
+    return ", ".join(parts[:-1]) + (" or " if len(parts) > 1 else "") + parts[-1]
 
 
 def _verdict_words(res: CheckResult) -> str:
     c = res.counts()
     if res.verdict == "fail":
         n = len(res.failed)
-        head = f"{n} result{'s' if n != 1 else ''} fail{'s' if n == 1 else ''} the check."
+        head = (f"{n} results fail their limits." if n != 1 else "1 result fails its limit.")
     else:
-        head = "No result fails the check."
+        head = "No result fails its limit."
     if res.complete:
         return head + " Complete: every selected result was evaluated."
     ne = c["not_evaluated"]
     return (head + f" Incomplete: {ne} result{'s' if ne != 1 else ''} could not be evaluated"
-            " (missing inputs, listed below); they are not passes.")
+            " (missing inputs, listed after this page); they are not passes.")
+
+
+PLAIN = ((re.compile(r"\bTV (module|model)\b"), "torsional model"),
+         (re.compile(r"\btv peak\b"), "TV peak"),
+         (re.compile(r"\bsigma_DW\b"), "σ_DW"),
+         (re.compile(r"\bthe loads module\b"), "the load analysis"),
+         (re.compile(r"\bworkbook \(JointTorques\)"), "workbook (sheet JointTorques)"))
+"""Internal names in texts written by the analyses, as a reader says them."""
+
+
+def plain(text: str) -> str:
+    """``text`` with the analyses' internal names in engineering words."""
+    for pat, rep in PLAIN:
+        text = pat.sub(rep, text)
+    return text
+
+
+def _plain_sections(sections: list[dict]) -> list[dict]:
+    """Every text of the sections (intro, captions, cells, lists) in engineering words."""
+    for sec in sections:
+        sec["intro"] = plain(sec.get("intro") or "")
+        for b in sec["blocks"]:
+            for key in ("text", "caption", "title"):
+                if isinstance(b.get(key), str):
+                    b[key] = plain(b[key])
+            if b["type"] == "list":
+                b["items"] = [plain(str(x)) for x in b["items"]]
+            elif b["type"] == "table":
+                b["rows"] = [[plain(c) if isinstance(c, str) else c for c in row]
+                             for row in b["rows"]]
+            elif b["type"] == "equations":
+                b["items"] = [tuple(plain(x) for x in it) for it in b["items"]]
+    return sections
+
+
+def _short_source(src: str) -> str:
+    return src
+
+
+def _assumption_groups(res: CheckResult) -> list[dict]:
+    """Assumptions by sheet (workbook order; the model's own last), source text cut at
+    about two lines (full text in the results workbook)."""
+    out: dict[str, list[dict]] = {}
+    for a in review.assumption_rows(res):
+        sheet = a["sheet"] or "Model (checker's own assumptions)"
+        src = plain(a["source"])
+        # a parameter's reason in full (two lines); a table row's and the model's notes their
+        # gist (full texts in the results workbook; the sections describe the model)
+        cut = 230 if a["parameter"] != "table rows" and a["sheet"] else 140
+        if len(src) > cut:
+            src = src[:cut - 5].rsplit(" ", 1)[0] + " …"
+        out.setdefault(sheet, []).append(dict(a, source=src))
+    return [{"sheet": k if k.startswith("Model") else f"Sheet {k}", "rows": v}
+            for k, v in out.items()]
+
+
+def _extra_sheets(res: CheckResult) -> list[dict]:
+    """Sheets of the results workbook for what the PDF shortens: the full rule table and
+    the full assumption texts."""
+    rules = [[r.id, r.name, r.severity, r.applies_to or "-", r.limit_text(), r.source,
+              r.rationale] for r in res.table.rules]
+    assum = [[a["sheet"] or "model", a["cell"], a["parameter"], a["value"], a["source"]]
+             for a in review.assumption_rows(res)]
+    return [{"sheet": "Rule table", "title": "Every rule: what it checks, where it applies,"
+             " its limit, source and rationale", "columns": ["rule", "name", "severity",
+                                                              "applies to", "limit", "source",
+                                                              "rationale"], "rows": rules},
+            {"sheet": "Assumptions", "title": "Inputs marked as assumptions and the model's"
+             " own assumptions", "columns": ["sheet", "cell", "parameter", "value",
+                                              "source or reason"], "rows": assum}]
 
 
 def context(res: CheckResult, sections: list[dict] | None = None,
@@ -179,17 +303,30 @@ def context(res: CheckResult, sections: list[dict] | None = None,
     :func:`_figure_sources`; default: data URIs)."""
     if sections is None:
         sections = SectionJob(res).result()
+    from .section_loads import lining_text
+
     groups = summary.groups(res)
     selected = {r.id for r in res.rules}
     rule_rows = [{"id": r.id, "name": r.name, "quantity": r.quantity,
                   "applies": r.applies_to or "-", "limit": r.limit_text()
                   + ("" if not r.limits else " (" + "; ".join(
-                      f"{k} {'..'.join(f'{x:g}' for x in v)}" for k, v in r.limits.items())
+                      f"{lining_text(k)} {'..'.join(f'{x:g}' for x in v)}"
+                      for k, v in r.limits.items())
                       + ")"),
                   "severity": r.severity, "source": r.source, "rationale": r.rationale,
+                  "source_short": _short_source(r.source),
                   "selected": r.id in selected} for r in res.table.rules]
-    timings = [{"module": m, "seconds": f"{res.outcome.timings.get(m, 0.0) * 1e3:.0f} ms"}
+    from .sections import LABELS, load_sections
+
+    load_sections()
+    timings = [{"module": LABELS.get(m, m.replace("_", " ")),
+                "seconds": f"{res.outcome.timings.get(m, 0.0) * 1e3:.0f} ms"}
                for m in res.outcome.modules_run]
+    fails = [r for g in groups if g["kind"] == "fail" for r in g["rows"]]
+    near = summary.look_first(res)
+    for r in [r for g in groups for r in g["rows"]] + near:
+        r.note = plain(r.note)
+    caveats = [dict(c, items=[plain(x) for x in c["items"]]) for c in review.caveats(res)]
     return {
         "title": f"Crank-train design-rule check: {res.engine.name}",
         "engine": res.engine.name,
@@ -206,8 +343,13 @@ def context(res: CheckResult, sections: list[dict] | None = None,
         "counts": res.counts(),
         "groups": groups,
         "cover_groups": [g for g in groups if g["kind"] != "pass"],
-        "look_first": summary.look_first(res),
-        "failed": [r for g in groups if g["kind"] == "fail" for r in g["rows"]],
+        "look_first": near,
+        "failed": fails,
+        "failures": review.rank_failures(fails),
+        "caveats": caveats,
+        "doc_control": review.document_control(res),
+        "rule_count": len(res.table.rules),
+        "assumption_groups": _assumption_groups(res),
         "sections": [dict(x, groups=_groups(x["blocks"]))
                      for x in _figure_sources(sections, figures)],
         "rule_rows": rule_rows,
@@ -216,7 +358,8 @@ def context(res: CheckResult, sections: list[dict] | None = None,
         "assumptions": res.assumptions,
         "input_warnings": [str(w) for w in res.engine.warnings],
         "modules_run": res.outcome.modules_run,
-        "modules_skipped": res.outcome.modules_skipped,
+        "modules_skipped": [LABELS.get(m, m.replace("_", " "))
+                            for m in res.outcome.modules_skipped],
         "timings": timings,
         "attachment": results_book.ATTACHMENT_NAME,
         "results_file": results_file,
@@ -301,7 +444,8 @@ def build_report(res: CheckResult, progress: Progress | None = None,
     children = _children_cpu()
     sections = job.result()
     clock.stage("figures", extra_cpu=_children_cpu() - children)
-    sections, extra = _split_details(sections)
+    sections, extra = _split_details(_plain_sections(sections))
+    extra += _extra_sheets(res)
     say("Writing the results workbook")
     book = results_book.build(res, extra)
     clock.stage("results workbook")

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..api import CheckResult
-from .plots import LIMIT_STYLE, figure, to_svg
+from .plots import LIMIT_STYLE, figure, to_image
 from .sections import fmt, section
 
 RPM = 2 * np.pi / 60
@@ -109,7 +109,7 @@ def balance_section(res: CheckResult) -> dict:
         ax.set_xlabel("Order")
         ax.set_ylabel(f"Free {lim_key} [{unit}]")
     fig.subplots_adjust(wspace=0.35)
-    blocks.append({"type": "figure", "svg": to_svg(fig),
+    blocks.append({"type": "figure", "png": to_image(fig),
                    "data": ["balance.free_force", "balance.free_moment"],
                    "caption": f"Free forces and moments per order at {w / RPM:.0f} rpm (log"
                               " scale; '0' = zero to round-off; dashed: project limits)"})
@@ -140,9 +140,9 @@ def balance_section(res: CheckResult) -> dict:
                        " unbalance (negative: the rotating unbalance itself is not fully"
                        " balanced)."})
         # polar plot: per-throw unbalance in the crank frame (seen from the front)
-        fig = figure(90, 90)[0]
+        fig = figure(130, 72)[0]
         fig.clf()
-        ax = fig.add_subplot(1, 1, 1, projection="polar")
+        ax = fig.add_axes((0.04, 0.1, 0.47, 0.8), projection="polar")
         ax.set_theta_zero_location("N")
         ax.set_theta_direction(-1)
         net = bx["rotating"] + bx["counterweight"]
@@ -156,19 +156,24 @@ def balance_section(res: CheckResult) -> dict:
                         arrowprops={"arrowstyle": "->", "color": "#c0392b", "lw": 1.4})
         ax.plot([], [], color="#c0392b", label="net (with counterweights)")
         ax.plot(*polar(bx["rotating"]), "o", mfc="none", color="#7f8c8d",
-                label="rotating without counterweights")
+                label="rotating, without counterweights")
         ax.plot(*polar(bx["counterweight"]), "x", color="#2c3e50", label="counterweights")
         groups: dict[float, list[str]] = {}  # throws sharing a direction share a label
         for j, vec in enumerate(bx["rotating"]):
             groups.setdefault(round(float(polar(vec)[0]), 6), []).append(str(j + 1))
         top = max(polar(bx["rotating"])[1].max(), polar(bx["counterweight"])[1].max())
         for ang, labs in groups.items():
-            ax.text(ang, top * 1.12, "throw " + ", ".join(labs), fontsize=6, ha="center")
-        ax.set_rmax(top * 1.2)
-        ax.set_title("Unbalance per throw [kg mm], crank frame (throw 1 up)", fontsize=7,
-                     pad=14)
-        ax.legend(fontsize=6, loc="lower left", bbox_to_anchor=(-0.2, -0.2))
-        blocks.append({"type": "figure", "svg": to_svg(fig),
+            ax.text(ang, top * 1.12, "throw " + ", ".join(labs), fontsize=6, ha="center",
+                    bbox={"facecolor": "white", "edgecolor": "none", "pad": 0.5})
+        ax.set_rmax(top * 1.25)
+        ax.set_rlabel_position(22.5)
+        ax.tick_params(axis="y", labelsize=5.5)
+        ax.tick_params(axis="x", labelsize=6, pad=1)
+        fig.legend(*ax.get_legend_handles_labels(), loc="center left",
+                   bbox_to_anchor=(0.58, 0.55), frameon=False, fontsize=6.5,
+                   title="radius: unbalance [kg mm]\ncrank frame, seen from the front,"
+                         "\nthrow 1 up", title_fontsize=6.5, alignment="left")
+        blocks.append({"type": "figure", "png": to_image(fig),
                        "data": ["balance.balance_ratio", "balance.internal_moment"],
                        "caption": "Polar diagram of each throw's unbalance seen from the front:"
                                   " net (arrows), without counterweights (circles) and of the"

@@ -8,7 +8,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..api import CheckResult
-from .plots import figure, legend_below, literal, to_svg
+from .plots import figure, legend_below, literal, to_image
 from .section_loads import CURVE_COLORS, bearing_speed_figure, shade_caption, worst_table
 from .sections import fmt, merge_items, section
 
@@ -173,23 +173,23 @@ def bearing_performance_section(res: CheckResult) -> dict:
         ax.set_ylabel("Friction power [W]")
         ax.set_title(f"Per bearing, {powq.coords['case'][0]} load")
         legend_below(fig, ncols=9)
-        blocks.append({"type": "figure", "svg": to_svg(fig),
+        blocks.append({"type": "figure", "png": to_image(fig),
                        "data": ["engine.bearing_friction_power", "bearing.friction_power"],
                        "caption": "Friction power of the bearing oil films against speed"
                                   " (cycle means; hydrodynamic films only, no piston, valve"
                                   " train or seal friction)"})
     if t is not None:
-        blocks.append({"type": "figure", "svg": bearing_speed_figure(
+        blocks.append({"type": "figure", "png": bearing_speed_figure(
             res, _celsius(t), 1.0, "Effective film temperature [°C]", "°C", from_zero=False),
             "caption": "Effective film temperature of the heat balance against speed."
                        + shade_caption(t), "data": [t.name]})
         flow = qs.get("bearing.oil_flow")
-        blocks.append({"type": "figure", "svg": bearing_speed_figure(
+        blocks.append({"type": "figure", "png": bearing_speed_figure(
             res, flow, LPM, "Oil flow [l/min]", "l/min"),
             "caption": "Oil flow through each bearing (side leakage + pressure-fed flow)"
                        " against speed." + shade_caption(flow), "data": [flow.name]})
     if pp is not None:
-        blocks.append({"type": "figure", "svg": bearing_speed_figure(
+        blocks.append({"type": "figure", "png": bearing_speed_figure(
             res, pp, 1e-6, "Peak film pressure [MPa]", "MPa"),
             "caption": "Peak oil-film pressure (finite-length film) against speed."
                        + shade_caption(pp), "data": [pp.name]})

@@ -7,8 +7,8 @@ import numpy as np
 from ..api import CheckResult
 from . import judged as jd
 from .film_methods import film_method_blocks
-from .plots import every, figure, to_svg
-from .section_loads import bearing_speed_figure, shade_caption, worst_table
+from .plots import every, figure, to_image
+from .section_loads import bearing_speed_figure, lining_text, shade_caption, worst_table
 from .sections import fmt, merge_items, section
 
 RPM = 2 * np.pi / 60
@@ -31,7 +31,7 @@ def bearings_section(res: CheckResult) -> dict:
         b = bearings[n]
         rows.append([n, b.type, fmt(b.diameter * 1e3), fmt(b.length * 1e3),
                      fmt(b.clearance * 1e6), fmt(ex["l_over_d"][n]), b.groove,
-                     str(b.oil_holes or 0), b.lining or "-"])
+                     str(b.oil_holes or 0), lining_text(b.lining) if b.lining else "-"])
     rows, _ = merge_items(rows, [""] * len(rows))
     blocks.append({"type": "table", "caption": "Bearings (sheet Bearings; bearings with equal"
                    " data share a row)",
@@ -87,7 +87,7 @@ def bearings_section(res: CheckResult) -> dict:
              "max eccentricity"]))
     blocks += film_method_blocks(res)
     blocks.append({"type": "heading", "text": "Plots"})
-    blocks.append({"type": "figure", "svg": bearing_speed_figure(res, q, 1e6, "MOFT [µm]", "µm"),
+    blocks.append({"type": "figure", "png": bearing_speed_figure(res, q, 1e6, "MOFT [µm]", "µm"),
                    "caption": "Minimum oil film thickness against speed, full and no load."
                               + shade_caption(q), "data": [q.name]})
     orb = ex.get("orbit") or {}
@@ -137,7 +137,7 @@ def bearings_section(res: CheckResult) -> dict:
                 "title": f"Journal orbit and film of {names[i]}, {cases[ci]} load,"
                          f" {sp[k]:.0f} rpm", "columns": names_,
                 "rows": [[float(cols[n][j]) for n in names_] for j in range(th.size)]}
-        blocks.append({"type": "figure", "svg": to_svg(fig), "data": [data],
+        blocks.append({"type": "figure", "png": to_image(fig), "data": [data],
                        "caption": f"Judged worst case (the thinnest film the rules judge):"
                                   f" {names[i]}, {cases[ci]} load, {sp[k]:.0f} rpm; journal"
                                   " orbit (eccentricity ratio in the bearing's frame) and film"

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..api import CheckResult
-from .plots import figure, to_svg
+from .plots import figure, legend_below, to_image
 from .sections import fmt, section
 
 RPM = 2 * np.pi / 60
@@ -86,7 +86,7 @@ def damper_section(res: CheckResult) -> dict:
     if on is not None:
         sp = np.array(on.coords["speed"]) / RPM
         k = ex["cylinder_order_index"]
-        fig, axes = figure(170, 60, ncols=2)
+        fig, axes = figure(170, 64, ncols=2, legend_rows=1)
         for c_i, c in enumerate(on.coords["case"]):
             for ax, act, opt in ((axes[0], np.abs(ex["actual_theta"][c_i, :, k]),
                                   np.abs(ex["optimum_theta"][c_i, :, k])),
@@ -100,9 +100,8 @@ def damper_section(res: CheckResult) -> dict:
         axes[1].set_yscale("log")
         for ax in axes:
             ax.set_xlabel("Engine speed [rpm]")
-            ax.legend(fontsize=6)
-        fig.subplots_adjust(wspace=0.35)
-        blocks.append({"type": "figure", "svg": to_svg(fig),
+        legend_below(fig, axes=[axes[0]], ncols=4)
+        blocks.append({"type": "figure", "png": to_image(fig),
                        "data": ["tv.nose_amplitude", "damper.optimum_nose_amplitude"],
                        "caption": "Crank-nose amplitude, actual damper (solid) and optimum"
                                   " rubber (dashed): the cylinder-count order and all orders"

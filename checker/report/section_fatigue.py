@@ -9,7 +9,7 @@ from ..calc.fatigue import goodman_line
 from ..calc.scf import VALIDITY
 from ..modules.fatigue import FACTORS_OF, LOCATIONS, SCF_FIELDS
 from . import judged as jd
-from .plots import LIMIT_STYLE, figure, legend_below, limit_line, literal, to_svg
+from .plots import LIMIT_STYLE, figure, legend_below, limit_line, literal, to_image
 from .sections import fmt, section
 
 RPM = 2 * np.pi / 60
@@ -28,8 +28,8 @@ def _limit(res: CheckResult, quantity: str) -> float | None:
     return None
 
 
-def _svg(fig) -> str:
-    return to_svg(fig)
+def _svg(fig) -> bytes:
+    return to_image(fig)
 
 
 def _inputs(res: CheckResult, ex: dict, m53q) -> list[dict]:
@@ -140,7 +140,7 @@ def _scf(ex: dict) -> list[dict]:
                        " d_G = D_BG/D, d_H = D_BH/D (r_journal_torsion = R_G/D_G is used only"
                        " when D ≠ D_G or R_H ≠ R_G)",
                        "columns": ["ratio", "value", "validity range", "inside"],
-                       "rows": rows})
+                       "rows": rows, "detail": True, "sheet": "M53 dimensions"})
     return blocks
 
 
@@ -220,7 +220,7 @@ def _plots(res: CheckResult, q) -> list[dict]:
         ax.set_xlabel("Engine speed [rpm]")
     axes[0, 0].set_ylabel("Goodman safety factor [-]")
     legend_below(fig, ncols=6)
-    blocks.append({"type": "figure", "svg": _svg(fig), "data": [q.name], "caption": (
+    blocks.append({"type": "figure", "png": _svg(fig), "data": [q.name], "caption": (
         f"Lowest Goodman safety factor of each location type against speed (axis clipped at"
         f" {SF_PLOT_MAX:g}).{note}")})
     # normalised Haigh (Goodman) diagram
@@ -266,7 +266,7 @@ def _plots(res: CheckResult, q) -> list[dict]:
             "columns": ["speed [rpm]", *names],
             "rows": [[float(sp[k]), *[float(cols[n][k]) for n in names]]
                      for k in range(sp.size)]}
-    blocks.append({"type": "figure", "svg": _svg(fig), "data": [data], "caption": (
+    blocks.append({"type": "figure", "png": _svg(fig), "data": [data], "caption": (
         "Normalised Haigh (Goodman) diagram: the operating points over the speed range of the"
         " location of each type with the lowest safety factor (solid: full load, dashed: no"
         " load; marker: the judged lowest factor). Compressive means are not credited: the"

@@ -6,7 +6,7 @@ import numpy as np
 
 from ..api import CheckResult
 from . import judged as jd
-from .plots import LIMIT_STYLE, figure, to_svg
+from .plots import figure, legend_below, limit_line, to_image
 from .sections import fmt, section
 
 RPM = 2 * np.pi / 60
@@ -31,7 +31,8 @@ def flywheel_section(res: CheckResult) -> dict:
     j_tot, j_fw = ex["inertia_total"], ex["inertia_flywheel"]
     blocks: list[dict] = [{"type": "table", "caption": "Inputs (sheets TVModel, Engine)",
                            "columns": ["parameter", "value", "unit", "cell"], "rows": [
-        ["Total rotating inertia (all TVModel stations)", fmt(j_tot, 5), "kg m²", "TVModel"],
+        ["Total rotating inertia (all stations of sheet TVModel)", fmt(j_tot, 5), "kg m²",
+         "TVModel"],
         ["Flywheel station inertia (" + (", ".join(ex["flywheel_stations"]) or "none") + ")",
          fmt(j_fw, 5), "kg m²", "TVModel"],
         ["Target cyclic irregularity", "-" if target is None else fmt(target * 100, 4), "%",
@@ -87,28 +88,29 @@ def flywheel_section(res: CheckResult) -> dict:
                    " irregularity (exact and classical estimate) and the minimum flywheel"
                    " inertia for the target (negative: the rest of the engine suffices)",
                    "columns": ["case", "speed [rpm]", "ΔE [J]", "Δω [rpm]", "δ [%]",
-                               "ΔE/(Jω²) [%]", "min. flywheel [kg m²]"], "rows": rows})
-    fig, axes = figure(170, 65, ncols=2)
+                               "ΔE/(Jω²) [%]", "min. flywheel [kg m²]"], "rows": rows,
+                   "detail": True, "sheet": "Flywheel per speed"})
+    fig, axes = figure(170, 65, ncols=2, legend_rows=1)
     ax = axes[0]
     for c_i, c in enumerate(cases):
-        ax.plot(sp / RPM, ci.values[c_i] * 100, label=CASE_TEXT.get(c, c))
+        ax.plot(sp / RPM, ci.values[c_i] * 100, label=CASE_TEXT.get(c, c),
+                color=f"C{c_i}")
     if target is not None:
-        ax.axhline(target * 100, **LIMIT_STYLE)
+        limit_line(ax, target * 100, f"target δ ≤ {target * 100:g} %")
     ax.set_yscale("log")
     ax.set_xlabel("Engine speed [rpm]")
     ax.set_ylabel("Cyclic irregularity δ [%]")
-    ax.legend(fontsize=6)
     ax = axes[1]
     th = np.degrees(ex["theta"])
-    for c_i, c in enumerate(cases):
-        ax.plot(th, ex["omega"][c_i, k0] / RPM, label=CASE_TEXT.get(c, c))
-    ax.axhline(sp[k0] / RPM, color="0.5", lw=0.6)
+    for c_i in range(len(cases)):
+        ax.plot(th, ex["omega"][c_i, k0] / RPM, color=f"C{c_i}")
+    ax.axhline(sp[k0] / RPM, color="0.5", lw=0.6, label="mean speed")
     ax.set_xlabel("Crank angle [deg]")
     ax.set_ylabel("Speed [rpm]")
     ax.set_xticks(np.arange(0, 721, 180))
-    ax.legend(fontsize=6)
-    fig.subplots_adjust(wspace=0.35)
-    blocks.append({"type": "figure", "svg": to_svg(fig),
+    ax.set_xlim(0, 720)
+    legend_below(fig, ncols=4)
+    blocks.append({"type": "figure", "png": to_image(fig),
                    "data": ["flywheel.cyclic_irregularity"],
                    "caption": "Left: cyclic irregularity against speed (dashed: target)."
                               f" Right: speed over the cycle at {sp[k0] / RPM:.0f} rpm"})
@@ -117,7 +119,7 @@ def flywheel_section(res: CheckResult) -> dict:
            f"target used: δ ≤ {target * 100:g} % ({eng.cell('Engine', 'target_irregularity')})")
     return {"id": "flywheel", "title": title,
             "intro": "Rigid-body speed fluctuation of the engine over the cycle from its total"
-                     " gas + inertia torque (loads module) and the inertias of the torsional"
+                     " gas + inertia torque (load analysis) and the inertias of the torsional"
                      " model; coefficient of cyclic irregularity at every speed and load case"
                      f" and the flywheel inertia needed for the target; {tgt}.",
             "blocks": blocks}

@@ -6,7 +6,7 @@ import numpy as np
 
 from ..api import CheckResult
 from ..units import from_si
-from .plots import STATUS_COLORS, figure, legend_below, literal, to_svg
+from .plots import STATUS_COLORS, figure, legend_below, literal, to_image
 from .sections import fmt, section
 
 BELL = "Bell, Cranktrain Analysis Using ENGDYN and VALDYN, Ricardo, 2013"
@@ -204,7 +204,7 @@ def _torques(res: CheckResult, cf, tq, comp, comp_cf) -> list[dict]:
             handles.append(Line2D([], [], marker="D", color="#34495e", ms=3.5, ls="none",
                                   label="at the torsional model's torque"))
         legend_below(fig, handles=handles, labels=[h.get_label() for h in handles], ncols=3)
-        blocks.append({"type": "figure", "svg": to_svg(fig),
+        blocks.append({"type": "figure", "png": to_image(fig),
                        "data": ["joint.cover_factor", "joint.computed_cover_factor"],
                        "caption": "Joint cover factors coloured by the result of their rules,"
                                   " with each rule's limit (red mark); diamonds: at the"

@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 from ..api import CheckResult
 from ..display import unit_text
 from . import judged as jd
-from .plots import every, figure, legend_below, limit_line, literal, to_svg
+from .plots import every, figure, legend_below, limit_line, literal, to_image
 from .sections import fmt, merge_items, param_table, section
 
 RPM = 2 * np.pi / 60
@@ -22,6 +24,26 @@ def _rule_limits(res: CheckResult, quantity: str, case: str) -> dict[str, float]
             if r.limit:
                 return {"*": r.limit[0]}
     return {}
+
+
+def lining_text(name: str) -> str:
+    """A lining material as a reader knows it: supplier grade codes (``as15``) in capitals."""
+    return name.upper() if re.fullmatch(r"[a-z]{1,3}\d+", name) else name
+
+
+def _identical(q, rows: list[int]) -> list[list[int]]:
+    """``rows`` (item indices) grouped by identical curves over every case and speed (equal
+    bearings of a symmetric engine): each group is drawn once, named by all its items."""
+    groups: list[list[int]] = []
+    for i in rows:
+        for g in groups:
+            a, b = q.values[g[0]], q.values[i]
+            if a.shape == b.shape and np.allclose(a, b, rtol=1e-9, atol=0, equal_nan=True):
+                g.append(i)
+                break
+        else:
+            groups.append([i])
+    return groups
 
 
 def bearing_speed_figure(res: CheckResult, q, scale: float, ylabel: str, unit: str,
@@ -45,16 +67,21 @@ def bearing_speed_figure(res: CheckResult, q, scale: float, ylabel: str, unit: s
                     and np.isfinite(q.values[i, ci]).all()]
             if rows:
                 jd.shade(ax, sp, judged[rows, ci].any(axis=0))
-            for k, i in enumerate(rows):
-                n = names[i]
-                ax.plot(sp, q.values[i, ci] * scale, label=literal(n),
+            for k, same in enumerate(_identical(q, rows)):
+                label = " = ".join(names[i] for i in same) if len(same) <= 3 else (
+                    f"{names[same[0]]} .. {names[same[-1]]} ({len(same)} identical)")
+                ax.plot(sp, q.values[same[0], ci] * scale, label=literal(label),
                         color=CURVE_COLORS[k % len(CURVE_COLORS)],
                         ls="-" if typ == "main" else "--")
-                linings.add(q.item_attrs[n]["lining"])
+                linings.update(q.item_attrs[names[i]]["lining"] for i in same)
+            by_value: dict[float, list[str]] = {}
             for ln in sorted(x for x in linings if x):
                 v = lim.get(ln, lim.get("*"))
                 if v is not None:
-                    limit_line(ax, v, f"limit, {ln}: {v:g} {u}")
+                    by_value.setdefault(v, []).append(lining_text(ln))
+            for v, lns in by_value.items():
+                limit_line(ax, v, f"limit, {' and '.join(lns)} lining{'s' if len(lns) > 1 else ''}"
+                           f": {v:g} {u}")
             ax.set_title(f"{typ} bearings, {c} load")
             if ci == 0:
                 ax.set_ylabel(ylabel)
@@ -75,7 +102,7 @@ def bearing_speed_figure(res: CheckResult, q, scale: float, ylabel: str, unit: s
     for ax in axes[-1]:
         ax.set_xlabel("Engine speed [rpm]")
     legend_below(fig, ncols=7)
-    return to_svg(fig)
+    return to_image(fig)
 
 
 CURVE_COLORS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#17becf",
@@ -185,7 +212,7 @@ def loads_section(res: CheckResult) -> dict:
             " not judge",
             ["bearing", "case", "p [MPa]", "speed [rpm]", "crank angle [°]", "load [kN]"]))
         blocks.append({"type": "heading", "text": "Plots"})
-        blocks.append({"type": "figure", "svg": bearing_speed_figure(
+        blocks.append({"type": "figure", "png": bearing_speed_figure(
             res, sl, 1e-6, "Peak specific load [MPa]", "MPa"),
             "caption": "Peak specific load against speed, full and no load." + shade_caption(sl),
             "data": [sl.name]})
@@ -209,10 +236,12 @@ def _pressure_text(cyc, sp, cs_judged, ref) -> dict:
                 if not cyc.synthesized[ci].any() else "workbook traces and synthesized")
         txt = (f"{c} load: peak {fmt(pk.min())} to {fmt(pk.max())} bar over"
                f" {sp[0]:.0f} to {sp[-1]:.0f} rpm ({kind}")
-        ok = np.isfinite(cyc.target_imep[ci]) & cs_judged[ci]  # the judged speeds only
+        ok = np.isfinite(cyc.target_imep[ci]) & (cs_judged[ci] if cs_judged is not None
+                                                 else True)
         if ok.any():
             dev = np.abs(cyc.imep[ci, ok] / cyc.target_imep[ci, ok] - 1).max() * 100
-            txt += f"; IMEP within {fmt(dev, 2)} % of the brake-torque target"
+            txt += (f"; IMEP within {fmt(dev, 2)} % of the brake-torque target at the judged"
+                    " speeds")
         if cyc.extrapolated[ci].any():
             ex = sp[cyc.extrapolated[ci]]
             txt += (f"; peak pressure extrapolated at {ex.size} speed{'s' if ex.size > 1 else ''}"
@@ -248,7 +277,7 @@ def _pressure_figure(cyc, sp, cs_judged, ref) -> dict:
     data = {"sheet": "pressure traces", "title": "Cylinder pressure traces of the report's"
             " plot", "columns": names,
             "rows": [[float(cols[k][j]) for k in names] for j in range(deg.size)]}
-    return {"type": "figure", "svg": to_svg(fig), "data": ["loads.cycle", data],
+    return {"type": "figure", "png": to_image(fig), "data": ["loads.cycle", data],
             "caption": "Cylinder pressure at the lowest, middle and highest speed (own cycle"
                        " angle)" + ("" if cs_judged.all() else
                                     f"; dotted: not judged by the rules ({jd.reason(ref)})")
@@ -256,7 +285,9 @@ def _pressure_figure(cyc, sp, cs_judged, ref) -> dict:
 
 
 def _polar(res: CheckResult, sl, bl) -> list[dict]:
-    """Polar load diagrams of one big end and the centre main at rated and top speed."""
+    """Polar load diagrams of one big end and the centre main at the worst judged speed of
+    each load case (the speed of the highest peak specific load the rules judge): closed
+    traces with dots every 90° of crank angle, radial labels where the curves leave room."""
     ex = bl.extra
     names = sl.coords["item"]
     sp = np.array(sl.coords["speed"]) / RPM
@@ -267,51 +298,75 @@ def _polar(res: CheckResult, sl, bl) -> list[dict]:
     choose = bes[:1] + mains[len(mains) // 2:][:1]
     if not choose:
         return []
-    speeds_pick = sorted({int(np.argmin(abs(sp - s))) for s in
-                          ((res.engine.params.get("rated_speed") or sp[-1] * RPM) / RPM,
-                           sp[-1])})
-    fig, axes = figure(170, 82, ncols=len(choose), subplot_kw={"projection": "polar"},
-                       squeeze=False, left=8, right=8, top=15, bottom=9, wgap=30,
-                       legend_rows=1)
+    fig, axes = figure(170, 96, ncols=len(choose), subplot_kw={"projection": "polar"},
+                       squeeze=False, left=10, right=10, top=12, bottom=20, wgap=34)
     cols: dict[str, np.ndarray] = {"crank angle [°]": np.degrees(ex["theta"])}
-    k_col = 0
+    deg = np.degrees(ex["theta"]) % 720
+    marks = np.array([int(np.argmin(np.abs(deg - a))) for a in range(0, 720, 90)])
     for a, n in enumerate(choose):
         i = names.index(n)
         ax = axes[0, a]
         k_col = 0
+        angles, radii = [], []
         for ci, c in enumerate(cases):
-            for k in speeds_pick:
-                fx, fy = ex["fx"][i, ci, k], ex["fy"][i, ci, k]
-                judged = sl_judged[i, ci, k]
-                th = every(fx.size)
-                ax.plot(np.arctan2(fx, fy)[th], np.hypot(fx, fy)[th] / 1e3, lw=0.8,
-                        color=CURVE_COLORS[k_col], ls="-" if judged else ":",
-                        label=f"{c} load, {sp[k]:.0f} rpm" + ("" if judged else
-                                                             " (not judged)"))
-                k_col += 1
-                cols[f"{n} {c} load {sp[k]:.0f} rpm Fx [kN]"] = fx / 1e3
-                cols[f"{n} {c} load {sp[k]:.0f} rpm Fy [kN]"] = fy / 1e3
+            vals = np.where(sl_judged[i, ci], sl.values[i, ci], -np.inf)
+            if not np.isfinite(vals).any():
+                vals = sl.values[i, ci]
+            k = int(np.nanargmax(vals))
+            fx, fy = ex["fx"][i, ci, k], ex["fy"][i, ci, k]
+            judged = sl_judged[i, ci, k]
+            th = every(fx.size)
+            ang = np.append(np.arctan2(fx, fy)[th], np.arctan2(fx[0], fy[0]))  # closed
+            rad = np.append(np.hypot(fx, fy)[th], np.hypot(fx[0], fy[0])) / 1e3
+            color = CURVE_COLORS[k_col]
+            ax.plot(ang, rad, lw=0.9, color=color, ls="-" if judged else ":",
+                    label=f"{c} load, {sp[k]:.0f} rpm (its worst)" + ("" if judged else
+                                                                      ", not judged"))
+            ax.plot(np.arctan2(fx[marks], fy[marks]), np.hypot(fx[marks], fy[marks]) / 1e3,
+                    "o", ms=2.6, color=color)
+            ax.annotate("0°", (np.arctan2(fx[marks[0]], fy[marks[0]]),
+                               np.hypot(fx[marks[0]], fy[marks[0]]) / 1e3),
+                        fontsize=5.5, color=color, xytext=(3, 2), textcoords="offset points")
+            angles.append(ang)
+            radii.append(rad)
+            k_col += 1
+            cols[f"{n} {c} load {sp[k]:.0f} rpm Fx [kN]"] = fx / 1e3
+            cols[f"{n} {c} load {sp[k]:.0f} rpm Fy [kN]"] = fy / 1e3
         ax.set_theta_zero_location("N")
         ax.set_theta_direction(-1)
         ax.set_thetagrids(np.arange(0, 360, 45))
-        ax.set_rlabel_position(112.5)
+        ax.set_rlabel_position(_free_direction(np.concatenate(angles), np.concatenate(radii)))
         ax.yaxis.set_major_locator(_max_ticks(4))
         ax.tick_params(axis="y", labelsize=5.5)
+        for t in ax.get_yticklabels():
+            t.set_bbox({"facecolor": "white", "edgecolor": "none", "pad": 0.3, "alpha": 0.8})
         ax.grid(True, alpha=0.3)
-        ax.set_title(literal(f"{n} ({ex['frames'][n]}), load in kN"), pad=14)
-    legend_below(fig, axes=[axes[0, 0]], ncols=4)
+        ax.set_title(literal(f"{n} ({ex['frames'][n]}), load [kN]"), pad=10)
+        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.1), ncols=1, frameon=False,
+                  fontsize=6)
     names_ = list(cols)
     data = {"sheet": "polar loads", "title": "Bearing load components of the polar diagrams",
             "columns": names_, "rows": [[float(cols[k][j]) for k in names_]
                                         for j in range(cols["crank angle [°]"].size)]}
-    shown = [sl_judged[names.index(n), ci, k] for n in choose
-             for ci in range(len(cases)) for k in speeds_pick]
-    return [{"type": "figure", "svg": to_svg(fig), "data": [data],
+    return [{"type": "figure", "png": to_image(fig), "data": [data],
              "caption": "Polar load diagrams: force of the journal on the bearing in kN (0° ="
-                        " frame y axis, angle in the direction of rotation), at rated and top"
-                        " speed" + ("" if all(shown) else
-                                    f"; dotted: computed but not judged ({jd.reason(sl)})")
-                        + "."}]
+                        " frame y axis, angle in the direction of rotation), each load case at"
+                        " the speed of its highest judged peak specific load; dots every 90° of"
+                        " crank angle over the 720° cycle (the first labelled 0°); dotted: not"
+                        f" judged ({jd.reason(sl)})."}]
+
+
+def _free_direction(ang: np.ndarray, rad: np.ndarray) -> float:
+    """The direction [deg, clockwise from the top] of a 45° grid line where the curves stay
+    closest to the centre: the radial tick labels go there, off the curves."""
+    best, low = 22.5, np.inf
+    for d in np.arange(22.5, 360, 45):
+        a = np.radians(d)
+        near = np.abs(np.angle(np.exp(1j * (ang - a)))) < np.radians(15)
+        r = float(rad[near].max()) if near.any() else 0.0
+        if r < low:
+            best, low = float(d), r
+    return best
 
 
 def _max_ticks(n: int):

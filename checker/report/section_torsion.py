@@ -6,7 +6,7 @@ import numpy as np
 
 from ..api import CheckResult
 from . import judged as jd
-from .plots import figure, legend_below, limit_line, literal, to_svg
+from .plots import figure, legend_below, limit_line, literal, to_image
 from .sections import fmt, section
 
 RPM = 2 * np.pi / 60
@@ -14,9 +14,9 @@ DEG = 180 / np.pi
 CASE_TEXT = {"full": "full load", "no": "no load"}
 
 
-def _svg(fig) -> str:
+def _svg(fig) -> bytes:
     """SVG of a figure (margins fixed in :func:`plots.figure`)."""
-    return to_svg(fig)
+    return to_image(fig)
 
 
 def _limit(res: CheckResult, quantity: str, unit: str) -> float | None:
@@ -102,24 +102,33 @@ def _modes(res: CheckResult, nf, sp: np.ndarray) -> list[dict]:
         ax.set_ylabel("Relative amplitude [-]")
         ax.set_xlabel("Station of the torsional model (front to rear)", labelpad=1)
         legend_below(fig, ncols=3)
-        blocks.append({"type": "figure", "svg": _svg(fig), "data": [nf.name],
+        blocks.append({"type": "figure", "png": _svg(fig), "data": [nf.name],
                        "caption": "Mode shapes of the first flexible modes, normalised to the"
                                   " largest station amplitude."})
     # Campbell diagram
     fig, ax = figure(170, 78, right=12, legend_rows=1)
     x_max = hi / RPM * 1.1
-    f_show = f[f <= max(orders) * x_max / 60]
+    drawn = [o for o in orders if o <= 2 * n_cyl + 4 and (float(o).is_integer()
+                                                         or float(o * 2).is_integer())]
+    o_top = max(drawn) if drawn else max(orders)
+    # the frequency axis ends above the highest mode that a drawn order crosses inside the
+    # speed range: higher modes would crowd the crossings into the bottom of the plot
+    crossed = f[f <= o_top * hi / RPM / 60]
+    f_show = crossed if crossed.size else f[:1]
+    above = f[f > (f_show.max() if f_show.size else 0)]
     y_max = (f_show.max() if f_show.size else f.min()) * 1.15
     ax.axvspan(lo / RPM, hi / RPM, color="#3498db", alpha=0.08, label="speed range")
-    first = True
+    seen: set[str] = set()
     placed: list[tuple[str, float]] = []  # order labels already placed (edge, position)
-    for o in [o for o in orders if float(o).is_integer() and o <= 2 * n_cyl + 4]:
+    for o in drawn:
         is_major = o in major
-        ax.plot([0, x_max], [0, o * x_max / 60], color="#2c3e50" if is_major else "#95a5a6",
-                lw=1.0 if is_major else 0.6,
-                label=("major orders" if is_major else "other orders") if first or (
-                    is_major and o == min(major)) else None)
-        first = False
+        half = not float(o).is_integer()
+        kind = "major orders" if is_major else "half orders" if half else "other orders"
+        ax.plot([0, x_max], [0, o * x_max / 60],
+                color="#2c3e50" if is_major else "#b3b6b7" if half else "#95a5a6",
+                lw=1.0 if is_major else 0.6, ls=":" if half else "-",
+                label=kind if kind not in seen else None)
+        seen.add(kind)
         y_end = o * x_max / 60
         # the order number where its line leaves the axes; labels too close to a placed one
         # are left out (the lines are in order, every other one is enough to read them)
@@ -130,11 +139,11 @@ def _modes(res: CheckResult, nf, sp: np.ndarray) -> list[dict]:
         placed.append((edge, pos))
         if edge == "top":
             ax.annotate(f"{o:g}", (y_max * 60 / o, y_max), xytext=(0, 2),
-                        textcoords="offset points", fontsize=6, ha="center", va="bottom",
-                        annotation_clip=False)
+                        textcoords="offset points", fontsize=6 if not half else 5,
+                        ha="center", va="bottom", annotation_clip=False)
         else:
             ax.annotate(f"{o:g}", (x_max, y_end), xytext=(2, 0), textcoords="offset points",
-                        fontsize=6, va="center", annotation_clip=False)
+                        fontsize=6 if not half else 5, va="center", annotation_clip=False)
     for i, fi in enumerate(f_show):
         ax.axhline(fi, color="#c0392b", lw=0.8, ls="--",
                    label="natural frequencies" if i == 0 else None)
@@ -147,18 +156,31 @@ def _modes(res: CheckResult, nf, sp: np.ndarray) -> list[dict]:
                           "alpha": 0.85})
         crit = ex["critical_speed"][i] / RPM
         pick = [(c, o) for o, c in zip(orders, crit) if o in major and lo / RPM <= c <= hi / RPM]
+        other = [(c, o) for o, c in zip(orders, crit) if o in drawn and o not in major
+                 and lo / RPM <= c <= hi / RPM]
         if pick:
             ax.plot([c for c, _ in pick], [fi] * len(pick), "o", color="#c0392b", ms=3,
                     label="major-order resonance in the speed range" if i == 0 else None)
+        if other:
+            ax.plot([c for c, _ in other], [fi] * len(other), "o", mfc="white",
+                    color="#7f8c8d", ms=2.6, label="other-order resonance in the speed range"
+                    if "other res" not in seen else None)
+            seen.add("other res")
     ax.set_xlim(0, x_max)
     ax.set_ylim(0, y_max)
     ax.set_xlabel("Engine speed [rpm]")
     ax.set_ylabel("Frequency [Hz]")
-    legend_below(fig, ncols=5)
-    blocks.append({"type": "figure", "svg": _svg(fig), "data": [nf.name],
+    legend_below(fig, ncols=4)
+    note = ""
+    if above.size:
+        note = (" Modes above the frequency axis (no drawn order reaches them inside the speed"
+                " range): " + ", ".join(f"mode {int(np.flatnonzero(f == x)[0]) + 1}"
+                                        f" {x:.0f} Hz" for x in above) + ".")
+    blocks.append({"type": "figure", "png": _svg(fig), "data": [nf.name],
                    "caption": "Campbell diagram: engine orders (numbered at the ends of the"
-                              " lines) against the natural frequencies; dots mark major-order"
-                              " resonances inside the speed range."})
+                              " lines; half orders dotted) against the natural frequencies;"
+                              " filled dots: major-order resonances inside the speed range,"
+                              " open dots: resonances of the other orders drawn." + note})
     return blocks
 
 
@@ -240,7 +262,7 @@ def _nose(res: CheckResult, q: dict) -> list[dict]:
         + (" Circles: the points the rules judge; the rest of each order curve is computed"
            " but not judged (" + "; ".join(dict.fromkeys(why)) + ")." if marked else "")
         + (jd.shade_caption([jd.reason(tot)]) if shaded else ""))
-    blocks: list[dict] = [{"type": "figure", "svg": _svg(fig), "caption": caption,
+    blocks: list[dict] = [{"type": "figure", "png": _svg(fig), "caption": caption,
                            "data": [x.name for x in (tot, per, cyl, hi_q) if x is not None]}]
 
     low_q = q.get("tv.nose_lower_order_elastic_amplitude")
@@ -307,7 +329,7 @@ def _elements(res: CheckResult, q: dict) -> list[dict]:
     ax.set_title("element torque, half peak-to-peak, full load")
     legend_below(fig, ncols=5)
     dotted = not et_j.all() or (tw is not None and not jd.mask(tw).all())
-    blocks: list[dict] = [{"type": "figure", "svg": _svg(fig), "caption": (
+    blocks: list[dict] = [{"type": "figure", "png": _svg(fig), "caption": (
         "Crankshaft twist (crank nose to flywheel) and vibratory torque in every element of"
         " the TV model against speed"
         + (f"; dotted: computed but not judged ({jd.reason(et)})" if dotted else "") + "."),
@@ -381,7 +403,7 @@ def _damper(res: CheckResult, q: dict) -> list[dict]:
         ax.set_xlabel("Engine speed [rpm]")
     legend_below(fig, ncols=6)
     faint = not jd.mask(pw).all()
-    blocks: list[dict] = [{"type": "figure", "svg": _svg(fig), "caption": (
+    blocks: list[dict] = [{"type": "figure", "png": _svg(fig), "caption": (
         "TV damper rubber: dissipated power (sum of orders), heat per unit rubber volume (mean"
         " P/V and peak at the inner radius) and shear-stress amplitude at the inner radius"
         + (f"; faint dotted: computed but not judged ({jd.reason(pw)})" if faint else "")
@@ -457,7 +479,7 @@ def _joints(res: CheckResult, q: dict) -> list[dict]:
         for k, p in enumerate(jt.coords["point"]):
             s = "" if src is None else str(src[i, k])
             used = ("workbook (JointTorques)" if s.startswith("workbook") else
-                    "TV module" if s else "-")
+                    "torsional model" if s else "-")
             g = fmt(given[(n, p)].torque) if (n, p) in given else "-"
             if np.isfinite(jt.values[i, k]):
                 rows.append([n, p, CASE_TEXT.get(jt.extra["case"][i, k], "-"),

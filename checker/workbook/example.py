@@ -58,6 +58,8 @@ ENGINE_ROWS: list[tuple[str, Any, str, str]] = [
      " throw's rotating unbalance fully balanced within the throw)"),
     ("Target cyclic irregularity", 10, "%", ASSUMPTION + ": ILLUSTRATIVE target at the lowest"
      " speed, replace with the application's value (Agostini 2019 quotes 1 % as a bound)"),
+    ("Project", "Example review: Ricardo 2013 workshop I4", "-", "document control"),
+    ("Revision", "A", "-", "document control"),
 ]
 
 OIL_ROWS = [

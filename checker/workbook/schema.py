@@ -204,6 +204,12 @@ ENGINE = Sheet(
     note="Engine geometry, masses and operating range.",
     fields=(
         F("Engine name", "name", "text"),
+        F("Project", "project", "text", required=False, note="Document control (report page 1)."),
+        F("Revision", "revision", "text", required=False, note="Document control, e.g. B."),
+        F("Author", "author", "text", required=False, note="Document control."),
+        F("Reviewer", "reviewer", "text", required=False, note="Document control."),
+        F("Document date", "document_date", "text", required=False,
+          note="Document control (the report's run date when blank)."),
         F("Number of cylinders", "cylinders", "int", check=">0",
           valid=R(1, 64), usual=R(1, 24)),
         F("Engine class", "engine_class", "choice",

@@ -39,10 +39,13 @@ def sections(tmp_path_factory):
 
 
 def _svg_texts(sec: dict) -> list[str]:
-    """The drawn text of every <text> element (tspans joined; comments ignored)."""
+    """The drawn text of every figure: the strings the renderer drew into a PNG figure, the
+    <text> elements (tspans joined; comments ignored) of an SVG figure."""
     out = []
     for b in sec["blocks"]:
-        if b["type"] == "figure":
+        if b["type"] == "figure" and "png" in b:
+            out += list(b["png"].texts)
+        elif b["type"] == "figure":
             svg = re.sub(r"<!--.*?-->", "", b["svg"], flags=re.S)
             for t in re.findall(r"<text\b[^>]*>(.*?)</text>", svg, flags=re.S):
                 out.append(html.unescape(re.sub(r"<[^>]+>|\n\s*", "", t)))
@@ -75,3 +78,17 @@ def test_literal_round_trips_through_matplotlib(text):
     svg = to_svg(fig)
     texts = _svg_texts({"blocks": [{"type": "figure", "svg": svg}]})
     assert texts.count(text) == 3, texts
+
+
+@pytest.mark.parametrize("text", ["M$1$", r"BE_1^2 $\alpha$", "$x_$", "cost: 5$"])
+def test_literal_text_in_the_report_png(text):
+    """The report's raster figures draw the same literal text (the renderer's strings)."""
+    from checker.report.plots import figure, literal, to_image
+
+    fig, ax = figure(60, 30)
+    ax.plot([0, 1], [0, 1], label=literal(text))
+    ax.set_title(literal(text))
+    ax.legend()
+    png = to_image(fig)
+    assert png[:3] == b"\xff\xd8\xff"  # JPEG
+    assert png.texts.count(text) == 2, png.texts
