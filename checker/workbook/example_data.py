@@ -170,6 +170,24 @@ def dumps_example(content: dict[str, Any], about_table: dict[str, Any] | None = 
     return "\n".join(out).rstrip("\n") + "\n"
 
 
+def file_header(text: str) -> str:
+    """The comment lines at the top of a data file's ``text``, without the ``# ``."""
+    lines = []
+    for line in text.splitlines():
+        if not line.startswith("#"):
+            break
+        lines.append(line[2:])
+    return "\n".join(lines)
+
+
+def rewrite_example(engine: str, content: dict[str, Any]) -> str:
+    """Text of example ``engine``'s data file with ``content`` in place of its sheets (its
+    header and ``about`` table kept)."""
+    text = example_file(engine).read_text(encoding="utf-8")
+    about_table = tomllib.loads(text).get(ABOUT)
+    return dumps_example(content, about_table, file_header(text))
+
+
 def same_content(a: Any, b: Any, where: str = "") -> list[str]:
     """Differences between two contents, types included (``1`` is not ``1.0``, a tuple is not
     a list): an empty list when they are the same."""
