@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from . import display
+from . import modules as _modules  # noqa: F401  (registers the quantities rules name)
 from .engine import Engine
 from .errors import InputError, InputErrors, RuleFileError, UsageProblem
 from .graph import QUANTITIES, Quantity, ensure_registered
