@@ -2,7 +2,8 @@
 
 A rule names a quantity of the calculation graph, where it applies (item attributes and
 coordinates such as the operating point or load case), a comparison and a limit with its unit,
-a severity, its source and a one-line rationale. See ``docs/rules.md``.
+a severity, its source and a one-line rationale. ``docs/rules.md`` lists every rule of the
+default table (generated from ``rules/*.toml`` by ``scripts/make_rules_doc.py``).
 """
 
 from __future__ import annotations
