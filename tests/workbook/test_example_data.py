@@ -123,3 +123,14 @@ def test_variants_follow_from_the_data():
     stations = split["TVModel"][1]
     assert len(stations) == len(v8["TVModel"][1]) + 4
     assert [r[2] for r in stations if r[1] == "cylinder"] == list(range(1, 9))
+
+
+def test_loaded_content_is_a_fresh_copy():
+    """Tests edit the content they load; the next load is unaffected."""
+    a = ed.load_example("i4")
+    a["Engine"].clear()
+    a["Bearings"][1][0][0] = "X"
+    a["Notes"].append("x")
+    ed.read_example("i4")["Engine"].clear()
+    b = ed.load_example("i4")
+    assert b["Engine"] and b["Bearings"][1][0][0] == "M1" and "x" not in b["Notes"]
