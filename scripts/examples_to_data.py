@@ -50,7 +50,7 @@ Parameter sheets: [[Sheet]] tables, one per row (parameter, value, unit, note).
 Table sheets: [Sheet] columns = [name, unit] pairs, then [[Sheet.rows]] keyed by column
 name (a column left out is a blank cell). Notes: the lines of the Notes sheet.
 Values marked ASSUMPTION in their note are not in the sources; [about.assumed] lists them.
-Derived cells ({derived}) are rewritten by scripts/make_example_derived.py.
+{derived}
 This file is rewritten by scripts; keep explanations in the notes, not in TOML comments."""
 
 
@@ -68,16 +68,21 @@ def assumed(engine: str) -> dict:
     return {k: list(v) for k, v in getattr(mod, "ASSUMED", {}).items()}
 
 
-def derived_names(engine: str) -> str:
-    return {"i4": "none", "i6": "example_i6.derived_cells", "v8": "example_v8.derived_cells"}[
-        engine]
+DERIVED = {
+    "i4": "This example derives no cell.",
+    "i6": "Derived cells (Cylinders throw angles, CrankMass, Fatigue oil-hole heights; see\n"
+          "checker/workbook/example_derived.py) are rewritten by scripts/make_example_derived.py.",
+    "v8": "Derived cells (Cylinders angles and pins, CrankMass, Fatigue web thickness and\n"
+          "oil-hole heights; see checker/workbook/example_derived.py) are rewritten by\n"
+          "scripts/make_example_derived.py.",
+}
 
 
 def data_text(engine: str) -> str:
     content = template_content(engine)
     text = ed.dumps_example(content, {"title": TITLES[engine], "assumed": assumed(engine)},
                             HEADER.format(title=TITLES[engine], engine=engine,
-                                          derived=derived_names(engine)))
+                                          derived=DERIVED[engine]))
     back = ed.content_from_data(tomllib.loads(text))
     diffs = ed.same_content(content, back, engine)
     if diffs:
