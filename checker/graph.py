@@ -154,10 +154,16 @@ UNAVAILABLE = "__unavailable__"
 QUANTITIES: dict[str, QuantitySpec] = {}
 CALCULATIONS: dict[str, Calculation] = {}
 PROVIDER: dict[str, str] = {}
-MODULES: dict[str, str] = {}  # module name -> title
+MODULES: dict[str, str] = {}
+"""Analysis module name -> title, in report order: :mod:`checker.modules` registers them from
+its ``REGISTRY`` (the graph imports no module; modules import the graph)."""
 
 
 def register_module(name: str, title: str) -> None:
+    """Register an analysis module. Registering it again keeps its place and must give the
+    same title."""
+    if MODULES.get(name, title) != title:
+        raise ValueError(f"module {name!r} registered as {MODULES[name]!r} and as {title!r}")
     MODULES[name] = title
 
 
@@ -196,8 +202,10 @@ def calculation(name: str, module: str, provides: Iterable[str],
 
 
 def ensure_registered() -> None:
-    """Import the calculation modules so that they register themselves."""
-    from . import modules  # noqa: F401
+    """Check that the calculation modules are registered: importing :mod:`checker.modules`
+    registers them (:mod:`checker.ruletable`, and through it :mod:`checker.api`, does)."""
+    if not CALCULATIONS:
+        raise RuntimeError("no calculation is registered: import checker.modules first")
 
 
 ENGINE_PARTS = ("params", "cylinders", "bearings", "crank_mass", "tv_model", "joints",

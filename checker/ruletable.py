@@ -2,7 +2,8 @@
 
 A rule names a quantity of the calculation graph, where it applies (item attributes and
 coordinates such as the operating point or load case), a comparison and a limit with its unit,
-a severity, its source and a one-line rationale. See ``docs/rules.md``.
+a severity, its source and a one-line rationale. ``docs/rules.md`` lists every rule of the
+default table (generated from ``rules/*.toml`` by ``scripts/make_rules_doc.py``).
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ from typing import Any
 import numpy as np
 
 from . import display
+from . import modules as _modules  # noqa: F401  (registers the quantities rules name)
 from .engine import Engine
 from .errors import InputError, InputErrors, RuleFileError, UsageProblem
 from .graph import QUANTITIES, Quantity, ensure_registered

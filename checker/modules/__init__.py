@@ -1,7 +1,36 @@
-"""Graph calculations, one module per analysis family. Importing registers them."""
+"""The calculation modules, one per analysis family, and their registry.
+
+:data:`REGISTRY` lists the analysis modules in the order of listings and of the report (each
+builds on the ones before): name, title and the Python module holding its calculations.
+Importing this package registers them with :mod:`checker.graph` in that order, then imports
+the Python modules, which register their quantities and calculations. The graph imports no
+module (``tests/test_import_cycles.py``): whoever runs it imports this package
+(:mod:`checker.ruletable`, and through it :mod:`checker.api`).
+"""
 
 from .. import graph
-from . import (  # noqa: F401
+
+REGISTRY: tuple[tuple[str, str, str], ...] = (
+    ("loads", "Crank-train loads", "loads"),
+    ("bearings", "Bearing oil film (MOFT)", "moft"),
+    ("bearing_performance", "Bearing oil flow, friction and temperature", "bearing_performance"),
+    ("torsion", "Torsional vibration", "torsion"),
+    ("joints", "Bolted joints", "joints"),
+    ("fatigue", "Crankshaft fatigue", "fatigue"),
+    ("balance", "Crankshaft balancing", "balance"),
+    ("flywheel", "Flywheel and cyclic irregularity", "flywheel"),
+    ("damper", "TV damper tuning", "damper_tuning"),
+)
+"""(module name, title, Python module) in report order; ``crank_nose`` adds calculations to
+the ``fatigue`` module."""
+
+ORDER = tuple(name for name, _title, _file in REGISTRY)
+"""Order of the modules in listings and in the report."""
+
+for _name, _title, _file in REGISTRY:
+    graph.register_module(_name, _title)
+
+from . import (  # noqa: E402, F401  (after the registry: their calculations name its modules)
     balance,
     bearing_performance,
     crank_nose,
@@ -13,12 +42,3 @@ from . import (  # noqa: F401
     moft,
     torsion,
 )
-
-ORDER = ("loads", "bearings", "bearing_performance", "torsion", "joints", "fatigue", "balance",
-         "flywheel", "damper")
-"""Order of the modules in listings and in the report (each builds on the ones before)."""
-
-_registered = dict(graph.MODULES)
-graph.MODULES.clear()
-graph.MODULES.update({m: _registered[m] for m in ORDER if m in _registered})
-graph.MODULES.update({m: t for m, t in _registered.items() if m not in ORDER})
