@@ -15,12 +15,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 
-KNOWN_CYCLES = {
-    # calc/mobility.py imports calc/reynolds_map.py inside a function while reynolds_map
-    # imports mobility at module level; being broken on the speed branch (issue 24) --
-    # remove this exception once that branch is merged.
-    frozenset({"checker.calc.mobility", "checker.calc.reynolds_map"}),
-}
+KNOWN_CYCLES: set[frozenset[str]] = set()  # none: every cycle is a failure
 
 
 def module_names(root: Path, package: str) -> dict[str, tuple[Path, bool]]:

@@ -5,11 +5,10 @@ from __future__ import annotations
 import hashlib
 import itertools
 import json
-import math
 from dataclasses import dataclass
 from typing import Any
 
-from .spec import Study
+from .spec import Study, count_variants  # noqa: F401 (re-exported)
 
 
 @dataclass(frozen=True)
@@ -34,19 +33,6 @@ class Variant:
 
 def _fmt(v: Any) -> str:
     return f"{v:.6g}" if isinstance(v, float) else str(v)
-
-
-def count_variants(study: Study) -> int:
-    """How many variants the design has, without making them (a 1000 x 1000 x 1000 factorial
-    is counted, not built)."""
-    params = study.parameters
-    if study.design == "one-at-a-time":
-        return 1 + sum(q.n_levels for q in params)
-    if study.design == "full-factorial":
-        return math.prod(q.n_levels for q in params) if params else 0
-    if study.design == "latin-hypercube":
-        return study.samples
-    return len(study.table)
 
 
 def variants(study: Study) -> list[Variant]:

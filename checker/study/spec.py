@@ -34,6 +34,7 @@ The file is validated on load; every problem names its line.
 
 from __future__ import annotations
 
+import math
 import re
 import tomllib
 from dataclasses import dataclass, field
@@ -288,8 +289,6 @@ def load_study(path: str | Path) -> Study:
                 str(st.get("fail_on", "error")), int(samples or 0), int(seed or 0), table,
                 text, study_lines, table_lines)
     if not problems and design != "latin-hypercube":
-        from .design import count_variants
-
         n = count_variants(out)
         if n > MAX_VARIANTS:
             levels = " x ".join(str(q.n_levels) for q in params)
@@ -427,3 +426,16 @@ def _parameter(rp: Any, i: int, at, problems: list[str], design: str) -> Paramet
     line = int(re.search(r"\d+", where0).group()) if re.search(r"\d+", where0) else 0
     return Parameter(name, sheet, f, rows, where, unit, low, high, int(steps) if isinstance(
         steps, int) else 5, values, line)
+
+
+def count_variants(study: Study) -> int:
+    """How many variants the design has, without making them (a 1000 x 1000 x 1000 factorial
+    is counted, not built)."""
+    params = study.parameters
+    if study.design == "one-at-a-time":
+        return 1 + sum(q.n_levels for q in params)
+    if study.design == "full-factorial":
+        return math.prod(q.n_levels for q in params) if params else 0
+    if study.design == "latin-hypercube":
+        return study.samples
+    return len(study.table)
