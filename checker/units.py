@@ -27,20 +27,54 @@ from dataclasses import dataclass
 
 
 def _import_pint():
-    """``import pint`` without its optional dask support: pint imports ``dask`` whenever it
-    is installed (it is, for ``checker study``), which costs about 0.4 s on every command
-    and is never used here (no pint quantity wraps a dask array). A dask imported earlier
-    is kept as is."""
-    if "dask" in sys.modules:
-        import pint as p
-
-        return p
-    sys.modules["dask"] = None  # type: ignore[assignment]  # find_spec -> None: no dask
+    """``import pint`` without its optional dask and SciPy support: pint imports ``dask``
+    whenever it is installed (it is, for ``checker study``), which costs about 0.4 s on every
+    command, and ``scipy`` (about 0.02 s); neither is used through pint here (no pint
+    quantity wraps a dask array or goes through a SciPy function). A dask or SciPy imported
+    earlier is kept as is; both stay importable afterwards."""
+    hidden = [m for m in ("dask", "scipy") if m not in sys.modules]
+    for m in hidden:
+        sys.modules[m] = None  # type: ignore[assignment]  # find_spec/import -> not there
+    stub = "importlib.metadata" not in sys.modules
+    if stub:  # pint, flexcache and flexparser ask it only for their own version
+        sys.modules["importlib.metadata"] = _metadata_stub()  # type: ignore[assignment]
     try:
         import pint as p
     finally:
-        del sys.modules["dask"]
+        for m in hidden:
+            del sys.modules[m]
+        if stub:
+            del sys.modules["importlib.metadata"]
     return p
+
+
+def _metadata_stub():
+    """A stand-in for :mod:`importlib.metadata` while pint is imported: pint and its helpers
+    flexcache and flexparser import it only to read their own version (pint's cache of
+    parsed definitions is keyed by it), and importing it costs about 0.04 s of every
+    command. ``version(name)`` reads the version from the ``name-<version>.dist-info``
+    folder next to the package (what :mod:`importlib.metadata` finds there too) and raises
+    when there is none (the packages then say "unknown", as they do for a source copy)."""
+    import types
+
+    def version(name: str) -> str:
+        import importlib.util
+        import os
+
+        spec = importlib.util.find_spec(name)
+        if spec is None or not spec.submodule_search_locations:
+            raise LookupError(name)
+        site = os.path.dirname(list(spec.submodule_search_locations)[0])
+        prefix = name.replace("-", "_").lower() + "-"
+        for entry in os.listdir(site):
+            low = entry.lower()
+            if low.startswith(prefix) and low.endswith(".dist-info"):
+                return entry[len(prefix):-len(".dist-info")]
+        raise LookupError(name)
+
+    mod = types.ModuleType("importlib.metadata")
+    mod.version = version  # type: ignore[attr-defined]
+    return mod
 
 
 pint = _import_pint()

@@ -106,3 +106,22 @@ def test_delta_temperature_spellings():
     assert to_si(5, "delta_degC", "temperature_difference") == pytest.approx(5.0)
     with pytest.raises(UnitProblem, match="absolute temperature"):
         to_si(5, "delta_degC", "temperature")
+
+
+def test_pint_imported_without_metadata_keeps_versions():
+    """checker.units imports pint with a stand-in for importlib.metadata (start-up time): the
+    versions pint, flexcache and flexparser report (pint keys its definitions cache by its
+    version) equal importlib.metadata's, and importlib.metadata stays importable."""
+    import subprocess
+    import sys
+
+    code = ("import sys, checker.units, pint, flexcache, flexparser;"
+            " assert 'importlib.metadata' not in sys.modules;"
+            " import importlib.metadata as m;"
+            " print([(p.__version__, m.version(p.__name__))"
+            " for p in (pint, flexcache, flexparser)])")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.strip()
+    pairs = eval(out)  # noqa: S307 - our own repr of a list of string pairs
+    assert len(pairs) == 3
+    assert all(a == b and a != "unknown" for a, b in pairs)

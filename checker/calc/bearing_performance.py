@@ -445,6 +445,7 @@ def solve_heat_balance(
     tol: float = 0.1,
     max_evaluations: int = 8,
     t_start: ArrayLike | None = None,
+    partial: bool = False,
 ) -> HeatBalance:
     """Effective film temperature of a bearing whose friction heat leaves with its oil flow.
 
@@ -485,6 +486,12 @@ def solve_heat_balance(
     t_start : array_like [K], optional
         First temperature evaluated (default ``t_supply``); a close estimate saves an
         evaluation, the result does not depend on it beyond ``tol``.
+    partial : bool
+        Evaluate again only the points still iterating: ``evaluate(T, active)`` with
+        ``active`` None (every point) or a boolean mask of the batch shape; the points outside
+        the mask must be returned as at their last evaluation (they are converged and keep
+        their temperature, change and state). Saves the orbits of the converged points when
+        a few need one more evaluation.
 
     Returns
     -------
@@ -512,8 +519,9 @@ def solve_heat_balance(
     conv = np.zeros(t.shape, dtype=bool)
     state = None
     n = 0
+    active = None
     for n in range(1, int(max_evaluations) + 1):
-        p, qs, qf, rho_cp, state = evaluate(t)
+        p, qs, qf, rho_cp, state = evaluate(t, active) if partial else evaluate(t)
         p, qs, qf, rho_cp = (np.broadcast_to(np.asarray(x, dtype=float), t.shape)
                              for x in (p, qs, qf, rho_cp))
         q = qs + qf
@@ -524,9 +532,16 @@ def solve_heat_balance(
         d = qf * mu
         t_hi = ts + k * a * viscosity_of(ts) / (rho_cp * (qs + d / viscosity_of(ts)))
         t_next = model_temperature(ts, a, qs, d, rho_cp, k, viscosity_of, t_hi)
-        change = np.abs(t_next - t)
-        conv = change <= tol
+        new_change = np.abs(t_next - t)
+        if active is None:
+            change = new_change
+            conv = change <= tol
+        else:  # converged points were not evaluated again: they keep their change
+            change = np.where(active, new_change, change)
+            conv = np.where(active, new_change <= tol, conv)
         if conv.all() or n == int(max_evaluations):
             break
         t = np.where(conv, t, t_next)
+        if partial:
+            active = ~conv
     return HeatBalance(t, conv, change, n, state)

@@ -765,13 +765,13 @@ def _shared_rows(fx, fy, w, scalars, grooved, group, p: int):
     dup = np.flatnonzero(rep != rows)
     if dup.size:  # verify every point: the loads and whirl are the shifted sequence
         r = rep[dup]
-        k = np.arange(n_pts)[None, :]
-        i_d = (k + o[dup][:, None]) % n_pts
-        i_r = (k + o[r][:, None]) % n_pts
         ok = np.ones(dup.size, dtype=bool)
-        for arr, sc in ((fx, sf), (fy, sf), (w, sw)):
-            dev = np.abs(arr[dup[:, None], i_d] - arr[r[:, None], i_r]).max(axis=1)
-            ok &= dev <= 1e-10 * sc[r]
+        d_shift = (o[dup] - o[r]) % n_pts  # arr[d, j] == arr[r, j - d_shift]
+        for s in np.unique(d_shift):  # a few distinct shifts: whole rows rolled at once
+            m = np.flatnonzero(d_shift == s)
+            for arr, sc in ((fx, sf), (fy, sf), (w, sw)):
+                dev = np.abs(arr[dup[m]] - np.roll(arr[r[m]], int(s), axis=1)).max(axis=1)
+                ok[m] &= dev <= 1e-10 * sc[r[m]]
         rep[dup[~ok]] = dup[~ok]
     shift = ((o - o[rep]) // p) % (n_pts // p)
     return rep, shift

@@ -3,6 +3,8 @@ balance) and peak oil-film pressure, from the journal orbits of the mobility met
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 from ..calc import bearing_performance as bp
@@ -89,6 +91,19 @@ FEED_TEXT = {
             " hole sees the film averaged over a turn, (1 + 1.5 eps^2) c^3, and the"
             " centrifugal pressure of the crank drilling, rho omega^2 (r_hole^2 - R_main^2)/2",
 }
+
+
+def _merge_orbits(full: ob.OrbitResult, part: ob.OrbitResult,
+                  active: np.ndarray) -> ob.OrbitResult:
+    """``full`` with the points ``active`` (boolean, batch shape) replaced by ``part``."""
+    changes = {}
+    for f in dataclasses.fields(full):
+        a, b = getattr(full, f.name), getattr(part, f.name)
+        if isinstance(a, np.ndarray) and a.shape[:active.ndim] == active.shape:
+            a = a.copy()
+            a[active] = b
+            changes[f.name] = a
+    return dataclasses.replace(full, **changes)
 
 
 def _resample(a: np.ndarray, n: int) -> np.ndarray:
@@ -261,15 +276,32 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
             return bp.model_temperature(ts, a, qs, d, rho_cp, 0.5 * heat_to_oil,
                                         fit.viscosity)
 
-        def evaluate(t):
+        load_shape = ex["fx"][rows].shape
+
+        def evaluate(t, active=None):
+            """Every point (``active`` None) or only the points still iterating: their
+            orbits are solved again, the others keep the orbit of their last evaluation."""
             mu = fit.viscosity(t)
-            res = ob.solve_orbit(
-                ex["fy"][rows], ex["fx"][rows], ex["omega_journal"][rows],
-                ex["omega_bearing"][rows], speeds[None, None, :], *bdim[:3], mu,
-                model="closed_form", full_groove=bdim[3], steps_per_cycle=n_steps,
-                eps0_x=warm.get("x"),
-                eps0_y=warm.get("y"), squeeze_velocity=True)
-            warm["x"], warm["y"] = res.eps_x[..., 0], res.eps_y[..., 0]
+            if active is None:
+                res = ob.solve_orbit(
+                    ex["fy"][rows], ex["fx"][rows], ex["omega_journal"][rows],
+                    ex["omega_bearing"][rows], speeds[None, None, :], *bdim[:3], mu,
+                    model="closed_form", full_groove=bdim[3], steps_per_cycle=n_steps,
+                    eps0_x=warm.get("x"),
+                    eps0_y=warm.get("y"), squeeze_velocity=True)
+            else:
+                def sub(a):
+                    return np.broadcast_to(a, load_shape)[active]
+
+                part = ob.solve_orbit(
+                    sub(ex["fy"][rows]), sub(ex["fx"][rows]), sub(ex["omega_journal"][rows]),
+                    sub(ex["omega_bearing"][rows]), np.broadcast_to(speeds, shape)[active],
+                    *(a[active] for a in bdim[:3]), mu[active], model="closed_form",
+                    full_groove=bdim[3][active], steps_per_cycle=n_steps,
+                    eps0_x=warm["x"][active], eps0_y=warm["y"][active],
+                    squeeze_velocity=True)
+                res = _merge_orbits(warm["res"], part, active)
+            warm["x"], warm["y"], warm["res"] = res.eps_x[..., 0], res.eps_y[..., 0], res
             mu4 = mu[..., None]
             lx, ly = fy_s, fx_s  # orbit frame: X along the loads' y axis
             vx, vy = res.vs_x, res.vs_y  # mobility.squeeze_velocity along the orbit
@@ -290,7 +322,7 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
             hb = bp.solve_heat_balance(evaluate, ts, fit.viscosity, heat_to_oil=heat_to_oil,
                                        tol=HEAT_BALANCE_TOL,
                                        max_evaluations=HEAT_BALANCE_MAX_EVALUATIONS,
-                                       t_start=start_estimate(ts))
+                                       t_start=start_estimate(ts), partial=True)
         except ValueError as exc:
             raise MissingInputs([f"bearing heat balance: {exc}"]) from None
         st = hb.state

@@ -259,6 +259,40 @@ def test_heat_balance_model_mismatch_brentq():
     assert abs(float(hb.temperature) - ref) <= tol
 
 
+def test_heat_balance_partial_evaluation_equals_full():
+    """``partial=True``: the converged points are not evaluated again (each later evaluation
+    sees only the points still iterating) and every point ends with the temperature, change
+    and evaluation state of the full iteration (points of P ~ mu^0.4..1, so they converge after
+    different numbers of evaluations)."""
+    n = 40
+    rng = np.random.default_rng(3)
+    a = rng.uniform(1e4, 5e4, n)
+    expo = np.linspace(0.4, 1.0, n)  # 1.0: the local model is exact (2 evaluations)
+    d, qs, rho_cp, ts, mu0, beta = 2.0e-8, 2e-6, 1.7e6, 353.15, 0.012, 0.028
+    visc = _visc(mu0, beta)
+    seen = []
+
+    def evaluate(t, active=None):
+        seen.append(n if active is None else int(active.sum()))
+        mu = visc(t)
+        return a * mu**expo, qs, d / mu, rho_cp, t.copy()
+
+    def evaluate_all(t):
+        mu = visc(t)
+        return a * mu**expo, qs, d / mu, rho_cp, t.copy()
+
+    full = bp.solve_heat_balance(evaluate_all, np.full(n, ts), visc, tol=1e-3,
+                                 max_evaluations=20)
+    part = bp.solve_heat_balance(evaluate, np.full(n, ts), visc, tol=1e-3, max_evaluations=20,
+                                 partial=True)
+    assert full.converged.all() and part.converged.all()
+    assert part.evaluations == full.evaluations >= 4
+    assert seen[0] == n and seen[-1] < n and seen == sorted(seen, reverse=True)
+    np.testing.assert_array_equal(part.temperature, full.temperature)
+    np.testing.assert_array_equal(part.state, full.temperature)
+    np.testing.assert_allclose(part.change, full.change, rtol=0.0, atol=1e-3)
+
+
 def test_heat_balance_not_converged_is_reported():
     """One evaluation from the supply temperature, far from the balance (~25 K): reported as
     not converged with its change, never a silent answer."""
