@@ -118,9 +118,56 @@ def test_compare_on_clearance_oil_temperature_and_bolt_torque(runs, engine):
     assert ": radial clearance" in text and ": tightening torque" in text
     assert "Oil supply temperature" in text
 
-# --- studies ---------------------------------------------------------------------------------
-# The studies of examples/ (examples/*.toml, one per design) belong here too, run through
-# ``checker study`` with their PDF; tests/study/test_robust.py checks each is valid for its
-# template (test_example_studies_are_valid_for_their_templates) and runs a table design with
-# its PDF. Add them to _engine_run (after "compare") when the study smoke runs are wanted.
 
+# --- studies ---------------------------------------------------------------------------------
+# Every study of examples/ (one per design: full factorial, Latin hypercube, one at a time,
+# table) through ``checker study`` with its PDF, on the template it is written for, two local
+# worker processes, as a user runs it; then the same command again resumes every variant.
+
+STUDIES = sorted((Path(__file__).resolve().parents[1] / "examples").glob("*.toml"))
+
+
+def _study_run(study: Path, root: Path) -> dict:
+    d = root / study.stem
+    d.mkdir()
+    engine = study.name[:2]
+    out = {"dir": d, "template": _run(["template", "--engine", engine, "engine.xlsx"], d)}
+    if out["template"].returncode:
+        return out
+    args = ["study", "engine.xlsx", study, "-o", "out", "--workers", "2", "--no-progress"]
+    out["study"] = _run(args, d)
+    out["resume"] = _run(args + ["--no-pdf"], d)
+    return out
+
+
+@pytest.fixture(scope="module")
+def study_runs(tmp_path_factory):
+    root = tmp_path_factory.mktemp("studies")
+    results = {s.name: _study_run(s, root) for s in STUDIES}
+    yield results
+    shutil.rmtree(root, ignore_errors=True)
+
+
+def test_every_design_has_an_example_study():
+    import tomllib
+
+    designs = {tomllib.loads(s.read_text(encoding="utf-8"))["study"]["design"]
+               for s in STUDIES}
+    assert designs == {"full-factorial", "latin-hypercube", "one-at-a-time", "table"}
+
+
+@pytest.mark.parametrize("study", [s.name for s in STUDIES])
+def test_example_study_writes_its_tables_and_pdf(study_runs, study):
+    r = study_runs[study]
+    _ok(r["template"], (0,))
+    _ok(r["study"], (0,))
+    out = r["dir"] / "out"
+    for name in ("results.parquet", "results.xlsx", "study.pdf"):
+        assert (out / name).is_file(), (name, r["study"].stderr[-2000:])
+    n = len(list((out / "variants").glob("*.json")))
+    assert n >= 3
+    text = "".join(_pdf_pages(out / "study.pdf"))
+    assert "Parametric study" in text
+    # the second run computes nothing: every variant is resumed from variants/
+    _ok(r["resume"], (0,))
+    assert f"(0 computed, {n} resumed" in r["resume"].stderr, r["resume"].stderr[-1500:]

@@ -12,7 +12,8 @@ plots):
   it short (inputs, judged worst cases); per-speed results belong in the results workbook,
   which holds every quantity anyway. ``"detail": True`` moves a table out of the body into
   the results workbook (sheet named by ``"sheet"``).
-* ``{"type": "figure", "svg", "caption", "data"?}``: ``data`` names where the numbers behind
+* ``{"type": "figure", "png", "caption", "data"?}`` (``png``: the image bytes, the
+  texts drawn on it in ``png.texts``): ``data`` names where the numbers behind
   the plot are: quantity names (their sheets in the results workbook) and/or extra sheets
   ``{"sheet", "title", "columns", "rows"}`` for curves that are not quantities (crank-angle
   traces); the report says so under the plot.

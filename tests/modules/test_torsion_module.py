@@ -229,7 +229,7 @@ def test_joint_rules_from_tv_torques_when_rows_removed(tmp_path):
                   for r in b["rows"]]
     assert sum(1 for r in joint_rows if len(r) > 4 and r[4].startswith("computed:")) == 6
     tv_rows = [r for b in sec["torsion"]["blocks"] if b["type"] == "table" for r in b["rows"]]
-    assert any(r[:2] == ["flywheel", "overspeed"] and r[-1] == "TV module" for r in tv_rows)
+    assert any(r[:2] == ["flywheel", "overspeed"] and r[-1] == "torsional model" for r in tv_rows)
 
 
 def test_tv_module_skipped_when_joint_torques_given(tmp_path):

@@ -80,6 +80,8 @@ def test_usual_warning_from_table(tmp_path):
 
 def _numeric_fields():
     for sheet in SHEETS.values():
+        if sheet.name == "Tolerances":
+            continue  # min/max in each row's own unit: a bound is checked as the input it moves
         for f in sheet.fields:
             if f.kind not in ("text", "choice"):
                 yield sheet.name, f
