@@ -90,3 +90,21 @@ def compliant_joints(wb) -> None:
     set_cell(wb, "Joints", "name", "flywheel", "friction coefficient", 0.3)
     set_cell(wb, "Joints", "name", "flywheel", "head bearing outer diameter", 16)
     set_cell(wb, "Joints", "name", "flywheel", "head bearing inner diameter", 10.5)
+
+
+def unwritable_folder() -> Path | None:
+    """A folder even root cannot create files in (sysfs refuses new files), if there is one:
+    tests run as root, where a chmod 0o555 folder is still writable."""
+    import os
+    import tempfile
+
+    p = Path("/sys/fs")
+    if not p.is_dir():
+        return None
+    try:
+        fd, tmp = tempfile.mkstemp(dir=p)
+    except OSError:
+        return p
+    os.close(fd)  # pragma: no cover - a writable /sys/fs
+    os.unlink(tmp)
+    return None

@@ -20,7 +20,7 @@ from checker.api import CheckResult
 from checker.cli import STEP_WORDS, _Progress, main
 from checker.errors import OutputError
 from checker.outputs_io import check_writable, check_writable_folder, write_files
-from tests.helpers import example_path
+from tests.helpers import example_path, unwritable_folder
 
 ROOT = os.geteuid() == 0 if hasattr(os, "geteuid") else False
 
@@ -34,22 +34,6 @@ def book(tmp_path_factory):
     return example_path(tmp_path_factory.mktemp("book"))
 
 
-def _sysfs() -> Path | None:
-    """A folder even root cannot create files in (sysfs), if there is one."""
-    import tempfile
-
-    p = Path("/sys/fs")
-    if not p.is_dir():
-        return None
-    try:
-        fd, tmp = tempfile.mkstemp(dir=p)
-    except OSError:
-        return p
-    os.close(fd)  # pragma: no cover - a writable /sys/fs
-    os.unlink(tmp)
-    return None
-
-
 def _blocked(tmp_path: Path, kind: str) -> Path:
     """A folder no file can be written in: under a regular file (works as root too), a folder
     the system refuses (sysfs, also for root), or a read-only folder (chmod; not enforced for
@@ -59,7 +43,7 @@ def _blocked(tmp_path: Path, kind: str) -> Path:
         f.write_text("x")
         return f
     if kind == "sysfs":
-        return _sysfs()
+        return unwritable_folder()
     d = tmp_path / "ro"
     d.mkdir()
     d.chmod(0o555)
@@ -68,7 +52,7 @@ def _blocked(tmp_path: Path, kind: str) -> Path:
 
 KINDS = ["under-a-file",
          pytest.param("sysfs", marks=pytest.mark.skipif(
-             _sysfs() is None, reason="no folder here that refuses root")),
+             unwritable_folder() is None, reason="no folder here that refuses root")),
          pytest.param("read-only", marks=pytest.mark.skipif(
              ROOT, reason="root writes into read-only folders"))]
 

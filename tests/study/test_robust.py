@@ -26,7 +26,7 @@ from checker.study.run import (
     run_study,
 )
 from checker.study.spec import MAX_VARIANTS, StudyFileError, load_study
-from tests.helpers import example_path
+from tests.helpers import example_path, unwritable_folder
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -244,24 +244,8 @@ def test_read_only_output_folder_is_exit_2_before_work(wb, tmp_path):
 # --- item 6: resource bombs ------------------------------------------------------------------
 
 
-def _unwritable_for_root() -> Path | None:
-    """A folder even root cannot write into (sysfs refuses new files), if there is one."""
-    import tempfile
-
-    p = Path("/sys/fs")
-    if not p.is_dir():
-        return None
-    try:
-        fd, tmp = tempfile.mkstemp(dir=p)
-    except OSError:
-        return p
-    os.close(fd)  # pragma: no cover - a writable /sys/fs
-    os.unlink(tmp)
-    return None
-
-
 def test_unwritable_output_folder_is_exit_2_before_work_even_for_root(wb, tmp_path):
-    ro = _unwritable_for_root()
+    ro = unwritable_folder()
     if ro is None:
         pytest.skip("no folder here that refuses root")
     st = _write(tmp_path, SMALL)
