@@ -284,7 +284,8 @@ def _solution(engine: Engine, cycle: Quantity) -> dict:
     return sol
 
 
-@calculation("tv_response", "torsion", provides=PROVIDES, needs=("loads.cycle",))
+@calculation("tv_response", "torsion", provides=PROVIDES, needs=("loads.cycle",),
+             reads=("params", "cylinders", "tv_model", "damper", "brake_torque"))
 def tv_response(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Natural frequencies, forced response at full and no load, element and damper results."""
     return dict(_solution(engine, inputs["loads.cycle"])["quantities"])
