@@ -76,7 +76,6 @@ from ..calc import excitation as exc
 from ..calc import torsional as tv
 from ..engine import Engine
 from ..graph import (
-    ENGINE_PARTS,
     MissingInputs,
     Quantity,
     QuantitySpec,
@@ -292,8 +291,8 @@ def tv_response(engine: Engine, inputs: dict) -> dict[str, Quantity]:
 
 
 @calculation("tv_joint_torque", "torsion", provides=("tv.joint_torque",), needs=("loads.cycle",),
-             reads=tuple(p for p in ENGINE_PARTS if p != "joints") + ("joints.name",
-                                                                      "joints.location"))
+             reads=("params", "cylinders", "tv_model", "damper", "brake_torque",
+                    "joint_torques", "joints.name", "joints.location"))
 def tv_joint_torque(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Peak TV torque through each bolted joint at the three operating points.
 
