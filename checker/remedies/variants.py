@@ -96,7 +96,7 @@ class Evaluator:
                 try:
                     done = api.check_batch(live, rules=self.table, select=sel,
                                            ignore=self.ignore, fail_on=self.fail_on,
-                                           cache=self.cache)
+                                           cache=self.cache, compare=False)
                 except (ValueError, ArithmeticError):
                     done = None
             it = iter(done or ())
@@ -109,7 +109,7 @@ class Evaluator:
                     try:
                         out.append(api.check(e, rules=self.table, select=sel,
                                              ignore=self.ignore, fail_on=self.fail_on,
-                                             cache=self.cache))
+                                             cache=self.cache, compare=False))
                     except (ValueError, ArithmeticError) as exc:
                         out.append(refused(exc))
                 self.evaluations += 1
