@@ -5,8 +5,10 @@ a list of cell changes ``{(sheet, row, column): value in the cell's unit}`` (the
 the parametric study, :func:`checker.study.apply.resolve` and
 :meth:`checker.workbook.loader.RawWorkbook.with_values`), each converted and built like a
 workbook and checked with a shared calculation cache (:func:`checker.graph.input_key`), so a
-joint-torque variant recomputes only the joints. ``checker.api.check_batch`` (batched orbit
-kernels) can replace the per-variant loop here without changing any caller.
+joint-torque variant recomputes only the joints. The variants are checked in batches
+(:func:`checker.api.check_batch`: their film orbits in one kernel call; the film orbits of
+unchanged bearings are reused, :mod:`checker.modules.film_memo`) and without the compared
+film quantity (``compare=False``: the same values, statuses and margins).
 
 :class:`Binding` ties a lever or a tolerance to the cells it moves (one value, in the lever's
 unit, for every targeted cell: one cell takes it as given, several cells keep their ratios,
