@@ -292,7 +292,7 @@ def _apply_envelope(outcome: graph.RunOutcome) -> None:
 def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = None,
           select: list[str] | None = None, ignore: list[str] | None = None,
           fail_on: str = "error", progress: Callable[[str], None] | None = None,
-          cache: dict | None = None) -> CheckResult:
+          cache: dict | None = None, compare: bool = True) -> CheckResult:
     """Run the design-rule check.
 
     Parameters
@@ -310,6 +310,10 @@ def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = No
     cache : dict, optional
         Calculation results kept across calls (parametric studies): a calculation whose
         inputs are unchanged is reused (:func:`checker.graph.input_key`).
+    compare : bool
+        Also compute the quantities a result is shown beside (the film thickness by the
+        other method). ``False`` for variants judged on their margins only (remedies,
+        tolerance corners): the same values, statuses and margins, without ``compare``.
 
     Raises
     ------
@@ -333,8 +337,10 @@ def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = No
         table = RuleTable(resolved["rules"], table.files, resolved["applied"], table.levers)
     chosen = _select(table, select, ignore)
     wanted = {r.quantity for r in chosen}
-    # quantities a result is shown beside (the film thickness by the other method)
-    wanted |= {n for r in chosen for _, n in graph.QUANTITIES[r.quantity].compare}
+    # quantities a result is shown beside (the film thickness by the other method); not
+    # computed with compare=False (variants judged on their margins: remedies, corners)
+    if compare:
+        wanted |= {n for r in chosen for _, n in graph.QUANTITIES[r.quantity].compare}
     outcome = graph.run(engine, wanted, progress=progress, cache=cache)
     if cache is not None:  # cached quantities are shared between variants: judge on copies
         outcome.quantities = {k: replace(q, extra=dict(q.extra))
@@ -357,7 +363,8 @@ _BATCHED_FILMS = (("moft_short", "closed_form", "bearing.moft_short"),
 
 def check_batch(engines: list[Engine], rules: str | Path | RuleTable | None = None,
                 select: list[str] | None = None, ignore: list[str] | None = None,
-                fail_on: str = "error", cache: dict | None = None) -> list[CheckResult]:
+                fail_on: str = "error", cache: dict | None = None,
+                compare: bool = True) -> list[CheckResult]:
     """Check several engine variants together; the same results as :func:`check` one by one.
 
     The journal orbits of the film-thickness calculations (short-bearing and finite-length
@@ -396,7 +403,8 @@ def check_batch(engines: list[Engine], rules: str | Path | RuleTable | None = No
         table = apply_overrides(base, engine)
         chosen = _select(table, select, ignore)
         wanted = {r.quantity for r in chosen}
-        wanted |= {n for r in chosen for _, n in graph.QUANTITIES[r.quantity].compare}
+        if compare:
+            wanted |= {n for r in chosen for _, n in graph.QUANTITIES[r.quantity].compare}
         order = graph.plan(engine, wanted)
         keys = graph.input_keys(engine, order)
         for cname, _, _ in _BATCHED_FILMS:
@@ -417,7 +425,8 @@ def check_batch(engines: list[Engine], rules: str | Path | RuleTable | None = No
             else:
                 cache[key] = ({qname: out}, {})
     # 2. every variant, its film quantities from the cache
-    return [check(engine, base, select, ignore, fail_on, cache=cache) for engine in engines]
+    return [check(engine, base, select, ignore, fail_on, cache=cache, compare=compare)
+            for engine in engines]
 
 
 def today() -> str:

@@ -113,7 +113,8 @@ def reference_speed(engine: Engine) -> tuple[float, str]:
                                                  " free forces)")])
 
 
-@calculation("balance", "balance", provides=PROVIDES)
+@calculation("balance", "balance", provides=PROVIDES,
+             reads=("params", "cylinders", "crank_mass", "bearings.name", "bearings.type"))
 def balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Free forces and moments by order, balance ratio per throw, internal bending moment."""
     with np.errstate(over="ignore", invalid="ignore"):  # overflow becomes a missing reason

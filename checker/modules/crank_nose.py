@@ -17,7 +17,7 @@ _NEEDED = ("nose_diameter", "scf_nose_bending", "scf_nose_torsion", "nose_fatigu
 
 
 @calculation("crank_nose_fatigue", "fatigue", provides=("fatigue.nose_goodman_sf",),
-             needs=("tv.element_torque",))
+             needs=("tv.element_torque",), reads=("fatigue", "tv_model.station", "tv_model.role"))
 def crank_nose_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Goodman SF of the crank-nose section per load case and speed."""
     f = engine.fatigue

@@ -352,7 +352,11 @@ def _throw_fatigue(f_r: np.ndarray, f_t: np.ndarray, t_side: np.ndarray, g: dict
 
 # ------------------------------------------------------------------------------- calculation
 @calculation("crank_fatigue", "fatigue", provides=("fatigue.goodman_sf", "fatigue.m53_q"),
-             needs=("loads.bearing_load", "tv.element_torque"))
+             needs=("loads.bearing_load", "tv.element_torque"),
+             reads=("fatigue", "params", "cylinders", "tv_model", "bearings.name", "bearings.type",
+                    "bearings.diameter", "bearings.journal_length", "bearings.row",
+                    "bearings.oil_holes", "bearings.oil_hole_diameter",
+                    "bearings.oil_hole_angle", "bearings.oil_hole_type"))
 def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Goodman safety factor and M53 Q at every fillet and oil hole, full/no load, all speeds."""
     bl: Quantity = inputs["loads.bearing_load"]

@@ -48,7 +48,8 @@ PROVIDES = ("flywheel.cyclic_irregularity", "flywheel.fluctuation_energy",
             "flywheel.speed_fluctuation", "flywheel.minimum_inertia")
 
 
-@calculation("flywheel", "flywheel", provides=PROVIDES, needs=("loads.bearing_load",))
+@calculation("flywheel", "flywheel", provides=PROVIDES, needs=("loads.bearing_load",),
+             reads=("tv_model", "params.target_irregularity"))
 def flywheel(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Cyclic irregularity, fluctuation energy and minimum flywheel inertia."""
     st = engine.tv_model

@@ -99,7 +99,8 @@ def _preload(engine: Engine, j: Joint, area: float) -> tuple[float | None, list[
 @calculation("joint_bolts", "joints",
              provides=("joint.stress_area", "joint.preload", "joint.clamp_force",
                        "joint.proof_stress_ratio", "joint.head_contact_stress",
-                       "joint.effective_diameter", "joint.slip_capacity"))
+                       "joint.effective_diameter", "joint.slip_capacity"),
+             reads=("joints",))
 def joint_bolts(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Stress area, preload, proof-stress percentage, head contact stress and slip capacity."""
     joints = engine.joints
@@ -178,7 +179,8 @@ def _applied_needs(engine: Engine) -> tuple[str, ...]:
 
 
 @calculation("joint_applied_torque", "joints", provides=("joint.applied_torque",),
-             needs=_applied_needs, optional=("tv.joint_torque",))
+             needs=_applied_needs, optional=("tv.joint_torque",),
+             reads=("joints", "joint_torques"))
 def joint_applied_torque(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Peak applied torque per joint and operating point: the workbook's value where given,
     otherwise from the torsional-vibration module (when it runs)."""
@@ -221,7 +223,7 @@ def joint_applied_torque(engine: Engine, inputs: dict) -> dict[str, Quantity]:
 
 
 @calculation("joint_cover_factor", "joints", provides=("joint.cover_factor",),
-             needs=("joint.slip_capacity", "joint.applied_torque"))
+             needs=("joint.slip_capacity", "joint.applied_torque"), reads=())
 def joint_cover_factor(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Cover factor = slip torque capacity / peak applied torque, per operating point."""
     cap = inputs["joint.slip_capacity"]
@@ -256,7 +258,8 @@ def _rpm(w: float | None) -> str:
 @calculation("joint_computed_torque", "joints",
              provides=("joint.computed_torque", "joint.computed_cover_factor",
                        "joint.computed_torque_ratio"),
-             needs=_computed_needs, optional=("tv.joint_torque",))
+             needs=_computed_needs, optional=("tv.joint_torque",),
+             reads=("joints", "joint_torques"))
 def joint_computed_torque(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """The torsional model's torque at each joint and operating point next to the design torque.
 

@@ -271,6 +271,14 @@ def _prepare(engine: Engine, inputs: dict, model: str) -> dict:
 
 
 def _orbits(preps: list[dict], model: str) -> None:
+    """The orbits of the prepared engines; bearing rows solved before are reused
+    (:mod:`checker.modules.film_memo`), the others solved by :func:`_orbit_kernel`."""
+    from . import film_memo
+
+    film_memo.orbits(preps, model, _orbit_kernel, tag=repr(sorted(_steps(model).items())))
+
+
+def _orbit_kernel(preps: list[dict], model: str) -> None:
     """One orbit kernel call for the prepared engines (same load-grid length); the result of
     each is stored in its ``res`` (arrays over its rows x cases x speeds)."""
     cat = {k: np.concatenate([p["arg"][k] for p in preps]) for k in preps[0]["arg"]}

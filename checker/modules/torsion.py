@@ -76,7 +76,6 @@ from ..calc import excitation as exc
 from ..calc import torsional as tv
 from ..engine import Engine
 from ..graph import (
-    ENGINE_PARTS,
     MissingInputs,
     Quantity,
     QuantitySpec,
@@ -284,15 +283,16 @@ def _solution(engine: Engine, cycle: Quantity) -> dict:
     return sol
 
 
-@calculation("tv_response", "torsion", provides=PROVIDES, needs=("loads.cycle",))
+@calculation("tv_response", "torsion", provides=PROVIDES, needs=("loads.cycle",),
+             reads=("params", "cylinders", "tv_model", "damper", "brake_torque"))
 def tv_response(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Natural frequencies, forced response at full and no load, element and damper results."""
     return dict(_solution(engine, inputs["loads.cycle"])["quantities"])
 
 
 @calculation("tv_joint_torque", "torsion", provides=("tv.joint_torque",), needs=("loads.cycle",),
-             reads=tuple(p for p in ENGINE_PARTS if p != "joints") + ("joints.name",
-                                                                      "joints.location"))
+             reads=("params", "cylinders", "tv_model", "damper", "brake_torque",
+                    "joint_torques", "joints.name", "joints.location"))
 def tv_joint_torque(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Peak TV torque through each bolted joint at the three operating points.
 

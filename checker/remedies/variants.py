@@ -5,8 +5,10 @@ a list of cell changes ``{(sheet, row, column): value in the cell's unit}`` (the
 the parametric study, :func:`checker.study.apply.resolve` and
 :meth:`checker.workbook.loader.RawWorkbook.with_values`), each converted and built like a
 workbook and checked with a shared calculation cache (:func:`checker.graph.input_key`), so a
-joint-torque variant recomputes only the joints. ``checker.api.check_batch`` (batched orbit
-kernels) can replace the per-variant loop here without changing any caller.
+joint-torque variant recomputes only the joints. The variants are checked in batches
+(:func:`checker.api.check_batch`: their film orbits in one kernel call; the film orbits of
+unchanged bearings are reused, :mod:`checker.modules.film_memo`) and without the compared
+film quantity (``compare=False``: the same values, statuses and margins).
 
 :class:`Binding` ties a lever or a tolerance to the cells it moves (one value, in the lever's
 unit, for every targeted cell: one cell takes it as given, several cells keep their ratios,
@@ -44,6 +46,9 @@ class Evaluator:
     keep: int = 48
     """Calculation results of variants kept in the cache beyond the check's own (the oldest
     are dropped: a film calculation of all bearings holds tens of megabytes)."""
+    batch: int = 8
+    """Variants checked together (:func:`checker.api.check_batch`: their film orbits in one
+    kernel call); bounded because each variant's films stay in memory until the batch ends."""
     _pinned: set | None = None
 
     def evaluate_variants(self, changes: list[Changes], select: list[str] | None = None
@@ -58,7 +63,8 @@ class Evaluator:
         import time
 
         from .. import api
-        from ..engine import build_engine
+        from ..engine import Engine, build_engine
+        from ..errors import InputError
         from ..workbook.loader import convert_raw
 
         out: list[Any] = []
@@ -69,21 +75,46 @@ class Evaluator:
         t0 = time.perf_counter()
         if self._pinned is None:
             self._pinned = set(self.cache)
-        for ch in changes:
-            raw = self.base.with_values(ch)
-            try:
-                engine = build_engine(convert_raw(raw, raise_errors=False))
-                out.append(api.check(engine, rules=self.table, select=sel, ignore=self.ignore,
-                                     fail_on=self.fail_on, cache=self.cache))
-            except InputErrors as exc:
-                out.append(exc)
-            except (ValueError, ArithmeticError) as exc:
-                # a calculation refused the variant's values (outside its validity range):
-                # the variant is not a valid design, like an input error
-                from ..errors import InputError
+        def refused(exc: Exception) -> InputErrors:
+            # a calculation refused the variant's values (outside its validity range): the
+            # variant is not a valid design, like an input error
+            return InputErrors([InputError("variant", f"{type(exc).__name__}: {exc}")])
 
-                out.append(InputErrors([InputError("variant", f"{type(exc).__name__}: {exc}")]))
-            self.evaluations += 1
+        for start in range(0, len(changes), self.batch):
+            built: list[Any] = []
+            for ch in changes[start:start + self.batch]:
+                try:
+                    built.append(build_engine(convert_raw(self.base.with_values(ch),
+                                                          raise_errors=False)))
+                except InputErrors as exc:
+                    built.append(exc)
+                except (ValueError, ArithmeticError) as exc:
+                    built.append(refused(exc))
+            live = [e for e in built if isinstance(e, Engine)]
+            done: list[Any] | None = None
+            if len(live) > 1:
+                # the film orbits of the variants in one kernel call (same results as one by
+                # one); a variant a calculation refuses is then checked alone below
+                try:
+                    done = api.check_batch(live, rules=self.table, select=sel,
+                                           ignore=self.ignore, fail_on=self.fail_on,
+                                           cache=self.cache, compare=False)
+                except (ValueError, ArithmeticError):
+                    done = None
+            it = iter(done or ())
+            for e in built:
+                if not isinstance(e, Engine):
+                    out.append(e)
+                elif done is not None:
+                    out.append(next(it))
+                else:
+                    try:
+                        out.append(api.check(e, rules=self.table, select=sel,
+                                             ignore=self.ignore, fail_on=self.fail_on,
+                                             cache=self.cache, compare=False))
+                    except (ValueError, ArithmeticError) as exc:
+                        out.append(refused(exc))
+                self.evaluations += 1
             extra = [k for k in self.cache if k not in self._pinned]
             for k in extra[:max(0, len(extra) - self.keep)]:
                 del self.cache[k]

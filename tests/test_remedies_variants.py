@@ -1,0 +1,61 @@
+"""Variant evaluation (checker.remedies.variants): batched film orbits, the per-bearing film
+memo and the calculation cache give the numbers of a cold check of each variant."""
+
+from __future__ import annotations
+
+import pytest
+
+from checker import api
+from checker.engine import build_engine
+from checker.errors import InputErrors
+from checker.modules import film_memo
+from checker.outputs import to_json
+from checker.remedies.variants import Evaluator, bind
+from checker.ruletable import load_rules
+from checker.workbook.loader import convert_raw, read_raw_workbook
+from checker.workbook.schema import SHEETS
+
+
+@pytest.fixture(scope="module")
+def i4(tmp_path_factory):
+    from checker.workbook.example import example_content, write_workbook
+
+    p = tmp_path_factory.mktemp("var") / "engine.xlsx"
+    write_workbook(p, example_content())
+    return p
+
+
+def _field(sheet: str, attr: str):
+    return next(f for f in SHEETS[sheet].fields if f.attr == attr)
+
+
+def test_batched_variants_equal_cold_checks(i4):
+    base = read_raw_workbook(i4)
+    table = load_rules()
+    clear = bind(base, "Bearings", (_field("Bearings", "clearance"),), "um", ("M3",), ())
+    clear_b = bind(base, "Bearings", (_field("Bearings", "clearance"),), "um", ("BE2",), ())
+    assert not isinstance(clear, str) and not isinstance(clear_b, str)
+    c0, cb0 = clear.nominal[0], clear_b.nominal[0]
+    changes = [clear.changes(c0 * 1.15), clear.changes(c0 * 0.9),
+               {**clear.changes(c0 * 1.1), **clear_b.changes(cb0 * 1.2)},
+               clear.changes(-5.0)]  # a negative clearance: an input error
+    ev = Evaluator(base, table, select=["BRG-003", "BRG-004"])
+    api.check(i4, select=["BRG-003", "BRG-004"], cache=ev.cache)  # the check's own cache
+    got = ev.evaluate_variants(changes)
+    assert ev.evaluations == len(changes)
+    assert isinstance(got[-1], InputErrors)
+    for ch, res in zip(changes[:-1], got[:-1]):
+        film_memo.clear()
+        engine = build_engine(convert_raw(base.with_values(ch), raise_errors=False))
+        cold = api.check(engine, select=["BRG-003", "BRG-004"], compare=False)
+        assert to_json(res, timings=False) == to_json(cold, timings=False)
+        # without the compared film: the same values, statuses and margins
+        full = api.check(engine, select=["BRG-003", "BRG-004"])
+        assert [(r.rule, r.item, r.status, r.value, r.margin) for r in res.results] == [
+            (r.rule, r.item, r.status, r.value, r.margin) for r in full.results]
+        assert sum(len(r.compare) for r in res.results) < sum(len(r.compare)
+                                                              for r in full.results)
+    # one by one (batch of 1) gives the same results
+    ev1 = Evaluator(base, table, select=["BRG-003", "BRG-004"], batch=1)
+    for a, b in zip(got[:-1], ev1.evaluate_variants(changes[:-1])):
+        assert to_json(a, timings=False) == to_json(b, timings=False)
