@@ -74,6 +74,9 @@ class CheckResult:
     assumptions: list[str] = field(default_factory=list)
     remedies: Any = None  # checker.remedies: what it takes to pass (--remedies)
     corners: Any = None  # checker.remedies: the verdict at the tolerance corners (--corners)
+    # adds the remedy and corner blocks to the JSON (set by checker.remedies, which builds on
+    # this module: the API never imports it)
+    json_extras: Callable[[CheckResult, dict, bool], None] | None = None
 
     @property
     def not_evaluated(self) -> list[RuleResult]:
@@ -190,10 +193,8 @@ class CheckResult:
         }
         if timings:
             d["timings"] = {m: round(t, 6) for m, t in self.outcome.timings.items()}
-        if self.remedies is not None or self.corners is not None:
-            from .remedies import add_to_json
-
-            add_to_json(self, d, timings)
+        if self.json_extras is not None:
+            self.json_extras(self, d, timings)
         return d
 
 

@@ -88,7 +88,7 @@ class RuleTable:
     rules: list[Rule]
     files: list[str]
     overrides: list[Override] = field(default_factory=list)
-    levers: list = field(default_factory=list)  # design levers (checker.remedies.levers)
+    levers: list = field(default_factory=list)  # design levers (checker.levers)
 
     def get(self, rule_id: str) -> Rule:
         for r in self.rules:
@@ -275,7 +275,7 @@ def load_rules(path: str | Path | None = None) -> RuleTable:
         seen[r.id] = r.origin
     levers = []
     if lever_docs:
-        from .remedies.levers import parse_lever_doc
+        from .levers import parse_lever_doc
 
         for doc, name in lever_docs:
             levers += parse_lever_doc(doc, name, problems, set(seen))

@@ -30,9 +30,9 @@ def attach(res, remedies: bool = False, corners: bool = False, levers_file: str 
     :class:`checker.errors.InputErrors` for a bad Tolerances sheet and
     :class:`checker.errors.RuleFileError` for a bad lever file.
     """
+    from ..levers import load_levers, merge
     from ..ruletable import RuleTable, load_rules
     from ..workbook.loader import read_raw_workbook
-    from .levers import load_levers, merge
     from .variants import Evaluator
 
     if not remedies and not corners:
@@ -60,6 +60,7 @@ def attach(res, remedies: bool = False, corners: bool = False, levers_file: str 
             x = by.get((r.rule, r.item))
             if x is not None:
                 r.what_it_takes = x.line()
+        res.json_extras = add_to_json
         res.remedies = {"results": out, "levers": levers,
                         "evaluations": ev.evaluations - n0,
                         "seconds": time.perf_counter() - t0}
@@ -78,6 +79,7 @@ def attach(res, remedies: bool = False, corners: bool = False, levers_file: str 
                 r.worst_corner = (f"{with_unit(c.worst_value, r.unit)} at "
                                   + ", ".join(c.corner) + f": {c.worst_status}"
                                   if c.worst_value is not None else "")
+        res.json_extras = add_to_json
         res.corners = {"results": out_c, "tolerances": tols,
                        "evaluations": ev.evaluations - n0,
                        "seconds": time.perf_counter() - t0}

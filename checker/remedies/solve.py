@@ -1,7 +1,7 @@
 """What it takes to pass: per result and lever, the input value at which the margin is zero.
 
 For every failing result and every passing one within :data:`NEAR` of its limit, each lever
-of the lever table that applies to it (:mod:`checker.remedies.levers`) is moved from today's
+of the lever table that applies to it (:mod:`checker.levers`) is moved from today's
 value in its allowed direction until the result's margin reaches zero:
 
 * continuous levers: a few trial values are evaluated at once (a starting guess from the
@@ -27,8 +27,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ..display import with_unit
+from ..levers import ITEM, Lever
 from ..ruletable import REL_TOL
-from .levers import ITEM, Lever
 from .variants import Binding, Evaluator, bind, find
 
 NEAR = 0.10

@@ -19,8 +19,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..errors import RuleFileError
-from ..workbook.schema import SHEETS, Field
+from .errors import RuleFileError
+from .workbook.schema import SHEETS, Field
 
 DIRECTIONS = ("increase", "decrease", "either")
 ITEM = "{item}"
@@ -96,7 +96,7 @@ def _pair(v: Any) -> tuple[float, float] | None:
 def parse_lever(raw: Any, origin: str, problems: list[str], rule_ids: set[str] | None = None
                 ) -> Lever | None:
     """Validate one ``[[lever]]`` table; problems are appended (with the file and lever id)."""
-    from ..units import UnitProblem, to_si
+    from .units import UnitProblem, to_si
 
     if not isinstance(raw, dict):
         problems.append(f"{origin}: [[lever]] entries must be tables")
@@ -252,7 +252,7 @@ def load_levers(path: str | Path | None = None, rule_ids: set[str] | None = None
     """Levers of a ``[[lever]]`` file (``None`` = ``rules/levers.toml`` of the default table).
 
     Raises :class:`RuleFileError` listing every problem."""
-    from ..ruletable import default_rule_dir
+    from .resources import rules_dir as default_rule_dir
 
     p = Path(path) if path is not None else default_rule_dir() / "levers.toml"
     if not p.is_file():
