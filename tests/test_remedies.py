@@ -11,8 +11,8 @@ import pytest
 
 from checker import api
 from checker.errors import RuleFileError
-from checker.remedies import attach
 from checker.levers import load_levers, merge
+from checker.remedies import attach
 from checker.remedies.solve import TOL, find_remedies
 from checker.remedies.variants import Evaluator, bind, find
 from checker.ruletable import REL_TOL, load_rules
