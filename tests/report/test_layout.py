@@ -50,13 +50,12 @@ def _cls(name: str):
     return getattr(boxes, name)
 
 
-def test_no_text_outside_the_page(report):
+def text_outside_the_page(pdf: bytes) -> list[tuple]:
+    """(page, text, x, y) of every text drawn outside the page."""
     from pypdf import PdfReader
 
-    name, rep = report
-    reader = PdfReader(io.BytesIO(rep.pdf))
     bad = []
-    for n, page in enumerate(reader.pages, start=1):
+    for n, page in enumerate(PdfReader(io.BytesIO(pdf)).pages, start=1):
         w, h = float(page.mediabox.width), float(page.mediabox.height)
 
         def visit(text, cm, tm, font, size, n=n, w=w, h=h):
@@ -68,6 +67,12 @@ def test_no_text_outside_the_page(report):
                 bad.append((n, text[:40], round(x), round(y)))
 
         page.extract_text(visitor_text=visit)
+    return bad
+
+
+def test_no_text_outside_the_page(report):
+    name, rep = report
+    bad = text_outside_the_page(rep.pdf)
     assert not bad, f"{name}: text outside the page: {bad[:5]}"
 
 

@@ -11,8 +11,6 @@ itself). The pack: the I4 against a copy with a cooler oil supply.
 
 from __future__ import annotations
 
-import io
-
 import openpyxl
 import pytest
 
@@ -22,7 +20,12 @@ from checker.study.run import run_study
 from checker.study.spec import load_study
 from checker.workbook.example import example_content, write_workbook
 from checker.workbook.example_i6 import i6_content
-from tests.report.test_layout import broken_words, cell_overflows, stranded_headings
+from tests.report.test_layout import (
+    broken_words,
+    cell_overflows,
+    stranded_headings,
+    text_outside_the_page,
+)
 
 RULES = '["BRG-001", "BRG-002", "JNT-001", "JNT-002"]'
 
@@ -97,25 +100,6 @@ def _layout(html: str):
     return HTML(string=html, base_url=str(templates_dir())).render()
 
 
-def _text_outside_the_page(pdf: bytes) -> list[tuple]:
-    from pypdf import PdfReader
-
-    bad = []
-    for n, page in enumerate(PdfReader(io.BytesIO(pdf)).pages, start=1):
-        w, h = float(page.mediabox.width), float(page.mediabox.height)
-
-        def visit(text, cm, tm, font, size, n=n, w=w, h=h):
-            if not text.strip():
-                return
-            x = cm[0] * tm[4] + cm[2] * tm[5] + cm[4]
-            y = cm[1] * tm[4] + cm[3] * tm[5] + cm[5]
-            if not (-1 <= x <= w + 1 and -1 <= y <= h + 1):
-                bad.append((n, text[:40], round(x), round(y)))
-
-        page.extract_text(visitor_text=visit)
-    return bad
-
-
 def _study(kind: str, d):
     from checker.study.report import html
 
@@ -170,9 +154,9 @@ def test_no_heading_at_the_bottom_of_a_page(document):
     assert not bad, f"{name}: heading left at the bottom of a page: {bad}"
 
 
-def test_no_text_outside_the_page(document):
+def test_notext_outside_the_page(document):
     name, _, doc = document
-    bad = _text_outside_the_page(doc.write_pdf())
+    bad = text_outside_the_page(doc.write_pdf())
     assert not bad, f"{name}: text outside the page: {bad[:5]}"
 
 
