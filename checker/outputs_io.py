@@ -75,6 +75,13 @@ def check_writable_folder(folder: str | Path) -> None:
     _probe_folder(f, f)
 
 
+def file_mode() -> int:
+    """The mode a new file gets under the current umask (mkstemp makes 0600 files)."""
+    umask = os.umask(0)
+    os.umask(umask)
+    return 0o666 & ~umask
+
+
 def write_files(files: Iterable[tuple[str | Path, bytes]]) -> None:
     """Write each ``(path, data)`` whole, all or none: temporary files beside the targets
     first, then renamed into place. Only a regular file (or a new path) is replaced; anything
@@ -95,9 +102,7 @@ def write_files(files: Iterable[tuple[str | Path, bytes]]) -> None:
             pending.append((tmp, p))
             with os.fdopen(fd, "wb") as f:
                 f.write(data)
-            umask = os.umask(0)
-            os.umask(umask)
-            os.chmod(tmp, 0o666 & ~umask)
+            os.chmod(tmp, file_mode())
         while pending:
             tmp, p = pending[0]
             os.replace(tmp, p)

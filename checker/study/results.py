@@ -246,7 +246,7 @@ def _tmp(out, name: str) -> str:
     import os
     import tempfile
 
-    from .run import file_mode
+    from ..outputs_io import file_mode
 
     fd, tmp = tempfile.mkstemp(prefix=f".{name}.", suffix=".tmp", dir=out)
     os.fchmod(fd, file_mode())

@@ -42,6 +42,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import CheckerError, InputErrors, UsageProblem
+from ..outputs_io import file_mode
 from .apply import Target, apply_variant, resolve
 from .design import Variant, variants
 from .spec import Study, StudyFileError
@@ -300,13 +301,6 @@ def output_lock(out_dir: str | Path) -> Iterator[Path]:
                     pass
     finally:
         os.close(fd)  # releases the lock
-
-
-def file_mode() -> int:
-    """The mode a new file gets under the current umask (mkstemp makes 0600 files)."""
-    umask = os.umask(0)
-    os.umask(umask)
-    return 0o666 & ~umask
 
 
 def _write_record(folder: Path, rec: dict) -> None:
