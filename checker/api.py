@@ -17,6 +17,7 @@ import numpy as np
 
 from . import __version__, graph
 from .engine import Engine, load_engine
+from .results import assumptions_of
 from .ruletable import (
     Rule,
     RuleResult,
@@ -250,7 +251,7 @@ def _assumptions(engine: Engine, outcome: graph.RunOutcome) -> list[str]:
     """Assumptions stated in the report: workbook values marked as such + calculation notes."""
     out: list[str] = [f"Workbook: {a}" for a in engine.assumptions]
     for q in outcome.quantities.values():
-        for a in q.extra.get("assumptions", []):
+        for a in (*assumptions_of(q), *q.extra.get("assumptions", [])):
             if a not in out:
                 out.append(a)
     return out
@@ -287,7 +288,8 @@ def _apply_envelope(outcome: graph.RunOutcome) -> None:
             continue
         mask = np.broadcast_to(env, q.values.shape)
         q.applies = mask if q.applies is None else (q.applies & mask)
-        q.extra.setdefault("applies_text", "outside the operating envelope")
+        if not (q.applies_text or q.extra.get("applies_text")):
+            q.applies_text = "outside the operating envelope"
 
 
 def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = None,

@@ -18,6 +18,8 @@ from typing import Any
 
 import numpy as np
 
+from .results import caveats_of
+
 IMEP_TOLERANCE = 0.02
 """Largest accepted relative miss of a synthesized trace's IMEP against its target (2 %);
 above it, the miss is a model-validity caveat."""
@@ -71,7 +73,8 @@ def imep_caveats(cycle: Any) -> list[dict[str, Any]]:
 
 def collect(outcome: Any) -> list[dict[str, Any]]:
     """Every caveat of a run (graph outcome): those the calculations attached to their
-    quantities (``extra["caveats"]``) and the IMEP check of the pressure traces; each once."""
+    quantities (:attr:`checker.results.Detail.caveats`) and the IMEP check of the pressure
+    traces; each once."""
     out: list[dict[str, Any]] = []
     seen: set[str] = set()
 
@@ -81,7 +84,8 @@ def collect(outcome: Any) -> list[dict[str, Any]]:
             out.append(c)
 
     for name in sorted(outcome.quantities):
-        for c in outcome.quantities[name].extra.get("caveats", []) or []:
+        q = outcome.quantities[name]
+        for c in (*caveats_of(q), *(q.extra.get("caveats", []) or [])):
             add(c)
     cyc_q = outcome.quantities.get("loads.cycle")
     if cyc_q is not None and cyc_q.extra.get("cycle") is not None:

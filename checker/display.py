@@ -164,3 +164,12 @@ def margin_words(check: str, value: float | None, limit: list[float] | tuple | N
         return f"within the range ({_pct(margin * 100)} % from its nearer end)"
     return (f"{_pct(margin * 100)} % below the range" if value < lim[0]
             else f"{_pct(margin * 100)} % above the range")
+
+
+CASE_TEXT = {"full": "full load", "no": "no load", "part": "part load"}
+"""Load cases as every output names them."""
+
+
+def case_text(case: str) -> str:
+    """A load case in words (``"full"`` -> ``"full load"``); unknown labels as given."""
+    return CASE_TEXT.get(case, case)

@@ -48,6 +48,10 @@ class QuantitySpec:
     compare: tuple[tuple[str, str], ...] = ()
     """(label, quantity) computed beside this one: a result carries their values at its
     judged point (e.g. the short-bearing and the finite-length film)."""
+    detail: type | None = None
+    """The declared type of the quantity's :attr:`Quantity.detail` (a frozen subclass of
+    :class:`checker.results.Detail`); ``None``: the quantity carries no detail. The runner
+    checks every computed quantity against it."""
 
 
 @dataclass
@@ -65,8 +69,13 @@ class Quantity:
     item_attrs: dict[str, dict[str, Any]] = field(default_factory=dict)
     missing: dict[tuple, list[str]] = field(default_factory=dict)
     findings: dict[tuple, list[str]] = field(default_factory=dict)
-    extra: dict[str, Any] = field(default_factory=dict)  # arrays for plots/report (SI)
+    extra: dict[str, Any] = field(default_factory=dict)  # legacy, being replaced by detail
     applies: np.ndarray | None = None  # bool mask: points a rule judges (None = all)
+    detail: Any = None
+    """The node's typed result beside the numbers (curves, inputs, intermediate values for
+    the report), of the type the spec declares (:attr:`QuantitySpec.detail`)."""
+    applies_text: str = ""
+    """Why the points outside ``applies`` are not judged (words for the report)."""
 
     @property
     def name(self) -> str:
@@ -80,6 +89,13 @@ class Quantity:
                              f" coords {shape}")
         if self.applies is not None:
             self.applies = np.broadcast_to(np.asarray(self.applies, dtype=bool), shape)
+        want = self.spec.detail
+        if want is not None and self.detail is not None and not isinstance(self.detail, want):
+            raise TypeError(f"{self.spec.name}: detail is a {type(self.detail).__name__}, the"
+                            f" quantity declares {want.__name__}")
+        if want is None and self.detail is not None:
+            raise TypeError(f"{self.spec.name}: carries a {type(self.detail).__name__} detail"
+                            " but declares none (QuantitySpec.detail)")
 
 
 def resonant_peaks(values: np.ndarray, axis: int = -1, envelope: np.ndarray | None = None

@@ -2,7 +2,7 @@
 
 The single source is :attr:`checker.graph.Quantity.applies` (the quantity's own mask, e.g. the
 resonant peaks of a TV amplitude, combined with the operating envelope by
-:func:`checker.api._apply_envelope`) with ``q.extra["applies_text"]`` as the reason. The report
+:func:`checker.api._apply_envelope`) with ``q.applies_text`` as the reason. The report
 never decides by itself which points count: these helpers only *locate* the judged worst point
 (the point the rule result names: the same mask, the same direction, the first of equal values)
 and mark the points that are computed but not judged.
@@ -41,7 +41,7 @@ def mask(q) -> np.ndarray:
 
 def reason(q) -> str:
     """Why points of ``q`` are not judged (the quantity's own text)."""
-    return str(q.extra.get("applies_text") or "not judged by the rules")
+    return str(q.applies_text or q.extra.get("applies_text") or "not judged by the rules")
 
 
 def direction(res: CheckResult, quantity: str, default: str = "max") -> str:

@@ -55,6 +55,29 @@ def fmt(v, digits: int = display.SIG) -> str:
     return display.number(float(v), digits)
 
 
+def in_unit(values, si_unit: str, unit: str):
+    """SI ``values`` (float or array) in a display ``unit``, through
+    :func:`checker.units.from_si` (offset units converted affinely: K -> °C subtracts 273.15).
+    Every unit conversion of a section goes through here or :func:`display_values`."""
+    from ..units import from_si
+
+    return from_si(np.asarray(values, dtype=float) if not np.isscalar(values) else values,
+                   si_unit, unit)
+
+
+def rpm(speed):
+    """Shaft speed(s) in rad/s as rpm."""
+    return in_unit(speed, "rad/s", "rpm")
+
+
+def display_values(q, values=None):
+    """A quantity's SI values (or ``values`` of it) in its declared display unit
+    (:attr:`checker.graph.QuantitySpec.display_unit`), with that unit as displayed."""
+    unit = q.spec.display_unit or q.spec.unit
+    v = q.values if values is None else values
+    return in_unit(v, q.spec.unit or "", unit) if unit else v, display.unit_text(unit)
+
+
 def load_sections() -> None:
     """Import every ``section_*`` module so that it registers itself."""
     import importlib
