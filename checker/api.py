@@ -251,7 +251,7 @@ def _assumptions(engine: Engine, outcome: graph.RunOutcome) -> list[str]:
     """Assumptions stated in the report: workbook values marked as such + calculation notes."""
     out: list[str] = [f"Workbook: {a}" for a in engine.assumptions]
     for q in outcome.quantities.values():
-        for a in (*assumptions_of(q), *q.extra.get("assumptions", [])):
+        for a in assumptions_of(q):
             if a not in out:
                 out.append(a)
     return out

@@ -85,7 +85,7 @@ def collect(outcome: Any) -> list[dict[str, Any]]:
 
     for name in sorted(outcome.quantities):
         q = outcome.quantities[name]
-        for c in (*caveats_of(q), *(q.extra.get("caveats", []) or [])):
+        for c in caveats_of(q):
             add(c)
     cyc_q = outcome.quantities.get("loads.cycle")
     if cyc_q is not None and cyc_q.extra.get("cycle") is not None:

@@ -40,10 +40,10 @@ class Detail:
 def assumptions_of(q: Any) -> tuple[str, ...]:
     """The assumptions a quantity's detail states (none without a detail)."""
     d = getattr(q, "detail", None)
-    return d.assumptions if isinstance(d, Detail) else ()
+    return tuple(d.assumptions) if d is not None else ()
 
 
 def caveats_of(q: Any) -> tuple[dict[str, Any], ...]:
     """The caveats a quantity's detail states (none without a detail)."""
     d = getattr(q, "detail", None)
-    return d.caveats if isinstance(d, Detail) else ()
+    return tuple(d.caveats) if d is not None else ()
