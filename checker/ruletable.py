@@ -21,7 +21,7 @@ from . import display
 from . import modules as _modules  # noqa: F401  (registers the quantities rules name)
 from .engine import Engine
 from .errors import InputError, InputErrors, RuleFileError, UsageProblem
-from .graph import QUANTITIES, Quantity, ensure_registered
+from .graph import QUANTITIES, Quantity, QuantitySpec, ensure_registered
 from .units import Q_, from_si
 
 ID_PATTERN = re.compile(r"^[A-Z]{2,5}-\d{3}$")
@@ -499,6 +499,12 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
                   others: dict[str, Quantity] | None = None) -> list[RuleResult]:
     """Evaluate one rule on its quantity: one result per item it applies to.
 
+    Per item, in this order: is the item selected (the rule's ``where`` filters,
+    :func:`_item_selected`); which limit applies (:func:`_item_limit`: a missing limit makes
+    the result ``not evaluated``); are the values there (:func:`_nonfinite_result`: a missing
+    input makes it ``not evaluated``, a NaN no input explains is an internal error that
+    fails); and finally the judgement at the worst judged point (:func:`_judge`).
+
     ``others`` holds the quantities the rule's quantity is compared with
     (``QuantitySpec.compare``, e.g. the film thickness by the other method): each result
     carries their values at its judged point, and which one the rule judged."""
@@ -523,153 +529,176 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
     factor = _affine(spec.unit, rule.unit)
     for ii, item in enumerate(items):
         attrs = q.item_attrs.get(item, {})
-        if any(k not in dims and str(attrs.get(k)) not in vals and
-               str(attrs.get(k)).lower() not in [v.lower() for v in vals]
-               for k, vals in rule.where.items()):
+        if not _item_selected(rule, attrs, dims):
             continue
         if "item" in dims:
             sel_i = list(sel)
             sel_i[dims.index("item")] = np.array([ii])
         else:
             sel_i = sel
+        lim, unjudged = _item_limit(rule, q, item, attrs, sel_i, factor, base)
+        if unjudged is not None:
+            results.append(unjudged)
+            continue
         sub = q.values[np.ix_(*sel_i)]
-        lim = rule.limit
-        if rule.limit_by is not None:
-            key = str(attrs.get(rule.limit_by) or "").lower()
-            lim = rule.limits.get(key)
-            if lim is None:
-                if rule.limit_by == "engine_class" and key:
-                    why = (f"a limit for a {key} engine: the published limit of {rule.id} is"
-                           f" for {' and '.join(rule.limits)} engines"
-                           f" ({_source_short(rule.source)}); enter the project's limit in"
-                           f" RuleOverrides (engine class from"
-                           f" {attrs.get('engine_class_cell') or 'sheet Engine'})")
-                else:
-                    why = (f"no {rule.limit_by.replace('_', ' ')} given for '{item}'"
-                           if not key else
-                           f"{rule.limit_by.replace('_', ' ')} '{key}' of '{item}' has no"
-                           f" limit in rule {rule.id} (known: {', '.join(rule.limits)}); add"
-                           " a RuleOverrides row")
-                # reported but not judged: the worst value in the rule's direction
-                value, where_txt = _unjudged_worst(rule, q, sel_i, dims, factor)
-                msg = "not evaluated: missing " + why
-                if value is not None:
-                    msg += (f" (computed, not judged: {display.with_unit(value, rule.unit)}"
-                            + (f" at {where_txt}" if where_txt else "") + ")")
-                results.append(RuleResult(**base, item=item, status="not_evaluated",
-                                          value=value, limit=("project limit" if
-                                                              rule.limit_by == "engine_class"
-                                                              else rule.limit_text()),
-                                          limit_values=None, margin=None, case=where_txt,
-                                          message=msg, missing=[why]))
-                continue
-        if rule.limit_from == "workbook":
-            # the engine's own limit, carried by the quantity (SI, converted to the rule unit)
-            given = attrs.get("limit")
-            n_lim = 2 if rule.check == "between" else 1
-            if given is None or len(tuple(given)) != n_lim:
-                why = list(attrs.get("limit_missing") or [
-                    f"no limit for '{item}' given in the workbook"])
-                why += [m for m in _collect(q.missing, sel_i) if m not in why]
-                # reported but not judged: the worst value in the rule's direction
-                value, where_txt = _unjudged_worst(rule, q, sel_i, dims, factor)
-                msg = "not evaluated: missing " + "; ".join(why)
-                if value is not None:
-                    msg += (f" (computed, not judged: {display.with_unit(value, rule.unit)}"
-                            + (f" at {where_txt}" if where_txt else "") + ")")
-                results.append(RuleResult(**base, item=item, status="not_evaluated",
-                                          value=value, limit=rule.limit_text(),
-                                          limit_values=None, margin=None, case=where_txt,
-                                          message=msg, missing=why))
-                continue
-            lim = tuple(float(factor(float(x))) for x in given)
-        lim_text = rule.limit_text(lim)
-        name = rule.name
-        if rule.limit_by == "engine_class":  # the row says which class its limit is for
-            name = f"{rule.name} ({str(attrs.get('engine_class') or '').lower()} limit)"
-        limit_cell = attrs.get("limit_cell") if rule.limit_from == "workbook" else None
-        # missing entries and findings within the selection
-        missing = _collect(q.missing, sel_i)
-        findings = _collect(q.findings, sel_i)
         if sub.size == 0:
             continue
-        bad = ~np.isfinite(sub)
-        if bad.any():
-            # A non-finite value is "not evaluated" only where a missing input explains it;
-            # anywhere else the calculation ran and failed: an internal error of this result,
-            # which fails (never a missing input, never a pass).
-            unexplained = [loc for loc in np.argwhere(bad) if not any(
-                q.missing.get(t[:n]) for t in [tuple(int(sel_i[j][loc[j]])
-                                                     for j in range(len(dims)))]
-                for n in range(len(t), 0, -1))]
-            if unexplained:
-                loc = unexplained[0]
-                where_txt = ", ".join(_coord_text(d, q.coords[d][sel_i[j][loc[j]]])
-                                      for j, d in enumerate(dims) if d != "item")
-                kind = "NaN" if np.isnan(sub[tuple(loc)]) else "an infinite value"
-                msg = (f"{rule.name}: internal error: the calculation ran but gave {kind}"
-                       + (f" at {where_txt}" if where_txt else "")
-                       + (f" ({len(unexplained)} points)" if len(unexplained) > 1 else "")
-                       + "; the result cannot be judged and counts as failed"
-                       + (f". Findings: {'; '.join(findings[:3])}" if findings else "")
-                       + ". Please report it with the workbook.")
-                results.append(RuleResult(**base, item=item, status="fail", value=None,
-                                          limit=lim_text, limit_values=list(lim), margin=None,
-                                          case=where_txt, message=msg, findings=findings,
-                                          internal_error=True))
-                continue
-            if not missing:
-                missing = ["some values could not be computed"]
-            results.append(RuleResult(**base, item=item, status="not_evaluated", value=None,
-                                      limit=lim_text, limit_values=list(lim), margin=None,
-                                      case="", message="not evaluated: missing "
-                                      + "; ".join(missing), missing=missing,
-                                      findings=findings))
+        if not np.isfinite(sub).all():
+            results.append(_nonfinite_result(rule, q, item, sub, sel_i, lim, base))
             continue
-        disp = factor(sub)
-        m = _margin(rule.check, disp, lim)
-        if q.applies is not None:
-            app = q.applies[np.ix_(*sel_i)]
-            if not app.any():
-                # nothing this rule applies to for this item (e.g. JNT-008 where no torque
-                # is given): no result, as for an item its 'where' filter excludes. Never a
-                # pass without a value.
-                continue
-            m = np.where(app, m, np.inf)
-        k = int(np.argmin(m))
-        worst = np.unravel_index(k, sub.shape)
-        value = float(disp[worst])
-        margin = float(m[worst])
-        case_parts = [_coord_text(d, q.coords[d][sel_i[j][worst[j]]])
-                      for j, d in enumerate(dims) if d != "item"]
-        ok = _passes(rule.check, margin)
-        status = "pass" if ok else "fail"
-        verb = "meets" if ok else "violates"
-        near = min(lim, key=lambda x: abs(x - value))
-        msg = (f"{name}: {display.with_unit(value, rule.unit, distinct_from=near)} {verb}"
-               f" {lim_text}")
-        if case_parts:
-            msg += f" (worst at {', '.join(case_parts)})"
-        if limit_cell:
-            msg += f"; limit from {limit_cell}"
-        at = tuple(int(sel_i[j][worst[j]]) for j in range(len(dims)))
-        # the findings of the judged point first (a note beside the value describes it)
-        here = _collect(q.findings, [np.array([x]) for x in at])
-        findings = here + [f for f in findings if f not in here]
-        compare, judged_on = _compare_at(spec, others, q, at, factor)
-        if compare:
-            judged_on = next((lab for lab, n in spec.compare if n == rule.quantity), "")
-            parts = [f"{lab} {display.with_unit(v, rule.unit)}" for lab, v in compare.items()]
-            vals = list(compare.values())
-            ratio = (f", ratio {max(vals) / min(vals):.2f}" if len(vals) == 2 and min(vals) > 0
-                     else "")
-            msg += f" [{'; '.join(parts)}{ratio}; judged on {judged_on or rule.quantity}]"
-        results.append(RuleResult(**dict(base, name=name), item=item, status=status,
-                                  value=value, limit=lim_text, limit_values=list(lim),
-                                  margin=margin,
-                                  case=", ".join(case_parts), message=msg, findings=findings,
-                                  compare=compare, judged_on=judged_on))
+        r = _judge(rule, spec, q, item, attrs, sub, sel_i, lim, factor, others, base)
+        if r is not None:
+            results.append(r)
     return results
+
+
+def _item_selected(rule: Rule, attrs: dict, dims: tuple[str, ...]) -> bool:
+    """Whether an item passes the rule's ``where`` filters on item attributes (bearing type,
+    lining...; case-insensitive); filters on coordinates are applied to the selection."""
+    return not any(k not in dims and str(attrs.get(k)) not in vals and
+                   str(attrs.get(k)).lower() not in [v.lower() for v in vals]
+                   for k, vals in rule.where.items())
+
+
+def _item_limit(rule: Rule, q: Quantity, item: str, attrs: dict, sel_i: list, factor,
+                base: dict) -> tuple[tuple[float, ...], RuleResult | None]:
+    """The limit that applies to one item (in the rule's unit), or the ``not evaluated``
+    result when there is none: no limit for the item's class/lining (``limit_by``), or no
+    engine limit in the workbook (``limit_from = "workbook"``). The not-evaluated result
+    still reports the worst computed value in the rule's direction, not judged."""
+    dims = q.spec.dims
+    lim = rule.limit
+    why: list[str] = []
+    limit_text = rule.limit_text()
+    if rule.limit_by is not None:
+        key = str(attrs.get(rule.limit_by) or "").lower()
+        lim = rule.limits.get(key)
+        if lim is None:
+            if rule.limit_by == "engine_class" and key:
+                why = [f"a limit for a {key} engine: the published limit of {rule.id} is"
+                       f" for {' and '.join(rule.limits)} engines"
+                       f" ({_source_short(rule.source)}); enter the project's limit in"
+                       f" RuleOverrides (engine class from"
+                       f" {attrs.get('engine_class_cell') or 'sheet Engine'})"]
+                limit_text = "project limit"
+            else:
+                why = [f"no {rule.limit_by.replace('_', ' ')} given for '{item}'"
+                       if not key else
+                       f"{rule.limit_by.replace('_', ' ')} '{key}' of '{item}' has no"
+                       f" limit in rule {rule.id} (known: {', '.join(rule.limits)}); add"
+                       " a RuleOverrides row"]
+    if not why and rule.limit_from == "workbook":
+        # the engine's own limit, carried by the quantity (SI, converted to the rule unit)
+        given = attrs.get("limit")
+        n_lim = 2 if rule.check == "between" else 1
+        if given is None or len(tuple(given)) != n_lim:
+            why = list(attrs.get("limit_missing") or [
+                f"no limit for '{item}' given in the workbook"])
+            why += [m for m in _collect(q.missing, sel_i) if m not in why]
+        else:
+            lim = tuple(float(factor(float(x))) for x in given)
+    if not why:
+        return lim, None
+    # reported but not judged: the worst value in the rule's direction
+    value, where_txt = _unjudged_worst(rule, q, sel_i, dims, factor)
+    msg = "not evaluated: missing " + "; ".join(why)
+    if value is not None:
+        msg += (f" (computed, not judged: {display.with_unit(value, rule.unit)}"
+                + (f" at {where_txt}" if where_txt else "") + ")")
+    return lim, RuleResult(**base, item=item, status="not_evaluated", value=value,
+                           limit=limit_text, limit_values=None, margin=None, case=where_txt,
+                           message=msg, missing=why)
+
+
+def _nonfinite_result(rule: Rule, q: Quantity, item: str, sub: np.ndarray, sel_i: list,
+                      lim: tuple[float, ...], base: dict) -> RuleResult:
+    """The result of an item with non-finite values: ``not evaluated`` where missing inputs
+    explain them; anywhere else the calculation ran and failed: an internal error of this
+    result, which fails (never a missing input, never a pass)."""
+    dims = q.spec.dims
+    lim_text = rule.limit_text(lim)
+    missing = _collect(q.missing, sel_i)
+    findings = _collect(q.findings, sel_i)
+    bad = ~np.isfinite(sub)
+    unexplained = [loc for loc in np.argwhere(bad) if not any(
+        q.missing.get(t[:n]) for t in [tuple(int(sel_i[j][loc[j]])
+                                             for j in range(len(dims)))]
+        for n in range(len(t), 0, -1))]
+    if unexplained:
+        loc = unexplained[0]
+        where_txt = ", ".join(_coord_text(d, q.coords[d][sel_i[j][loc[j]]])
+                              for j, d in enumerate(dims) if d != "item")
+        kind = "NaN" if np.isnan(sub[tuple(loc)]) else "an infinite value"
+        msg = (f"{rule.name}: internal error: the calculation ran but gave {kind}"
+               + (f" at {where_txt}" if where_txt else "")
+               + (f" ({len(unexplained)} points)" if len(unexplained) > 1 else "")
+               + "; the result cannot be judged and counts as failed"
+               + (f". Findings: {'; '.join(findings[:3])}" if findings else "")
+               + ". Please report it with the workbook.")
+        return RuleResult(**base, item=item, status="fail", value=None, limit=lim_text,
+                          limit_values=list(lim), margin=None, case=where_txt, message=msg,
+                          findings=findings, internal_error=True)
+    if not missing:
+        missing = ["some values could not be computed"]
+    return RuleResult(**base, item=item, status="not_evaluated", value=None, limit=lim_text,
+                      limit_values=list(lim), margin=None, case="",
+                      message="not evaluated: missing " + "; ".join(missing), missing=missing,
+                      findings=findings)
+
+
+def _judge(rule: Rule, spec: QuantitySpec, q: Quantity, item: str, attrs: dict,
+           sub: np.ndarray, sel_i: list, lim: tuple[float, ...], factor,
+           others: dict[str, Quantity] | None, base: dict) -> RuleResult | None:
+    """Pass or fail at the worst judged point of one item (the smallest margin among the
+    points the quantity's ``applies`` mask judges); ``None`` when the mask judges none of
+    the item's points (no result, as for an item the ``where`` filter excludes: never a pass
+    without a value)."""
+    dims = spec.dims
+    lim_text = rule.limit_text(lim)
+    name = rule.name
+    if rule.limit_by == "engine_class":  # the row says which class its limit is for
+        name = f"{rule.name} ({str(attrs.get('engine_class') or '').lower()} limit)"
+    limit_cell = attrs.get("limit_cell") if rule.limit_from == "workbook" else None
+    findings = _collect(q.findings, sel_i)
+    disp = factor(sub)
+    m = _margin(rule.check, disp, lim)
+    if q.applies is not None:
+        app = q.applies[np.ix_(*sel_i)]
+        if not app.any():
+            return None
+        m = np.where(app, m, np.inf)
+    k = int(np.argmin(m))
+    worst = np.unravel_index(k, sub.shape)
+    value = float(disp[worst])
+    margin = float(m[worst])
+    case_parts = [_coord_text(d, q.coords[d][sel_i[j][worst[j]]])
+                  for j, d in enumerate(dims) if d != "item"]
+    ok = _passes(rule.check, margin)
+    status = "pass" if ok else "fail"
+    verb = "meets" if ok else "violates"
+    near = min(lim, key=lambda x: abs(x - value))
+    msg = (f"{name}: {display.with_unit(value, rule.unit, distinct_from=near)} {verb}"
+           f" {lim_text}")
+    if case_parts:
+        msg += f" (worst at {', '.join(case_parts)})"
+    if limit_cell:
+        msg += f"; limit from {limit_cell}"
+    at = tuple(int(sel_i[j][worst[j]]) for j in range(len(dims)))
+    # the findings of the judged point first (a note beside the value describes it)
+    here = _collect(q.findings, [np.array([x]) for x in at])
+    findings = here + [f for f in findings if f not in here]
+    compare, judged_on = _compare_at(spec, others, q, at, factor)
+    if compare:
+        judged_on = next((lab for lab, n in spec.compare if n == rule.quantity), "")
+        parts = [f"{lab} {display.with_unit(v, rule.unit)}" for lab, v in compare.items()]
+        vals = list(compare.values())
+        ratio = (f", ratio {max(vals) / min(vals):.2f}" if len(vals) == 2 and min(vals) > 0
+                 else "")
+        msg += f" [{'; '.join(parts)}{ratio}; judged on {judged_on or rule.quantity}]"
+    return RuleResult(**dict(base, name=name), item=item, status=status, value=value,
+                      limit=lim_text, limit_values=list(lim), margin=margin,
+                      case=", ".join(case_parts), message=msg, findings=findings,
+                      compare=compare, judged_on=judged_on)
 
 
 def _source_short(source: str) -> str:
