@@ -459,28 +459,80 @@ def check_oil(oil: Params, err: Callable[[str, str, int | None, str], None]) -> 
             f" ({what}), where its viscosity curve has no value")
 
 
+class _Problems:
+    """The errors and warnings of one workbook, collected across every sheet's builder (all
+    problems are reported in one pass), each located by its cell."""
+
+    def __init__(self, data: WorkbookData):
+        self.where = data.where
+        self.errors: list[InputError] = list(data.errors)
+        self.warnings: list[InputError] = list(data.warnings)
+
+    def _at(self, sheet: str, attr: str, row: int | None) -> str:
+        key = (sheet, attr) if row is None else (sheet, row, attr)
+        return self.where.get(key, sheet)
+
+    def err(self, sheet: str, attr: str, row: int | None, msg: str) -> None:
+        self.errors.append(InputError(self._at(sheet, attr, row), msg))
+
+    def warn(self, sheet: str, attr: str, row: int | None, msg: str) -> None:
+        self.warnings.append(InputError(self._at(sheet, attr, row), msg))
+
+    def sheet_error(self, sheet: str, msg: str) -> None:
+        """A problem of a whole sheet (no single cell)."""
+        self.errors.append(InputError(sheet, msg))
+
+
 def build_engine(data: WorkbookData,
                  check_overrides: Callable[[list[RuleOverride]], list[InputError]] | None = None
                  ) -> Engine:
-    """Build and cross-check the typed engine from converted workbook data.
+    """Build and cross-check the typed engine from converted workbook data: one builder per
+    sheet (``_cylinders``, ``_bearings``...), each adding its problems to one list, so every
+    problem of the workbook is reported at once.
 
     ``check_overrides`` validates the RuleOverrides rows against the rule table in use; its
     problems are reported together with every other problem of the workbook.
     """
-    errs: list[InputError] = list(data.errors)
-    warns: list[InputError] = list(data.warnings)
-
-    def err(sheet: str, attr: str, row: int | None, msg: str) -> None:
-        key = (sheet, attr) if row is None else (sheet, row, attr)
-        errs.append(InputError(data.where.get(key, sheet), msg))
-
-    def warn(sheet: str, attr: str, row: int | None, msg: str) -> None:
-        key = (sheet, attr) if row is None else (sheet, row, attr)
-        warns.append(InputError(data.where.get(key, sheet), msg))
-
+    pr = _Problems(data)
     p = Params(data.params["Engine"])
-    n_cyl = p.get("cylinders")
+    cylinders, complete = _cylinders(data, p, pr)
+    _engine_geometry(p, pr)
+    bearings = _bearings(data, pr)
+    crank_mass = _crank_mass(data, p, cylinders, complete, bearings, pr)
+    tv = _tv_model(data, p, pr)
+    joints = _joints(data, pr)
+    jt = _joint_torques(data, joints, pr)
+    pk = _peak_pressure(data, pr)
+    check_traces(_rows(data, "PressureTraces"), pr.err)
+    check_speed_grid(p, pk, pr.err, pr.warn)
+    traces = tuple((r["case"], r["speed"], r["crank_angle"], r["pressure"])
+                   for r in _rows(data, "PressureTraces")
+                   if None not in (r["case"], r["speed"], r["crank_angle"], r["pressure"]))
+    bt = _brake_torque(data, pr)
+    check_oil(Params(data.params.get("Oil", {})), pr.err)
+    damper = _damper(data, pr)
+    overrides = _overrides(data, pr)
+    if check_overrides is not None:
+        pr.errors += check_overrides(overrides)
+    if pr.errors:
+        raise InputErrors(pr.errors, pr.warnings)
+    return Engine(
+        params=p, cylinders=tuple(sorted(cylinders, key=lambda c: c.number)),
+        bearings=tuple(bearings), crank_mass=crank_mass, tv_model=tuple(tv),
+        joints=tuple(joints), joint_torques=tuple(jt), peak_pressure=tuple(pk),
+        pressure_traces=traces, brake_torque=tuple(sorted(bt)),
+        oil=Params(data.params.get("Oil", {})), damper=damper,
+        fatigue=Params(data.params.get("Fatigue", {})), overrides=tuple(overrides),
+        source=data.path, sha256=data.sha256, where=dict(data.where),
+        assumptions=tuple(data.assumptions), warnings=tuple(pr.warnings),
+    )
 
+
+def _cylinders(data: WorkbookData, p: Params, pr: _Problems) -> tuple[list[Cylinder], bool]:
+    """Sheet Cylinders (with the Engine sheet's cylinder count and firing order): the
+    cylinders, and whether every row was complete."""
+    err = pr.err
+    n_cyl = p.get("cylinders")
     cyl_rows = _rows(data, "Cylinders")
     cylinders = []
     row_of: dict[int, int] = {}
@@ -499,12 +551,12 @@ def build_engine(data: WorkbookData,
     if complete and cylinders and len(row_of) == len(cylinders):
         check_cylinders(cylinders, row_of, err)
     if n_cyl is not None and cyl_rows and len(cyl_rows) != n_cyl:
-        errs.append(InputError("Cylinders", f"{len(cyl_rows)} cylinder rows but Engine says"
-                               f" {n_cyl} cylinders ({data.where.get(('Engine', 'cylinders'))})"))
+        pr.sheet_error("Cylinders", f"{len(cyl_rows)} cylinder rows but Engine says"
+                       f" {n_cyl} cylinders ({data.where.get(('Engine', 'cylinders'))})")
     numbers = sorted(c.number for c in cylinders)
     if n_cyl is not None and cylinders and numbers != list(range(1, len(cylinders) + 1)):
-        errs.append(InputError("Cylinders", f"cylinders must be numbered 1..{len(cylinders)},"
-                               f" found {numbers}"))
+        pr.sheet_error("Cylinders", f"cylinders must be numbered 1..{len(cylinders)},"
+                       f" found {numbers}")
     fo_text = p.get("firing_order")
     if fo_text is not None:
         fo = _firing_order(fo_text)
@@ -514,10 +566,16 @@ def build_engine(data: WorkbookData,
         elif cylinders and len(cylinders) == len(fo):
             by_angle = [c.number for c in sorted(cylinders, key=lambda c: c.firing_angle)]
             if by_angle != fo:
-                errs.append(InputError(
+                pr.sheet_error(
                     "Cylinders", f"firing angles give the firing order"
                     f" {'-'.join(map(str, by_angle))}, but Engine says '{fo_text}'"
-                    f" ({data.where.get(('Engine', 'firing_order'))})"))
+                    f" ({data.where.get(('Engine', 'firing_order'))})")
+    return cylinders, complete
+
+
+def _engine_geometry(p: Params, pr: _Problems) -> None:
+    """Sheet Engine: the speed range and the slider-crank geometry are consistent."""
+    err = pr.err
     smin, smax = p.get("speed_min"), p.get("speed_max")
     if smin is not None and smax is not None and smin >= smax:
         err("Engine", "speed_max", None, "maximum speed must be above the minimum speed")
@@ -539,6 +597,10 @@ def build_engine(data: WorkbookData,
             err("Engine", "rod_com", None, "rod centre of mass must lie between big end and"
                 " small end")
 
+
+def _bearings(data: WorkbookData, pr: _Problems) -> list[Bearing]:
+    """Sheet Bearings: the complete rows, with their geometry checked."""
+    err, warn = pr.err, pr.warn
     bearings = []
     counts = {"main": 0, "big end": 0}
     for i, r in enumerate(_rows(data, "Bearings")):
@@ -569,7 +631,14 @@ def build_engine(data: WorkbookData,
             lining=r["lining"], max_film_temperature=r["max_film_temperature"],
             max_film_pressure=r["max_film_pressure"], min_oil_flow=r["min_oil_flow"],
             index=counts[r["type"]], row=i))
+    return bearings
 
+
+def _crank_mass(data: WorkbookData, p: Params, cylinders: list[Cylinder], complete: bool,
+                bearings: list[Bearing], pr: _Problems) -> tuple[MassItem, ...]:
+    """Sheet CrankMass, with the crank's bearing count (a main on each side of every throw, a
+    big end per rod) and the mass planes checked against the crank."""
+    err = pr.err
     crank_mass = tuple(
         MassItem(r["location"], r["throw"], r["kind"], r["mass"], r["x"], r["y"], r["z"] or 0.0,
                  r["axial"], r["reference"])
@@ -592,9 +661,9 @@ def build_engine(data: WorkbookData,
             if names and len(names) != need:
                 fix = (f"add the missing {kind} bearing row" if len(names) < need
                        else "remove the extra rows")
-                errs.append(InputError("Bearings", f"{len(names)} {kind} bearing"
-                                       f"{'s' if len(names) != 1 else ''} given"
-                                       f" ({', '.join(names)}), but {why}; {fix}"))
+                pr.sheet_error("Bearings", f"{len(names)} {kind} bearing"
+                               f"{'s' if len(names) != 1 else ''} given"
+                               f" ({', '.join(names)}), but {why}; {fix}")
     for i, r in enumerate(_rows(data, "CrankMass")):
         if r["throw"] is not None and n_pins and r["throw"] > n_pins:
             err("CrankMass", "throw", i, f"throw {r['throw']} does not exist (the engine has"
@@ -603,10 +672,15 @@ def build_engine(data: WorkbookData,
         if r["axial"] is not None and spacing is not None and r["axial"] > spacing:
             err("CrankMass", "axial", i, "axial position lies beyond the next main bearing"
                 " (main journal spacing)")
-
     check_mass_planes(_rows(data, "CrankMass"), p, Params(data.params.get("Fatigue", {})),
-                      bearings, data.where, warn)
+                      bearings, data.where, pr.warn)
+    return crank_mass
 
+
+def _tv_model(data: WorkbookData, p: Params, pr: _Problems) -> list[TVStation]:
+    """Sheet TVModel: the stations front to rear, each cylinder on one station."""
+    err = pr.err
+    n_cyl = p.get("cylinders")
     tv_rows = _rows(data, "TVModel")
     tv = []
     station_of_cyl: dict[int, int] = {}
@@ -637,7 +711,12 @@ def build_engine(data: WorkbookData,
         tv.append(TVStation(r["station"], r["role"], r["inertia"], cyls_here,
                             r["absolute_damping"] or 0.0, r["stiffness"],
                             r["relative_damping"] or 0.0))
+    return tv
 
+
+def _joints(data: WorkbookData, pr: _Problems) -> list[Joint]:
+    """Sheet Joints: the complete joint rows, with their geometry checked."""
+    err = pr.err
     joints = []
     for i, r in enumerate(_rows(data, "Joints")):
         if r["head_outer"] is not None and r["head_inner"] is not None and \
@@ -658,6 +737,13 @@ def build_engine(data: WorkbookData,
                     r["property_class"], r["tightening"], r["face_outer"], r["face_inner"]):
             continue
         joints.append(Joint(**{k: v for k, v in r.items() if not k.startswith("_")}, row=i))
+    return joints
+
+
+def _joint_torques(data: WorkbookData, joints: list[Joint], pr: _Problems
+                   ) -> list[JointTorque]:
+    """Sheet JointTorques: one torque per joint and operating point, of a known joint."""
+    err = pr.err
     names = {j.name.lower(): j.name for j in joints}
     jt = []
     seen = {}
@@ -675,7 +761,11 @@ def build_engine(data: WorkbookData,
         seen[key] = i
         name = names[r["joint"].lower()]
         jt.append(JointTorque(name, r["point"], r["torque"], r["speed"]))
+    return jt
 
+
+def _peak_pressure(data: WorkbookData, pr: _Problems) -> list[tuple[str, float, float]]:
+    """Sheet PeakPressure: (case, speed, peak pressure), one per case and speed."""
     pk = []
     seen_pk = set()
     for i, r in enumerate(_rows(data, "PeakPressure")):
@@ -683,60 +773,53 @@ def build_engine(data: WorkbookData,
             continue
         key = (r["case"], round(r["speed"], 6))
         if key in seen_pk:
-            err("PeakPressure", "speed", i, f"duplicate speed for load case '{r['case']}'")
+            pr.err("PeakPressure", "speed", i, f"duplicate speed for load case '{r['case']}'")
         seen_pk.add(key)
         pk.append((r["case"], r["speed"], r["peak_pressure"]))
-    check_traces(_rows(data, "PressureTraces"), err)
-    check_speed_grid(p, pk, err, warn)
-    traces = tuple((r["case"], r["speed"], r["crank_angle"], r["pressure"])
-                   for r in _rows(data, "PressureTraces")
-                   if None not in (r["case"], r["speed"], r["crank_angle"], r["pressure"]))
+    return pk
+
+
+def _brake_torque(data: WorkbookData, pr: _Problems) -> list[tuple[float, float]]:
+    """Sheet BrakeTorque: (speed, brake torque), one per speed."""
     bt = []
     seen_bt = set()
     for i, r in enumerate(_rows(data, "BrakeTorque")):
         if r["speed"] is None or r["brake_torque"] is None:
             continue
         if round(r["speed"], 6) in seen_bt:
-            err("BrakeTorque", "speed", i, "duplicate speed")
+            pr.err("BrakeTorque", "speed", i, "duplicate speed")
         seen_bt.add(round(r["speed"], 6))
         bt.append((r["speed"], r["brake_torque"]))
+    return bt
 
-    check_oil(Params(data.params.get("Oil", {})), err)
+
+def _damper(data: WorkbookData, pr: _Problems) -> Params:
+    """Sheet Damper: the rubber ring's radii are consistent."""
     damper = Params(data.params.get("Damper", {}))
     if damper.get("inner_radius") is not None and damper.get("outer_radius") is not None and \
             damper["inner_radius"] >= damper["outer_radius"]:
-        err("Damper", "inner_radius", None, "rubber inner radius must be smaller than the outer"
-            " radius")
+        pr.err("Damper", "inner_radius", None, "rubber inner radius must be smaller than the"
+               " outer radius")
+    return damper
 
+
+def _overrides(data: WorkbookData, pr: _Problems) -> list[RuleOverride]:
+    """Sheet RuleOverrides: each override with its limit and reason."""
     overrides = []
     for i, r in enumerate(_rows(data, "RuleOverrides")):
         if r["rule"] is None:
             continue
         if r["limit"] is None:
-            err("RuleOverrides", "rule", i, "an override needs a limit")
+            pr.err("RuleOverrides", "rule", i, "an override needs a limit")
             continue
         if r["reason"] is None:
-            err("RuleOverrides", "rule", i, "an override needs a reason (it is listed in the"
-                " report)")
+            pr.err("RuleOverrides", "rule", i, "an override needs a reason (it is listed in"
+                   " the report)")
             continue
         overrides.append(RuleOverride(r["rule"].strip(), str(r["limit"]).strip(),
                                       r["unit"], r["reason"],
                                       data.where.get(("RuleOverrides", i, "limit"), "")))
-
-    if check_overrides is not None:
-        errs += check_overrides(overrides)
-    if errs:
-        raise InputErrors(errs, warns)
-    return Engine(
-        params=p, cylinders=tuple(sorted(cylinders, key=lambda c: c.number)),
-        bearings=tuple(bearings), crank_mass=crank_mass, tv_model=tuple(tv),
-        joints=tuple(joints), joint_torques=tuple(jt), peak_pressure=tuple(pk),
-        pressure_traces=traces, brake_torque=tuple(sorted(bt)),
-        oil=Params(data.params.get("Oil", {})), damper=damper,
-        fatigue=Params(data.params.get("Fatigue", {})), overrides=tuple(overrides),
-        source=data.path, sha256=data.sha256, where=dict(data.where),
-        assumptions=tuple(data.assumptions), warnings=tuple(warns),
-    )
+    return overrides
 
 
 def load_engine(path, check_overrides: Callable[[list[RuleOverride]], list[InputError]]
