@@ -194,6 +194,41 @@ def annulus_stiffness(
     return g * 4.0 * np.pi * ln * ri**2 * ro**2 / (ro**2 - ri**2)
 
 
+
+def annulus_shear_modulus(
+    stiffness: ArrayLike, r_inner: ArrayLike, r_outer: ArrayLike, length: ArrayLike
+) -> np.ndarray:
+    """Storage shear modulus of a bonded annular rubber ring from its torsional stiffness.
+
+    ``G' = k' (r_o^2 - r_i^2) / (4 pi L r_i^2 r_o^2)``: :func:`annulus_stiffness` solved for
+    the modulus (Gent, *Engineering with Rubber*, 3rd ed. 2012, ch. 8).
+
+    Parameters
+    ----------
+    stiffness : array_like [N m/rad]
+        Storage (real) torsional stiffness ``k'``, positive.
+    r_inner, r_outer : array_like [m]
+        Bonded radii (hub side, ring side).
+    length : array_like [m]
+        Axial length of the rubber.
+
+    Returns
+    -------
+    numpy.ndarray [Pa]
+
+    Examples
+    --------
+    A ring of r_i = 50 mm, r_o = 60 mm, L = 20 mm has k'/G' = 4 pi 0.02 0.05^2 0.06^2 / 0.0011
+    = 2.0563152e-3 m^3, so k' = 2056.3152 N m/rad means G' = 1 MPa:
+
+    >>> round(float(annulus_shear_modulus(2056.3152, 0.05, 0.06, 0.02)) / 1e6, 6)
+    1.0
+    """
+    k = np.asarray(stiffness, dtype=float)
+    if np.any(k <= 0):
+        raise ValueError("stiffness must be positive N m/rad")
+    return k / annulus_stiffness(1.0, r_inner, r_outer, length)
+
 def annulus_shear_stress(
     torque: ArrayLike, r_inner: ArrayLike, length: ArrayLike, radius: ArrayLike | None = None
 ) -> np.ndarray:

@@ -6,12 +6,13 @@ from __future__ import annotations
 from ..calc.crank_nose import crank_nose_safety_factor, crank_nose_stresses
 from ..engine import Engine
 from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
+from ..results.crank_nose import CrankNoseDetail
 from .loads import CASES
 
 NOSE_SF = quantity(QuantitySpec(
     "fatigue.nose_goodman_sf", "", ("case", "speed"),
     "Goodman safety factor at the crank-nose fillet (belt bending + mean and TV torsion)", "",
-    coords={"case": CASES}))
+    coords={"case": CASES}, detail=CrankNoseDetail))
 
 _NEEDED = ("nose_diameter", "scf_nose_bending", "scf_nose_torsion", "nose_fatigue", "uts")
 
@@ -31,9 +32,9 @@ def crank_nose_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     k = next((i for i, n in enumerate(names) if el.item_attrs[n].get("front") == nose), None)
     if nose is None or k is None:
         raise MissingInputs(["TVModel: no 'crank nose' station followed by a shaft element"])
-    ex = el.extra
-    tmax = ex["mean"][k] + ex["vib_max"][k]
-    tmin = ex["mean"][k] + ex["vib_min"][k]
+    ex = el.detail
+    tmax = ex.mean[k] + ex.vib_max[k]
+    tmin = ex.mean[k] + ex.vib_min[k]
     notes = []
     belt = f.get("belt_load")
     lever = f.get("belt_overhang")
@@ -50,5 +51,5 @@ def crank_nose_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                  " nose fatigue strength and the base UTS (Shigley 10th ed. eq. 7-7/7-8).")
     return {"fatigue.nose_goodman_sf": Quantity(
         NOSE_SF, sf, {"case": el.coords["case"], "speed": el.coords["speed"]},
-        extra={"sigma_eq_a": eq_a, "sigma_eq_m": eq_m, "torque_max": tmax, "torque_min": tmin,
-               "element": names[k], "assumptions": notes})}
+        detail=CrankNoseDetail(sigma_eq_a=eq_a, sigma_eq_m=eq_m, torque_max=tmax,
+                               torque_min=tmin, element=names[k], assumptions=tuple(notes)))}

@@ -3,6 +3,15 @@ crank's first mode and its damping, compared with Den Hartog's optimum for its i
 and the crank-nose amplitude the same torsional model would have with the optimum rubber
 (:mod:`checker.calc.damper_tuning`).
 
+Which node computes what: this module ("damper", node ``damper_tuning``) gives
+``damper.tuning_ratio`` (rule DMP-004), the optimum (``damper.optimum_*``,
+``damper.crank_mode_frequency``, ``damper.modal_inertia``, ``damper.mass_ratio``,
+``damper.ring_frequency``, ``damper.damping_ratio``) and the peaks ``damper.peak_*``. The
+rubber's response (``damper.relative_twist``, ``damper.torque``, ``damper.power``,
+``damper.shear_stress``, ``damper.heat_density*`` and the ratios, rules DMP-001..003) comes from
+the torsional solve, module ``torsion`` (:mod:`checker.modules.torsion`). Detail type:
+:class:`checker.results.damper.DamperTuningDetail`.
+
 It reuses the torsional module's solution (model, station excitation and crank-nose amplitude
 of ``tv.nose_amplitude``) and re-solves the forced response once with the rubber element at
 the optimum stiffness and loss factor; every other input is unchanged. The tuning ratio is
@@ -25,6 +34,7 @@ from ..graph import (
     register_module,
     resonant_peaks,
 )
+from ..results.damper import DamperTuningDetail
 
 register_module("damper", "TV damper tuning")
 
@@ -33,16 +43,17 @@ CASES = ("full", "no")
 TUNING = quantity(QuantitySpec(
     "damper.tuning_ratio", "", ("item",),
     "Damper tuning ratio: ring natural frequency sqrt(k/J_ring) / crank first-mode frequency"
-    " without the ring", ""))
+    " without the ring", "", detail=DamperTuningDetail))
 OPT_NOSE = quantity(QuantitySpec(
     "damper.optimum_nose_amplitude", "rad", ("case", "speed"),
     "Crank-nose TV amplitude (all orders, half peak-to-peak) with the damper rubber at Den"
     " Hartog's optimum tuning and damping (same model otherwise)", "deg",
-    coords={"case": CASES}))
+    coords={"case": CASES}, detail=DamperTuningDetail))
 
 
 def _item_spec(name: str, unit: str, description: str, display: str) -> QuantitySpec:
-    return quantity(QuantitySpec(name, unit, ("item",), description, display))
+    return quantity(QuantitySpec(name, unit, ("item",), description, display,
+                                 detail=DamperTuningDetail))
 
 
 # Den Hartog's optimum and the primary system, per damper ring (item): every number the
@@ -80,14 +91,14 @@ PEAK_AMP = quantity(QuantitySpec(
     "damper.peak_nose_amplitude", "rad", ("design", "orders"),
     "Largest crank-nose order amplitude at the resonant peaks (as TV-001/TV-002 judge them)"
     " with the actual damper and with the optimum rubber (same model)", "deg",
-    coords={"design": PEAK_DESIGNS, "orders": PEAK_GROUPS}))
+    coords={"design": PEAK_DESIGNS, "orders": PEAK_GROUPS}, detail=DamperTuningDetail))
 PEAK_SPEED = quantity(QuantitySpec(
     "damper.peak_speed", "rad/s", ("design", "orders"),
     "Engine speed of that largest peak", "rpm",
-    coords={"design": PEAK_DESIGNS, "orders": PEAK_GROUPS}))
+    coords={"design": PEAK_DESIGNS, "orders": PEAK_GROUPS}, detail=DamperTuningDetail))
 PEAK_ORDER = quantity(QuantitySpec(
     "damper.peak_order", "", ("design", "orders"), "Order of that largest peak", "",
-    coords={"design": PEAK_DESIGNS, "orders": PEAK_GROUPS}))
+    coords={"design": PEAK_DESIGNS, "orders": PEAK_GROUPS}, detail=DamperTuningDetail))
 
 PROVIDES = ("damper.tuning_ratio", "damper.optimum_nose_amplitude",
             *(s.name for s in TUNING_VALUES), PEAK_AMP.name, PEAK_SPEED.name, PEAK_ORDER.name)
@@ -126,10 +137,10 @@ def peak_summary(orders: np.ndarray, theta: np.ndarray, n_cyl: int, speeds: np.n
 def damper_tuning(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Actual vs optimum damper tuning and the crank-nose amplitude at the optimum."""
     nose_q = inputs["tv.nose_amplitude"]
-    ex = nose_q.extra
-    model: tv.TorsionalModel = ex["model"]
-    data = ex["model_data"]
-    ring, nose = data["ring"], data["nose"]
+    ex = nose_q.detail
+    model: tv.TorsionalModel = ex.model
+    data = ex.model_data
+    ring, nose = data.ring, data.nose
     if ring is None:
         raise MissingInputs(["TVModel: no station with role 'damper ring' (engine without a TV"
                              " damper: nothing to tune)"])
@@ -145,9 +156,9 @@ def damper_tuning(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     t = dt.absorber_tuning(float(model.inertia[ring]), float(model.stiffness[ring]), eta, c,
                            pm.omega, pm.equivalent_inertia)
     opt = dt.optimum_model(model, ring, t)
-    force = ex["excitation"]  # (C, S, n, O)
-    orders = np.asarray(ex["orders"], dtype=float)
-    speeds = np.asarray(ex["speeds"], dtype=float)
+    force = ex.excitation  # (C, S, n, O)
+    orders = np.asarray(ex.orders, dtype=float)
+    speeds = np.asarray(ex.speeds, dtype=float)
     C, S, n_st, O = force.shape
     resp = tv.forced_response(opt, np.tile(speeds, C), orders, force.reshape(C * S, n_st, O))
     theta_nose = resp.theta[:, nose, :].reshape(C, S, O)
@@ -183,18 +194,18 @@ def damper_tuning(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         " compared through its viscous equivalent at the ring frequency; the nose amplitude at"
         " the optimum re-solves the same model with the optimum rubber stiffness and loss"
         " factor (no viscous rubber damping)."]
-    extra = {"tuning": t, "primary_omega": pm.omega, "primary_inertia": pm.equivalent_inertia,
-             "primary_mode": pm.mode, "ring_inertia": float(model.inertia[ring]),
-             "stiffness": float(model.stiffness[ring]), "loss_factor": eta,
-             "relative_damping": c, "ring": engine.tv_model[ring].station,
-             "hub": engine.tv_model[nose].station, "orders": orders, "speeds": speeds,
-             "actual_nose_amplitude": nose_q.values, "optimum_theta": theta_nose,
-             "actual_theta": ex["theta"], "cylinder_order": float(orders[k_cyl]),
-             "cylinder_order_index": k_cyl, "assumptions": assumptions,
-             "peaks": {"actual": peak_summary(orders, ex["theta"], len(engine.cylinders),
-                                              speeds, list(nose_q.coords["case"])),
-                       "optimum": peak_summary(orders, theta_nose, len(engine.cylinders),
-                                               speeds, list(nose_q.coords["case"]))}}
+    peaks = {"actual": peak_summary(orders, ex.theta, len(engine.cylinders), speeds,
+                                    list(nose_q.coords["case"])),
+             "optimum": peak_summary(orders, theta_nose, len(engine.cylinders), speeds,
+                                     list(nose_q.coords["case"]))}
+    detail = DamperTuningDetail(
+        tuning=t, primary_omega=pm.omega, primary_inertia=pm.equivalent_inertia,
+        primary_mode=pm.mode, ring_inertia=float(model.inertia[ring]),
+        stiffness=float(model.stiffness[ring]), loss_factor=eta, relative_damping=c,
+        ring=engine.tv_model[ring].station, hub=engine.tv_model[nose].station, orders=orders,
+        speeds=speeds, actual_nose_amplitude=nose_q.values, optimum_theta=theta_nose,
+        actual_theta=ex.theta, cylinder_order=float(orders[k_cyl]), cylinder_order_index=k_cyl,
+        peaks=peaks, assumptions=tuple(assumptions))
     two_pi = 2.0 * np.pi
     values = {"damper.crank_mode_frequency": pm.omega / two_pi,
               "damper.modal_inertia": pm.equivalent_inertia,
@@ -207,8 +218,7 @@ def damper_tuning(engine: Engine, inputs: dict) -> dict[str, Quantity]:
               "damper.optimum_loss_factor": t.loss_factor_optimum,
               "damper.optimum_stiffness": t.stiffness_optimum}
     out = {spec.name: Quantity(spec, np.array([values[spec.name]]), {"item": [item]},
-                               extra=extra) for spec in TUNING_VALUES}
-    peaks = extra["peaks"]
+                               detail=detail) for spec in TUNING_VALUES}
     pk = {k: np.full((len(PEAK_DESIGNS), len(PEAK_GROUPS)), np.nan)
           for k in ("value", "speed", "order")}
     pk_missing: dict[tuple, list[str]] = {}
@@ -222,11 +232,11 @@ def damper_tuning(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                 pk[k][a, b] = p[k]
     pc = {"design": list(PEAK_DESIGNS), "orders": list(PEAK_GROUPS)}
     for spec, k in ((PEAK_AMP, "value"), (PEAK_SPEED, "speed"), (PEAK_ORDER, "order")):
-        out[spec.name] = Quantity(spec, pk[k], pc, missing=dict(pk_missing), extra=extra)
+        out[spec.name] = Quantity(spec, pk[k], pc, missing=dict(pk_missing), detail=detail)
     return {
         **out,
         "damper.tuning_ratio": Quantity(TUNING, np.array([t.tuning]), {"item": [item]},
-                                        {item: lim}, extra=extra),
+                                        {item: lim}, detail=detail),
         "damper.optimum_nose_amplitude": Quantity(OPT_NOSE, amp_opt, dict(nose_q.coords),
-                                                  findings=findings, extra=extra),
+                                                  findings=findings, detail=detail),
     }

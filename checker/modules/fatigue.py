@@ -413,14 +413,14 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     f_r, f_t = cs.pin_force_in_throw_frame(f_pin.x, f_pin.y, gamma[:, None])
 
     # ------------------------------------------------------------- element torques (time signal)
-    ex = et.extra
+    ex = et.detail
     n_el = len(et.coords["item"])
     sides, st_missing = _station_elements(engine, n_pins, n_el)
     if st_missing:
         raise MissingInputs(st_missing)
-    _, vib = tv.synthesize(ex["orders"], ex["coeffs"], N)  # (E, C, S, N)
+    _, vib = tv.synthesize(ex.orders, ex.coeffs, N)  # (E, C, S, N)
     torque = np.zeros((C, S, n_el + 1, N))  # + a zero "element" for a free end
-    torque[:, :, :n_el] = np.moveaxis(vib + ex["mean"][..., None], 0, 2)
+    torque[:, :, :n_el] = np.moveaxis(vib + ex.mean[..., None], 0, 2)
     t_side = torque[:, :, sides, :]  # (C, S, T, 2, N): front / rear element of each throw
 
     # ------------------------------------------------------------- nominal and local stresses

@@ -204,7 +204,7 @@ def joint_applied_torque(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                 source[i, k] = GIVEN_SOURCE
             elif tv is not None and np.isfinite(tv.values[i, k]):
                 vals[i, k] = tv.values[i, k]
-                speed[i, k] = tv.extra.get("speed", np.full_like(vals, np.nan))[i, k]
+                speed[i, k] = tv.detail.speed[i, k]
                 source[i, k] = COMPUTED_SOURCE
             else:
                 reason = (f"JointTorques: peak applied torque of joint '{j.name}' at '{p}'"
@@ -289,8 +289,8 @@ def joint_computed_torque(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         comp_findings: dict[tuple, list[str]] = {}
     else:
         comp_missing = {key: list(v) for key, v in tv.missing.items()}
-        comp_speed = np.asarray(tv.extra.get("speed", np.full(shape, np.nan)), dtype=float)
-        comp_case = tv.extra.get("case", np.full(shape, "", dtype=object))
+        comp_speed = np.asarray(tv.detail.speed, dtype=float)
+        comp_case = tv.detail.case
         comp_findings = {key: list(v) for key, v in tv.findings.items()}
     given = np.asarray(app.extra.get("source", np.full(shape, "", dtype=object)) == GIVEN_SOURCE,
                        dtype=bool)
@@ -337,7 +337,7 @@ def joint_computed_torque(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     coords = {"item": list(names), "point": list(POINTS)}
     attrs = dict(app.item_attrs)
     tv_extra = {"speed": comp_speed, "case": comp_case,
-                "how": (tv.extra.get("how") if tv is not None else None)}
+                "how": (tv.detail.how if tv is not None else None)}
     common = {"given": given, "design": design, "given_speed": given_speed}
     return {
         "joint.computed_torque": Quantity(COMPUTED, comp, coords, attrs, comp_missing,

@@ -1,5 +1,13 @@
 """Graph calculations for crankshaft torsional vibration (TV), the rubber TV damper and the
-TV torques at the bolted joints.
+TV torques at the bolted joints (module ``torsion``, "Torsional vibration").
+
+Which node computes what: ``tv_response`` gives every ``tv.*`` quantity but the joint torques
+and the damper rubber's response ``damper.relative_twist``, ``damper.torque``,
+``damper.power``, ``damper.shear_stress``, ``damper.heat_density``,
+``damper.heat_density_peak`` and their ratios to the supplier's limits (rules DMP-001..003);
+``tv_joint_torque`` gives ``tv.joint_torque``. The damper's *tuning* (``damper.tuning_ratio``,
+Den Hartog's optimum, rule DMP-004) is module ``damper``, :mod:`checker.modules.damper_tuning`.
+Detail types: :mod:`checker.results.torsion`.
 
 Model (the concept-level VALDYN practice of Bell, Ricardo 2013)
 ---------------------------------------------------------
@@ -30,11 +38,11 @@ Sign conventions
   rotating at the mean speed, positive in the direction of rotation (so the crank-nose motion is
   *not* twist; Bell, Ricardo 2013). Amplitudes are 0-to-peak per order, half peak-to-peak for
   totals.
-* Element torque ``T_e`` (quantity ``tv.element_torque``, extras ``coeffs``, ``vib_max``,
-  ``vib_min``, ``mean``): the torque the front part of the chain exerts on the rear part
-  through element ``e``, positive in the direction of rotation; equivalently positive when the
-  front station leads the rear one. A crankshaft transmitting drive torque to the flywheel
-  carries a positive mean torque.
+* Element torque ``T_e`` (quantity ``tv.element_torque``, detail fields ``coeffs``,
+  ``vib_max``, ``vib_min``, ``mean``): the torque the front part of the chain exerts on the
+  rear part through element ``e``, positive in the direction of rotation; equivalently
+  positive when the front station leads the rear one. A crankshaft transmitting drive torque
+  to the flywheel carries a positive mean torque.
 * Mean element torque: the mean cylinder (indicated, gas) torques applied at the cylinder
   stations and the accessory-drive torque taken off at the crank-nose station, summed from the
   front: ``T_mean,e = sum_{cylinder stations in front of e} mean(T_cyl) - T_FEAD [nose in
@@ -73,6 +81,7 @@ import numpy as np
 from ..calc import crank_forces as cf
 from ..calc import damper as dmp
 from ..calc import excitation as exc
+from ..calc import torsion_post as tp
 from ..calc import torsional as tv
 from ..engine import Engine
 from ..graph import (
@@ -84,6 +93,19 @@ from ..graph import (
     register_module,
     resonant_peaks,
 )
+from ..results.torsion import (
+    CylinderOrderDetail,
+    DamperDetail,
+    ElementTorqueDetail,
+    JointTorqueDetail,
+    LowerOrdersDetail,
+    NaturalFrequencyDetail,
+    NoseDetail,
+    OrdersCheckedDetail,
+    TorsionDetail,
+    TVModelData,
+    TwistDetail,
+)
 from .joints import POINTS
 
 register_module("torsion", "Torsional vibration")
@@ -92,76 +114,85 @@ RPM = 2.0 * np.pi / 60.0
 CASES = ("full", "no")
 MAX_ORDER = exc.DEFAULT_MAX_ORDER
 """Highest harmonic order (24; benchmarks/bench_tv.py: <= 0.03 % on the nose amplitude)."""
-EXTREMES_SAMPLES_PER_PERIOD = 16
+EXTREMES_SAMPLES_PER_PERIOD = tp.EXTREMES_SAMPLES_PER_PERIOD
 """Samples per period of the highest order for the max/min of synthesised torques (refined by a
 parabola through the largest sample and its neighbours)."""
 
 NATURAL = quantity(QuantitySpec(
     "tv.natural_frequency", "Hz", ("mode",),
-    "Undamped natural frequencies of the torsional model (flexible modes)", "Hz"))
+    "Undamped natural frequencies of the torsional model (flexible modes)", "Hz",
+    detail=NaturalFrequencyDetail))
 NOSE = quantity(QuantitySpec(
     "tv.nose_amplitude", "rad", ("case", "speed"),
     "Crank-nose TV amplitude, all orders synthesised (half peak-to-peak)", "deg",
-    coords={"case": CASES}))
+    coords={"case": CASES}, detail=NoseDetail))
 NOSE_ORDER = quantity(QuantitySpec(
     "tv.nose_order_amplitude", "rad", ("order", "case", "speed"),
-    "Crank-nose TV amplitude per order (0-to-peak)", "deg", coords={"case": CASES}))
+    "Crank-nose TV amplitude per order (0-to-peak)", "deg", coords={"case": CASES},
+    detail=TorsionDetail))
 NOSE_CYL = quantity(QuantitySpec(
     "tv.nose_cylinder_order_amplitude", "rad", ("case", "speed"),
     "Crank-nose TV amplitude of the order equal to the cylinder count (4th for an I4, 6th for"
-    " a V6/I6)", "deg", ("engine_class",), coords={"case": CASES}))
+    " a V6/I6)", "deg", ("engine_class",), coords={"case": CASES},
+    detail=CylinderOrderDetail))
 NOSE_HIGH = quantity(QuantitySpec(
     "tv.nose_higher_order_amplitude", "rad", ("order", "case", "speed"),
     "Crank-nose TV amplitude of each order above the cylinder count", "deg",
-    ("engine_class",), coords={"case": CASES}))
+    ("engine_class",), coords={"case": CASES}, detail=OrdersCheckedDetail))
 NOSE_LOW = quantity(QuantitySpec(
     "tv.nose_lower_order_elastic_amplitude", "rad", ("order", "case", "speed"),
     "Elastic crank-nose TV amplitude (nose motion less the rigid-body motion) of each order"
-    " below the cylinder count, 0-to-peak", "deg", ("engine_class",), coords={"case": CASES}))
+    " below the cylinder count, 0-to-peak", "deg", ("engine_class",), coords={"case": CASES},
+    detail=LowerOrdersDetail))
 TWIST = quantity(QuantitySpec(
     "tv.crank_twist", "rad", ("case", "speed"),
     "Crankshaft twist crank nose to flywheel, all orders synthesised (half peak-to-peak)", "deg",
-    coords={"case": CASES}))
+    coords={"case": CASES}, detail=TwistDetail))
 ELEMENT = quantity(QuantitySpec(
     "tv.element_torque", "N*m", ("item", "case", "speed"),
     "Vibratory torque in each element of the TV model (half peak-to-peak; mean, max/min and"
-    " per-order torques in extra)", "N*m", ("kind",), coords={"case": CASES}))
+    " per-order torques in extra)", "N*m", ("kind",), coords={"case": CASES},
+    detail=ElementTorqueDetail))
 JOINT = quantity(QuantitySpec(
     "tv.joint_torque", "N*m", ("item", "point"),
     "Peak torque through a bolted joint from the TV model (mean + vibratory)", "N*m",
-    ("location",), coords={"point": POINTS}))
+    ("location",), coords={"point": POINTS}, detail=JointTorqueDetail))
 D_TWIST = quantity(QuantitySpec(
     "damper.relative_twist", "rad", ("case", "speed"),
     "Damper rubber relative twist hub - ring (half peak-to-peak)", "deg",
-    coords={"case": CASES}))
+    coords={"case": CASES}, detail=DamperDetail))
 D_TORQUE = quantity(QuantitySpec(
     "damper.torque", "N*m", ("case", "speed"),
-    "Damper rubber torque (half peak-to-peak)", "N*m", coords={"case": CASES}))
+    "Damper rubber torque (half peak-to-peak)", "N*m", coords={"case": CASES},
+    detail=DamperDetail))
 D_POWER = quantity(QuantitySpec(
     "damper.power", "W", ("case", "speed"),
-    "Power dissipated in the damper rubber (sum of orders)", "W", coords={"case": CASES}))
+    "Power dissipated in the damper rubber (sum of orders)", "W", coords={"case": CASES},
+    detail=DamperDetail))
 D_SHEAR = quantity(QuantitySpec(
     "damper.shear_stress", "Pa", ("case", "speed"),
     "Damper rubber shear stress amplitude at the inner (bonded) radius", "MPa",
-    coords={"case": CASES}))
+    coords={"case": CASES}, detail=DamperDetail))
 D_HEAT = quantity(QuantitySpec(
     "damper.heat_density", "W/m**3", ("case", "speed"),
-    "Mean heat generated per unit rubber volume (P/V)", "W/cm**3", coords={"case": CASES}))
+    "Mean heat generated per unit rubber volume (P/V)", "W/cm**3", coords={"case": CASES},
+    detail=DamperDetail))
 D_HEAT_PEAK = quantity(QuantitySpec(
     "damper.heat_density_peak", "W/m**3", ("case", "speed"),
     "Peak local heat per unit rubber volume (inner radius, q_mean (r_o/r_i)^2)", "W/cm**3",
-    coords={"case": CASES}))
+    coords={"case": CASES}, detail=DamperDetail))
 D_SHEAR_RATIO = quantity(QuantitySpec(
     "damper.shear_stress_ratio", "", ("case", "speed"),
-    "Damper rubber shear stress / supplier limit (Damper sheet)", "", coords={"case": CASES}))
+    "Damper rubber shear stress / supplier limit (Damper sheet)", "", coords={"case": CASES},
+    detail=DamperDetail))
 D_HEAT_RATIO = quantity(QuantitySpec(
     "damper.heat_ratio", "", ("case", "speed"),
     "Mean rubber heat per unit volume / supplier limit (Damper sheet)", "",
-    coords={"case": CASES}))
+    coords={"case": CASES}, detail=DamperDetail))
 D_HEAT_PEAK_RATIO = quantity(QuantitySpec(
     "damper.heat_peak_ratio", "", ("case", "speed"),
     "Peak local rubber heat per unit volume / supplier limit (Damper sheet)", "",
-    coords={"case": CASES}))
+    coords={"case": CASES}, detail=DamperDetail))
 
 _DAMPER_QUANTITIES = ("damper.relative_twist", "damper.torque", "damper.power",
                       "damper.shear_stress", "damper.heat_density", "damper.heat_density_peak",
@@ -180,30 +211,7 @@ def _speeds_text(w: np.ndarray) -> str:
     return ", ".join(f"{x / RPM:.0f}" for x in np.sort(w)) + " rpm"
 
 
-def _extremes(orders: np.ndarray, coeffs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Max and min over 720 deg of ``sum_n Re{c_n exp(j n theta)}`` (order axis last).
-
-    Sampled by :func:`checker.calc.torsional.synthesize` (``EXTREMES_SAMPLES_PER_PERIOD`` per
-    period of the highest order), refined by the vertex of the parabola through the extreme
-    sample and its neighbours (error O(h^4) of the signal's smooth part).
-    """
-    m = int(round(2 * orders.max()))  # FFT bin of the highest order (2 periods per cycle)
-    n_pts = max(64, EXTREMES_SAMPLES_PER_PERIOD * m)
-    _, x = tv.synthesize(orders, coeffs, n_pts)
-
-    def top(y: np.ndarray) -> np.ndarray:
-        k = np.argmax(y, axis=-1)[..., None]
-        y0 = np.take_along_axis(y, k, -1)[..., 0]
-        ym = np.take_along_axis(y, (k - 1) % n_pts, -1)[..., 0]
-        yp = np.take_along_axis(y, (k + 1) % n_pts, -1)[..., 0]
-        a = 0.5 * (ym + yp - 2.0 * y0)
-        b = 0.5 * (yp - ym)
-        return np.where(a < 0, y0 - b * b / (4.0 * np.where(a < 0, a, -1.0)), y0)
-
-    return top(x), -top(-x)
-
-
-def _tv_inputs(engine: Engine) -> dict:
+def _tv_inputs(engine: Engine) -> TVModelData:
     """Model data from TVModel/Damper/Cylinders; raises MissingInputs naming the cells."""
     st = engine.tv_model
     problems: list[str] = []
@@ -242,10 +250,11 @@ def _tv_inputs(engine: Engine) -> dict:
     model = tv.TorsionalModel(
         inertia=[s.inertia for s in st], stiffness=stiffness,
         damping_abs=[s.absolute_damping for s in st], damping_rel=rel, loss_factor=loss)
-    return {"model": model, "ring": ring, "nose": roles.index("crank nose"),
-            "flywheel": roles.index("flywheel") if "flywheel" in roles else None,
-            "cyl_station": np.array([station_of[c.number] for c in engine.cylinders]),
-            "eta": float(eta or 0.0)}
+    return TVModelData(
+        model=model, ring=ring, nose=roles.index("crank nose"),
+        flywheel=roles.index("flywheel") if "flywheel" in roles else None,
+        cyl_station=np.array([station_of[c.number] for c in engine.cylinders]),
+        eta=float(eta or 0.0))
 
 
 def _excitation(engine: Engine, cyc) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -308,9 +317,9 @@ def tv_joint_torque(engine: Engine, inputs: dict) -> dict[str, Quantity]:
             JOINT, np.full((n, len(POINTS)), np.nan),
             {"item": [j.name for j in engine.joints], "point": list(POINTS)},
             {j.name: {"location": j.location} for j in engine.joints}, missing,
-            extra={"speed": np.full((n, len(POINTS)), np.nan),
-                   "case": np.full((n, len(POINTS)), "", dtype=object),
-                   "how": np.full((n, len(POINTS)), "", dtype=object)})}
+            detail=JointTorqueDetail(speed=np.full((n, len(POINTS)), np.nan),
+                                     case=np.full((n, len(POINTS)), "", dtype=object),
+                                     how=np.full((n, len(POINTS)), "", dtype=object)))}
     return {"tv.joint_torque": _joints(engine, **sol["joint_inputs"])}
 
 
@@ -319,15 +328,15 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
     if not engine.cylinders:
         raise MissingInputs(["Cylinders: no cylinders given (sheet Cylinders)"])
     data = _tv_inputs(engine)
-    model: tv.TorsionalModel = data["model"]
-    cyc = cycle.extra["cycle"]
+    model: tv.TorsionalModel = data.model
+    cyc = cycle.detail.cycle
     cases = list(cyc.cases)
     speeds = np.asarray(cyc.speeds, dtype=float)
     C, S = len(cases), speeds.size
     n_st, n_el = model.n_stations, model.n_elements
     names = [s.station for s in engine.tv_model]
     roles = [s.role for s in engine.tv_model]
-    nose, ring, fw = data["nose"], data["ring"], data["flywheel"]
+    nose, ring, fw = data.nose, data.ring, data.flywheel
     assumptions = [
         "TV excitation: crank torque of gas pressure plus reciprocating and con-rod inertia at"
         " constant speed (the same cylinder loads as the loads module), orders 0.5 to"
@@ -349,7 +358,7 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
     # ---------------------------------------------------------------- forced response
     orders, cyl_coeffs, cyl_mean = _excitation(engine, cyc)
     O = orders.size
-    force = tv.station_excitation(cyl_coeffs, data["cyl_station"], n_st)  # (C, S, n, O)
+    force = tv.station_excitation(cyl_coeffs, data.cyl_station, n_st)  # (C, S, n, O)
     resp = tv.forced_response(model, np.tile(speeds, C), orders, force.reshape(C * S, n_st, O))
     theta = resp.theta.reshape(C, S, n_st, O)
     et = resp.element_torque.reshape(C, S, n_el, O)
@@ -363,7 +372,8 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
         orders, np.stack([theta[:, :, nose], theta[:, :, nose] - theta[:, :, rear]]))  # (C, S)
     nose_ord = np.abs(theta[:, :, nose])  # (C, S, O)
     # element torques and twists (report, joints, fatigue): parabola-refined sampled extremes
-    emax, emin = _extremes(orders, np.concatenate([et, twist_e], axis=2))  # (C, S, 2E)
+    emax, emin = tp.synthesized_extremes(orders, np.concatenate([et, twist_e], axis=2),
+                                         EXTREMES_SAMPLES_PER_PERIOD)  # (C, S, 2E)
     vmax, vmin = emax[..., :n_el], emin[..., :n_el]
     el_amp = 0.5 * (vmax - vmin)
     tw_amp = 0.5 * (emax[..., n_el:] - emin[..., n_el:])
@@ -374,11 +384,8 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
     if fead is None:
         assumptions.append("Accessory drive (FEAD) torque at the crank nose not given"
                            f" ({engine.cell('Engine', 'fead_torque')}): 0 N m used.")
-    applied = np.zeros((C, S, n_st))
-    np.add.at(applied, (slice(None), slice(None), data["cyl_station"]),
-              np.broadcast_to(cyl_mean[..., None], (C, S, len(engine.cylinders))))
-    applied[:, :, nose] -= fead or 0.0
-    mean_el = np.cumsum(applied, axis=-1)[..., :n_el]  # (C, S, E)
+    mean_el = tp.mean_element_torque(cyl_mean, data.cyl_station, n_st, nose,
+                                     fead or 0.0)  # (C, S, E)
 
     # ---------------------------------------------------------------- findings (resonance)
     res_text: dict[tuple[int, int], list[str]] = {}  # (case, speed) -> texts
@@ -428,23 +435,42 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
     n_cyl = len(engine.cylinders)
     k_cyl = int(np.argmin(np.abs(orders - n_cyl)))
     higher = np.nonzero(orders > n_cyl + 1e-9)[0]
+    # engine class (Engine sheet): selects the published TV targets (rules TV-001..003)
+    cls = engine.params.get("engine_class")
+    cls_cell = engine.cell("Engine", "engine_class")
+    if cls_cell == "Engine":  # no such row in the workbook
+        cls_cell = "sheet Engine, parameter 'Engine class'"
+    cls_attrs = {"all": {"engine_class": cls or DEFAULT_ENGINE_CLASS,
+                         "engine_class_cell": cls_cell}}
+    cls_caveats: tuple[dict, ...] = ()
+    if not cls:
+        assumptions.append(
+            f"Engine class not given ({cls_cell}):"
+            f" {DEFAULT_ENGINE_CLASS} assumed, the class of the crank-nose TV targets of Bell"
+            " 2013 (rules TV-001..003).")
+        cls_caveats = ({
+            "kind": "assumption", "severity": "medium", "rules": ["TV-001", "TV-002", "TV-003"],
+            "text": f"Engine class not given ({cls_cell}): the"
+                    " crank-nose TV targets of a refined passenger-car engine with a rubber"
+                    " damper (Bell 2013) are applied; set the class, or enter the project's"
+                    " limits (RuleOverrides), for any other engine."},)
     common = {"orders": orders, "speeds": speeds, "resonance": reson,
-              "near_resonance": band.near, "assumptions": assumptions}
+              "near_resonance": band.near, "assumptions": tuple(assumptions)}
     out: dict[str, Quantity] = {}
     out["tv.natural_frequency"] = Quantity(
         NATURAL, w_flex / (2 * np.pi), {"mode": mode_labels},
-        extra={"modes": m_flex, "stations": names, "roles": roles, "damping_ratio": z_flex,
-               "omega": w_flex, "critical_speed": w_flex[:, None] / orders[None, :],
-               "orders": orders, "rigid_body_mode": bool((~flex).any()),
-               "assumptions": assumptions})
-    nose_extra = dict(common, theta=theta[:, :, nose], station=names[nose],
-                      # model and station excitation (C, S, n, O) for re-solves (damper tuning)
-                      model=model, model_data=data, excitation=force)
-    out["tv.nose_amplitude"] = Quantity(NOSE, nose_amp, cs_coords, findings=find_cs,
-                                        extra=nose_extra)
+        detail=NaturalFrequencyDetail(
+            modes=m_flex, stations=names, roles=roles, damping_ratio=z_flex, omega=w_flex,
+            critical_speed=w_flex[:, None] / orders[None, :], orders=orders,
+            rigid_body_mode=bool((~flex).any()), assumptions=tuple(assumptions)))
+    # model and station excitation (C, S, n, O) for re-solves (damper tuning)
+    out["tv.nose_amplitude"] = Quantity(
+        NOSE, nose_amp, cs_coords, findings=find_cs,
+        detail=NoseDetail(**common, theta=theta[:, :, nose], station=names[nose], model=model,
+                          model_data=data, excitation=force))
     out["tv.nose_order_amplitude"] = Quantity(
         NOSE_ORDER, np.moveaxis(nose_ord, -1, 0), {"order": order_labels, **cs_coords},
-        findings=find_ocs, extra=common)
+        findings=find_ocs, detail=TorsionDetail(**common))
     cyl_find = {(ci, si): v for (oi, ci, si), v in find_ocs.items() if oi == k_cyl}
     env = cyc.envelope  # (C, S) operating envelope of each load case (None = every speed)
     peaks_text = ("judged at resonant peaks within each load case's operating envelope only"
@@ -454,44 +480,27 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
                   " motion that falls from the lowest speed and points outside the envelope"
                   " are shown, not judged")
     out["tv.nose_cylinder_order_amplitude"] = Quantity(
-        NOSE_CYL, nose_ord[:, :, k_cyl], cs_coords, findings=cyl_find,
-        extra=dict(common, order=float(orders[k_cyl]), applies_text=peaks_text),
+        NOSE_CYL, nose_ord[:, :, k_cyl], cs_coords, dict(cls_attrs), findings=cyl_find,
+        detail=CylinderOrderDetail(**dict(common, caveats=cls_caveats),
+                                   order=float(orders[k_cyl])),
+        applies_text=peaks_text,
         applies=resonant_peaks(nose_ord[:, :, k_cyl], axis=-1, envelope=env))
     pos = {int(o): i for i, o in enumerate(higher)}
     hi_find = {(pos[oi], ci, si): v for (oi, ci, si), v in find_ocs.items() if oi in pos}
     hi_vals = np.moveaxis(nose_ord[:, :, higher], -1, 0)
     out["tv.nose_higher_order_amplitude"] = Quantity(
         NOSE_HIGH, hi_vals,
-        {"order": [order_labels[i] for i in higher], **cs_coords}, findings=hi_find,
-        extra=dict(common, orders_checked=orders[higher], applies_text=peaks_text),
-        applies=resonant_peaks(hi_vals, axis=-1, envelope=env))
-    out["tv.nose_lower_order_elastic_amplitude"] = _lower_orders(
+        {"order": [order_labels[i] for i in higher], **cs_coords}, dict(cls_attrs),
+        findings=hi_find, detail=OrdersCheckedDetail(**common, orders_checked=orders[higher]),
+        applies_text=peaks_text, applies=resonant_peaks(hi_vals, axis=-1, envelope=env))
+    low_q = _lower_orders(
         model, theta, nose, orders, speeds, omega, w_flex, n_cyl, order_labels, cs_coords, find_ocs,
         env, common)
-    # engine class (Engine sheet): selects the published TV targets (rules TV-001..003)
-    cls = engine.params.get("engine_class")
-    cls_cell = engine.cell("Engine", "engine_class")
-    if cls_cell == "Engine":  # no such row in the workbook
-        cls_cell = "sheet Engine, parameter 'Engine class'"
-    cls_attrs = {"all": {"engine_class": cls or DEFAULT_ENGINE_CLASS,
-                         "engine_class_cell": cls_cell}}
-    if not cls:
-        assumptions.append(
-            f"Engine class not given ({cls_cell}):"
-            f" {DEFAULT_ENGINE_CLASS} assumed, the class of the crank-nose TV targets of Bell"
-            " 2013 (rules TV-001..003).")
-    for n in ("tv.nose_cylinder_order_amplitude", "tv.nose_higher_order_amplitude",
-              "tv.nose_lower_order_elastic_amplitude"):
-        out[n].item_attrs = cls_attrs
-    if not cls:
-        out["tv.nose_cylinder_order_amplitude"].extra["caveats"] = [{
-            "kind": "assumption", "severity": "medium", "rules": ["TV-001", "TV-002", "TV-003"],
-            "text": f"Engine class not given ({cls_cell}): the"
-                    " crank-nose TV targets of a refined passenger-car engine with a rubber"
-                    " damper (Bell 2013) are applied; set the class, or enter the project's"
-                    " limits (RuleOverrides), for any other engine."}]
+    low_q.item_attrs = dict(cls_attrs)
+    out["tv.nose_lower_order_elastic_amplitude"] = low_q
     out["tv.crank_twist"] = Quantity(TWIST, crank_twist, cs_coords, findings=find_cs,
-                                     extra=dict(common, stations=(names[nose], names[rear])))
+                                     detail=TwistDetail(**common,
+                                                        stations=(names[nose], names[rear])))
 
     el_names = [f"{names[e]} -> {names[e + 1]}" for e in range(n_el)]
     el_attrs = {el_names[e]: {"kind": "damper rubber" if e == ring else "shaft",
@@ -500,18 +509,19 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
     out["tv.element_torque"] = Quantity(
         ELEMENT, np.moveaxis(el_amp, -1, 0), {"item": el_names, **cs_coords}, el_attrs,
         findings=el_find,
-        extra=dict(common,
-                   coeffs=np.moveaxis(et, 2, 0),  # (E, C, S, O) complex [N m]
-                   vib_max=np.moveaxis(vmax, -1, 0), vib_min=np.moveaxis(vmin, -1, 0),
-                   mean=np.moveaxis(mean_el, -1, 0),  # (E, C, S) [N m]
-                   twist=np.moveaxis(tw_amp, -1, 0),  # (E, C, S) [rad]
-                   twist_coeffs=np.moveaxis(twist_e, 2, 0),
-                   cylinder_mean_torque=cyl_mean,  # (C, S) one cylinder [N m]
-                   sign=("torque the front part exerts on the rear part through the element,"
-                         " positive in the direction of rotation (front station leads)"),
-                   mean_definition=("sum from the front of the mean cylinder torques at the"
-                                    " cylinder stations minus the FEAD torque at the crank"
-                                    " nose; friction not subtracted")))
+        detail=ElementTorqueDetail(
+            **common,
+            coeffs=np.moveaxis(et, 2, 0),  # (E, C, S, O) complex [N m]
+            vib_max=np.moveaxis(vmax, -1, 0), vib_min=np.moveaxis(vmin, -1, 0),
+            mean=np.moveaxis(mean_el, -1, 0),  # (E, C, S) [N m]
+            twist=np.moveaxis(tw_amp, -1, 0),  # (E, C, S) [rad]
+            twist_coeffs=np.moveaxis(twist_e, 2, 0),
+            cylinder_mean_torque=cyl_mean,  # (C, S) one cylinder [N m]
+            sign=("torque the front part exerts on the rear part through the element,"
+                  " positive in the direction of rotation (front station leads)"),
+            mean_definition=("sum from the front of the mean cylinder torques at the"
+                             " cylinder stations minus the FEAD torque at the crank"
+                             " nose; friction not subtracted")))
 
     out.update(_damper(engine, data, model, orders, theta, omega, cs_coords, find_cs, common))
     return {"quantities": out,
@@ -551,10 +561,10 @@ def _lower_orders(model: tv.TorsionalModel, theta: np.ndarray, nose: int, orders
     resonant peaks (:func:`checker.graph.resonant_peaks`, within each case's envelope) whose
     order frequency lies within :data:`MODE_BAND` of an undamped natural frequency whose
     critical speed for that order (natural frequency / order) lies inside the swept speeds.
+    ``common``: the fields of :class:`~checker.results.torsion.TorsionDetail`.
     """
     low = np.nonzero(orders < n_cyl - 1e-9)[0]
-    j = np.asarray(model.inertia, dtype=float)
-    rigid = np.tensordot(theta, j, axes=([2], [0])) / j.sum()  # (C, S, O)
+    rigid = tp.rigid_body_angle(theta, model.inertia, axis=2)  # (C, S, O)
     elastic = np.abs(theta[:, :, nose, :] - rigid)[:, :, low]  # (C, S, o)
     vals = np.moveaxis(elastic, -1, 0)  # (o, C, S)
     om = np.moveaxis(omega[:, :, low], -1, 0)  # (o, C, S) order frequency [rad/s]
@@ -580,25 +590,29 @@ def _lower_orders(model: tv.TorsionalModel, theta: np.ndarray, nose: int, orders
             " (cyclic irregularity), not judged")
     return Quantity(NOSE_LOW, vals, {"order": [order_labels[i] for i in low], **cs_coords},
                     findings=finds,
-                    extra=dict(common, orders_checked=orders[low], applies_text=text,
-                               rigid_body=np.moveaxis(np.abs(rigid[:, :, low]), -1, 0),
-                               nose_total=np.moveaxis(np.abs(theta[:, :, nose, low]), -1, 0),
-                               mode_band=MODE_BAND),
-                    applies=applies)
+                    detail=LowerOrdersDetail(
+                        **common, orders_checked=orders[low],
+                        rigid_body=np.moveaxis(np.abs(rigid[:, :, low]), -1, 0),
+                        nose_total=np.moveaxis(np.abs(theta[:, :, nose, low]), -1, 0),
+                        mode_band=MODE_BAND),
+                    applies_text=text, applies=applies)
 
 
-def _damper(engine: Engine, data: dict, model: tv.TorsionalModel, orders: np.ndarray,
+def _damper(engine: Engine, data: TVModelData, model: tv.TorsionalModel, orders: np.ndarray,
             theta: np.ndarray, omega: np.ndarray, cs_coords: dict, findings: dict,
             common: dict) -> dict[str, Quantity]:
-    """Damper rubber twist, torque, power, shear stress and heat (and the limit ratios)."""
-    ring = data["ring"]
+    """Damper rubber twist, torque, power, shear stress and heat (and the limit ratios).
+
+    ``common``: the fields of :class:`~checker.results.torsion.TorsionDetail`.
+    """
+    ring = data.ring
     shape = theta.shape[:2]
     nan = np.full(shape, np.nan)
 
-    def q(spec, values, missing=(), extra=None):
+    def q(spec, values, missing=(), fields=None):
         miss = {(ci,): list(missing) for ci in range(shape[0])} if missing else {}
         return Quantity(spec, values, cs_coords, missing=miss, findings=findings,
-                        extra=dict(common, **(extra or {})))
+                        detail=DamperDetail(**common, **(fields or {})))
 
     if ring is None:
         why = ["TVModel: no station with role 'damper ring' (engine without a TV damper)"]
@@ -616,9 +630,9 @@ def _damper(engine: Engine, data: dict, model: tv.TorsionalModel, orders: np.nda
     base = {"dphi": dphi, "torque_orders": torque, "power_orders": power_o,
             "stiffness": ks, "loss_factor": eta, "relative_damping": c_rel,
             "hub": engine.tv_model[hub].station, "ring": engine.tv_model[ring].station}
-    out = {"damper.relative_twist": q(D_TWIST, twist_amp, extra=base),
-           "damper.torque": q(D_TORQUE, torque_amp, extra=base),
-           "damper.power": q(D_POWER, power, extra=base)}
+    out = {"damper.relative_twist": q(D_TWIST, twist_amp, fields=base),
+           "damper.torque": q(D_TORQUE, torque_amp, fields=base),
+           "damper.power": q(D_POWER, power, fields=base)}
     d = engine.damper
     geo_missing = [engine.describe_missing("Damper", a, what="the damper rubber")
                    for a in ("inner_radius", "outer_radius", "axial_length") if d.get(a) is None]
@@ -631,7 +645,7 @@ def _damper(engine: Engine, data: dict, model: tv.TorsionalModel, orders: np.nda
     tau = dmp.annulus_shear_stress(torque_amp, ri, ln)
     q_mean, q_peak = dmp.annulus_heat_density(power, ri, ro, ln)
     geom = dict(base, volume=float(dmp.annulus_volume(ri, ro, ln)),
-                shear_modulus=ks / float(dmp.annulus_stiffness(1.0, ri, ro, ln)),
+                shear_modulus=float(dmp.annulus_shear_modulus(ks, ri, ro, ln)),
                 shear_orders=dmp.annulus_shear_stress(np.abs(torque), ri, ln))
     def limit_attrs(lim_attr: str) -> dict:
         """The supplier's limit of the rules DMP-001..003 (SI, judged in physical units)."""
@@ -645,7 +659,7 @@ def _damper(engine: Engine, data: dict, model: tv.TorsionalModel, orders: np.nda
             ("damper.shear_stress", D_SHEAR, tau, "shear_stress_limit"),
             ("damper.heat_density", D_HEAT, q_mean, "heat_limit"),
             ("damper.heat_density_peak", D_HEAT_PEAK, q_peak, "heat_limit")):
-        out[name] = q(spec, val, extra=geom)
+        out[name] = q(spec, val, fields=geom)
         out[name].item_attrs = limit_attrs(lim_attr)
     for name, spec, val, lim_attr in (
             ("damper.shear_stress_ratio", D_SHEAR_RATIO, tau, "shear_stress_limit"),
@@ -656,14 +670,13 @@ def _damper(engine: Engine, data: dict, model: tv.TorsionalModel, orders: np.nda
             out[name] = q(spec, nan, [engine.describe_missing(
                 "Damper", lim_attr, what="the damper supplier (needed for the ratio)")])
         else:
-            out[name] = q(spec, val / lim, extra=dict(geom, limit=lim,
-                                                      limit_cell=engine.cell("Damper",
-                                                                             lim_attr)))
+            out[name] = q(spec, val / lim, fields=dict(
+                geom, limit=lim, limit_cell=engine.cell("Damper", lim_attr)))
     return out
 
 
-def _joints(engine: Engine, data: dict, speeds: np.ndarray, cases: list[str], vmax: np.ndarray,
-            vmin: np.ndarray, el_names: list[str], res_text: dict, fead: float,
+def _joints(engine: Engine, data: TVModelData, speeds: np.ndarray, cases: list[str],
+            vmax: np.ndarray, vmin: np.ndarray, el_names: list[str], res_text: dict, fead: float,
             assumptions: list[str], envelope: np.ndarray | None = None) -> Quantity:
     """Peak TV torque through each bolted joint at 'tv peak', 'max power' and 'overspeed'.
 
@@ -673,7 +686,7 @@ def _joints(engine: Engine, data: dict, speeds: np.ndarray, cases: list[str], vm
       BrakeTorque sheet; 0 at no load): ``max_t |T_brake + T_e(t)|``.
     Points: 'tv peak' = speed of the largest such torque over the full-load sweep; 'max power'
     = speed of the maximum brake power of the BrakeTorque sheet, full load; 'overspeed' =
-    Engine 'Overspeed', no load. Each uses the nearest swept speed (recorded in extra).
+    Engine 'Overspeed', no load. Each uses the nearest swept speed (recorded in the detail).
     """
     joints = engine.joints
     nj, npt = len(joints), len(POINTS)
@@ -696,7 +709,7 @@ def _joints(engine: Engine, data: dict, speeds: np.ndarray, cases: list[str], vm
     notes = []
     for i, j in enumerate(joints):
         if j.location == "crank nose":
-            e = data["nose"] - 1
+            e = data.nose - 1
             if e < 0:
                 for k in range(npt):
                     missing[(i, k)] = ["TVModel: no station in front of the crank nose (damper"
@@ -705,7 +718,7 @@ def _joints(engine: Engine, data: dict, speeds: np.ndarray, cases: list[str], vm
             sign, mean = -1.0, np.full((len(cases), speeds.size), fead)
             src = f"{el_names[e]} (damper rubber) + FEAD {fead:g} N m"
         elif j.location == "flywheel":
-            fw = data["flywheel"]
+            fw = data.flywheel
             if fw is None or fw == 0:
                 for k in range(npt):
                     missing[(i, k)] = ["TVModel: no station with role 'flywheel' (the flywheel"
@@ -726,7 +739,7 @@ def _joints(engine: Engine, data: dict, speeds: np.ndarray, cases: list[str], vm
         hi, lo = sign * vmax[:, :, e], sign * vmin[:, :, e]
         if sign < 0:
             hi, lo = lo, hi
-        peak = np.maximum(np.abs(mean + hi), np.abs(mean + lo))  # (C, S)
+        peak = tp.peak_cut_torque(mean, hi, lo)  # (C, S)
         points: list[tuple[int, int | None, str]] = []
         if j.location == "flywheel" and not bt.size:
             points.append((0, None, brake_missing))
@@ -769,9 +782,9 @@ def _joints(engine: Engine, data: dict, speeds: np.ndarray, cases: list[str], vm
     attrs = {j.name: {"location": j.location} for j in joints}
     return Quantity(JOINT, vals, {"item": [j.name for j in joints], "point": list(POINTS)},
                     attrs, missing, findings,
-                    extra={"speed": speed_used, "case": case_used, "how": how,
-                           "max_power_speed": mp_speed, "overspeed": ov_speed,
-                           "assumptions": assumptions})
+                    detail=JointTorqueDetail(speed=speed_used, case=case_used, how=how,
+                                             max_power_speed=mp_speed, overspeed=ov_speed,
+                                             assumptions=tuple(assumptions)))
 
 
 _SPECS = {s.name: s for s in (D_TWIST, D_TORQUE, D_POWER, D_SHEAR, D_HEAT, D_HEAT_PEAK,

@@ -13,6 +13,7 @@ import datetime as _dt
 import re
 
 from ..api import CheckResult
+from ..results import caveats_of
 from ..ruletable import RuleResult
 
 MECHANISMS: dict[str, str] = {
@@ -141,7 +142,7 @@ def _validity_flags(res: CheckResult) -> list[str]:
             for t in texts:
                 if _VALIDITY.search(t):
                     seen[t] = seen.get(t, 0) + 1
-        for t in (q.extra or {}).get("caveats", []) if isinstance(q.extra, dict) else []:
+        for t in caveats_of(q):
             seen.setdefault(str(t), 1)
     out = []
     for t, n in seen.items():

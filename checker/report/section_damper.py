@@ -1,16 +1,20 @@
-"""Report section: TV damper tuning against Den Hartog's optimum."""
+"""Report section: TV damper tuning against Den Hartog's optimum (module ``damper``,
+:mod:`checker.modules.damper_tuning`; detail :class:`checker.results.damper.DamperTuningDetail`).
+The damper rubber's stress and heat are in the torsion section."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from ..api import CheckResult
+from ..display import case_text
 from .plots import figure, legend_below, to_image
-from .sections import fmt, section
+from .sections import fmt, in_unit, rpm, section
 
-RPM = 2 * np.pi / 60
-DEG = 180 / np.pi
-CASE_TEXT = {"full": "full load", "no": "no load"}
+
+def _deg(rad):
+    """Angle(s) in rad as degrees."""
+    return in_unit(rad, "rad", "deg")
 
 
 def _peak_text(q: dict, design: int, group: int, case: str | None) -> list[str]:
@@ -20,8 +24,8 @@ def _peak_text(q: dict, design: int, group: int, case: str | None) -> list[str]:
         return ["-", "-"]
     order = q["damper.peak_order"].values[design, group]
     speed = q["damper.peak_speed"].values[design, group]
-    where = f"order {order:g}, " + (f"{CASE_TEXT.get(case, case)}, " if case else "")
-    return [fmt(v * DEG, 4), f"{where}{speed / RPM:.0f} rpm"]
+    where = f"order {order:g}, " + (f"{case_text(case)}, " if case else "")
+    return [fmt(_deg(v), 4), f"{where}{rpm(speed):.0f} rpm"]
 
 
 @section("damper")
@@ -32,7 +36,7 @@ def damper_section(res: CheckResult) -> dict:
     if tr is None:
         why = "; ".join(res.outcome.unavailable.get("damper.tuning_ratio", ["not computed"]))
         return {"id": "damper", "title": title, "intro": f"Not computed: {why}.", "blocks": []}
-    ex = tr.extra
+    ex = tr.detail
 
     def v(name: str) -> float:  # a damper-tuning quantity (SI), one damper ring
         return float(q[name].values[0])
@@ -48,17 +52,17 @@ def damper_section(res: CheckResult) -> dict:
          "viscous equivalent of the hysteretic rubber at the ring frequency"),
     ]}]
     rows = [
-        ["Ring inertia J_ring (" + ex["ring"] + ")", fmt(ex["ring_inertia"] * 1e3, 5),
-         "g m²", "-"],
-        ["Rubber stiffness k", fmt(ex["stiffness"] / 1e3, 5), "kN m/rad",
-         fmt(v("damper.optimum_stiffness") / 1e3, 5)],
-        ["Rubber loss factor η", fmt(ex["loss_factor"], 4), "-",
+        ["Ring inertia J_ring (" + ex.ring + ")",
+         fmt(in_unit(ex.ring_inertia, "kg*m**2", "g*m**2"), 5), "g m²", "-"],
+        ["Rubber stiffness k", fmt(in_unit(ex.stiffness, "N*m/rad", "kN*m/rad"), 5),
+         "kN m/rad", fmt(in_unit(v("damper.optimum_stiffness"), "N*m/rad", "kN*m/rad"), 5)],
+        ["Rubber loss factor η", fmt(ex.loss_factor, 4), "-",
          fmt(v("damper.optimum_loss_factor"), 4)],
-        ["Rubber viscous damping c", fmt(ex["relative_damping"], 4), "N m s/rad", "0"],
+        ["Rubber viscous damping c", fmt(ex.relative_damping, 4), "N m s/rad", "0"],
         ["Crank first mode without the ring", fmt(v("damper.crank_mode_frequency"), 5), "Hz",
          "-"],
-        ["Modal inertia at the hub (" + ex["hub"] + ")", fmt(v("damper.modal_inertia") * 1e3, 5),
-         "g m²", "-"],
+        ["Modal inertia at the hub (" + ex.hub + ")",
+         fmt(in_unit(v("damper.modal_inertia"), "kg*m**2", "g*m**2"), 5), "g m²", "-"],
         ["Inertia ratio μ", fmt(v("damper.mass_ratio"), 4), "-", "-"],
         ["Ring natural frequency", fmt(v("damper.ring_frequency"), 5), "Hz",
          fmt(v("damper.optimum_ring_frequency"), 5)],
@@ -72,7 +76,7 @@ def damper_section(res: CheckResult) -> dict:
     blocks.append({"type": "table", "caption": "Actual damper and Den Hartog's optimum for its"
                    " inertia ratio", "columns": ["quantity", "actual", "unit", "optimum"],
                    "rows": rows})
-    pk = ex["peaks"]
+    pk = ex.peaks
     rows = []
     for g, name in enumerate(("cylinder order", "higher orders")):
         cases = [(pk[d].get(name) or {}).get("case") for d in ("actual", "optimum")]
@@ -84,18 +88,18 @@ def damper_section(res: CheckResult) -> dict:
                    "rows": rows})
     on = q.get("damper.optimum_nose_amplitude")
     if on is not None:
-        sp = np.array(on.coords["speed"]) / RPM
-        k = ex["cylinder_order_index"]
+        sp = rpm(np.array(on.coords["speed"]))
+        k = ex.cylinder_order_index
         fig, axes = figure(170, 64, ncols=2, legend_rows=1)
         for c_i, c in enumerate(on.coords["case"]):
-            for ax, act, opt in ((axes[0], np.abs(ex["actual_theta"][c_i, :, k]),
-                                  np.abs(ex["optimum_theta"][c_i, :, k])),
-                                 (axes[1], ex["actual_nose_amplitude"][c_i],
+            for ax, act, opt in ((axes[0], np.abs(ex.actual_theta[c_i, :, k]),
+                                  np.abs(ex.optimum_theta[c_i, :, k])),
+                                 (axes[1], ex.actual_nose_amplitude[c_i],
                                   on.values[c_i])):
-                line = ax.plot(sp, act * DEG, label=f"actual, {CASE_TEXT.get(c, c)}")[0]
-                ax.plot(sp, opt * DEG, ls="--", color=line.get_color(),
-                        label=f"optimum, {CASE_TEXT.get(c, c)}")
-        axes[0].set_ylabel(f"Nose amplitude, order {ex['cylinder_order']:g} [deg]")
+                line = ax.plot(sp, _deg(act), label=f"actual, {case_text(c)}")[0]
+                ax.plot(sp, _deg(opt), ls="--", color=line.get_color(),
+                        label=f"optimum, {case_text(c)}")
+        axes[0].set_ylabel(f"Nose amplitude, order {ex.cylinder_order:g} [deg]")
         axes[1].set_ylabel("Nose amplitude, all orders [deg]")
         axes[1].set_yscale("log")
         for ax in axes:

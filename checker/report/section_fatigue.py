@@ -400,7 +400,7 @@ def _nose(res: CheckResult) -> list[dict]:
         if why is None:
             return []
         return out + [{"type": "text", "text": "Not evaluated: missing " + "; ".join(why)}]
-    ex = nq.extra
+    ex = nq.detail
     sp = np.array(nq.coords["speed"]) * 30 / np.pi
     rows, css = [], []
     found = [jd.worst(nq, (ci,), "min") for ci in range(len(nq.coords["case"]))]
@@ -409,13 +409,13 @@ def _nose(res: CheckResult) -> list[dict]:
         ci, k = p.index
         c = nq.coords["case"][ci]
         rows.append([f"{c} load", f"{sp[k]:.0f}", f"{nq.values[ci, k]:.4g}",
-                     f"{ex['torque_min'][ci, k]:.0f} / {ex['torque_max'][ci, k]:.0f}",
-                     f"{ex['sigma_eq_a'][ci, k] / 1e6:.1f}",
-                     f"{ex['sigma_eq_m'][ci, k] / 1e6:.1f}",
+                     f"{ex.torque_min[ci, k]:.0f} / {ex.torque_max[ci, k]:.0f}",
+                     f"{ex.sigma_eq_a[ci, k] / 1e6:.1f}",
+                     f"{ex.sigma_eq_m[ci, k] / 1e6:.1f}",
                      jd.judged_text(res, nq, p, None, c)])
         css.append(jd.row_css(p))
     return out + [{"type": "table", "caption": f"Worst crank-nose point per load case (torque"
-                   f" of TV element '{ex['element']}'): the judged points, lowest first (the"
+                   f" of TV element '{ex.element}'): the judged points, lowest first (the"
                    " value of the rule result), then, marked, lower factors at points the"
                    " rules do not judge",
                    "columns": ["case", "speed [rpm]", "Goodman SF", "T min / max [N·m]",

@@ -1,17 +1,22 @@
-"""Report section: crankshaft torsional vibration, TV damper and joint torques."""
+"""Report section: crankshaft torsional vibration, TV damper rubber and joint torques (module
+``torsion``, :mod:`checker.modules.torsion`; detail types :mod:`checker.results.torsion`). The
+damper's tuning against Den Hartog's optimum is the damper section."""
 
 from __future__ import annotations
 
 import numpy as np
 
+from .. import display
 from ..api import CheckResult
+from ..display import case_text
 from . import judged as jd
 from .plots import figure, legend_below, limit_line, literal, to_image
-from .sections import fmt, section
+from .sections import display_values, fmt, in_unit, rpm, section
 
-RPM = 2 * np.pi / 60
-DEG = 180 / np.pi
-CASE_TEXT = {"full": "full load", "no": "no load"}
+
+def _deg(rad):
+    """Angle(s) in rad as degrees."""
+    return in_unit(rad, "rad", "deg")
 
 
 def _svg(fig) -> bytes:
@@ -38,8 +43,9 @@ def _inputs(res: CheckResult) -> list[dict]:
     rows = []
     for s in eng.tv_model:
         rows.append([s.station, s.role, ", ".join(map(str, s.cylinders)) or "-",
-                     fmt(s.inertia * 1e3), fmt(s.absolute_damping),
-                     "-" if s.stiffness is None else fmt(s.stiffness / 1e3),
+                     fmt(in_unit(s.inertia, "kg*m**2", "g*m**2")), fmt(s.absolute_damping),
+                     "-" if s.stiffness is None else fmt(in_unit(s.stiffness, "N*m/rad",
+                                                                 "kN*m/rad")),
                      fmt(s.relative_damping)])
     blocks = [{"type": "table", "caption": "Torsional model (sheet TVModel), front to rear",
                "columns": ["station", "role", "cylinder", "J [g·m²]", "d_abs [N·m·s/rad]",
@@ -47,17 +53,18 @@ def _inputs(res: CheckResult) -> list[dict]:
                "widths": [18, 14, 10, 12, 15, 16, 15]}]
     d = eng.damper
     rows = []
-    for key, label, f, u in (("loss_factor", "Rubber loss factor η", 1, ""),
-                             ("inner_radius", "Rubber inner radius", 1e3, "mm"),
-                             ("outer_radius", "Rubber outer radius", 1e3, "mm"),
-                             ("axial_length", "Rubber axial length", 1e3, "mm"),
-                             ("shear_stress_limit", "Shear stress limit (supplier)", 1e-6,
-                              "MPa"),
-                             ("heat_limit", "Heat per unit volume limit (supplier)", 1e-6,
-                              "W/cm³")):
+    for key, label, si, u in (("loss_factor", "Rubber loss factor η", "", ""),
+                              ("inner_radius", "Rubber inner radius", "m", "mm"),
+                              ("outer_radius", "Rubber outer radius", "m", "mm"),
+                              ("axial_length", "Rubber axial length", "m", "mm"),
+                              ("shear_stress_limit", "Shear stress limit (supplier)", "Pa",
+                               "MPa"),
+                              ("heat_limit", "Heat per unit volume limit (supplier)", "W/m**3",
+                               "W/cm**3")):
         v = d.get(key)
-        rows.append([label, "-" if v is None else f"{fmt(v * f)} {u}".strip(),
-                     eng.cell("Damper", key)])
+        shown = "-" if v is None else (f"{fmt(in_unit(v, si, u) if u else v)}"
+                                       f" {display.unit_text(u)}").strip()
+        rows.append([label, shown, eng.cell("Damper", key)])
     fead = eng.params.get("fead_torque")
     rows.append(["Accessory drive torque at the crank nose",
                  "-" if fead is None else f"{fmt(fead)} N·m", eng.cell("Engine", "fead_torque")])
@@ -68,19 +75,19 @@ def _inputs(res: CheckResult) -> list[dict]:
 
 
 def _modes(res: CheckResult, nf, sp: np.ndarray) -> list[dict]:
-    ex = nf.extra
+    ex = nf.detail
     f = nf.values
-    orders = ex["orders"]
+    orders = ex.orders
     n_cyl = len(res.engine.cylinders)
     major = [o for o in orders if abs((o / (n_cyl / 2)) - round(o / (n_cyl / 2))) < 1e-9
              and o <= 4 * n_cyl]
     rows = []
     lo, hi = sp.min(), sp.max()  # [rad/s]
     for i, lab in enumerate(nf.coords["mode"]):
-        crit = ex["critical_speed"][i]
-        inside = [f"{o:g}: {c / RPM:.0f}" for o, c in zip(orders, crit)
+        crit = ex.critical_speed[i]
+        inside = [f"{o:g}: {rpm(c):.0f}" for o, c in zip(orders, crit)
                   if o in major and lo <= c <= hi]
-        rows.append([lab, fmt(f[i]), fmt(ex["damping_ratio"][i] * 100),
+        rows.append([lab, fmt(f[i]), fmt(in_unit(ex.damping_ratio[i], "", "percent")),
                      ", ".join(inside) or "-"])
     blocks: list[dict] = [{"type": "table", "caption": "Undamped natural frequencies (flexible"
                            " modes), modal damping ratio and critical speeds of the major"
@@ -88,8 +95,8 @@ def _modes(res: CheckResult, nf, sp: np.ndarray) -> list[dict]:
                            "columns": ["mode", "f [Hz]", "ζ [%]",
                                        "major order: critical speed [rpm]"], "rows": rows,
                            "widths": [12, 12, 10, 66]}]
-    modes = ex["modes"]
-    stations = ex["stations"]
+    modes = ex.modes
+    stations = ex.stations
     n_show = min(3, f.size)
     if n_show:
         fig, ax = figure(170, 58, bottom=17, legend_rows=1)
@@ -107,17 +114,18 @@ def _modes(res: CheckResult, nf, sp: np.ndarray) -> list[dict]:
                                   " largest station amplitude."})
     # Campbell diagram
     fig, ax = figure(170, 78, right=12, legend_rows=1)
-    x_max = hi / RPM * 1.1
+    lo_rpm, hi_rpm = rpm(lo), rpm(hi)
+    x_max = hi_rpm * 1.1
     drawn = [o for o in orders if o <= 2 * n_cyl + 4 and (float(o).is_integer()
                                                          or float(o * 2).is_integer())]
     o_top = max(drawn) if drawn else max(orders)
     # the frequency axis ends above the highest mode that a drawn order crosses inside the
     # speed range: higher modes would crowd the crossings into the bottom of the plot
-    crossed = f[f <= o_top * hi / RPM / 60]
+    crossed = f[f <= o_top * hi_rpm / 60]
     f_show = crossed if crossed.size else f[:1]
     above = f[f > (f_show.max() if f_show.size else 0)]
     y_max = (f_show.max() if f_show.size else f.min()) * 1.15
-    ax.axvspan(lo / RPM, hi / RPM, color="#3498db", alpha=0.08, label="speed range")
+    ax.axvspan(lo_rpm, hi_rpm, color="#3498db", alpha=0.08, label="speed range")
     seen: set[str] = set()
     placed: list[tuple[str, float]] = []  # order labels already placed (edge, position)
     for o in drawn:
@@ -154,10 +162,10 @@ def _modes(res: CheckResult, nf, sp: np.ndarray) -> list[dict]:
                     color="#c0392b",
                     bbox={"boxstyle": "square,pad=0.1", "fc": "white", "ec": "none",
                           "alpha": 0.85})
-        crit = ex["critical_speed"][i] / RPM
-        pick = [(c, o) for o, c in zip(orders, crit) if o in major and lo / RPM <= c <= hi / RPM]
+        crit = rpm(ex.critical_speed[i])
+        pick = [(c, o) for o, c in zip(orders, crit) if o in major and lo_rpm <= c <= hi_rpm]
         other = [(c, o) for o, c in zip(orders, crit) if o in drawn and o not in major
-                 and lo / RPM <= c <= hi / RPM]
+                 and lo_rpm <= c <= hi_rpm]
         if pick:
             ax.plot([c for c, _ in pick], [fi] * len(pick), "o", color="#c0392b", ms=3,
                     label="major-order resonance in the speed range" if i == 0 else None)
@@ -206,9 +214,9 @@ def _nose(res: CheckResult, q: dict) -> list[dict]:
     tot, per = q["tv.nose_amplitude"], q["tv.nose_order_amplitude"]
     cyl = q.get("tv.nose_cylinder_order_amplitude")
     hi_q = q.get("tv.nose_higher_order_amplitude")
-    sp = np.array(tot.coords["speed"]) / RPM
+    sp = rpm(np.array(tot.coords["speed"]))
     labels = per.coords["order"]
-    orders = per.extra["orders"]
+    orders = per.detail.orders
     cases = tot.coords["case"]
     n_cyl = len(res.engine.cylinders)
     lim_cyl = _limit(res, "tv.nose_cylinder_order_amplitude", "deg")
@@ -228,9 +236,9 @@ def _nose(res: CheckResult, q: dict) -> list[dict]:
     for ci, c in enumerate(cases):
         ax = axes[0, ci]
         shaded |= jd.shade(ax, sp, tot_j[ci])
-        ax.plot(sp, tot.values[ci] * DEG, color="k", lw=1.6, label="total (synthesis)")
+        ax.plot(sp, _deg(tot.values[ci]), color="k", lw=1.6, label="total (synthesis)")
         for n, k in enumerate(show):
-            (ln,) = ax.plot(sp, per.values[k, ci] * DEG, lw=1.4 if k == k_cyl else 0.9,
+            (ln,) = ax.plot(sp, _deg(per.values[k, ci]), lw=1.4 if k == k_cyl else 0.9,
                             color=colors[n % len(colors)], label=literal(labels[k]))
             jm = None
             if k == k_cyl and cyl is not None:
@@ -238,7 +246,7 @@ def _nose(res: CheckResult, q: dict) -> list[dict]:
             elif labels[k] in hi_labels:
                 jm = jd.mask(hi_q)[hi_labels.index(labels[k]), ci]
             if jm is not None and jm.any():
-                ax.plot(sp[jm], per.values[k, ci, jm] * DEG, "o", ms=3.5, mfc="none",
+                ax.plot(sp[jm], _deg(per.values[k, ci, jm]), "o", ms=3.5, mfc="none",
                         color=ln.get_color())
                 marked = True
         if lim_cyl is not None:
@@ -247,7 +255,7 @@ def _nose(res: CheckResult, q: dict) -> list[dict]:
             limit_line(ax, lim_hi, f"limit, higher orders: {lim_hi:g}°", ls=":")
         ax.set_yscale("log")
         ax.set_ylim(1e-3, None)
-        ax.set_title(CASE_TEXT.get(c, c))
+        ax.set_title(case_text(c))
         ax.set_xlabel("Engine speed [rpm]")
     if marked:
         axes[0, 0].plot([], [], "o", ms=3.5, mfc="none", color="0.3",
@@ -276,7 +284,7 @@ def _nose(res: CheckResult, q: dict) -> list[dict]:
             content = f"lower, elastic: {low_q.coords['order'][p.index[0]]}"
         lim = (lim_cyl if qq is cyl else lim_hi if qq is hi_q else lim_low if qq is low_q
                else None)
-        return [content, CASE_TEXT.get(cases[ci], cases[ci]), fmt(p.value * DEG),
+        return [content, case_text(cases[ci]), fmt(_deg(p.value)),
                 f"{sp[si]:.0f}", "-" if lim is None else f"< {lim:g}"]
 
     items = []
@@ -303,8 +311,8 @@ def _nose(res: CheckResult, q: dict) -> list[dict]:
 def _elements(res: CheckResult, q: dict) -> list[dict]:
     et = q["tv.element_torque"]
     tw = q.get("tv.crank_twist")
-    ex = et.extra
-    sp = np.array(et.coords["speed"]) / RPM
+    ex = et.detail
+    sp = rpm(np.array(et.coords["speed"]))
     cases = et.coords["case"]
     names = et.coords["item"]
     et_j = jd.mask(et)
@@ -312,8 +320,8 @@ def _elements(res: CheckResult, q: dict) -> list[dict]:
     ax = axes[0, 0]
     for ci, c in enumerate(cases):
         if tw is not None:
-            jd.line(ax, sp, tw.values[ci] * DEG, jd.mask(tw)[ci], color=("k", "0.5")[ci % 2],
-                    label=f"twist, {CASE_TEXT.get(c, c)}")
+            jd.line(ax, sp, _deg(tw.values[ci]), jd.mask(tw)[ci], color=("k", "0.5")[ci % 2],
+                    label=f"twist, {case_text(c)}")
     ax.set_xlabel("Engine speed [rpm]")
     ax.set_ylabel("Twist, nose to flywheel [°]")
     ax.set_title("crank twist, half peak-to-peak")
@@ -341,10 +349,10 @@ def _elements(res: CheckResult, q: dict) -> list[dict]:
                 if p is None:
                     continue
                 k = p.index[-1]
-                rows.append([n, CASE_TEXT.get(c, c), fmt(p.value), f"{sp[k]:.0f}",
-                             fmt(ex["mean"][e, ci, k]), fmt(ex["vib_min"][e, ci, k]),
-                             fmt(ex["vib_max"][e, ci, k]),
-                             fmt(ex["twist"][e, ci, k] * DEG),
+                rows.append([n, case_text(c), fmt(p.value), f"{sp[k]:.0f}",
+                             fmt(ex.mean[e, ci, k]), fmt(ex.vib_min[e, ci, k]),
+                             fmt(ex.vib_max[e, ci, k]),
+                             fmt(_deg(ex.twist[e, ci, k])),
                              jd.judged_text(res, et, p, n, c)])
                 css.append(jd.row_css(p))
     blocks.append({"type": "table", "caption": (
@@ -365,7 +373,7 @@ def _damper(res: CheckResult, q: dict) -> list[dict]:
         reasons = [] if pw is None else sorted({r for v in pw.missing.values() for r in v})
         return [{"type": "text", "text": "Damper rubber: not computed"
                  + (" (" + "; ".join(reasons) + ")" if reasons else "") + "."}]
-    sp = np.array(pw.coords["speed"]) / RPM
+    sp = rpm(np.array(pw.coords["speed"]))
     cases = pw.coords["case"]
     d = res.engine.damper
     heat, heat_pk, tau = (q.get(n) for n in ("damper.heat_density", "damper.heat_density_peak",
@@ -376,28 +384,31 @@ def _damper(res: CheckResult, q: dict) -> list[dict]:
     ax = axes[0, 0]
     for ci, c in enumerate(cases):
         jd.line(ax, sp, pw.values[ci], jd.mask(pw)[ci], color=case_color[c],
-                label=CASE_TEXT.get(c, c))
+                label=case_text(c))
     ax.set_ylabel("Dissipated power [W]")
     ax.set_title("dissipated power")
     ax.set_xlabel("Engine speed [rpm]")
     if geo:
         ax = axes[0, 1]
         for ci, c in enumerate(cases):
-            jd.line(ax, sp, heat.values[ci] / 1e6, jd.mask(heat)[ci], color=case_color[c])
-            jd.line(ax, sp, heat_pk.values[ci] / 1e6, jd.mask(heat_pk)[ci], ls="--",
+            jd.line(ax, sp, display_values(heat, heat.values[ci])[0], jd.mask(heat)[ci],
+                    color=case_color[c])
+            jd.line(ax, sp, display_values(heat_pk, heat_pk.values[ci])[0],
+                    jd.mask(heat_pk)[ci], ls="--",
                     lw=0.8, color=case_color[c])
         ax.plot([], [], color="0.3", label="mean (solid)")
         ax.plot([], [], color="0.3", ls="--", lw=0.8, label="peak at the inner radius")
         if d.get("heat_limit") is not None:
-            limit_line(ax, d["heat_limit"] / 1e6, "supplier limit")
+            limit_line(ax, in_unit(d["heat_limit"], "W/m**3", "W/cm**3"), "supplier limit")
         ax.set_ylabel("Heat per rubber volume [W/cm³]")
         ax.set_title("heat per unit volume")
         ax.set_xlabel("Engine speed [rpm]")
         ax = axes[0, 2]
         for ci, c in enumerate(cases):
-            jd.line(ax, sp, tau.values[ci] / 1e6, jd.mask(tau)[ci], color=case_color[c])
+            jd.line(ax, sp, display_values(tau, tau.values[ci])[0], jd.mask(tau)[ci],
+                    color=case_color[c])
         if d.get("shear_stress_limit") is not None:
-            limit_line(ax, d["shear_stress_limit"] / 1e6, "supplier limit")
+            limit_line(ax, in_unit(d["shear_stress_limit"], "Pa", "MPa"), "supplier limit")
         ax.set_ylabel("Shear stress amplitude [MPa]")
         ax.set_title("shear stress at the inner radius")
         ax.set_xlabel("Engine speed [rpm]")
@@ -409,18 +420,19 @@ def _damper(res: CheckResult, q: dict) -> list[dict]:
         + (f"; faint dotted: computed but not judged ({jd.reason(pw)})" if faint else "")
         + "."), "data": [x.name for x in (pw, heat, heat_pk, tau) if x is not None]}]
     tw, tq = q.get("damper.relative_twist"), q.get("damper.torque")
-    cols = [(pw, 1.0), (tw, DEG), (tq, 1.0)] + (
-        [(heat, 1e-6), (heat_pk, 1e-6), (tau, 1e-6)] if geo else [])
+    # each in its quantity's display unit: W, deg, N m, W/cm³, W/cm³, MPa (the column heads)
+    cols = [pw, tw, tq] + ([heat, heat_pk, tau] if geo else [])
     rows, css = [], []
     for ci, c in enumerate(cases):
-        found = [jd.worst(x, (ci,), "max") if x is not None else (None, None) for x, _ in cols]
+        found = [jd.worst(x, (ci,), "max") if x is not None else (None, None) for x in cols]
         for which in (0, 1):
             pts = [f[which] for f in found]
             if which == 1 and all(p is None for p in pts):
                 continue
             p0 = pts[0]
-            row = [CASE_TEXT.get(c, c), "-" if p0 is None else f"{sp[p0.index[-1]]:.0f}"]
-            row += ["-" if p is None else fmt(p.value * f) for p, (_, f) in zip(pts, cols)]
+            row = [case_text(c), "-" if p0 is None else f"{sp[p0.index[-1]]:.0f}"]
+            row += ["-" if p is None else fmt(display_values(x, p.value)[0])
+                    for p, x in zip(pts, cols)]
             row += ["-"] * (3 - (len(cols) - 3))
             row.append("judged points" if which == 0 else "not judged: " + jd.reason(pw))
             rows.append(row)
@@ -433,21 +445,19 @@ def _damper(res: CheckResult, q: dict) -> list[dict]:
                                "q peak [W/cm³]", "τ max [MPa]", "points"],
                    "rows": rows, "row_css": css, "widths": [9, 11, 9, 8, 9, 10, 10, 9, 25],
                    "detail": True, "sheet": "damper maxima"})
-    judged_q = [(n, q.get(n), u) for n, u in (("damper.shear_stress", "MPa"),
-                                              ("damper.heat_density", "W/cm³"),
-                                              ("damper.heat_density_peak", "W/cm³"))]
+    judged_q = [(n, q.get(n)) for n in ("damper.shear_stress", "damper.heat_density",
+                                        "damper.heat_density_peak")]
     items = [(qq.spec.description, qq, [(ci,) for ci in range(len(cases))],
               jd.direction(res, n, "max"))
-             for n, qq, _ in judged_q if qq is not None and np.isfinite(qq.values).all()
+             for n, qq in judged_q if qq is not None and np.isfinite(qq.values).all()
              and (qq.item_attrs.get("all") or {}).get("limit") is not None]
-    units = {id(qq): u for _, qq, u in judged_q}
     if items:
-        def cells(content, qq, p):  # MPa and W/cm³: 1e-6 of the SI values
+        def cells(content, qq, p):  # in the quantity's display unit (MPa, W/cm³)
             ci, si = p.index
             lim = qq.item_attrs["all"]["limit"][0]
-            return [content, CASE_TEXT.get(cases[ci], cases[ci]),
-                    f"{fmt(p.value * 1e-6)} {units[id(qq)]}",
-                    f"{fmt(lim * 1e-6)} {units[id(qq)]}", f"{sp[si]:.0f}"]
+            (val, u), lim_shown = display_values(qq, p.value), display_values(qq, lim)[0]
+            return [content, case_text(cases[ci]), f"{fmt(val)} {u}", f"{fmt(lim_shown)} {u}",
+                    f"{sp[si]:.0f}"]
 
         rows, css = _judged_rows(res, items, cells)
         blocks.append({"type": "table", "caption": "Damper rubber against the supplier's limits"
@@ -456,11 +466,12 @@ def _damper(res: CheckResult, q: dict) -> list[dict]:
                        "columns": ["quantity", "case", "value", "supplier limit",
                                    "speed [rpm]", "judged by"], "rows": rows, "row_css": css})
     if geo:
-        ex = heat.extra
+        ex = heat.detail
         blocks.append({"type": "list", "items": [
-            f"Rubber volume {ex['volume'] * 1e6:.4g} cm³; storage shear modulus implied by the"
-            f" element stiffness and the geometry G' = {ex['shear_modulus'] / 1e6:.3g} MPa"
-            f" (k' = {ex['stiffness']:.5g} N m/rad, η = {ex['loss_factor']:g}).",
+            f"Rubber volume {in_unit(ex.volume, 'm**3', 'cm**3'):.4g} cm³; storage shear"
+            " modulus implied by the element stiffness and the geometry G' ="
+            f" {in_unit(ex.shear_modulus, 'Pa', 'MPa'):.3g} MPa"
+            f" (k' = {ex.stiffness:.5g} N m/rad, η = {ex.loss_factor:g}).",
             "The rubber's shear stress and heat per volume are judged against the supplier's"
             " limits (Damper sheet; rules DMP-001..003).",
         ]})
@@ -472,7 +483,7 @@ def _joints(res: CheckResult, q: dict) -> list[dict]:
     if jt is None:
         return []
     app = q.get("joint.applied_torque")
-    src = None if app is None else app.extra.get("source")
+    src = None if app is None else app.detail.source
     given = {(t.joint, t.point): t for t in res.engine.joint_torques}
     rows = []
     for i, n in enumerate(jt.coords["item"]):
@@ -482,8 +493,9 @@ def _joints(res: CheckResult, q: dict) -> list[dict]:
                     "torsional model" if s else "-")
             g = fmt(given[(n, p)].torque) if (n, p) in given else "-"
             if np.isfinite(jt.values[i, k]):
-                rows.append([n, p, CASE_TEXT.get(jt.extra["case"][i, k], "-"),
-                             f"{jt.extra['speed'][i, k] / RPM:.0f}", fmt(jt.values[i, k]),
+                c = jt.detail.case[i, k]
+                rows.append([n, p, case_text(c) if c else "-",
+                             f"{rpm(jt.detail.speed[i, k]):.0f}", fmt(jt.values[i, k]),
                              g, used])
             else:
                 rows.append([n, p, "-", "-", "-", g, used if s else "not available: "
@@ -495,16 +507,17 @@ def _joints(res: CheckResult, q: dict) -> list[dict]:
         "columns": ["joint", "operating point", "case", "speed [rpm]", "TV torque [N·m]",
                     "workbook [N·m]", "used"], "rows": rows,
         "widths": [12, 13, 10, 10, 12, 12, 31]}]
-    items = [f"{n} at '{p}': {jt.extra['how'][i, k]}"
+    how = jt.detail.how
+    items = [f"{n} at '{p}': {how[i, k]}"
              for i, n in enumerate(jt.coords["item"]) for k, p in enumerate(jt.coords["point"])
-             if jt.extra["how"][i, k]]
-    mp, ov = jt.extra.get("max_power_speed"), jt.extra.get("overspeed")
+             if how[i, k]]
+    mp, ov = jt.detail.max_power_speed, jt.detail.overspeed
     items.append("Operating points: 'tv peak' = speed of the largest joint torque over the"
                  " full-load sweep; 'max power' = speed of the maximum brake power of the"
                  " BrakeTorque sheet"
-                 + (f" ({mp / RPM:.0f} rpm)" if mp is not None else "")
+                 + (f" ({rpm(mp):.0f} rpm)" if mp is not None else "")
                  + ", full load; 'overspeed' = Engine 'Overspeed'"
-                 + (f" ({ov / RPM:.0f} rpm)" if ov is not None else "") + ", no load; each at"
+                 + (f" ({rpm(ov):.0f} rpm)" if ov is not None else "") + ", no load; each at"
                  " the nearest swept speed. Crank nose: damper rubber element torque plus the"
                  " accessory drive torque (the hub's own inertia torque is neglected);"
                  " flywheel: torque of the element ending at the flywheel plus the brake torque"

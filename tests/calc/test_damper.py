@@ -176,3 +176,18 @@ def test_validation():
         dm.annulus_heat_density(-1.0, R_I, R_O, LENGTH)
     with pytest.raises(ValueError):
         dm.den_hartog_optimum(0.0)
+
+
+def test_annulus_shear_modulus_inverts_the_stiffness():
+    # independent: the thin-layer limit k = 2 pi G R^3 L / h (Gent 2012, ch. 8) of a 1 mm layer
+    # at R = 60 mm recovers G' within the layer's first-order curvature term (h / R)
+    r, h = R_I, 0.001
+    k_thin = 2 * np.pi * G_STORAGE * r**3 * LENGTH / h
+    g = dm.annulus_shear_modulus(k_thin, r - h / 2, r + h / 2, LENGTH)
+    np.testing.assert_allclose(g, G_STORAGE, rtol=2 * (h / r) ** 2)
+    # exact round trip through the closed form
+    k = dm.annulus_stiffness(G_STORAGE, R_I, R_O, LENGTH)
+    np.testing.assert_allclose(dm.annulus_shear_modulus(k, R_I, R_O, LENGTH), G_STORAGE,
+                               rtol=1e-14)
+    with pytest.raises(ValueError):
+        dm.annulus_shear_modulus(0.0, R_I, R_O, LENGTH)

@@ -36,19 +36,19 @@ def test_nose_safety_factor_hand_check(tmp_path):
     [r] = res.results
     assert r.status in ("pass", "fail") and r.case
     q = res.outcome.quantities["fatigue.nose_goodman_sf"]
-    ex = q.extra
+    ex = q.detail
     ci, si = 0, 30
     d = 0.032
     wb_, wp = np.pi * d**3 / 32, np.pi * d**3 / 16
-    tmax, tmin = ex["torque_max"][ci, si], ex["torque_min"][ci, si]
+    tmax, tmin = ex.torque_max[ci, si], ex.torque_min[ci, si]
     sa = 1.9 * 2500 * 0.035 / wb_
     ta, tm = 1.4 * (tmax - tmin) / 2 / wp, 1.4 * (tmax + tmin) / 2 / wp
     sf = 1 / (np.sqrt(sa**2 + 3 * ta**2) / 420e6 + np.sqrt(3) * abs(tm) / 750e6)
     assert q.values[ci, si] == pytest.approx(sf, rel=1e-9)
     # the nose carries the accessory drive torque: the mean torque is about -19 N m (seed FEAD)
     tv = res.outcome.quantities["tv.element_torque"]
-    k = tv.coords["item"].index(ex["element"])
-    assert tv.extra["mean"][k] == pytest.approx(-19.0, abs=1e-6)
+    k = tv.coords["item"].index(ex.element)
+    assert tv.detail.mean[k] == pytest.approx(-19.0, abs=1e-6)
 
 
 def test_without_belt_load_torsion_only_is_stated(tmp_path):

@@ -99,8 +99,8 @@ def test_i4_throw_symmetry(result, example):
     # with the same torque in every journal (none), every safety factor is symmetric ...
     res_tv = result.outcome.quantities
     et = res_tv["tv.element_torque"]
-    zero = dataclasses.replace(et, extra={**et.extra, "coeffs": np.zeros_like(et.extra["coeffs"]),
-                                          "mean": np.zeros_like(et.extra["mean"])})
+    zero = dataclasses.replace(et, detail=dataclasses.replace(
+        et.detail, coeffs=np.zeros_like(et.detail.coeffs), mean=np.zeros_like(et.detail.mean)))
     out = fm.crank_fatigue(result.engine, {"loads.bearing_load": res_tv["loads.bearing_load"],
                                            "tv.element_torque": zero})["fatigue.goodman_sf"]
     for a, b in (("pin 1 fillet", "pin 4 fillet"), ("pin 2 fillet", "pin 3 fillet"),
@@ -142,9 +142,9 @@ def test_tv_torque_signal_on_the_loads_crank_angle(result):
     t = ex["element_torque"]  # (C, S, E + 1, N)
     et = qs["tv.element_torque"]
     # synthesised signal: mean as given, extremes as the TV module's (1 deg sampling)
-    np.testing.assert_allclose(t[..., :-1, :].mean(-1), np.moveaxis(et.extra["mean"], 0, -1),
+    np.testing.assert_allclose(t[..., :-1, :].mean(-1), np.moveaxis(et.detail.mean, 0, -1),
                                atol=1e-9)
-    vib_max = np.moveaxis(et.extra["vib_max"] + et.extra["mean"], 0, -1)
+    vib_max = np.moveaxis(et.detail.vib_max + et.detail.mean, 0, -1)
     np.testing.assert_allclose(t[..., :-1, :].max(-1), vib_max, rtol=2e-3, atol=2.0)
     # same theta origin as the loads: at 1000 rpm the torque that cylinder 1's station adds to
     # the chain follows cylinder 1's own crank torque (loads module) without a phase shift

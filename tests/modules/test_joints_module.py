@@ -46,7 +46,7 @@ def test_computed_torque_is_the_torsional_models(jnt):
     comp, tv = q["joint.computed_torque"], q["tv.joint_torque"]
     # one source: the same numbers and operating-point speeds as the torsional module
     np.testing.assert_array_equal(comp.values, tv.values)
-    np.testing.assert_array_equal(comp.extra["speed"], tv.extra["speed"])
+    np.testing.assert_array_equal(comp.extra["speed"], tv.detail.speed)
     k = comp.coords["point"].index("tv peak")
     # the measurement on the example: about 317 N m at the crank nose (TV peak)
     assert comp.values[0, k] == pytest.approx(317.4, abs=0.5)

@@ -40,12 +40,14 @@ def test_elastic_part_of_a_two_inertia_system_closed_form():
     omega = resp.omega[None]
     q = _lower_orders(model, theta, 0, orders, speeds, omega, np.array([w0]), 4,
                       ["order 1", "order 2"], {"case": ["full"], "speed": list(speeds)}, {},
-                      None, {})
+                      None, {"orders": orders, "speeds": speeds,
+                             "resonance": resp.resonance[None],
+                             "near_resonance": np.zeros((speeds.size, orders.size), bool)})
     big_w = orders[None, :] * speeds[:, None]  # (S, O)
     want = j2 / (j1 + j2) * 100.0 / (j1 * np.abs(w0 ** 2 - big_w ** 2))
     np.testing.assert_allclose(q.values[:, 0, :], want.T, rtol=1e-9)
     rb = 100.0 / ((j1 + j2) * big_w ** 2)
-    np.testing.assert_allclose(q.extra["rigid_body"][:, 0, :], rb.T, rtol=1e-9)
+    np.testing.assert_allclose(q.detail.rigid_body[:, 0, :], rb.T, rtol=1e-9)
     # no resonance inside the sweep (order 2 reaches 0.9 w0 at the top speed but the crossing
     # speed w0/2 lies above the sweep): nothing judged
     assert not q.applies.any()
@@ -70,13 +72,13 @@ def test_v8_fourth_order_on_the_crank_mode_is_judged(v8):
     assert r.status == ("fail" if r.value >= LIMIT else "pass")
     assert "order 4" in r.case and r.value > 0.2  # about 0.28 deg at 4000 rpm: fails
     # the judged points lie at an order frequency near a natural frequency
-    nat = v8.outcome.quantities["tv.natural_frequency"].extra["omega"]
-    om = np.asarray(q.extra["orders_checked"])[:, None, None] * np.asarray(
+    nat = v8.outcome.quantities["tv.natural_frequency"].detail.omega
+    om = np.asarray(q.detail.orders_checked)[:, None, None] * np.asarray(
         q.coords["speed"])[None, None, :]
     for o, _, s in zip(*np.nonzero(q.applies)):
         assert np.min(np.abs(om[o, 0, s] - nat) / nat) <= MODE_BAND
     # TV-001 (order 8) and TV-002 (orders above) do not see it
-    assert q.values.shape[0] == len([o for o in q.extra["orders"] if o < 8])
+    assert q.values.shape[0] == len([o for o in q.detail.orders if o < 8])
 
 
 def test_v8_no_pass_without_a_value(tmp_path):
@@ -126,7 +128,7 @@ def test_i4_example_low_orders_off_resonance_are_not_judged_as_rolling_mode(tmp_
     q = res.outcome.quantities["tv.nose_lower_order_elastic_amplitude"]
     o2 = q.coords["order"].index("order 2")
     assert not q.applies[o2].any()
-    assert q.extra["rigid_body"][o2, 0, 0] * DEG > 1.0
+    assert q.detail.rigid_body[o2, 0, 0] * DEG > 1.0
 
 
 def test_v8_cancelled_orders_are_not_peaks(v8):

@@ -48,7 +48,7 @@ def test_natural_frequencies_equal_direct_eigensolve(tv_result):
     f_ref = np.sqrt(lam[1:]) / (2 * np.pi)  # drop the free-free rigid-body mode
     nf = tv_result.outcome.quantities["tv.natural_frequency"]
     np.testing.assert_allclose(nf.values, f_ref, rtol=1e-9)
-    assert nf.extra["rigid_body_mode"]
+    assert nf.detail.rigid_body_mode
     assert 280 < nf.values[0] < 300  # damper mode below the first crank mode (543 Hz)
 
 
@@ -91,29 +91,29 @@ def test_rules_evaluated_with_sources(tv_result):
     # the 0.05 deg target for higher orders
     assert by_rule["TV-002"].status == "fail" and "order 6" in by_rule["TV-002"].case
     nose = tv_result.outcome.quantities["tv.nose_cylinder_order_amplitude"]
-    assert nose.extra["order"] == 4.0
+    assert nose.detail.order == 4.0
 
 
 def test_element_torque_conventions(tv_result):
     qs = tv_result.outcome.quantities
     et = qs["tv.element_torque"]
-    ex = et.extra
+    ex = et.detail
     fead = 19.0  # Engine 'Accessory drive torque at crank nose' of the example
-    cyl = ex["cylinder_mean_torque"]  # (C, S) one cylinder
+    cyl = ex.cylinder_mean_torque  # (C, S) one cylinder
     # mean torque summed from the front: rubber 0, nose element -FEAD, flywheel element 4 T - FEAD
-    np.testing.assert_allclose(ex["mean"][0], 0.0, atol=1e-9)
-    np.testing.assert_allclose(ex["mean"][1], -fead, atol=1e-9)
-    np.testing.assert_allclose(ex["mean"][-1], 4 * cyl - fead, rtol=1e-12)
-    assert np.all(ex["mean"][-1, 0] > 0)  # full load: the crank drives the flywheel
+    np.testing.assert_allclose(ex.mean[0], 0.0, atol=1e-9)
+    np.testing.assert_allclose(ex.mean[1], -fead, atol=1e-9)
+    np.testing.assert_allclose(ex.mean[-1], 4 * cyl - fead, rtol=1e-12)
+    assert np.all(ex.mean[-1, 0] > 0)  # full load: the crank drives the flywheel
     # half range of the sampled extremes agrees with the exact half range
-    exact = tv.half_peak_to_peak(ex["orders"], ex["coeffs"])
+    exact = tv.half_peak_to_peak(ex.orders, ex.coeffs)
     np.testing.assert_allclose(et.values, exact, rtol=1e-3)
-    np.testing.assert_allclose(0.5 * (ex["vib_max"] - ex["vib_min"]), et.values, rtol=1e-12)
+    np.testing.assert_allclose(0.5 * (ex.vib_max - ex.vib_min), et.values, rtol=1e-12)
     # the damper rubber torque is the torque of the damper element (opposite sign convention)
     np.testing.assert_allclose(qs["damper.torque"].values, et.values[0], rtol=1e-3)
     # dissipated power = sum over orders of 1/2 Omega eta k' |dphi|^2 (torsion.md 3.5)
-    dphi = qs["damper.power"].extra["dphi"]
-    omega = ex["orders"] * np.array(et.coords["speed"])[:, None]
+    dphi = qs["damper.power"].detail.dphi
+    omega = ex.orders * np.array(et.coords["speed"])[:, None]
     p_ref = (0.5 * omega * 0.15 * 25500 * np.abs(dphi) ** 2).sum(-1)
     np.testing.assert_allclose(qs["damper.power"].values, p_ref, rtol=1e-12)
 
@@ -163,7 +163,7 @@ def test_undamped_resonance_between_swept_speeds_is_a_finding(tmp_path, tv_resul
 
     res = api.check(edited(tmp_path, edit), select=["TV-001"])
     q = res.outcome.quantities["tv.nose_cylinder_order_amplitude"]
-    assert not q.extra["resonance"].any()  # not exactly on it: no exact-resonance flag
+    assert not q.detail.resonance.any()  # not exactly on it: no exact-resonance flag
     assert np.isfinite(q.values).all()
     [r] = res.results
     text = f"order 4 meets the natural frequency {w1 / (2 * np.pi):.1f} Hz"
@@ -203,17 +203,17 @@ def test_joint_rules_from_tv_torques_when_rows_removed(tmp_path):
     assert res.outcome.modules_run == ["loads", "torsion", "joints"]
     app = res.outcome.quantities["joint.applied_torque"]
     tq = res.outcome.quantities["tv.joint_torque"]
-    assert np.all(app.extra["source"] == "torsional vibration module")
+    assert np.all(app.detail.source == "torsional vibration module")
     np.testing.assert_array_equal(app.values, tq.values)
     # operating points: max power 5500 rpm (BrakeTorque: 255 N m x 5500 rpm), overspeed 7000
     k_mp, k_ov = app.coords["point"].index("max power"), app.coords["point"].index("overspeed")
-    np.testing.assert_allclose(app.extra["speed"][:, k_mp] / RPM, 5500)
-    np.testing.assert_allclose(app.extra["speed"][:, k_ov] / RPM, 7000)
-    assert list(tq.extra["case"][:, k_ov]) == ["no", "no"]
+    np.testing.assert_allclose(app.detail.speed[:, k_mp] / RPM, 5500)
+    np.testing.assert_allclose(app.detail.speed[:, k_ov] / RPM, 7000)
+    assert list(tq.detail.case[:, k_ov]) == ["no", "no"]
     # flywheel at overspeed: no load, no brake torque: the peak of the vibratory torque
     et = api.check(path, select=["TV-001"]).outcome.quantities["tv.element_torque"]
     i_fw, s_ov = app.coords["item"].index("flywheel"), et.coords["speed"].index(7000 * RPM)
-    peak = max(abs(et.extra["vib_max"][-1, 1, s_ov]), abs(et.extra["vib_min"][-1, 1, s_ov]))
+    peak = max(abs(et.detail.vib_max[-1, 1, s_ov]), abs(et.detail.vib_min[-1, 1, s_ov]))
     assert app.values[i_fw, k_ov] == pytest.approx(peak, rel=1e-12)
     results = {(r.rule, r.item): r for r in res.results}
     for rule, item in (("JNT-003", "crank nose"), ("JNT-005", "flywheel"),
@@ -245,7 +245,7 @@ def test_tv_module_skipped_when_joint_torques_given(tmp_path):
     res = api.check(edited(tmp_path, edit), select=["JNT"], ignore=["JNT-008"])
     assert res.outcome.modules_run == ["joints"]
     app = res.outcome.quantities["joint.applied_torque"]
-    assert np.all(app.extra["source"] == "workbook (JointTorques)")
+    assert np.all(app.detail.source == "workbook (JointTorques)")
 
 
 def test_workbook_joint_torques_still_used_without_tv_model(tmp_path):
@@ -310,10 +310,10 @@ def test_v8_station_takes_both_cylinders_phased_by_their_own_firing_angles(v8_mo
     # (torsion.md sec. 3.3), so the ratio of the two stations' excitations is
     # (e^{-j n 630} + e^{-j n 540}) / (1 + e^{-j n 270}) whatever c_n is; at order 2 the two
     # cylinders of a pin cancel (1 + e^{-j 540 deg} = 0), at order 4 (a V8's major order) add.
-    ex = v8_models[0].outcome.quantities["tv.nose_amplitude"].extra
-    force = ex["excitation"]  # (C, S, n_st, O)
-    orders = ex["orders"]
-    assert list(ex["model_data"]["cyl_station"]) == [2, 2, 3, 3, 4, 4, 5, 5]
+    ex = v8_models[0].outcome.quantities["tv.nose_amplitude"].detail
+    force = ex.excitation  # (C, S, n_st, O)
+    orders = ex.orders
+    assert list(ex.model_data.cyl_station) == [2, 2, 3, 3, 4, 4, 5, 5]
 
     def phase(n, *deg):
         return sum(np.exp(-1j * n * np.radians(d)) for d in deg)
@@ -362,7 +362,7 @@ def test_tv001_judges_each_load_case_within_its_own_envelope(tmp_path, factor, s
     res = api.check(edited(tmp_path, lambda wb: _remove_damper_ring(wb, factor)),
                     select=["TV-001"])
     q = res.outcome.quantities["tv.nose_cylinder_order_amplitude"]
-    env = res.outcome.quantities["loads.cycle"].extra["cycle"].envelope
+    env = res.outcome.quantities["loads.cycle"].detail.cycle.envelope
     speeds = np.array(q.coords["speed"]) / RPM
     full, no = q.coords["case"].index("full"), q.coords["case"].index("no")
     top = int(np.flatnonzero(speeds == speed_rpm)[0])
@@ -371,7 +371,7 @@ def test_tv001_judges_each_load_case_within_its_own_envelope(tmp_path, factor, s
     # judged points: never outside the envelope; the top speed of each rising case is judged
     assert not (q.applies & ~env).any()
     assert q.applies[full, top] and q.applies[no, -1]
-    assert "envelope" in q.extra["applies_text"]
+    assert "envelope" in q.applies_text
     # per case: the judged maximum is the true maximum within the envelope (rolling mode aside)
     for ci in (full, no):
         assert q.values[ci][q.applies[ci]].max() == pytest.approx(
