@@ -151,7 +151,7 @@ TWIST = quantity(QuantitySpec(
 ELEMENT = quantity(QuantitySpec(
     "tv.element_torque", "N*m", ("item", "case", "speed"),
     "Vibratory torque in each element of the TV model (half peak-to-peak; mean, max/min and"
-    " per-order torques in extra)", "N*m", ("kind",), coords={"case": CASES},
+    " per-order torques in the report section)", "N*m", ("kind",), coords={"case": CASES},
     detail=ElementTorqueDetail))
 JOINT = quantity(QuantitySpec(
     "tv.joint_torque", "N*m", ("item", "point"),
