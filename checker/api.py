@@ -274,7 +274,7 @@ def _apply_envelope(outcome: graph.RunOutcome) -> None:
     cyc_q = outcome.quantities.get("loads.cycle")
     if cyc_q is None:
         return
-    cyc = cyc_q.extra["cycle"]
+    cyc = cyc_q.detail.cycle
     env = getattr(cyc, "envelope", None)
     if env is None or env.all():
         return

@@ -88,7 +88,7 @@ def collect(outcome: Any) -> list[dict[str, Any]]:
         for c in caveats_of(q):
             add(c)
     cyc_q = outcome.quantities.get("loads.cycle")
-    if cyc_q is not None and cyc_q.extra.get("cycle") is not None:
-        for c in imep_caveats(cyc_q.extra["cycle"]):
+    if cyc_q is not None and getattr(cyc_q.detail, "cycle", None) is not None:
+        for c in imep_caveats(cyc_q.detail.cycle):
             add(c)
     return out

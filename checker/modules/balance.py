@@ -21,12 +21,21 @@ evaluated.
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 from ..calc import balance as bal
 from ..calc import crank_forces as cf
 from ..engine import Engine
 from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity, register_module
+from ..results.balance import (
+    BalanceDetail,
+    BalanceRatioDetail,
+    CrankUnbalanceDetail,
+    FreeOrderDetail,
+    InternalMomentDetail,
+)
 
 register_module("balance", "Crankshaft balancing")
 
@@ -37,26 +46,27 @@ ORDERS = tuple(str(n) for n in range(1, MAX_ORDER + 1))
 FREE_FORCE = quantity(QuantitySpec(
     "balance.free_force", "N", ("item",),
     "Free (shaking) force per order at the reference speed: largest magnitude over the crank"
-    " angle (rotating and reciprocating masses)", "N", ("order",)))
+    " angle (rotating and reciprocating masses)", "N", ("order",), detail=FreeOrderDetail))
 FREE_MOMENT = quantity(QuantitySpec(
     "balance.free_moment", "N*m", ("item",),
     "Free moment per order about the crank's mid-plane at the reference speed: largest"
-    " magnitude over the crank angle", "N*m", ("order",)))
+    " magnitude over the crank angle", "N*m", ("order",), detail=FreeOrderDetail))
 BALANCE_RATIO = quantity(QuantitySpec(
     "balance.balance_ratio", "", ("item",),
     "Counterweight balance ratio: counterweight unbalance / rotating unbalance (webs, pin, rod"
-    " big ends) along the throw, per throw and for the whole crank", "%", ("kind",)))
+    " big ends) along the throw, per throw and for the whole crank", "%", ("kind",),
+    detail=BalanceRatioDetail))
 INTERNAL_MOMENT = quantity(QuantitySpec(
     "balance.internal_moment", "N*m", ("item",),
     "Bending moment of the rotating masses' centrifugal forces in the crank at each main"
-    " bearing, at the reference speed", "N*m"))
+    " bearing, at the reference speed", "N*m", detail=InternalMomentDetail))
 
 CRANK_UNBALANCE = quantity(QuantitySpec(
     "balance.crank_unbalance", "", ("item",),
     "Resultant unbalance of the crank's rotating masses (CrankMass rows and the rods' big"
     " ends) in a layout whose throws balance each other: static = |sum m rho| / one throw's"
     " rotating unbalance U; dynamic = |sum m rho z| / (U x main journal spacing)", "%",
-    ("kind",)))
+    ("kind",), detail=CrankUnbalanceDetail))
 
 PROVIDES = ("balance.free_force", "balance.free_moment", "balance.balance_ratio",
             "balance.internal_moment", "balance.crank_unbalance")
@@ -214,19 +224,19 @@ def _balance(engine: Engine) -> dict[str, Quantity]:
         m_vals[:] = np.nan
         for i in range(orders.size):
             m_missing[(i,)] = list(no_spacing) + m_missing.get((i,), [])
-    common = {"orders": orders, "omega": omega, "speed_text": speed_text,
-              "reciprocating_mass": m_rec, "rotating_rod_mass": m_big, "crank_radius": r,
-              "harmonics": harm, "assumptions": assumptions, "reference_plane": zc}
+    common = BalanceDetail(orders=orders, omega=omega, speed_text=speed_text,
+                           reciprocating_mass=m_rec, rotating_rod_mass=m_big, crank_radius=r,
+                           harmonics=harm, reference_plane=zc, assumptions=tuple(assumptions))
     out: dict[str, Quantity] = {}
     out["balance.free_force"] = Quantity(
         FREE_FORCE, f_vals, {"item": items}, f_attrs, f_missing,
-        extra=dict(common, phasors=res.force * w2, smallest=f_small * w2, theta=f_theta,
-                   direction=f_dir, reciprocating=fr_big * w2,
+        detail=_as(FreeOrderDetail, common, phasors=res.force * w2, smallest=f_small * w2,
+                   theta=f_theta, direction=f_dir, reciprocating=fr_big * w2,
                    rotating=bal.order_vector_extremes(res.force_rotating, orders)[0] * w2))
     out["balance.free_moment"] = Quantity(
         FREE_MOMENT, m_vals, {"item": items}, m_attrs, m_missing,
-        extra=dict(common, phasors=res.moment * w2, smallest=m_small_ * w2, theta=m_theta,
-                   direction=m_dir, reciprocating=mr_big * w2,
+        detail=_as(FreeOrderDetail, common, phasors=res.moment * w2, smallest=m_small_ * w2,
+                   theta=m_theta, direction=m_dir, reciprocating=mr_big * w2,
                    rotating=bal.order_vector_extremes(res.moment_rotating, orders)[0] * w2))
 
     # balance ratio per throw and for the whole crank
@@ -237,7 +247,8 @@ def _balance(engine: Engine) -> dict[str, Quantity]:
     if not crank:
         out["balance.balance_ratio"] = Quantity(
             BALANCE_RATIO, np.full(len(b_items), np.nan), {"item": b_items}, b_attrs,
-            {(i,): list(no_crank) for i in range(len(b_items))}, extra=dict(common))
+            {(i,): list(no_crank) for i in range(len(b_items))},
+            detail=_as(BalanceRatioDetail, common))
     else:
         n_on = np.bincount(pins, minlength=n_pins).astype(float)
         try:
@@ -249,11 +260,13 @@ def _balance(engine: Engine) -> dict[str, Quantity]:
             tb = None
             out["balance.balance_ratio"] = Quantity(
                 BALANCE_RATIO, np.full(len(b_items), np.nan), {"item": b_items}, b_attrs,
-                {(i,): [f"CrankMass: {exc}"] for i in range(len(b_items))}, extra=dict(common))
+                {(i,): [f"CrankMass: {exc}"] for i in range(len(b_items))},
+                detail=_as(BalanceRatioDetail, common))
     if crank and tb is not None:
         out["balance.balance_ratio"] = Quantity(
             BALANCE_RATIO, np.append(tb.balance_ratio, tb.crank_ratio), {"item": b_items},
-            b_attrs, extra=dict(common, rotating=tb.rotating, counterweight=tb.counterweight,
+            b_attrs, detail=_as(BalanceRatioDetail, common, rotating=tb.rotating,
+                                counterweight=tb.counterweight,
                                 rotating_along=tb.rotating_along,
                                 counterweight_along=tb.counterweight_along,
                                 reciprocating_factor=tb.reciprocating_factor,
@@ -275,7 +288,8 @@ def _balance(engine: Engine) -> dict[str, Quantity]:
     if why:
         out["balance.internal_moment"] = Quantity(
             INTERNAL_MOMENT, np.full(n_pins + 1, np.nan), {"item": mains},
-            missing={(k,): list(why) for k in range(n_pins + 1)}, extra=dict(common))
+            missing={(k,): list(why) for k in range(n_pins + 1)},
+            detail=_as(InternalMomentDetail, common))
     else:
         stations = L * np.arange(n_pins + 1) - zc
         b = bal.internal_bending_moment(stations, rm, rpos, rax)
@@ -283,13 +297,19 @@ def _balance(engine: Engine) -> dict[str, Quantity]:
         b0 = bal.internal_bending_moment(stations, rm[keep], rpos[keep], rax[keep])
         out["balance.internal_moment"] = Quantity(
             INTERNAL_MOMENT, np.hypot(b[:, 0], b[:, 1]) * w2, {"item": mains},
-            extra=dict(common, vector=b * w2,
+            detail=_as(InternalMomentDetail, common, vector=b * w2,
                        without_counterweights=np.hypot(b0[:, 0], b0[:, 1]) * w2,
                        stations=stations + zc))
     return out
 
 
-def _crank_unbalance(engine: Engine, common: dict, *, crank: bool, spacing: float | None,
+def _as(kind: type, common: BalanceDetail, **fields):
+    """A detail of type ``kind`` holding the common fields of ``common`` and ``fields``."""
+    return kind(**{f.name: getattr(common, f.name) for f in dataclasses.fields(common)},
+                **fields)
+
+
+def _crank_unbalance(engine: Engine, common: BalanceDetail, *, crank: bool, spacing: float | None,
                      gamma: np.ndarray, pins: np.ndarray, rm: np.ndarray, rpos: np.ndarray,
                      rax: np.ndarray, is_cw: np.ndarray, throw_of: np.ndarray, w2: float,
                      speed_text: str, omega: float, force: Quantity, moment: Quantity
@@ -326,25 +346,27 @@ def _crank_unbalance(engine: Engine, common: dict, *, crank: bool, spacing: floa
     else:
         why = ("not judged: equal throws of this layout do not cancel (single throw, uneven"
                " layouts), so the counterweights balance the crank by design, not by symmetry")
-    extra = dict(common, static_inherent=static_ok, dynamic_inherent=dynamic_ok,
-                 fraction=UNBALANCE_FRACTION, applies_text=why)
+    flags = dict(static_inherent=static_ok, dynamic_inherent=dynamic_ok,
+                 fraction=UNBALANCE_FRACTION)
     if not crank:
         reason = ["CrankMass: crank mass properties are needed for the crank's rotating"
                   " unbalance (sheet CrankMass)"]
         return Quantity(CRANK_UNBALANCE, vals, {"item": items}, attrs,
-                        {(0,): list(reason), (1,): list(reason)}, applies=applies, extra=extra)
+                        {(0,): list(reason), (1,): list(reason)}, applies=applies,
+                        applies_text=why, detail=_as(CrankUnbalanceDetail, common, **flags))
     per_throw = np.zeros((n_pins, 2))
     keep = ~is_cw
     np.add.at(per_throw, throw_of[keep], rm[keep, None] * rpos[keep])
     u_throw = float(np.mean(np.hypot(per_throw[:, 0], per_throw[:, 1])))
     s_vec = rm @ rpos
     c_vec = (rm * rax) @ rpos
-    extra.update(throw_unbalance=u_throw, static_vector=s_vec, couple_vector=c_vec)
+    flags.update(throw_unbalance=u_throw, static_vector=s_vec, couple_vector=c_vec)
     if not u_throw > 0:
         reason = ["CrankMass: the throws have no rotating unbalance without counterweights (webs,"
                   " pin and rods); check the crank masses and positions"]
         return Quantity(CRANK_UNBALANCE, vals, {"item": items}, attrs,
-                        {(0,): list(reason), (1,): list(reason)}, applies=applies, extra=extra)
+                        {(0,): list(reason), (1,): list(reason)}, applies=applies,
+                        applies_text=why, detail=_as(CrankUnbalanceDetail, common, **flags))
     vals[0] = np.hypot(*s_vec) / u_throw
     if spacing is None:
         missing[(1,)] = [engine.describe_missing("Engine", "main_spacing", what="the crank"
@@ -371,7 +393,8 @@ def _crank_unbalance(engine: Engine, common: dict, *, crank: bool, spacing: floa
         findings[(1,)] = [text]
         moment.findings.setdefault((0,), []).append(text)
     return Quantity(CRANK_UNBALANCE, vals, {"item": items}, attrs, missing, findings,
-                    applies=applies, extra=extra)
+                    applies=applies, applies_text=why,
+                    detail=_as(CrankUnbalanceDetail, common, **flags))
 
 
 def _overflow_checked(out: dict[str, Quantity], engine: Engine) -> dict[str, Quantity]:

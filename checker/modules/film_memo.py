@@ -158,7 +158,7 @@ def orbits(preps: list[dict], model: str, kernel: Callable[[list[dict], str], No
     for p in preps:
         n_rows = p["sel"].size
         per = int(np.prod(p["shape"][1:]))
-        load_digests, feats = _load_facts(p["bl"].extra)
+        load_digests, feats = _load_facts({k: getattr(p["bl"].detail, k) for k in _LOADS})
         digests = _row_digests(p, load_digests, f"{model}|{tag}")
         links = _links(p, feats)
         keys = []

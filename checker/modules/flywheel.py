@@ -3,7 +3,7 @@ of cyclic irregularity at every swept speed and load case, and the minimum inert
 project's target irregularity (:mod:`checker.calc.flywheel`).
 
 Inputs: the engine torque over the cycle already computed by the loads module (every
-cylinder's gas + inertia torque at constant speed, firing phased; extra ``torque`` of
+cylinder's gas + inertia torque at constant speed, firing phased; detail ``torque`` of
 ``loads.bearing_load``) and the inertias of the torsional model (sheet ``TVModel``: the whole
 chain turns as one rigid body for this low-frequency motion). The load torque is constant and
 equal to the cycle mean (steady state); clutch, gearbox and vehicle inertias are not included
@@ -15,34 +15,37 @@ Engine sheet ('Target cyclic irregularity').
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from ..calc import flywheel as fw
 from ..engine import Engine
 from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity, register_module
+from ..results.flywheel import FlywheelDetail
 
 register_module("flywheel", "Flywheel and cyclic irregularity")
 
-RPM = 2.0 * np.pi / 60.0
 CASES = ("full", "no")
 
 IRREG = quantity(QuantitySpec(
     "flywheel.cyclic_irregularity", "", ("case", "speed"),
     "Coefficient of cyclic irregularity (w_max - w_min)/w_mean of the rigid engine (w_mean the"
     " time-mean speed over the cycle)", "%",
-    coords={"case": CASES}))
+    coords={"case": CASES}, detail=FlywheelDetail))
 ENERGY = quantity(QuantitySpec(
     "flywheel.fluctuation_energy", "J", ("case", "speed"),
     "Fluctuation energy W_max - W_min of the engine torque over the cycle", "J",
-    coords={"case": CASES}))
+    coords={"case": CASES}, detail=FlywheelDetail))
 SPEED_FLUCT = quantity(QuantitySpec(
     "flywheel.speed_fluctuation", "rad/s", ("case", "speed"),
-    "Speed fluctuation w_max - w_min over the cycle", "rpm", coords={"case": CASES}))
+    "Speed fluctuation w_max - w_min over the cycle", "rpm", coords={"case": CASES},
+    detail=FlywheelDetail))
 MIN_INERTIA = quantity(QuantitySpec(
     "flywheel.minimum_inertia", "kg*m**2", ("case", "speed"),
     "Minimum flywheel inertia for the target irregularity (total needed minus the rest of"
     " the torsional model; <= 0: the rest already suffices)", "kg*m**2",
-    coords={"case": CASES}))
+    coords={"case": CASES}, detail=FlywheelDetail))
 
 PROVIDES = ("flywheel.cyclic_irregularity", "flywheel.fluctuation_energy",
             "flywheel.speed_fluctuation", "flywheel.minimum_inertia")
@@ -57,8 +60,8 @@ def flywheel(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         raise MissingInputs(["TVModel: the rotating inertias (damper ring, crank, flywheel) are"
                              " needed for the cyclic irregularity (sheet TVModel)"])
     bl = inputs["loads.bearing_load"]
-    theta = bl.extra["theta"]
-    torque = bl.extra["torque"].sum(axis=-2)  # (C, S, N): all cylinders
+    theta = bl.detail.theta
+    torque = bl.detail.torque.sum(axis=-2)  # (C, S, N): all cylinders
     speeds = np.asarray(bl.coords["speed"], dtype=float)
     cases = list(bl.coords["case"])
     j_total = float(sum(s.inertia for s in st))
@@ -83,29 +86,28 @@ def flywheel(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         " module (gas + inertia at constant speed) against a constant load torque equal to its"
         " mean; clutch, gearbox and vehicle inertias not included (Agostini 2019, Politecnico"
         " di Torino, 'Engine degree of irregularity')."]
-    extra = {"theta": theta, "omega": res.omega, "omega_max": res.omega_max,
-             "omega_min": res.omega_min, "theta_max": res.theta_max,
-             "theta_min": res.theta_min, "linear": res.irregularity_linear,
-             "inertia_total": j_total, "inertia_flywheel": j_fw,
-             "flywheel_stations": [s.station for s in fws], "target": target,
-             "lowest_speed": float(speeds.min()), "torque": torque,
-             "assumptions": assumptions,
-             "applies_text": "the lowest swept speed only (idle / lowest speed)"}
+    detail = FlywheelDetail(
+        theta=theta, omega=res.omega, omega_max=res.omega_max, omega_min=res.omega_min,
+        theta_max=res.theta_max, theta_min=res.theta_min, linear=res.irregularity_linear,
+        inertia_total=j_total, inertia_flywheel=j_fw,
+        flywheel_stations=[s.station for s in fws], target=target,
+        lowest_speed=float(speeds.min()), torque=torque, assumptions=tuple(assumptions))
     out = {
-        "flywheel.cyclic_irregularity": Quantity(IRREG, res.irregularity, coords, attrs,
-                                                 extra=extra, applies=lowest),
-        "flywheel.fluctuation_energy": Quantity(ENERGY, res.energy, coords, extra=extra),
+        "flywheel.cyclic_irregularity": Quantity(
+            IRREG, res.irregularity, coords, attrs, detail=detail, applies=lowest,
+            applies_text="the lowest swept speed only (idle / lowest speed)"),
+        "flywheel.fluctuation_energy": Quantity(ENERGY, res.energy, coords, detail=detail),
         "flywheel.speed_fluctuation": Quantity(SPEED_FLUCT, res.omega_max - res.omega_min,
-                                               coords, extra=extra),
+                                               coords, detail=detail),
     }
     if target is None:
         miss = attrs["all"]["limit_missing"]
         out["flywheel.minimum_inertia"] = Quantity(
             MIN_INERTIA, np.full(res.energy.shape, np.nan), coords,
-            missing={(ci,): list(miss) for ci in range(len(cases))}, extra=extra)
+            missing={(ci,): list(miss) for ci in range(len(cases))}, detail=detail)
     else:
         j_min = fw.minimum_inertia(theta, torque, speeds[None, :], float(target))
         out["flywheel.minimum_inertia"] = Quantity(
             MIN_INERTIA, j_min - j_rest, coords,
-            extra=dict(extra, total_needed=j_min, inertia_rest=j_rest))
+            detail=replace(detail, total_needed=j_min, inertia_rest=j_rest))
     return out

@@ -3,8 +3,6 @@ forces, big-end and main bearing loads, peak specific load per bearing."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
 from ..calc import crank_forces as cf
@@ -13,6 +11,7 @@ from ..calc.kinematics import DEFAULT_STEP, cycle_grid
 from ..calc.specific_load import peak_specific_load
 from ..engine import Bearing, Engine
 from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity, register_module
+from ..results.loads import BearingLoadDetail, Cycle, CycleDetail, SpecificLoadDetail
 
 register_module("loads", "Crank-train loads")
 
@@ -34,15 +33,15 @@ CALIBRATION_TOLERANCE = np.radians(0.1)
 CYCLE = quantity(QuantitySpec(
     "loads.cycle", "Pa", ("case", "speed"),
     "Peak cylinder pressure of the trace used per load case and speed", "bar",
-    coords={"case": CASES}))
+    coords={"case": CASES}, detail=CycleDetail))
 BEARING_LOAD = quantity(QuantitySpec(
     "loads.bearing_load", "N", ("item", "case", "speed"),
     "Peak bearing load per bearing, load case and speed", "kN", ("type", "lining"),
-    coords={"case": CASES}))
+    coords={"case": CASES}, detail=BearingLoadDetail))
 SPECIFIC = quantity(QuantitySpec(
     "bearing.peak_specific_load", "Pa", ("item", "case", "speed"),
     "Peak specific load max|F|/(D L_eff) per bearing, load case and speed", "MPa",
-    ("type", "lining"), coords={"case": CASES}))
+    ("type", "lining"), coords={"case": CASES}, detail=SpecificLoadDetail))
 
 
 def speed_sweep(engine: Engine) -> tuple[np.ndarray, list[str]]:
@@ -66,23 +65,6 @@ def speed_sweep(engine: Engine) -> tuple[np.ndarray, list[str]]:
     if ov is not None and ov > speeds[-1] + 1e-9:
         speeds = np.append(speeds, ov)
     return speeds, notes
-
-
-@dataclass
-class Cycle:
-    """The swept operating points and their pressure traces (internal, SI)."""
-
-    theta: np.ndarray  # (N,)
-    speeds: np.ndarray  # (S,)
-    cases: tuple[str, ...]
-    pressure: np.ndarray  # (C, S, N) vs own cycle angle
-    synthesized: np.ndarray  # (C, S) bool
-    extrapolated: np.ndarray  # (C, S) bool
-    motored: np.ndarray  # (C, S) bool
-    imep: np.ndarray  # (C, S) [Pa]
-    target_imep: np.ndarray  # (C, S) [Pa] from brake torque + FMEP (nan if not calibrated)
-    notes: list[str]
-    envelope: np.ndarray | None = None  # (C, S) bool: operating points the rules judge
 
 
 def _trace_from_table(engine: Engine, case: str, theta: np.ndarray, speeds: np.ndarray):
@@ -279,7 +261,8 @@ def pressure_traces(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     assumptions += cyc.notes
     return {"loads.cycle": Quantity(CYCLE, peak, {"case": list(cyc.cases),
                                                   "speed": list(cyc.speeds)},
-                                    extra={"cycle": cyc, "assumptions": assumptions})}
+                                    detail=CycleDetail(cycle=cyc,
+                                                       assumptions=tuple(assumptions)))}
 
 
 def _bearing_sets(engine: Engine, n_pins: int, n_cyl: int) -> tuple[list[Bearing], list[Bearing]]:
@@ -318,7 +301,7 @@ def shared_pins_text(engine: Engine) -> list[str]:
 def bearing_loads(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Big-end loads (rod frame) and main bearing loads (block frame, statically determinate)."""
     _required(engine, ("piston_mass", "rod_mass", "rod_com", "rod_inertia"))
-    cyc: Cycle = inputs["loads.cycle"].extra["cycle"]
+    cyc: Cycle = inputs["loads.cycle"].detail.cycle
     p = engine.params
     cyls = engine.cylinders
     n_cyl = len(cyls)
@@ -398,20 +381,20 @@ def bearing_loads(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         attrs[n] = {"type": b.type, "lining": (b.lining or "").lower() or None}
         dia.append(b.diameter)
         length.append(b.length)
-    extra = {"theta": cyc.theta, "fx": fx, "fy": fy,
-             "omega_journal": stacked(wj), "omega_bearing": stacked(wb),
-             "diameter": np.array(dia), "length": np.array(length),
-             "frames": {n: ("con-rod frame" if bearings[n].type == "big end" else "block frame")
-                        for n in order},
-             "torque": loads.torque, "big_end_crank": loads.big_end_crank,
-             "assumptions": [
-                 "Main bearing loads by the statically determinate method: rigid crank pinned"
-                 " at each main, each main carries only the adjacent throws (Bell, Ricardo 2013).",
-                 "Con-rod as two masses plus an inertia-correction couple (exact rigid-body"
-                 " dynamics of the slider crank); constant crank speed; gravity neglected."]
-             + shared_pins_text(engine)}
+    detail = BearingLoadDetail(
+        theta=cyc.theta, fx=fx, fy=fy, omega_journal=stacked(wj), omega_bearing=stacked(wb),
+        diameter=np.array(dia), length=np.array(length),
+        frames={n: ("con-rod frame" if bearings[n].type == "big end" else "block frame")
+                for n in order},
+        torque=loads.torque, big_end_crank=loads.big_end_crank,
+        assumptions=(
+            "Main bearing loads by the statically determinate method: rigid crank pinned"
+            " at each main, each main carries only the adjacent throws (Bell, Ricardo 2013).",
+            "Con-rod as two masses plus an inertia-correction couple (exact rigid-body"
+            " dynamics of the slider crank); constant crank speed; gravity neglected.",
+            *shared_pins_text(engine)))
     q = Quantity(BEARING_LOAD, peak, {"item": order, "case": list(cyc.cases),
-                                      "speed": list(cyc.speeds)}, attrs, missing, extra=extra)
+                                      "speed": list(cyc.speeds)}, attrs, missing, detail=detail)
     return {"loads.bearing_load": q}
 
 
@@ -422,17 +405,16 @@ def specific_load(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     bl = inputs["loads.bearing_load"]
     if not bl.coords["item"]:
         raise MissingInputs(["Bearings: no bearings given (sheet Bearings)"])
-    ex = bl.extra
+    ex: BearingLoadDetail = bl.detail
     ok = np.isfinite(bl.values)
     val = np.full(bl.values.shape, np.nan)
     theta_max = np.full(bl.values.shape, np.nan)
     rows = np.where(ok.all(axis=(1, 2)))[0]
     if rows.size:
-        psl = peak_specific_load(ex["fx"][rows], ex["fy"][rows], ex["theta"],
-                                 ex["diameter"][rows, None, None],
-                                 ex["length"][rows, None, None])
+        psl = peak_specific_load(ex.fx[rows], ex.fy[rows], ex.theta,
+                                 ex.diameter[rows, None, None], ex.length[rows, None, None])
         val[rows] = psl.specific_load
         theta_max[rows] = psl.theta
     return {"bearing.peak_specific_load": Quantity(
         SPECIFIC, val, bl.coords, bl.item_attrs, dict(bl.missing),
-        extra={"theta_at_max": theta_max})}
+        detail=SpecificLoadDetail(theta_at_max=theta_max))}

@@ -159,7 +159,7 @@ def _imep_miss(res: CheckResult) -> str:
     from . import judged as jd
 
     q = res.outcome.quantities.get("loads.cycle")
-    cyc = (q.extra or {}).get("cycle") if q is not None and isinstance(q.extra, dict) else None
+    cyc = getattr(q.detail, "cycle", None) if q is not None else None
     if cyc is None or not hasattr(cyc, "imep"):
         return ""
     ref = res.outcome.quantities.get("bearing.peak_specific_load")

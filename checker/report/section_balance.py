@@ -7,9 +7,8 @@ import numpy as np
 
 from ..api import CheckResult
 from .plots import LIMIT_STYLE, figure, to_image
-from .sections import fmt, section
+from .sections import fmt, in_unit, rpm, section
 
-RPM = 2 * np.pi / 60
 ROUND_OFF = 1e-9
 """Magnitudes below this fraction of n_cyl m_rec r w^2 (N m for moments: times the crank
 length) are zero to round-off and shown as 0."""
@@ -29,12 +28,12 @@ def balance_section(res: CheckResult) -> dict:
     if ff is None:
         why = "; ".join(res.outcome.unavailable.get("balance.free_force", ["not computed"]))
         return {"id": "balance", "title": title, "intro": f"Not computed: {why}.", "blocks": []}
-    ex = ff.extra
+    ex = ff.detail
     eng = res.engine
     n_cyl = len(eng.cylinders)
-    w = ex["omega"]
-    r = ex["crank_radius"]
-    f_scale = n_cyl * ex["reciprocating_mass"] * r * w * w
+    w = ex.omega
+    r = ex.crank_radius
+    f_scale = n_cyl * ex.reciprocating_mass * r * w * w
     spacing = eng.params.get("main_spacing") or 0.0
     m_scale = f_scale * max(spacing * n_cyl, 1e-3)
     blocks: list[dict] = []
@@ -42,14 +41,14 @@ def balance_section(res: CheckResult) -> dict:
     blocks.append({"type": "table", "caption": "Inputs (sheets Engine, Cylinders, CrankMass)",
                    "columns": ["parameter", "value", "unit"], "rows": [
                        ["Reciprocating mass per cylinder (piston + rod small end)",
-                        fmt(ex["reciprocating_mass"], 4), "kg"],
+                        fmt(ex.reciprocating_mass, 4), "kg"],
                        ["Rotating rod mass per cylinder (big end)",
-                        fmt(ex["rotating_rod_mass"], 4), "kg"],
-                       ["Crank radius r", fmt(r * 1e3, 4), "mm"],
+                        fmt(ex.rotating_rod_mass, 4), "kg"],
+                       ["Crank radius r", fmt(_mm(r), 4), "mm"],
                        ["λ = r / l", fmt(lam, 4), "-"],
-                       ["Reference speed: " + ex["speed_text"], fmt(w / RPM, 5), "rpm"],
+                       ["Reference speed: " + ex.speed_text, fmt(rpm(w), 5), "rpm"],
                        ["Main journal spacing (axial positions)",
-                        fmt(spacing * 1e3, 4) if spacing else "-", "mm"]]})
+                        fmt(_mm(spacing), 4) if spacing else "-", "mm"]]})
     blocks.append({"type": "equations", "items": [
         ("Free force, order n", "F_n = ω² Σ_i m_rec A_n e^(−j n φ_i) c_i + [n = 1] ω² Σ_k m_k ρ_k",
          "Taylor 1985, vol. 2, ch. 8 (phase-diagram summation); c_i = bore axis, A_n = piston"
@@ -63,22 +62,22 @@ def balance_section(res: CheckResult) -> dict:
         ("Internal bending moment", "B(Z) = ω² Σ_(z_k < Z) m_k ρ_k (Z − z_k)",
          "moment of the centrifugal forces in front of main Z (rigid crank)"),
     ]})
-    orders = ex["orders"]
+    orders = ex.orders
 
     def angle(v: float, a: float, scale: float) -> str:
         if not np.isfinite(v) or v < ROUND_OFF * scale:
             return "-"
-        return f"{round(float(np.degrees(a)), 1) % 360 + 0.0:.1f}"
+        return f"{round(float(in_unit(a, 'rad', 'deg')), 1) % 360 + 0.0:.1f}"
 
     rows = []
     for i, n in enumerate(orders):
         rows.append([str(n), _value(ff.values[i], f_scale),
-                     _value(ex["smallest"][i], f_scale),
-                     angle(ff.values[i], ex["theta"][i], f_scale),
-                     angle(ff.values[i], ex["direction"][i], f_scale),
+                     _value(ex.smallest[i], f_scale),
+                     angle(ff.values[i], ex.theta[i], f_scale),
+                     angle(ff.values[i], ex.direction[i], f_scale),
                      _value(fm.values[i], m_scale),
-                     angle(fm.values[i], fm.extra["theta"][i], m_scale)])
-    blocks.append({"type": "table", "caption": f"Free forces and moments at {w / RPM:.0f} rpm"
+                     angle(fm.values[i], fm.detail.theta[i], m_scale)])
+    blocks.append({"type": "table", "caption": f"Free forces and moments at {rpm(w):.0f} rpm"
                    " (largest and smallest magnitude over the crank angle: equal for a force"
                    " rotating with the crank, smallest 0 for a force along a fixed line)",
                    "columns": ["order", "F max [N]", "F min [N]", "crank angle at max [deg]",
@@ -111,21 +110,22 @@ def balance_section(res: CheckResult) -> dict:
     fig.subplots_adjust(wspace=0.35)
     blocks.append({"type": "figure", "png": to_image(fig),
                    "data": ["balance.free_force", "balance.free_moment"],
-                   "caption": f"Free forces and moments per order at {w / RPM:.0f} rpm (log"
+                   "caption": f"Free forces and moments per order at {rpm(w):.0f} rpm (log"
                               " scale; '0' = zero to round-off; dashed: project limits)"})
 
     br = q.get("balance.balance_ratio")
-    if br is not None and np.isfinite(br.values).all() and "rotating" in br.extra:
-        bx = br.extra
+    if br is not None and np.isfinite(br.values).all() and br.detail.rotating is not None:
+        bx = br.detail
+        ratio = in_unit(br.values, "", "%")
         rows = []
-        for j in range(len(bx["rotating_along"])):
-            rows.append([f"throw {j + 1}", fmt(np.degrees(bx["throw_angle"][j]) % 360, 4),
-                         fmt(bx["rotating_along"][j] * 1e3, 5),
-                         fmt(bx["counterweight_along"][j] * 1e3, 5),
-                         fmt(br.values[j] * 100, 4), fmt(bx["reciprocating_factor"][j] * 100, 4)])
-        rows.append(["crank", "-", fmt(bx["rotating_along"].sum() * 1e3, 5),
-                     fmt(bx["counterweight_along"].sum() * 1e3, 5), fmt(br.values[-1] * 100, 4),
-                     "-"])
+        for j in range(len(bx.rotating_along)):
+            rows.append([f"throw {j + 1}",
+                         fmt(in_unit(bx.throw_angle[j], "rad", "deg") % 360, 4),
+                         fmt(_kg_mm(bx.rotating_along[j]), 5),
+                         fmt(_kg_mm(bx.counterweight_along[j]), 5),
+                         fmt(ratio[j], 4), fmt(in_unit(bx.reciprocating_factor[j], "", "%"), 4)])
+        rows.append(["crank", "-", fmt(_kg_mm(bx.rotating_along.sum()), 5),
+                     fmt(_kg_mm(bx.counterweight_along.sum()), 5), fmt(ratio[-1], 4), "-"])
         blocks.append({"type": "table", "caption": "Counterweight balance per throw (unbalance"
                        " along the throw direction)",
                        "columns": ["throw", "angle [deg]", "U rotating [kg mm]",
@@ -133,8 +133,8 @@ def balance_section(res: CheckResult) -> dict:
                                    "reciprocating factor [%]"], "rows": rows})
         blocks.append({"type": "text", "text":
                        "Rotating unbalance of the whole crank with the rods' big ends: static"
-                       f" {_value(bx['static_unbalance'] * 1e3, r * 1e3)} kg mm, couple"
-                       f" {_value(bx['couple_unbalance'] * 1e6, r * 1e6 * max(spacing, 1e-3))}"
+                       f" {_value(_kg_mm(bx.static_unbalance), _kg_mm(r))} kg mm, couple"
+                       f" {_value(_kg_mm2(bx.couple_unbalance), _kg_mm2(r * max(spacing, 1e-3)))}"
                        " kg mm². The reciprocating factor is the share of the reciprocating"
                        " unbalance m_rec·r the counterweights balance beyond the rotating"
                        " unbalance (negative: the rotating unbalance itself is not fully"
@@ -145,23 +145,23 @@ def balance_section(res: CheckResult) -> dict:
         ax = fig.add_axes((0.04, 0.1, 0.47, 0.8), projection="polar")
         ax.set_theta_zero_location("N")
         ax.set_theta_direction(-1)
-        net = bx["rotating"] + bx["counterweight"]
+        net = bx.rotating + bx.counterweight
 
         def polar(v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-            return np.arctan2(v[..., 0], v[..., 1]), np.hypot(v[..., 0], v[..., 1]) * 1e3
+            return np.arctan2(v[..., 0], v[..., 1]), _kg_mm(np.hypot(v[..., 0], v[..., 1]))
 
         for vec in net:
             ang, mag = polar(vec)
             ax.annotate("", xy=(ang, mag), xytext=(0, 0),
                         arrowprops={"arrowstyle": "->", "color": "#c0392b", "lw": 1.4})
         ax.plot([], [], color="#c0392b", label="net (with counterweights)")
-        ax.plot(*polar(bx["rotating"]), "o", mfc="none", color="#7f8c8d",
+        ax.plot(*polar(bx.rotating), "o", mfc="none", color="#7f8c8d",
                 label="rotating, without counterweights")
-        ax.plot(*polar(bx["counterweight"]), "x", color="#2c3e50", label="counterweights")
+        ax.plot(*polar(bx.counterweight), "x", color="#2c3e50", label="counterweights")
         groups: dict[float, list[str]] = {}  # throws sharing a direction share a label
-        for j, vec in enumerate(bx["rotating"]):
+        for j, vec in enumerate(bx.rotating):
             groups.setdefault(round(float(polar(vec)[0]), 6), []).append(str(j + 1))
-        top = max(polar(bx["rotating"])[1].max(), polar(bx["counterweight"])[1].max())
+        top = max(polar(bx.rotating)[1].max(), polar(bx.counterweight)[1].max())
         for ang, labs in groups.items():
             ax.text(ang, top * 1.12, "throw " + ", ".join(labs), fontsize=6, ha="center",
                     bbox={"facecolor": "white", "edgecolor": "none", "pad": 0.5})
@@ -180,13 +180,15 @@ def balance_section(res: CheckResult) -> dict:
                                   " counterweights alone (crosses)"})
 
     im = q.get("balance.internal_moment")
-    if im is not None and np.isfinite(im.values).all() and "without_counterweights" in im.extra:
-        top = max(float(im.extra["without_counterweights"].max()), float(im.values.max()))
-        rows = [[n, fmt(im.extra["stations"][k] * 1e3, 4), _value(im.values[k], top),
-                 _value(im.extra["without_counterweights"][k], top)]
+    if im is not None and np.isfinite(im.values).all() and (
+            im.detail.without_counterweights is not None):
+        wo = im.detail.without_counterweights
+        top = max(float(wo.max()), float(im.values.max()))
+        rows = [[n, fmt(_mm(im.detail.stations[k]), 4), _value(im.values[k], top),
+                 _value(wo[k], top)]
                 for k, n in enumerate(im.coords["item"])]
         blocks.append({"type": "table", "caption": f"Internal bending moment of the rotating"
-                       f" masses at the mains, {w / RPM:.0f} rpm (rotates with the crank)",
+                       f" masses at the mains, {rpm(w):.0f} rpm (rotates with the crank)",
                        "columns": ["main", "axial position [mm]", "with counterweights [N m]",
                                    "without counterweights [N m]"], "rows": rows})
     return {"id": "balance", "title": title,
@@ -197,3 +199,17 @@ def balance_section(res: CheckResult) -> dict:
                      " forces and moments are judged only against the project's own limits"
                      " (warnings).",
             "blocks": blocks}
+
+
+def _mm(v):
+    return in_unit(v, "m", "mm")
+
+
+def _kg_mm(v):
+    """An unbalance [kg m] in kg mm."""
+    return in_unit(v, "kg*m", "kg*mm")
+
+
+def _kg_mm2(v):
+    """A couple unbalance [kg m^2] in kg mm^2."""
+    return in_unit(v, "kg*m**2", "kg*mm**2")

@@ -5,12 +5,10 @@ from __future__ import annotations
 import numpy as np
 
 from ..api import CheckResult
+from ..display import case_text
 from . import judged as jd
 from .plots import figure, legend_below, limit_line, to_image
-from .sections import fmt, section
-
-RPM = 2 * np.pi / 60
-CASE_TEXT = {"full": "full load", "no": "no load"}
+from .sections import display_values, fmt, in_unit, rpm, section
 
 
 @section("flywheel")
@@ -23,21 +21,21 @@ def flywheel_section(res: CheckResult) -> dict:
                                                     ["not computed"]))
         return {"id": "flywheel", "title": title, "intro": f"Not computed: {why}.",
                 "blocks": []}
-    ex = ci.extra
+    ex = ci.detail
     eng = res.engine
     sp = np.array(ci.coords["speed"])
     cases = list(ci.coords["case"])
-    target = ex["target"]
-    j_tot, j_fw = ex["inertia_total"], ex["inertia_flywheel"]
+    target = ex.target
+    j_tot, j_fw = ex.inertia_total, ex.inertia_flywheel
     blocks: list[dict] = [{"type": "table", "caption": "Inputs (sheets TVModel, Engine)",
                            "columns": ["parameter", "value", "unit", "cell"], "rows": [
         ["Total rotating inertia (all stations of sheet TVModel)", fmt(j_tot, 5), "kg m²",
          "TVModel"],
-        ["Flywheel station inertia (" + (", ".join(ex["flywheel_stations"]) or "none") + ")",
+        ["Flywheel station inertia (" + (", ".join(ex.flywheel_stations) or "none") + ")",
          fmt(j_fw, 5), "kg m²", "TVModel"],
-        ["Target cyclic irregularity", "-" if target is None else fmt(target * 100, 4), "%",
+        ["Target cyclic irregularity", "-" if target is None else fmt(_pct(target), 4), "%",
          eng.cell("Engine", "target_irregularity")],
-        ["Lowest speed (judged)", fmt(ex["lowest_speed"] / RPM, 5), "rpm",
+        ["Lowest speed (judged)", fmt(rpm(ex.lowest_speed), 5), "rpm",
          eng.cell("Engine", "speed_min")]]}]
     blocks.append({"type": "equations", "items": [
         ("Equation of motion", "J ω dω/dθ = T(θ) − T_mean  ⇒  J/2 (ω² − ω_min²) = W(θ) − W_min",
@@ -56,8 +54,8 @@ def flywheel_section(res: CheckResult) -> dict:
         for p in jd.worst(ci, (c_i,), "max"):
             if p is None:
                 continue
-            row = ["cyclic irregularity", CASE_TEXT.get(c, c), fmt(p.value * 100, 4),
-                   CASE_TEXT.get(c, c), f"{sp[p.index[1]] / RPM:.0f}",
+            row = ["cyclic irregularity", case_text(c), fmt(_pct(p.value), 4),
+                   case_text(c), f"{rpm(sp[p.index[1]]):.0f}",
                    jd.judged_text(res, ci, p, case=c)]
             (judged_rows if p.judged else other_rows).append((p.value, row))
             (css_j if p.judged else css_o).append(jd.row_css(p))
@@ -73,16 +71,18 @@ def flywheel_section(res: CheckResult) -> dict:
     jm = q.get("flywheel.minimum_inertia")
     en = q.get("flywheel.fluctuation_energy")
     dw = q.get("flywheel.speed_fluctuation")
-    step = max(1, int(round(1000 * RPM / np.median(np.diff(sp))))) if sp.size > 1 else 1
+    step = max(1, int(round(1000 / np.median(np.diff(rpm(sp)))))) if sp.size > 1 else 1
     picks = sorted(set([k0] + list(range(0, sp.size, step))))
     rows = []
+    ci_pct, _ = display_values(ci)
+    dw_rpm, _ = display_values(dw)
     for c_i, c in enumerate(cases):
         for k in picks:
             need = "-" if jm is None or not np.isfinite(jm.values[c_i, k]) else fmt(
                 jm.values[c_i, k], 4)
-            rows.append([CASE_TEXT.get(c, c), f"{sp[k] / RPM:.0f}",
-                         fmt(en.values[c_i, k], 4), fmt(dw.values[c_i, k] / RPM, 4),
-                         fmt(ci.values[c_i, k] * 100, 4), fmt(ex["linear"][c_i, k] * 100, 4),
+            rows.append([case_text(c), f"{rpm(sp[k]):.0f}",
+                         fmt(en.values[c_i, k], 4), fmt(dw_rpm[c_i, k], 4),
+                         fmt(ci_pct[c_i, k], 4), fmt(_pct(ex.linear[c_i, k]), 4),
                          need])
     blocks.append({"type": "table", "caption": "Fluctuation energy, speed fluctuation, cyclic"
                    " irregularity (exact and classical estimate) and the minimum flywheel"
@@ -93,18 +93,17 @@ def flywheel_section(res: CheckResult) -> dict:
     fig, axes = figure(170, 65, ncols=2, legend_rows=1)
     ax = axes[0]
     for c_i, c in enumerate(cases):
-        ax.plot(sp / RPM, ci.values[c_i] * 100, label=CASE_TEXT.get(c, c),
-                color=f"C{c_i}")
+        ax.plot(rpm(sp), ci_pct[c_i], label=case_text(c), color=f"C{c_i}")
     if target is not None:
-        limit_line(ax, target * 100, f"target δ ≤ {target * 100:g} %")
+        limit_line(ax, _pct(target), f"target δ ≤ {_pct(target):g} %")
     ax.set_yscale("log")
     ax.set_xlabel("Engine speed [rpm]")
     ax.set_ylabel("Cyclic irregularity δ [%]")
     ax = axes[1]
-    th = np.degrees(ex["theta"])
+    th = in_unit(ex.theta, "rad", "deg")
     for c_i in range(len(cases)):
-        ax.plot(th, ex["omega"][c_i, k0] / RPM, color=f"C{c_i}")
-    ax.axhline(sp[k0] / RPM, color="0.5", lw=0.6, label="mean speed")
+        ax.plot(th, rpm(ex.omega[c_i, k0]), color=f"C{c_i}")
+    ax.axhline(rpm(sp[k0]), color="0.5", lw=0.6, label="mean speed")
     ax.set_xlabel("Crank angle [deg]")
     ax.set_ylabel("Speed [rpm]")
     ax.set_xticks(np.arange(0, 721, 180))
@@ -113,13 +112,18 @@ def flywheel_section(res: CheckResult) -> dict:
     blocks.append({"type": "figure", "png": to_image(fig),
                    "data": ["flywheel.cyclic_irregularity"],
                    "caption": "Left: cyclic irregularity against speed (dashed: target)."
-                              f" Right: speed over the cycle at {sp[k0] / RPM:.0f} rpm"})
+                              f" Right: speed over the cycle at {rpm(sp[k0]):.0f} rpm"})
     tgt = ("the target is not given (Engine 'Target cyclic irregularity'): FLY-001 is not"
            " evaluated" if target is None else
-           f"target used: δ ≤ {target * 100:g} % ({eng.cell('Engine', 'target_irregularity')})")
+           f"target used: δ ≤ {_pct(target):g} % ({eng.cell('Engine', 'target_irregularity')})")
     return {"id": "flywheel", "title": title,
             "intro": "Rigid-body speed fluctuation of the engine over the cycle from its total"
                      " gas + inertia torque (load analysis) and the inertias of the torsional"
                      " model; coefficient of cyclic irregularity at every speed and load case"
                      f" and the flywheel inertia needed for the target; {tgt}.",
             "blocks": blocks}
+
+
+def _pct(v):
+    """A dimensionless fraction in percent."""
+    return in_unit(v, "", "%")

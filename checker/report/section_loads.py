@@ -10,9 +10,7 @@ from ..api import CheckResult
 from ..display import unit_text
 from . import judged as jd
 from .plots import every, figure, legend_below, limit_line, literal, to_image
-from .sections import fmt, merge_items, param_table, section
-
-RPM = 2 * np.pi / 60
+from .sections import fmt, in_unit, merge_items, param_table, rpm, section
 
 
 def _rule_limits(res: CheckResult, quantity: str, case: str) -> dict[str, float]:
@@ -53,7 +51,7 @@ def bearing_speed_figure(res: CheckResult, q, scale: float, ylabel: str, unit: s
     (item, case, speed) and item attributes type and lining. The y axis starts at 0 unless
     ``from_zero`` is false (then just below the lowest curve)."""
     names = q.coords["item"]
-    sp = np.array(q.coords["speed"]) / RPM
+    sp = rpm(np.array(q.coords["speed"]))
     judged = jd.mask(q)
     fig, axes = figure(170, 100, nrows=2, ncols=2, sharex=True, sharey="row", wgap=8,
                        legend_rows=2)
@@ -122,7 +120,7 @@ def worst_table(res: CheckResult, q, value, extra_cols, caption: str, columns: l
     ``value(v)`` formats a value; ``extra_cols(i, ci, k)`` gives the row's further cells.
     Items with identical rows (symmetric bearings) share one row."""
     how = jd.direction(res, q.name, "max")
-    sp = np.array(q.coords["speed"]) / RPM
+    sp = rpm(np.array(q.coords["speed"]))
     rows, css = [], []
     for i, n in enumerate(q.coords["item"]):
         for ci, c in enumerate(q.coords["case"]):
@@ -145,19 +143,22 @@ def worst_table(res: CheckResult, q, value, extra_cols, caption: str, columns: l
 
 def _inputs(res: CheckResult) -> dict:
     p = res.engine.params
-    items = [("Bore", f"{fmt(p['bore'] * 1e3)} mm"), ("Stroke", f"{fmt(p['stroke'] * 1e3)} mm"),
-             ("Connecting rod length", f"{fmt(p['rod_length'] * 1e3)} mm"),
-             ("Cylinder offset", f"{fmt((p.get('cylinder_offset') or 0) * 1e3)} mm"),
-             ("Pin offset", f"{fmt((p.get('pin_offset') or 0) * 1e3)} mm")]
-    for key, label, f, u in (("piston_mass", "Piston assembly mass", 1, "kg"),
-                             ("rod_mass", "Con-rod mass", 1, "kg"),
-                             ("rod_com", "Rod centre of mass from big end", 1e3, "mm"),
-                             ("rod_inertia", "Rod inertia about centre of mass", 1e6,
-                              "kg·mm²"),
-                             ("compression_ratio", "Compression ratio", 1, ""),
-                             ("main_spacing", "Main journal spacing", 1e3, "mm")):
+    def mm(v: float) -> str:
+        return f"{fmt(in_unit(v, 'm', 'mm'))} mm"
+
+    items = [("Bore", mm(p["bore"])), ("Stroke", mm(p["stroke"])),
+             ("Connecting rod length", mm(p["rod_length"])),
+             ("Cylinder offset", mm(p.get("cylinder_offset") or 0)),
+             ("Pin offset", mm(p.get("pin_offset") or 0))]
+    for key, label, si, u in (("piston_mass", "Piston assembly mass", "kg", "kg"),
+                              ("rod_mass", "Con-rod mass", "kg", "kg"),
+                              ("rod_com", "Rod centre of mass from big end", "m", "mm"),
+                              ("rod_inertia", "Rod inertia about centre of mass", "kg*m**2",
+                               "kg*mm**2"),
+                              ("compression_ratio", "Compression ratio", "", ""),
+                              ("main_spacing", "Main journal spacing", "m", "mm")):
         if p.get(key) is not None:
-            items.append((label, f"{fmt(p[key] * f)} {u}".strip()))
+            items.append((label, f"{fmt(in_unit(p[key], si, u))} {unit_text(u)}".strip()))
     items.append(("Firing order", str(p.get("firing_order"))))
     return param_table("Inputs (sheet Engine)", items)
 
@@ -187,8 +188,8 @@ def loads_section(res: CheckResult) -> dict:
     ref = q.get("bearing.peak_specific_load")
     cs_judged = None
     if cyc_q is not None:
-        cyc = cyc_q.extra["cycle"]
-        sp = cyc.speeds / RPM
+        cyc = cyc_q.detail.cycle
+        sp = rpm(cyc.speeds)
         # judged (case, speed) points: those the load rules judge (any bearing)
         cs_judged = (np.ones((len(cyc.cases), sp.size), bool) if ref is None
                      or list(ref.coords["case"]) != list(cyc.cases)
@@ -197,16 +198,16 @@ def loads_section(res: CheckResult) -> dict:
     sl = q.get("bearing.peak_specific_load")
     bl = q.get("loads.bearing_load")
     if sl is not None and bl is not None:
-        th = sl.extra["theta_at_max"]
+        th = sl.detail.theta_at_max
 
         def more(idx):
             if idx is None:
                 return ["-", "-"]
-            return [fmt(np.degrees(th[idx])), fmt(bl.values[idx] / 1e3)]
+            return [fmt(in_unit(th[idx], "rad", "deg")), fmt(in_unit(bl.values[idx], "N", "kN"))]
 
         blocks.append({"type": "heading", "text": "Judged worst cases"})
         blocks.append(worst_table(
-            res, sl, lambda v: fmt(v / 1e6), more,
+            res, sl, lambda v: fmt(in_unit(v, "Pa", "MPa")), more,
             "Highest peak specific load per bearing and load case: the judged worst first (the"
             " value of the rule result), then, marked, a higher value at a point the rules do"
             " not judge",
@@ -231,7 +232,7 @@ def _pressure_text(cyc, sp, cs_judged, ref) -> dict:
     """The cylinder pressure used, in words (the per-speed values are in the workbook)."""
     parts = []
     for ci, c in enumerate(cyc.cases):
-        pk = cyc.pressure[ci].max(axis=-1) / 1e5
+        pk = in_unit(cyc.pressure[ci].max(axis=-1), "Pa", "bar")
         kind = ("synthesized" if cyc.synthesized[ci].all() else "workbook traces"
                 if not cyc.synthesized[ci].any() else "workbook traces and synthesized")
         txt = (f"{c} load: peak {fmt(pk.min())} to {fmt(pk.max())} bar over"
@@ -257,16 +258,17 @@ ATTACHMENT = "results.xlsx"
 
 def _pressure_figure(cyc, sp, cs_judged, ref) -> dict:
     fig, axes = figure(170, 62, ncols=len(cyc.cases), wgap=14, legend_rows=1)
-    deg = np.degrees(cyc.theta)
+    deg = in_unit(cyc.theta, "rad", "deg")
     th = every(deg.size)
     pick = sorted({0, int(np.argmin(abs(sp - 0.5 * (sp[0] + sp[-1])))), sp.size - 1})
     cols = {"crank angle [°]": deg}
     for ci, (ax, c) in enumerate(zip(np.atleast_1d(axes), cyc.cases)):
         for n, i in enumerate(pick):
             lab = f"{sp[i]:.0f} rpm" + ("" if cs_judged[ci, i] else " (not judged)")
-            ax.plot(deg[th], cyc.pressure[ci, i, th] / 1e5, ls="-" if cs_judged[ci, i] else ":",
+            ax.plot(deg[th], in_unit(cyc.pressure[ci, i, th], "Pa", "bar"),
+                    ls="-" if cs_judged[ci, i] else ":",
                     color=CURVE_COLORS[n], label=lab)
-            cols[f"{c} load, {sp[i]:.0f} rpm [bar]"] = cyc.pressure[ci, i] / 1e5
+            cols[f"{c} load, {sp[i]:.0f} rpm [bar]"] = in_unit(cyc.pressure[ci, i], "Pa", "bar")
         ax.set_xlim(0, 720)
         ax.set_xticks(np.arange(0, 721, 180))
         ax.set_xlabel("Crank angle from firing TDC [°]")
@@ -288,9 +290,9 @@ def _polar(res: CheckResult, sl, bl) -> list[dict]:
     """Polar load diagrams of one big end and the centre main at the worst judged speed of
     each load case (the speed of the highest peak specific load the rules judge): closed
     traces with dots every 90° of crank angle, radial labels where the curves leave room."""
-    ex = bl.extra
+    ex = bl.detail
     names = sl.coords["item"]
-    sp = np.array(sl.coords["speed"]) / RPM
+    sp = rpm(np.array(sl.coords["speed"]))
     cases = sl.coords["case"]
     sl_judged = jd.mask(sl)
     bes = [n for n in names if sl.item_attrs[n]["type"] == "big end"]
@@ -300,8 +302,8 @@ def _polar(res: CheckResult, sl, bl) -> list[dict]:
         return []
     fig, axes = figure(170, 96, ncols=len(choose), subplot_kw={"projection": "polar"},
                        squeeze=False, left=10, right=10, top=12, bottom=20, wgap=34)
-    cols: dict[str, np.ndarray] = {"crank angle [°]": np.degrees(ex["theta"])}
-    deg = np.degrees(ex["theta"]) % 720
+    cols: dict[str, np.ndarray] = {"crank angle [°]": in_unit(ex.theta, "rad", "deg")}
+    deg = in_unit(ex.theta, "rad", "deg") % 720
     marks = np.array([int(np.argmin(np.abs(deg - a))) for a in range(0, 720, 90)])
     for a, n in enumerate(choose):
         i = names.index(n)
@@ -313,25 +315,26 @@ def _polar(res: CheckResult, sl, bl) -> list[dict]:
             if not np.isfinite(vals).any():
                 vals = sl.values[i, ci]
             k = int(np.nanargmax(vals))
-            fx, fy = ex["fx"][i, ci, k], ex["fy"][i, ci, k]
+            fx, fy = ex.fx[i, ci, k], ex.fy[i, ci, k]
             judged = sl_judged[i, ci, k]
             th = every(fx.size)
             ang = np.append(np.arctan2(fx, fy)[th], np.arctan2(fx[0], fy[0]))  # closed
-            rad = np.append(np.hypot(fx, fy)[th], np.hypot(fx[0], fy[0])) / 1e3
+            rad = in_unit(np.append(np.hypot(fx, fy)[th], np.hypot(fx[0], fy[0])), "N", "kN")
             color = CURVE_COLORS[k_col]
             ax.plot(ang, rad, lw=0.9, color=color, ls="-" if judged else ":",
                     label=f"{c} load, {sp[k]:.0f} rpm (its worst)" + ("" if judged else
                                                                       ", not judged"))
-            ax.plot(np.arctan2(fx[marks], fy[marks]), np.hypot(fx[marks], fy[marks]) / 1e3,
+            ax.plot(np.arctan2(fx[marks], fy[marks]), in_unit(np.hypot(fx[marks], fy[marks]),
+                                                              "N", "kN"),
                     "o", ms=2.6, color=color)
             ax.annotate("0°", (np.arctan2(fx[marks[0]], fy[marks[0]]),
-                               np.hypot(fx[marks[0]], fy[marks[0]]) / 1e3),
+                               in_unit(np.hypot(fx[marks[0]], fy[marks[0]]), "N", "kN")),
                         fontsize=5.5, color=color, xytext=(3, 2), textcoords="offset points")
             angles.append(ang)
             radii.append(rad)
             k_col += 1
-            cols[f"{n} {c} load {sp[k]:.0f} rpm Fx [kN]"] = fx / 1e3
-            cols[f"{n} {c} load {sp[k]:.0f} rpm Fy [kN]"] = fy / 1e3
+            cols[f"{n} {c} load {sp[k]:.0f} rpm Fx [kN]"] = in_unit(fx, "N", "kN")
+            cols[f"{n} {c} load {sp[k]:.0f} rpm Fy [kN]"] = in_unit(fy, "N", "kN")
         ax.set_theta_zero_location("N")
         ax.set_theta_direction(-1)
         ax.set_thetagrids(np.arange(0, 360, 45))
@@ -341,7 +344,7 @@ def _polar(res: CheckResult, sl, bl) -> list[dict]:
         for t in ax.get_yticklabels():
             t.set_bbox({"facecolor": "white", "edgecolor": "none", "pad": 0.3, "alpha": 0.8})
         ax.grid(True, alpha=0.3)
-        ax.set_title(literal(f"{n} ({ex['frames'][n]}), load [kN]"), pad=10)
+        ax.set_title(literal(f"{n} ({ex.frames[n]}), load [kN]"), pad=10)
         ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.1), ncols=1, frameon=False,
                   fontsize=6)
     names_ = list(cols)
