@@ -96,8 +96,8 @@ def test_unbalanced_crank_in_a_balanced_layout_fails_bal006_with_a_finding(bad_i
     # x 37.7 mm x (1 + 1 - 1/2 x 4) = 0 over the six throws, pins and rods cancel, and the
     # counterweights on throws 1, 3, 4, 6 leave 2 x 1.65 kg x 58 mm x (-2 + 1/2 x 2) =
     # -0.1914 kg m along Y (as the issue states: about 0.19 kg m, 10 kN at 2200 rpm)
-    u = q.extra["throw_unbalance"]
-    static = np.hypot(*q.extra["static_vector"])
+    u = q.detail.throw_unbalance
+    static = np.hypot(*q.detail.static_vector)
     assert static == pytest.approx(0.1914, abs=5e-4)
     assert q.values[0] == pytest.approx(static / u)
     r = by[("BAL-006", "static")]

@@ -67,8 +67,8 @@ def loads_4000(engine):
 
 
 def _scaled(q, k):
-    extra = dict(q.extra, fx=q.extra["fx"] * k, fy=q.extra["fy"] * k)
-    return dataclasses.replace(q, values=q.values * k, extra=extra)
+    detail = dataclasses.replace(q.detail, fx=q.detail.fx * k, fy=q.detail.fy * k)
+    return dataclasses.replace(q, values=q.values * k, detail=detail)
 
 
 @settings(max_examples=10, deadline=None,

@@ -64,7 +64,7 @@ def test_example_balance_ratio_and_internal_moment_from_the_sheet(result):
     w2 = (6000 * RPM) ** 2
     assert im.values[2] == pytest.approx((u_rot - u_cw) * 0.096 * w2, rel=1e-9)
     assert im.values[0] < 1e-9 and im.values[-1] < 1e-6 * im.values[2]
-    assert im.extra["without_counterweights"][2] == pytest.approx(u_rot * 0.096 * w2, rel=1e-9)
+    assert im.detail.without_counterweights[2] == pytest.approx(u_rot * 0.096 * w2, rel=1e-9)
 
 
 def test_rules_use_the_workbook_limits(result):
@@ -118,12 +118,12 @@ def test_inline_six_with_a_symmetric_crank_has_no_free_forces_or_moments(tmp_pat
     m = out.quantities["balance.free_moment"]
     p6 = eng.params
     m_rec = p6["piston_mass"] + p6["rod_mass"] * p6["rod_com"] / p6["rod_length"]
-    w = f.extra["omega"]
+    w = f.detail.omega
     scale = 6 * m_rec * p6["stroke"] / 2 * w * w
-    keep = f.extra["orders"] != 6
+    keep = f.detail.orders != 6
     assert np.all(f.values[keep] < 1e-12 * scale)
     assert np.all(m.values < 1e-12 * scale)
-    assert f.values[5] == pytest.approx(6 * m_rec * abs(f.extra["harmonics"][6]) * w * w,
+    assert f.values[5] == pytest.approx(6 * m_rec * abs(f.detail.harmonics[6]) * w * w,
                                         rel=1e-9)
 
 

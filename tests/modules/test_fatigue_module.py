@@ -148,7 +148,7 @@ def test_tv_torque_signal_on_the_loads_crank_angle(result):
     np.testing.assert_allclose(t[..., :-1, :].max(-1), vib_max, rtol=2e-3, atol=2.0)
     # same theta origin as the loads: at 1000 rpm the torque that cylinder 1's station adds to
     # the chain follows cylinder 1's own crank torque (loads module) without a phase shift
-    cyl1 = qs["loads.bearing_load"].extra["torque"][0, 0, 0]
+    cyl1 = qs["loads.bearing_load"].detail.torque[0, 0, 0]
     added = t[0, 0, 2] - t[0, 0, 1]  # (cylinder 1 -> 2) - (nose -> cylinder 1)
     corr = [np.corrcoef(np.roll(added, k), cyl1)[0, 1] for k in (-10, 0, 10)]
     assert corr[1] > 0.99 and corr[1] > max(corr[0], corr[2])

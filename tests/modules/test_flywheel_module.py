@@ -23,8 +23,8 @@ def result(tmp_path_factory):
 def test_inertia_is_the_whole_torsional_model(result):
     q = result.outcome.quantities["flywheel.cyclic_irregularity"]
     j = sum(r[3] for r in TV_MODEL[1])  # seed 000 chain: ring, nose, 4 cylinders, flywheel
-    assert q.extra["inertia_total"] == pytest.approx(j, rel=1e-12)
-    assert q.extra["inertia_flywheel"] == pytest.approx(0.174743, rel=1e-12)
+    assert q.detail.inertia_total == pytest.approx(j, rel=1e-12)
+    assert q.detail.inertia_flywheel == pytest.approx(0.174743, rel=1e-12)
     assert result.outcome.modules_run == ["loads", "flywheel"]
 
 
@@ -35,9 +35,9 @@ def test_lowest_speed_against_direct_integration(result):
     # speed must be 1000 rpm and (w_max - w_min)/w_avg the module's delta (tolerance 3e-4:
     # linear vs spectral interpolation of the 1 deg torque samples; measured 3e-5).
     q = result.outcome.quantities["flywheel.cyclic_irregularity"]
-    ex = q.extra
-    th, tq = ex["theta"], ex["torque"][0, 0]
-    j = ex["inertia_total"]
+    ex = q.detail
+    th, tq = ex.theta, ex.torque[0, 0]
+    j = ex.inertia_total
     t_mean = tq.mean()
     period = FOUR_STROKE_CYCLE
     step = th[1] - th[0]
@@ -53,7 +53,7 @@ def test_lowest_speed_against_direct_integration(result):
         return y[0] - period
 
     done.terminal = True
-    sol = solve_ivp(rhs, (0, 1.0), [0.0, ex["omega"][0, 0, 0]], method="DOP853", rtol=1e-7,
+    sol = solve_ivp(rhs, (0, 1.0), [0.0, ex.omega[0, 0, 0]], method="DOP853", rtol=1e-7,
                     atol=1e-7, events=done, dense_output=True)
     t_cyc = sol.t_events[0][0]
     w = sol.sol(np.linspace(0, t_cyc, 100_001))[1]
@@ -75,7 +75,7 @@ def test_rule_judges_the_lowest_speed_only(result):
 
 def test_minimum_flywheel_meets_the_target(result, tmp_path):
     q = result.outcome.quantities["flywheel.minimum_inertia"]
-    need = q.values[0, 0] + q.extra["inertia_rest"]  # total inertia at 1000 rpm full load
+    need = q.values[0, 0] + q.detail.inertia_rest  # total inertia at 1000 rpm full load
 
     def edit(wb):
         ws = wb["TVModel"]
@@ -85,7 +85,7 @@ def test_minimum_flywheel_meets_the_target(result, tmp_path):
 
     res = api.check(edited(tmp_path, edit), select=["FLY"])
     ci = res.outcome.quantities["flywheel.cyclic_irregularity"]
-    assert ci.extra["inertia_total"] == pytest.approx(need, rel=1e-12)
+    assert ci.detail.inertia_total == pytest.approx(need, rel=1e-12)
     assert ci.values[0, 0] == pytest.approx(0.10, rel=1e-6)
 
 

@@ -38,7 +38,7 @@ def test_a_miss_is_a_caveat_in_the_json(tmp_path):
     p = tmp_path / "v8.xlsx"
     write_workbook(p, v8_content())
     res = api.check(p, select=["BRG-001"])
-    cyc = res.outcome.quantities["loads.cycle"].extra["cycle"]
+    cyc = res.outcome.quantities["loads.cycle"].detail.cycle
     no = list(cyc.cases).index("no")
     dev = cyc.imep[no] / cyc.target_imep[no] - 1
     assert np.nanmax(np.abs(dev)) > caveats.IMEP_TOLERANCE

@@ -42,7 +42,7 @@ def test_seed_symmetry_of_mains(example_result):
 
 
 def test_synthesized_trace_reaches_peak(example_result):
-    cyc = example_result.outcome.quantities["loads.cycle"].extra["cycle"]
+    cyc = example_result.outcome.quantities["loads.cycle"].detail.cycle
     e = example_result.engine
     pts = sorted((s, p) for c, s, p in e.peak_pressure if c == "full")
     for s, pk in pts:
@@ -73,7 +73,7 @@ def test_given_traces_are_used(tmp_path):
                 ws.append(["full", s, float(a), float(p) / 1e5])
 
     res = api.check(edited(tmp_path, edit), select=["BRG-001", "BRG-002"])
-    c2 = res.outcome.quantities["loads.cycle"].extra["cycle"]
+    c2 = res.outcome.quantities["loads.cycle"].detail.cycle
     assert not c2.synthesized[0].any() and c2.synthesized[1].all()
     assert c2.pressure[0, k].max() == pytest.approx(trace.max(), rel=2e-3)
     assert c2.extrapolated[0, c2.speeds < 2000 * RPM - 1].all()
@@ -139,8 +139,8 @@ def test_v8_pin_load_is_the_vector_sum_of_its_rods_computed_alone(v8_run):
     engine, res = v8_run
     cyc = build_cycle(engine)
     q = res.outcome.quantities
-    fr, ft = (q["fatigue.goodman_sf"].extra[k] for k in ("pin_force_radial",
-                                                         "pin_force_tangential"))
+    fr, ft = (getattr(q["fatigue.goodman_sf"].detail, k) for k in ("pin_force_radial",
+                                                                   "pin_force_tangential"))
     bl = q["loads.bearing_load"]
     names = bl.coords["item"]
     g1 = np.radians(45.0)
@@ -157,13 +157,13 @@ def test_v8_pin_load_is_the_vector_sum_of_its_rods_computed_alone(v8_run):
         # big ends: each rod's own load in its own rod frame
         for n, lo in ((a, la), (b, lb)):
             i = names.index(f"BE{n}")
-            np.testing.assert_allclose(bl.extra["fx"][i], lo.big_end_rod.x[:, :, 0],
+            np.testing.assert_allclose(bl.detail.fx[i], lo.big_end_rod.x[:, :, 0],
                                        atol=1e-9 * scale)
-            np.testing.assert_allclose(bl.extra["fy"][i], lo.big_end_rod.y[:, :, 0],
+            np.testing.assert_allclose(bl.detail.fy[i], lo.big_end_rod.y[:, :, 0],
                                        atol=1e-9 * scale)
     # the two rods of a pin have different loads (phase 270 deg apart, banks 90 deg apart)
     i1, i2 = names.index("BE1"), names.index("BE2")
-    assert not np.allclose(bl.extra["fx"][i1], bl.extra["fx"][i2])
+    assert not np.allclose(bl.detail.fx[i1], bl.detail.fx[i2])
 
 
 def test_v8_front_main_by_hand(v8_run):
@@ -195,8 +195,8 @@ def test_v8_front_main_by_hand(v8_run):
     want_x = 0.5 * px + w2 * (cx * np.cos(th) + cy * np.sin(th))
     want_y = 0.5 * py + w2 * (-cx * np.sin(th) + cy * np.cos(th))
     scale = np.abs(want_x).max() + np.abs(want_y).max()
-    np.testing.assert_allclose(bl.extra["fx"][i], want_x, atol=1e-9 * scale)
-    np.testing.assert_allclose(bl.extra["fy"][i], want_y, atol=1e-9 * scale)
+    np.testing.assert_allclose(bl.detail.fx[i], want_x, atol=1e-9 * scale)
+    np.testing.assert_allclose(bl.detail.fy[i], want_y, atol=1e-9 * scale)
 
 
 def test_v8_report_says_which_cylinders_share_a_pin(v8_run):
@@ -213,7 +213,7 @@ def test_full_load_beyond_the_data_is_bounded_by_the_last_data_point(example_res
     trace there can never be more severe than at 6500 rpm (it was 17.4 bar IMEP at 7000 rpm
     against 14.9 bar at 6500 rpm, from an uncalibrated trace). The same holds below the first
     data speed (sweep from 800 rpm against data from 1000 rpm)."""
-    cyc = example_result.outcome.quantities["loads.cycle"].extra["cycle"]
+    cyc = example_result.outcome.quantities["loads.cycle"].detail.cycle
     sp = cyc.speeds / RPM
     last = int(np.flatnonzero(np.isclose(sp, 6500))[0])
     beyond = sp > 6500 + 1e-6
@@ -228,7 +228,7 @@ def test_full_load_beyond_the_data_is_bounded_by_the_last_data_point(example_res
     # below the data: the sweep starts at 800 rpm, the data at 1000 rpm
     res = api.check(edited(tmp_path, lambda wb: set_param(wb, "Engine", "Minimum speed", 800)),
                     select=["BRG-001"])
-    c2 = res.outcome.quantities["loads.cycle"].extra["cycle"]
+    c2 = res.outcome.quantities["loads.cycle"].detail.cycle
     s2 = c2.speeds / RPM
     first = int(np.flatnonzero(np.isclose(s2, 1000))[0])
     below = s2 < 1000 - 1e-6

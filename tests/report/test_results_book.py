@@ -94,7 +94,7 @@ def test_index_sheet_and_cylinder_pressure_data(result):
     for q in result.outcome.quantities.values():
         if np.size(q.values):
             assert listed[results_book.sheet_name(q.name)] == q.name
-    cyc = result.outcome.quantities["loads.cycle"].extra["cycle"]
+    cyc = result.outcome.quantities["loads.cycle"].detail.cycle
     rows = list(wb[results_book.sheet_name("loads.cycle")].iter_rows(values_only=True))
     titles = [r[0] for r in rows if r and isinstance(r[0], str)]
     for t in ("IMEP of the trace used [bar]", "IMEP target (brake torque + friction) [bar];"
