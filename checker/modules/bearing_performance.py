@@ -177,7 +177,7 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         raise MissingInputs([engine.describe_missing("Oil", "supply_temperature")])
     fit, notes = oil_fit(engine)
     bearings = {b.name: b for b in engine.bearings}
-    ex = bl.extra
+    ex = vars(bl.detail)
     speeds = np.array(bl.coords["speed"])
     nb, nc, ns = bl.values.shape
     missing: dict[tuple, list[str]] = {k: list(v) for k, v in bl.missing.items()}
@@ -455,7 +455,7 @@ def film_pressure(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     if orb:
         rows = orb["rows"]
         n = orb["eps_x"].shape[-1]
-        ex = bl.extra
+        ex = vars(bl.detail)
         lx = _resample(ex["fy"][rows], n)
         ly = _resample(ex["fx"][rows], n)
         col = (slice(None), None, None, None)

@@ -367,7 +367,7 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     pins = np.array([c.pin - 1 for c in cyls])
     n_pins = int(pins.max()) + 1
     n_mains = n_pins + 1
-    theta = np.asarray(bl.extra["theta"])
+    theta = np.asarray(bl.detail.theta)
     N = theta.size
     cases, speeds = list(bl.coords["case"]), np.asarray(bl.coords["speed"], dtype=float)
     C, S = len(cases), speeds.size
@@ -405,7 +405,7 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     # ------------------------------------------------------------- pin forces (throw frame)
     firing = np.array([c.firing_angle for c in cyls])
     bank = np.array([c.bank_angle for c in cyls])
-    f_pin = cf.crankpin_force(bl.extra["big_end_crank"], pins, n_pins)  # (C, S, T, N)
+    f_pin = cf.crankpin_force(bl.detail.big_end_crank, pins, n_pins)  # (C, S, T, N)
     try:
         gamma = cf.throw_angles(firing, bank, pins, n_pins)
     except ValueError as exc:

@@ -210,7 +210,7 @@ def _prepare(engine: Engine, inputs: dict, model: str) -> dict:
     bl = inputs["loads.bearing_load"]
     if not bl.coords["item"]:
         raise MissingInputs(["Bearings: no bearings given (sheet Bearings)"])
-    ex = bl.extra
+    ex = vars(bl.detail)
     names = bl.coords["item"]
     ft = inputs.get("bearing.film_temperature") if heat_balance_asked(engine) else None
     if ft is None:

@@ -118,7 +118,7 @@ def bearings_section(res: CheckResult) -> dict:
         bl = res.outcome.quantities.get("loads.bearing_load")
         cols = {"crank angle [°]": th, "eps_x [-]": exx, "eps_y [-]": eyy, "h [µm]": h}
         if bl is not None:
-            le = bl.extra
+            le = vars(bl.detail)
             f = np.hypot(le["fx"][i, ci, k], le["fy"][i, ci, k]) / 1e3
             ax2 = ax1.twinx()
             fv = every(f.size)

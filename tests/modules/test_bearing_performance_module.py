@@ -89,7 +89,7 @@ def test_peak_pressure_short_equals_orbit_solver(result):
     k = int(np.argmin(np.abs(np.array(bl.coords["speed"]) - 3000 * RPM)))
     t_film = eng.oil["supply_temperature"] + (eng.oil.get("temperature_rise") or 0.0)
     mu = float(oil_fit(eng)[0].viscosity(t_film))
-    ex = bl.extra
+    ex = vars(bl.detail)
     res = ob.solve_orbit(ex["fy"][0, 0, k], ex["fx"][0, 0, k], ex["omega_journal"][0, 0, k],
                          ex["omega_bearing"][0, 0, k], bl.coords["speed"][k], b.diameter,
                          b.length, b.clearance, mu, peak_pressure=True)
@@ -150,7 +150,7 @@ def test_film_thickness_at_heat_balance_temperature(tmp_path, result):
     b = eng.bearings[5]
     k = 10
     mu = float(oil_fit(eng)[0].viscosity(t[5, 0, k]))
-    ex = bl.extra
+    ex = vars(bl.detail)
     direct = ob.solve_orbit(ex["fy"][5, 0, k], ex["fx"][5, 0, k], ex["omega_journal"][5, 0, k],
                             ex["omega_bearing"][5, 0, k], bl.coords["speed"][k], b.diameter,
                             b.length, b.clearance, mu)
