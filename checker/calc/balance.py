@@ -42,7 +42,9 @@ __all__ = [
     "BalanceOrders",
     "ThrowBalance",
     "crank_vector_phasor",
+    "inherent_balance",
     "internal_bending_moment",
+    "mean_throw_unbalance",
     "order_vector_extremes",
     "piston_acceleration_harmonics",
     "piston_acceleration_series",
@@ -467,3 +469,88 @@ def internal_bending_moment(
         raise ValueError("mass, position and axial must match")
     lever = np.clip(zs[:, None] - z[None, :], 0.0, None)  # (n_s, n_m), only masses in front
     return lever @ (m[:, None] * rho)
+
+
+INHERENT_TOLERANCE = 1e-9
+"""Relative tolerance of :func:`inherent_balance` (throw angles from degrees round to ~1e-16)."""
+
+
+def inherent_balance(throw_angle: ArrayLike, pin_of_rod: ArrayLike) -> tuple[bool, bool]:
+    """Whether equal throws of a crank layout cancel as forces (static) and as couples too
+    (dynamic).
+
+    With ``e_j = (sin gamma_j, cos gamma_j)`` the unit vector of throw ``j`` (crank frame) and
+    ``z_j = j + 1/2 - P/2`` its axial position from the crank's mid-plane in units of the main
+    journal spacing (``P`` throws, evenly spaced), the layout is balanced statically when every
+    pin carries the same number of rods and ``sum_j e_j = 0``, dynamically when also
+    ``sum_j z_j e_j = 0`` (Taylor 1985, vol. 2, ch. 8: in-line four and six and the flat-plane
+    V8 are both, the in-line three and the cross-plane V8 only statically, a single throw
+    neither).
+
+    Parameters
+    ----------
+    throw_angle : array_like, shape (P,) [rad]
+        Crank-frame angle of each throw (:func:`checker.calc.crank_forces.throw_angles`).
+    pin_of_rod : array_like of int, shape (n_cyl,)
+        Throw (0-based) of each rod.
+
+    Returns
+    -------
+    static, dynamic : bool
+        Within :data:`INHERENT_TOLERANCE` (times ``P``, resp. ``P^2``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> inherent_balance(np.radians([0, 180, 180, 0]), [0, 1, 2, 3])  # in-line four
+    (True, True)
+    >>> inherent_balance(np.radians([0, 240, 120]), [0, 1, 2])  # in-line three
+    (True, False)
+    """
+    gamma = finite("throw_angle", throw_angle).ravel()
+    pins = np.asarray(pin_of_rod, dtype=int).ravel()
+    n_pins = gamma.size
+    if n_pins == 0 or pins.size == 0 or pins.min() < 0 or pins.max() >= n_pins:
+        raise ValueError("inherent_balance: every rod needs a throw 0..P-1")
+    e = np.stack([np.sin(gamma), np.cos(gamma)], axis=-1)
+    n_on = np.bincount(pins, minlength=n_pins)
+    z_pin = (np.arange(n_pins) + 0.5) - n_pins / 2.0  # in units of the main spacing
+    same = bool(np.all(n_on == n_on[0]))
+    static = bool(same and np.hypot(*e.sum(0)) < INHERENT_TOLERANCE * n_pins)
+    dynamic = bool(static and np.hypot(*(z_pin[:, None] * e).sum(0))
+                   < INHERENT_TOLERANCE * n_pins**2)
+    return static, dynamic
+
+
+def mean_throw_unbalance(mass: ArrayLike, position: ArrayLike, throw_of_mass: ArrayLike,
+                         n_throws: int) -> float:
+    """Mean over the throws of each throw's rotating unbalance ``|sum_(k in j) m_k rho_k|``
+    [kg m] (per omega^2; pass the masses without the counterweights: webs, pin, rod big ends).
+
+    The reference unbalance of one throw against which a crank's resultant unbalance is judged
+    (Taylor 1985, vol. 2, ch. 8).
+
+    Parameters
+    ----------
+    mass : array_like, shape (n_m,) [kg]
+    position : array_like, shape (n_m, 2) [m]
+        Crank-frame centres of mass.
+    throw_of_mass : array_like of int, shape (n_m,)
+        Throw (0-based) of each mass.
+    n_throws : int
+
+    Examples
+    --------
+    >>> mean_throw_unbalance([1.0, 2.0, 1.0], [[0, 0.5], [0, -0.25], [0, -0.5]], [0, 1, 1], 2)
+    0.75
+    """
+    m = finite("mass", mass).ravel()
+    rho = finite("position", position).reshape(-1, 2)
+    t = np.asarray(throw_of_mass, dtype=int).ravel()
+    if not (m.size == rho.shape[0] == t.size):
+        raise ValueError("mass, position and throw_of_mass must match")
+    if t.size and (t.min() < 0 or t.max() >= n_throws):
+        raise ValueError("mean_throw_unbalance: throw_of_mass outside 0..n_throws-1")
+    per_throw = np.zeros((n_throws, 2))
+    np.add.at(per_throw, t, m[:, None] * rho)
+    return float(np.mean(np.hypot(per_throw[:, 0], per_throw[:, 1])))

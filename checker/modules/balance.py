@@ -77,7 +77,6 @@ UNBALANCE_FRACTION = 0.05
 that is inherently balanced gets a finding (rule BAL-006 uses the same 5 % as its limit).
 Rounding of entered coordinates leaves far less (~1e-5), a misplaced counterweight or a
 coordinate in the wrong column far more (one web's counterweight is ~40 % of a throw)."""
-_INHERENT_TOL = 1e-9
 
 _LIMITS = {("force", "1"): "free_force_limit_1", ("force", "2"): "free_force_limit_2",
            ("moment", "1"): "free_moment_limit_1", ("moment", "2"): "free_moment_limit_2"}
@@ -324,13 +323,7 @@ def _crank_unbalance(engine: Engine, common: BalanceDetail, *, crank: bool, spac
     counterweights cancel by design). There, any resultant of the rotating masses comes from
     the crank data (a counterweight missing or misplaced, a coordinate in the wrong column).
     """
-    n_pins = gamma.size
-    e = np.stack([np.sin(gamma), np.cos(gamma)], axis=-1)
-    n_on = np.bincount(pins, minlength=n_pins)
-    z_pin = (np.arange(n_pins) + 0.5) - n_pins / 2.0  # in units of the main spacing
-    same = bool(np.all(n_on == n_on[0]))
-    static_ok = same and np.hypot(*e.sum(0)) < _INHERENT_TOL * n_pins
-    dynamic_ok = static_ok and np.hypot(*(z_pin[:, None] * e).sum(0)) < _INHERENT_TOL * n_pins**2
+    static_ok, dynamic_ok = bal.inherent_balance(gamma, pins)
     items = ["static", "dynamic"]
     attrs = {it: {"kind": it} for it in items}
     vals = np.full(2, np.nan)
@@ -354,10 +347,8 @@ def _crank_unbalance(engine: Engine, common: BalanceDetail, *, crank: bool, spac
         return Quantity(CRANK_UNBALANCE, vals, {"item": items}, attrs,
                         {(0,): list(reason), (1,): list(reason)}, applies=applies,
                         applies_text=why, detail=_as(CrankUnbalanceDetail, common, **flags))
-    per_throw = np.zeros((n_pins, 2))
     keep = ~is_cw
-    np.add.at(per_throw, throw_of[keep], rm[keep, None] * rpos[keep])
-    u_throw = float(np.mean(np.hypot(per_throw[:, 0], per_throw[:, 1])))
+    u_throw = bal.mean_throw_unbalance(rm[keep], rpos[keep], throw_of[keep], gamma.size)
     s_vec = rm @ rpos
     c_vec = (rm * rax) @ rpos
     flags.update(throw_unbalance=u_throw, static_vector=s_vec, couple_vector=c_vec)

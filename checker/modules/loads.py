@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..calc import crank_forces as cf
+from ..calc import operating_points as op
 from ..calc import pressure as pr
 from ..calc.kinematics import DEFAULT_STEP, cycle_grid
 from ..calc.specific_load import peak_specific_load
@@ -85,12 +86,7 @@ def _trace_from_table(engine: Engine, case: str, theta: np.ndarray, speeds: np.n
         except ValueError as exc:
             raise MissingInputs([f"PressureTraces: {case} load at {s / RPM:.0f} rpm: {exc}"]
                                 ) from None
-    traces = np.array(traces)  # (K, N)
-    out = np.empty((speeds.size, theta.size))
-    extrap = (speeds < sp[0] - 1e-9) | (speeds > sp[-1] + 1e-9)
-    for k in range(theta.size):
-        out[:, k] = np.interp(speeds, sp, traces[:, k])
-    return out, extrap
+    return op.traces_at_speeds(sp, np.array(traces), speeds)
 
 
 def build_cycle(engine: Engine, step: float | None = None) -> Cycle:
@@ -208,8 +204,7 @@ def build_cycle(engine: Engine, step: float | None = None) -> Cycle:
         data_speeds = [s for c, s, _ in engine.peak_pressure if c == "full"] + [
             r[1] for r in engine.pressure_traces if r[0] == "full"]
         if data_speeds:
-            envelope[ci] = (speeds >= min(data_speeds) - 1e-9) & (
-                speeds <= max(data_speeds) + 1e-9)
+            envelope[ci] = op.data_envelope(speeds, data_speeds)
             if not envelope[ci].all():
                 notes.append("Full-load rules are judged within the full-load data range"
                              f" ({min(data_speeds) / RPM:.0f}-{max(data_speeds) / RPM:.0f} rpm);"

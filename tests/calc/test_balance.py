@@ -338,3 +338,27 @@ def test_sixty_degree_v6_split_pins():
     assert abs(p2[1] + 1j * p2[0]) < 1e-14 * scale * s
     # the secondary couple turns backward: the same counterweights leave it unchanged
     assert np.abs(res_cw.moment[1] - res.moment[1]).max() < 1e-16
+
+
+@pytest.mark.parametrize(("throws_deg", "pins", "want"), [
+    ([0, 180, 180, 0], [0, 1, 2, 3], (True, True)),  # in-line four (Taylor 1985 ch. 8)
+    ([0, 120, 240, 240, 120, 0], list(range(6)), (True, True)),  # in-line six
+    ([0, 240, 120], [0, 1, 2], (True, False)),  # in-line three: rotating couple
+    ([0, 90, 270, 180], [0, 0, 1, 1, 2, 2, 3, 3], (True, False)),  # cross-plane V8
+    ([0, 180, 180, 0], [0, 0, 1, 1, 2, 2, 3, 3], (True, True)),  # flat-plane V8
+    ([0], [0], (False, False)),  # single throw
+    ([0, 180], [0, 1, 1], (False, False)),  # unequal rods per pin
+])
+def test_inherent_balance_of_classical_layouts(throws_deg, pins, want):
+    assert bal.inherent_balance(np.radians(throws_deg), pins) == want
+
+
+def test_mean_throw_unbalance_hand_value():
+    # throw 1: 0.4 kg at 45 mm -> 0.018 kg m; throw 2: 0.2 kg at 30 mm and 0.3 kg at 40 mm at
+    # right angles -> hypot(0.006, 0.012) kg m (by hand)
+    m = [0.4, 0.2, 0.3]
+    rho = [[0.0, 0.045], [0.03, 0.0], [0.0, 0.04]]
+    got = bal.mean_throw_unbalance(m, rho, [0, 1, 1], 2)
+    assert got == pytest.approx(0.5 * (0.018 + np.hypot(0.006, 0.012)), rel=1e-14)
+    with pytest.raises(ValueError):
+        bal.mean_throw_unbalance(m, rho, [0, 1, 2], 2)
