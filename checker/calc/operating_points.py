@@ -102,3 +102,53 @@ def data_envelope(speeds: ArrayLike, data_speeds: ArrayLike) -> np.ndarray:
     if d.size == 0:
         raise ValueError("data_envelope: no data speeds")
     return (s >= d.min() - SPEED_TOLERANCE) & (s <= d.max() + SPEED_TOLERANCE)
+
+
+def full_load_target_imep(speeds: ArrayLike, torque_speeds: ArrayLike, brake_torque: ArrayLike,
+                          total_displacement: float) -> tuple[np.ndarray, np.ndarray]:
+    """Full-load IMEP target at the swept speeds: brake torque plus friction.
+
+    ``imep = 4 pi T_b / V_D + FMEP`` (Heywood 1988, sec. 2.7; FMEP of Barnes-Moss,
+    :func:`checker.calc.pressure.fmep_barnes_moss`), with ``T_b`` interpolated linearly in the
+    BrakeTorque table. Outside the table's speed range the target is the one at the nearest
+    table speed (torque **and** friction evaluated there): the trace there is that speed's trace
+    instead of an uncalibrated, more severe one (the brake torque above the range then falls
+    with the rising friction).
+
+    Parameters
+    ----------
+    speeds : array_like, shape (S,) [rad/s]
+        Swept speeds.
+    torque_speeds : array_like, shape (K,) [rad/s]
+        Speeds of the brake-torque table, in increasing order.
+    brake_torque : array_like, shape (K,) [N m]
+        Full-load brake torque of the whole engine at ``torque_speeds``.
+    total_displacement : float [m^3]
+        Swept volume of all cylinders.
+
+    Returns
+    -------
+    target : numpy.ndarray, shape (S,) [Pa]
+    held : numpy.ndarray, shape (S,) [rad/s]
+        The speed each target is evaluated at (``speeds`` clipped to the table's range).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> w = 2000 * np.pi / 30  # 2000 rpm: FMEP 0.97 + 0.3 + 0.2 = 1.47 bar
+    >>> t, h = full_load_target_imep([w], [w / 2, 2 * w], [100.0, 100.0], 4 * np.pi * 1e-3)
+    >>> round(float(t[0]) / 1e5, 6)  # BMEP = 4 pi 100 / (4 pi 1e-3) Pa = 1 bar
+    2.47
+    """
+    from .pressure import fmep_barnes_moss, implied_imep
+
+    s = np.asarray(speeds, dtype=float)
+    ws = np.asarray(torque_speeds, dtype=float)
+    tb = np.asarray(brake_torque, dtype=float)
+    if ws.ndim != 1 or ws.size == 0 or tb.shape != ws.shape:
+        raise ValueError("full_load_target_imep: torque_speeds and brake_torque must be (K,)")
+    if np.any(np.diff(ws) < 0):
+        raise ValueError("full_load_target_imep: torque speeds must increase")
+    held = np.clip(s, ws[0], ws[-1])
+    torque = np.interp(held, ws, tb)
+    return implied_imep(torque, total_displacement, fmep_barnes_moss(held)), held

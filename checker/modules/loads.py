@@ -134,9 +134,7 @@ def build_cycle(engine: Engine, step: float | None = None) -> Cycle:
                                  kw["pin_offset"]) * len(engine.cylinders)
             # outside the BrakeTorque range the target IMEP is held at its value at the
             # nearest BrakeTorque speed (never above it): evaluated at the clipped speed
-            held = np.clip(speeds, bt[0, 0], bt[-1, 0])
-            torque = np.interp(held, bt[:, 0], bt[:, 1])
-            tgt = pr.implied_imep(torque, vd, pr.fmep_barnes_moss(held))
+            tgt, held = op.full_load_target_imep(speeds, bt[:, 0], bt[:, 1], vd)
             out = np.abs(held - speeds) > 1e-9
             if out.any():
                 sides = [f"{tgt[out & (held == s_)][0] / 1e5:.1f} bar at {s_ / RPM:.0f} rpm"

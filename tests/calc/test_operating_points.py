@@ -50,3 +50,24 @@ def test_envelope_is_the_data_range_with_tolerance():
     assert data_envelope(s, [90.0, 300.0]).all()
     with pytest.raises(ValueError):
         data_envelope(s, [])
+
+
+def test_full_load_target_by_hand_and_held_outside_the_table():
+    from checker.calc.operating_points import full_load_target_imep
+
+    rpm = np.pi / 30
+    vd = 2.0e-3  # 2 l
+    ws = np.array([1000.0, 3000.0]) * rpm
+    tb = np.array([150.0, 190.0])
+    speeds = np.array([800.0, 2000.0, 3000.0, 3500.0]) * rpm
+    t, held = full_load_target_imep(speeds, ws, tb, vd)
+    # by hand at 2000 rpm: T = 170 N m, BMEP = 4 pi 170 / 2e-3, FMEP = 0.97 + 0.3 + 0.2 bar
+    assert t[1] == pytest.approx(4 * np.pi * 170 / vd + 1.47e5, rel=1e-12)
+    # 3000 rpm: FMEP = 0.97 + 0.45 + 0.45 bar
+    assert t[2] == pytest.approx(4 * np.pi * 190 / vd + 1.87e5, rel=1e-12)
+    # held: below at the 1000 rpm value (FMEP 1.17 bar), above at the 3000 rpm value
+    assert t[0] == pytest.approx(4 * np.pi * 150 / vd + 1.17e5, rel=1e-12)
+    assert t[3] == t[2]
+    np.testing.assert_allclose(held / rpm, [1000, 2000, 3000, 3000], rtol=1e-12)
+    with pytest.raises(ValueError):
+        full_load_target_imep(speeds, ws[::-1], tb, vd)
