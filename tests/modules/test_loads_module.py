@@ -139,8 +139,8 @@ def test_v8_pin_load_is_the_vector_sum_of_its_rods_computed_alone(v8_run):
     engine, res = v8_run
     cyc = build_cycle(engine)
     q = res.outcome.quantities
-    fr, ft = (getattr(q["fatigue.goodman_sf"].detail, k) for k in ("pin_force_radial",
-                                                                   "pin_force_tangential"))
+    fat = q["fatigue.goodman_sf"].detail
+    fr, ft = fat.pin_force_radial, fat.pin_force_tangential
     bl = q["loads.bearing_load"]
     names = bl.coords["item"]
     g1 = np.radians(45.0)
