@@ -15,6 +15,7 @@ from ..graph import (
     quantity,
     register_module,
 )
+from ..results.joints import AppliedTorqueDetail, ComputedTorqueDetail, JointBoltsDetail
 
 register_module("joints", "Bolted joints")
 
@@ -22,45 +23,47 @@ POINTS = ("tv peak", "max power", "overspeed")
 _FILTERS = ("location", "tightening", "clamped_material", "property_class")
 
 STRESS_AREA = quantity(QuantitySpec(
-    "joint.stress_area", "m**2", ("item",), "Bolt tensile stress area A_s", "mm**2", _FILTERS))
+    "joint.stress_area", "m**2", ("item",), "Bolt tensile stress area A_s", "mm**2", _FILTERS,
+    detail=JointBoltsDetail))
 PRELOAD = quantity(QuantitySpec(
-    "joint.preload", "N", ("item",), "Preload of one bolt", "kN", _FILTERS))
+    "joint.preload", "N", ("item",), "Preload of one bolt", "kN", _FILTERS,
+    detail=JointBoltsDetail))
 CLAMP = quantity(QuantitySpec(
     "joint.clamp_force", "N", ("item",), "Clamp force of all bolts of the joint", "kN",
-    _FILTERS))
+    _FILTERS, detail=JointBoltsDetail))
 PROOF = quantity(QuantitySpec(
     "joint.proof_stress_ratio", "", ("item",), "Bolt stress as a percentage of proof stress",
-    "%", _FILTERS))
+    "%", _FILTERS, detail=JointBoltsDetail))
 HEAD = quantity(QuantitySpec(
     "joint.head_contact_stress", "Pa", ("item",), "Contact stress under the bolt head", "MPa",
-    _FILTERS))
+    _FILTERS, detail=JointBoltsDetail))
 DEFF = quantity(QuantitySpec(
     "joint.effective_diameter", "m", ("item",), "Effective friction diameter of the face", "mm",
-    _FILTERS))
+    _FILTERS, detail=JointBoltsDetail))
 CAPACITY = quantity(QuantitySpec(
     "joint.slip_capacity", "N*m", ("item",), "Slip torque capacity of the clamped face", "N*m",
-    _FILTERS))
+    _FILTERS, detail=JointBoltsDetail))
 APPLIED = quantity(QuantitySpec(
     "joint.applied_torque", "N*m", ("item", "point"), "Peak applied torque at the joint", "N*m",
-    _FILTERS, coords={"point": POINTS}))
+    _FILTERS, coords={"point": POINTS}, detail=AppliedTorqueDetail))
 COVER = quantity(QuantitySpec(
     "joint.cover_factor", "", ("item", "point"),
     "Joint cover factor (slip capacity / peak applied torque)", "", _FILTERS,
-    coords={"point": POINTS}))
+    coords={"point": POINTS}, detail=AppliedTorqueDetail))
 COMPUTED = quantity(QuantitySpec(
     "joint.computed_torque", "N*m", ("item", "point"),
     "Peak torque through the joint from the torsional model at the same operating point"
     " (for comparison with a torque given in JointTorques)", "N*m", _FILTERS,
-    coords={"point": POINTS}))
+    coords={"point": POINTS}, detail=ComputedTorqueDetail))
 COMPUTED_COVER = quantity(QuantitySpec(
     "joint.computed_cover_factor", "", ("item", "point"),
     "Joint cover factor at the torsional model's torque (slip capacity / computed torque)", "",
-    _FILTERS, coords={"point": POINTS}))
+    _FILTERS, coords={"point": POINTS}, detail=ComputedTorqueDetail))
 TORQUE_RATIO = quantity(QuantitySpec(
     "joint.computed_torque_ratio", "", ("item", "point"),
     "Torsional model's joint torque / the design torque the cover-factor rules use (judged"
     " where the design torque is given in JointTorques)", "", _FILTERS,
-    coords={"point": POINTS}))
+    coords={"point": POINTS}, detail=ComputedTorqueDetail))
 
 GIVEN_SOURCE = "workbook (JointTorques)"
 COMPUTED_SOURCE = "torsional vibration module"
@@ -152,9 +155,10 @@ def joint_bolts(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         else:
             head[i] = bj.head_contact_stress(f, j.head_outer, j.head_inner)
     coords = {"item": names}
+    detail = JointBoltsDetail(how=how)
 
     def q(spec, values, missing=None):
-        return Quantity(spec, values, coords, attrs, dict(missing or {}), extra={"how": how})
+        return Quantity(spec, values, coords, attrs, dict(missing or {}), detail=detail)
 
     return {
         "joint.stress_area": q(STRESS_AREA, area),
@@ -218,8 +222,9 @@ def joint_applied_torque(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                 missing[(i, k)] = [reason]
     coords = {"item": names, "point": list(POINTS)}
     attrs = {j.name: _attrs(j) for j in joints}
-    return {"joint.applied_torque": Quantity(APPLIED, vals, coords, attrs, missing,
-                                             extra={"source": source, "speed": speed})}
+    return {"joint.applied_torque": Quantity(
+        APPLIED, vals, coords, attrs, missing,
+        detail=AppliedTorqueDetail(source=source, speed=speed))}
 
 
 @calculation("joint_cover_factor", "joints", provides=("joint.cover_factor",),
@@ -237,7 +242,7 @@ def joint_cover_factor(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         for k in range(len(POINTS)):
             missing[(i, k)] = list(dict.fromkeys(missing.get((i, k), []) + reasons))
     return {"joint.cover_factor": Quantity(COVER, vals, tq.coords, tq.item_attrs, missing,
-                                           extra=dict(tq.extra))}
+                                           detail=tq.detail)}
 
 
 RATIO_APPLIES = ("only torques given in JointTorques are compared with the torsional model;"
@@ -292,8 +297,7 @@ def joint_computed_torque(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         comp_speed = np.asarray(tv.detail.speed, dtype=float)
         comp_case = tv.detail.case
         comp_findings = {key: list(v) for key, v in tv.findings.items()}
-    given = np.asarray(app.extra.get("source", np.full(shape, "", dtype=object)) == GIVEN_SOURCE,
-                       dtype=bool)
+    given = np.asarray(app.detail.source == GIVEN_SOURCE, dtype=bool)
     capv = np.broadcast_to(np.asarray(cap.values, dtype=float)[:, None], shape)
     ok_cf = np.isfinite(capv) & np.isfinite(comp) & (comp > 0)
     comp_cf = np.full(shape, np.nan)
@@ -306,7 +310,7 @@ def joint_computed_torque(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     ratio = np.ones(shape)
     ratio_missing: dict[tuple, list[str]] = {}
     ratio_findings: dict[tuple, list[str]] = {}
-    given_speed = np.asarray(app.extra.get("speed", np.full(shape, np.nan)), dtype=float)
+    given_speed = np.asarray(app.detail.speed, dtype=float)
     for i, n in enumerate(names):
         for k, p in enumerate(POINTS):
             if not given[i, k]:
@@ -336,15 +340,15 @@ def joint_computed_torque(engine: Engine, inputs: dict) -> dict[str, Quantity]:
             ratio_findings[(i, k)] = [text]
     coords = {"item": list(names), "point": list(POINTS)}
     attrs = dict(app.item_attrs)
-    tv_extra = {"speed": comp_speed, "case": comp_case,
-                "how": (tv.detail.how if tv is not None else None)}
-    common = {"given": given, "design": design, "given_speed": given_speed}
+    detail = ComputedTorqueDetail(
+        speed=comp_speed, case=comp_case, how=(tv.detail.how if tv is not None else None),
+        given=given, design=design, given_speed=given_speed)
     return {
         "joint.computed_torque": Quantity(COMPUTED, comp, coords, attrs, comp_missing,
-                                          comp_findings, extra=dict(tv_extra, **common)),
+                                          comp_findings, detail=detail),
         "joint.computed_cover_factor": Quantity(COMPUTED_COVER, comp_cf, coords, attrs,
-                                                cf_missing, extra=dict(tv_extra, **common)),
+                                                cf_missing, detail=detail),
         "joint.computed_torque_ratio": Quantity(
-            TORQUE_RATIO, ratio, coords, attrs, ratio_missing, ratio_findings,
-            extra=dict(tv_extra, **common, applies_text=RATIO_APPLIES), applies=given),
+            TORQUE_RATIO, ratio, coords, attrs, ratio_missing, ratio_findings, detail=detail,
+            applies=given, applies_text=RATIO_APPLIES),
     }

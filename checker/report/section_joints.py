@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..api import CheckResult
-from ..units import from_si
+from ..display import case_text
 from .plots import STATUS_COLORS, figure, legend_below, literal, to_image
-from .sections import fmt, section
+from .sections import display_values, fmt, in_unit, rpm, section
 
 BELL = "Bell, Cranktrain Analysis Using ENGDYN and VALDYN, Ricardo, 2013"
 
@@ -27,7 +27,7 @@ def joints_section(res: CheckResult) -> dict:
     eng = res.engine
     blocks: list[dict] = []
     js = list(eng.joints)
-    mm = lambda v: fmt(v * 1e3)  # noqa: E731
+    mm = lambda v: fmt(in_unit(v, "m", "mm"))  # noqa: E731
     blocks.append(_by_joint("Joint inputs (sheet Joints)", [j.name for j in js], [
         ("Location", [j.location for j in js]),
         ("Bolts", [str(j.bolts) for j in js]),
@@ -65,22 +65,21 @@ def joints_section(res: CheckResult) -> dict:
     area = q.get("joint.stress_area")
     if area is not None:
         names = area.coords["item"]
-        pre, clamp = q["joint.preload"].values, q["joint.clamp_force"].values
-        proof, head = q["joint.proof_stress_ratio"].values, q["joint.head_contact_stress"].values
-        deff, cap = q["joint.effective_diameter"].values, q["joint.slip_capacity"].values
         n = range(len(names))
+        rows = []
+        for label, name in (("Stress area A_s", "joint.stress_area"),
+                            ("Preload per bolt F", "joint.preload"),
+                            ("Clamp force, all bolts", "joint.clamp_force"),
+                            ("Bolt stress / proof stress", "joint.proof_stress_ratio"),
+                            ("Contact stress under the head", "joint.head_contact_stress"),
+                            ("Effective friction diameter D_eff", "joint.effective_diameter"),
+                            ("Slip torque capacity T_cap", "joint.slip_capacity")):
+            vals, unit = display_values(q[name])
+            rows.append((f"{label} [{unit}]", [fmt(vals[i]) for i in n]))
         blocks.append({"type": "heading", "text": "Bolt and face results"})
         blocks.append(_by_joint("Bolt and face results (rules JNT-001, JNT-002; the slip"
-                                " capacity enters the cover factors)", list(names), [
-            ("Stress area A_s [mm²]", [fmt(area.values[i] * 1e6) for i in n]),
-            ("Preload per bolt F [kN]", [fmt(pre[i] / 1e3) for i in n]),
-            ("Clamp force, all bolts [kN]", [fmt(clamp[i] / 1e3) for i in n]),
-            ("Bolt stress / proof stress [%]", [fmt(proof[i] * 100) for i in n]),
-            ("Contact stress under the head [MPa]", [fmt(head[i] / 1e6) for i in n]),
-            ("Effective friction diameter D_eff [mm]", [fmt(deff[i] * 1e3) for i in n]),
-            ("Slip torque capacity T_cap [N·m]", [fmt(cap[i]) for i in n]),
-        ]))
-        how = area.extra.get("how", {})
+                                " capacity enters the cover factors)", list(names), rows))
+        how = area.detail.how
         items = [f"{n}: " + "; ".join(f"{k}: {v}" for k, v in how.get(n, {}).items())
                  for n in names]
         blocks.append({"type": "list", "items": items})
@@ -99,7 +98,7 @@ def joints_section(res: CheckResult) -> dict:
 
 
 def _rpm(w) -> str:
-    return "-" if w is None or not np.isfinite(w) else fmt(from_si(w, "rad/s", "rpm"))
+    return "-" if w is None or not np.isfinite(w) else fmt(rpm(w))
 
 
 def _torques(res: CheckResult, cf, tq, comp, comp_cf) -> list[dict]:
@@ -111,8 +110,8 @@ def _torques(res: CheckResult, cf, tq, comp, comp_cf) -> list[dict]:
         rule = by_rule.get(r.rule)
         if rule is not None and rule.quantity == "joint.cover_factor" and r.case:
             used_by.setdefault((r.item, r.case), []).append(r.rule)
-    src = tq.extra.get("source")
-    spd = tq.extra.get("speed")
+    src = tq.detail.source
+    spd = tq.detail.speed
     given = {(t.joint, t.point): t for t in res.engine.joint_torques}
     rows = []
     for i, n in enumerate(cf.coords["item"]):
@@ -123,9 +122,8 @@ def _torques(res: CheckResult, cf, tq, comp, comp_cf) -> list[dict]:
                 c = "not computed (the torsional module was not needed by the selected rules)"
                 c_cf = "-"
             elif np.isfinite(comp.values[i, k]):
-                case = {"full": "full load", "no": "no load"}.get(
-                    str(comp.extra["case"][i, k]), str(comp.extra["case"][i, k]))
-                c = (f"{fmt(comp.values[i, k])} ({case}, {_rpm(comp.extra['speed'][i, k])}"
+                case = case_text(str(comp.detail.case[i, k]))
+                c = (f"{fmt(comp.values[i, k])} ({case}, {_rpm(comp.detail.speed[i, k])}"
                      " rpm)")
                 c_cf = "-" if comp_cf is None else fmt(comp_cf.values[i, k])
             else:

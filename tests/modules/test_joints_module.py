@@ -46,7 +46,7 @@ def test_computed_torque_is_the_torsional_models(jnt):
     comp, tv = q["joint.computed_torque"], q["tv.joint_torque"]
     # one source: the same numbers and operating-point speeds as the torsional module
     np.testing.assert_array_equal(comp.values, tv.values)
-    np.testing.assert_array_equal(comp.extra["speed"], tv.detail.speed)
+    np.testing.assert_array_equal(comp.detail.speed, tv.detail.speed)
     k = comp.coords["point"].index("tv peak")
     # the measurement on the example: about 317 N m at the crank nose (TV peak)
     assert comp.values[0, k] == pytest.approx(317.4, abs=0.5)
@@ -75,7 +75,7 @@ def test_jnt008_warns_with_the_cover_factor_at_the_computed_torque(jnt):
     ratio = q["joint.computed_torque_ratio"]
     assert ratio.applies is not None
     assert list(ratio.applies[:, k]) == [True, True] and not ratio.applies[:, k + 1:].any()
-    assert "JointTorques" in ratio.extra["applies_text"]
+    assert "JointTorques" in ratio.applies_text
 
 
 def test_jnt008_passes_when_the_given_torque_is_not_below(tmp_path):

@@ -204,7 +204,7 @@ def test_joint_cover_factors_name_the_rules_and_torques(result, monkeypatch):
     assert rows[("crank nose", "tv peak")]["used by the rules"].startswith("given: 245 N·m")
     assert rows[("crank nose", "tv peak")]["given T [N·m]"].startswith("245 (7100 rpm)")
     comp = result.outcome.quantities["joint.computed_torque"]
-    tv_speed = comp.extra["speed"][0, 0] / RPM
+    tv_speed = comp.detail.speed[0, 0] / RPM
     assert f"{tv_speed:.0f} rpm" in rows[("crank nose", "tv peak")]["computed T [N·m]"]
     assert rows[("crank nose", "max power")]["rules"] == "none (not judged)"
     # the torsion section's TV-peak speed of the joint is the same quantity's
