@@ -71,9 +71,18 @@ from ..calc import crank_forces as cf
 from ..calc import crank_stress as cs
 from ..calc import fatigue as fat
 from ..calc import scf as scf_mod
-from ..calc import torsional as tv
+from ..calc import throw_fatigue as tf
 from ..engine import Engine
 from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity, register_module
+from ..results.fatigue import (
+    GoodmanDetail,
+    LocationStrength,
+    M53Detail,
+    PinOilHole,
+    ScfInfo,
+    ThrowGeometry,
+    ThrowNominal,
+)
 from . import joints, loads, torsion  # noqa: F401  (registered first: report order)
 from .loads import CASES
 
@@ -93,11 +102,12 @@ MEAN_CRITERION = "signed_von_mises"
 GOODMAN = quantity(QuantitySpec(
     "fatigue.goodman_sf", "", ("item", "case", "speed"),
     "Goodman fatigue safety factor per crankshaft location (crank-pin and main-journal fillets,"
-    " oil holes), load case and speed", "", ("location",), coords={"case": CASES}))
+    " oil holes), load case and speed", "", ("location",), coords={"case": CASES},
+    detail=GoodmanDetail))
 M53Q = quantity(QuantitySpec(
     "fatigue.m53_q", "", ("item", "case", "speed"),
     "IACS UR M53 acceptability factor Q = sigma_DW / sigma_V per location, load case and speed",
-    "", ("location",), coords={"case": CASES}))
+    "", ("location",), coords={"case": CASES}, detail=M53Detail))
 
 SCF_FIELDS = {  # factor -> (Fatigue attribute, symbol, description)
     "alpha_b": ("scf_pin_bending", "α_B", "pin fillet, bending"),
@@ -136,7 +146,7 @@ _EXTRA_FLAGS = {  # non-range M53 flags per factor -> text
 
 
 # ------------------------------------------------------------------------------------ inputs
-def _geometry(engine: Engine) -> tuple[dict, dict, list[str]]:
+def _geometry(engine: Engine) -> tuple[ThrowGeometry, dict, list[str]]:
     """Throw geometry (SI) and the cells it came from; raises MissingInputs naming cells."""
     p, fa = engine.params, engine.fatigue
     missing: list[str] = []
@@ -169,17 +179,17 @@ def _geometry(engine: Engine) -> tuple[dict, dict, list[str]]:
         notes.append("Journal and pin sizes differ between bearing rows: the smallest diameters,"
                      " the longest main journal and the shortest crank pin are used for every"
                      " throw (conservative).")
-    g = {"pin_diameter": D, "journal_diameter": DG, "throw": p["stroke"] / 2.0,
-         "main_spacing": p["main_spacing"], "main_journal_length": LG,
-         "pin_journal_length": LH, "web_thickness": fa["web_thickness"],
-         "web_width": cs.web_width(fa["web_min_width"], fa.get("web_max_width"),
-                                   WEB_WIDTH_CHOICE),
-         "web_offset": fa.get("web_offset") or 0.0, "pin_bore": fa.get("pin_bore") or 0.0,
-         "journal_bore": fa.get("main_bore") or 0.0}
+    g = ThrowGeometry(
+        pin_diameter=D, journal_diameter=DG, throw=p["stroke"] / 2.0,
+        main_spacing=p["main_spacing"], main_journal_length=LG, pin_journal_length=LH,
+        web_thickness=fa["web_thickness"],
+        web_width=cs.web_width(fa["web_min_width"], fa.get("web_max_width"), WEB_WIDTH_CHOICE),
+        web_offset=fa.get("web_offset") or 0.0, pin_bore=fa.get("pin_bore") or 0.0,
+        journal_bore=fa.get("main_bore") or 0.0)
     return g, {"bigs": bigs, "mains": mains}, notes
 
 
-def _pin_oil_hole(engine: Engine, bigs: list) -> tuple[dict | None, list[str]]:
+def _pin_oil_hole(engine: Engine, bigs: list) -> tuple[PinOilHole | None, list[str]]:
     """Crank-pin oil hole (diameter, angle) or None when the crank has none; missing texts."""
     fa = engine.fatigue
     with_holes = [b for b in bigs if (b.oil_holes or 0) > 0]
@@ -199,7 +209,7 @@ def _pin_oil_hole(engine: Engine, bigs: list) -> tuple[dict | None, list[str]]:
                                                f"bearing {ref.name} (crank-pin oil hole)"))
     elif "trail" in (ref.oil_hole_type or "").lower() and angle > 0:
         angle = -angle
-    return {"diameter": d, "angle": angle, "row": ref}, missing
+    return PinOilHole(diameter=d, angle=angle, row=ref), missing
 
 
 def _station_elements(engine: Engine, n_pins: int, n_el: int) -> tuple[np.ndarray, list[str]]:
@@ -219,8 +229,8 @@ def _station_elements(engine: Engine, n_pins: int, n_el: int) -> tuple[np.ndarra
     return out, missing
 
 
-def _scfs(engine: Engine, g: dict, oil: dict | None, main_oil_d: float | None
-          ) -> tuple[dict, dict, dict]:
+def _scfs(engine: Engine, g: ThrowGeometry, oil: PinOilHole | None, main_oil_d: float | None
+          ) -> tuple[ScfInfo, dict, dict]:
     """Factors used with their sources and M53 values; missing texts and findings per factor."""
     fa = engine.fatigue
     m53 = None
@@ -229,22 +239,23 @@ def _scfs(engine: Engine, g: dict, oil: dict | None, main_oil_d: float | None
         if fa.get(attr) is None:
             m53_missing.append(engine.describe_missing("Fatigue", attr,
                                                        what="the crankshaft (M53 SCF)"))
-    kw = dict(pin_diameter=g["pin_diameter"], journal_diameter=g["journal_diameter"],
-              throw=g["throw"], web_thickness=g["web_thickness"], web_width=g["web_width"],
+    kw = dict(pin_diameter=g.pin_diameter, journal_diameter=g.journal_diameter,
+              throw=g.throw, web_thickness=g.web_thickness, web_width=g.web_width,
               pin_fillet_radius=fa.get("pin_fillet_radius"),
               journal_fillet_radius=fa.get("main_fillet_radius"),
               pin_recess=fa.get("pin_fillet_web_undercut") or 0.0,
               journal_recess=fa.get("main_fillet_web_undercut") or 0.0,
-              pin_bore=g["pin_bore"], journal_bore=g["journal_bore"])
+              pin_bore=g.pin_bore, journal_bore=g.journal_bore)
     m53_main_oil = None
     if not m53_missing:
         try:
-            m53 = scf_mod.m53_scf(**kw, oil_hole_diameter=(oil or {}).get("diameter") or 0.0)
+            m53 = scf_mod.m53_scf(**kw, oil_hole_diameter=(oil.diameter if oil is not None
+                                                            else None) or 0.0)
             if main_oil_d is not None:
                 # journal oil hole: M53's pin formula with d_O = D_O / D_G
                 m53_main_oil = scf_mod.m53_scf(
-                    **kw, oil_hole_diameter=main_oil_d * g["pin_diameter"]
-                    / g["journal_diameter"])
+                    **kw, oil_hole_diameter=main_oil_d * g.pin_diameter
+                    / g.journal_diameter)
         except ValueError as exc:
             m53_missing.append(f"Fatigue: M53 stress concentration factors: {exc}")
     used: dict[str, float | None] = {}
@@ -287,10 +298,10 @@ def _scfs(engine: Engine, g: dict, oil: dict | None, main_oil_d: float | None
                 texts.append(f"M53 {sym} ({what}): {text}")
         if texts:
             findings[key] = texts
-    info = {"used": used, "source": source, "m53": m53_val,
-            "ratios": None if m53 is None else m53.ratios,
-            "ratios_main_oil": None if m53_main_oil is None else m53_main_oil.ratios,
-            "m53_missing": m53_missing}
+    info = ScfInfo(used=used, source=source, m53=m53_val,
+                   ratios=None if m53 is None else m53.ratios,
+                   ratios_main_oil=None if m53_main_oil is None else m53_main_oil.ratios,
+                   m53_missing=m53_missing)
     return info, missing, findings
 
 
@@ -309,45 +320,9 @@ def _strengths(engine: Engine, has: dict) -> tuple[dict, dict]:
                 if fa.get(a) is None]
         if miss:
             missing[loc] = miss
-        out[loc] = (fa.get(se), fa.get(su), engine.cell("Fatigue", se), engine.cell("Fatigue", su))
+        out[loc] = LocationStrength(fa.get(se), fa.get(su), engine.cell("Fatigue", se),
+                                    engine.cell("Fatigue", su))
     return out, missing
-
-
-def _throw_fatigue(f_r: np.ndarray, f_t: np.ndarray, t_side: np.ndarray, g: dict, phi: float,
-                   k: dict, st, pin_oil: bool) -> tuple:
-    """Goodman results of the pin fillets, journal fillets and pin oil holes of every throw.
-
-    ``f_r, f_t`` (S, T, N) [N], ``t_side`` (S, T, 2, N) [N m] front/rear element torques.
-    Returns (pin, journal, oil or None) :class:`checker.calc.fatigue.CycleFatigue` with shapes
-    (S, T, 2): fillets per web (front, rear), oil holes per torque (front, rear element), and
-    the nominal web bending and direct stresses (S, T, 2, N), L1 and the overlap S.
-    """
-    try:
-        nom = cs.throw_nominal_stresses(f_r, f_t, t_side[..., 0, :], t_side, **g,
-                                        oil_hole_angle=phi)
-    except ValueError as exc:
-        raise MissingInputs([f"Fatigue/Bearings/Engine geometry of the crank throw: {exc}"]
-                            ) from None
-    loc = cs.local_stresses(nom, **{n: k[n] for n in ("alpha_b", "alpha_t", "beta_b", "beta_q",
-                                                      "beta_t", "gamma_b", "gamma_t")})
-    # each pin fillet with the torque of the element on its side of the throw
-    tau_pin_side = cs.torsional_stress(t_side, g["pin_diameter"], g["pin_bore"])  # (S,T,2,N)
-    se, su = st("pin fillet")
-    pin = fat.fillet_goodman(loc.sigma_pin_fillet, k["alpha_t"] * tau_pin_side,
-                             endurance_limit=se, ultimate_strength=su,
-                             mean_criterion=MEAN_CRITERION)
-    se, su = st("main fillet")
-    jnl = fat.fillet_goodman(loc.sigma_journal_fillet, loc.tau_journal_fillet,
-                             endurance_limit=se, ultimate_strength=su,
-                             mean_criterion=MEAN_CRITERION)
-    oil = None
-    if pin_oil:
-        se, su = st("pin oil hole")
-        oil = fat.oil_hole_goodman(loc.sigma_oil_bending[..., None, :],
-                                   k["gamma_t"] * tau_pin_side, endurance_limit=se,
-                                   ultimate_strength=su)
-    return pin, jnl, oil, nom.sigma_web_bending, nom.sigma_web_direct, \
-        nom.web_centre_distance, nom.overlap
 
 
 # ------------------------------------------------------------------------------- calculation
@@ -413,46 +388,46 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     f_r, f_t = cs.pin_force_in_throw_frame(f_pin.x, f_pin.y, gamma[:, None])
 
     # ------------------------------------------------------------- element torques (time signal)
-    ex = et.detail
     n_el = len(et.coords["item"])
     sides, st_missing = _station_elements(engine, n_pins, n_el)
     if st_missing:
         raise MissingInputs(st_missing)
-    _, vib = tv.synthesize(ex.orders, ex.coeffs, N)  # (E, C, S, N)
-    torque = np.zeros((C, S, n_el + 1, N))  # + a zero "element" for a free end
-    torque[:, :, :n_el] = np.moveaxis(vib + ex.mean[..., None], 0, 2)
+    # (C, S, E + 1, N): + a zero "element" for a free end
+    torque = tf.element_torque_cycle(et.detail.orders, et.detail.coeffs, et.detail.mean, N)
     t_side = torque[:, :, sides, :]  # (C, S, T, 2, N): front / rear element of each throw
 
     # ------------------------------------------------------------- nominal and local stresses
-    phi = 0.0 if oil is None or oil["angle"] is None else float(oil["angle"])
-    k = {key: (v if v is not None else 1.0) for key, v in scf["used"].items()}
+    phi = 0.0 if oil is None or oil.angle is None else float(oil.angle)
+    k = {key: (v if v is not None else 1.0) for key, v in scf.used.items()}
 
     def st(name: str) -> tuple[float, float]:
         se, su = strengths.get(name, (None, None, "", ""))[:2]
         return (se or 1.0), (su or 1.0)
 
     # one load case at a time: halves the peak memory (fresh pages are the main cost here)
-    parts = [_throw_fatigue(f_r[ci], f_t[ci], t_side[ci], g, phi, k, st, has["pin oil hole"])
-             for ci in range(C)]
+    try:
+        parts = [tf.throw_goodman(f_r[ci], f_t[ci], t_side[ci], g.as_kwargs(), phi, k,
+                                  {n: st(n) for n in LOCATIONS}, has["pin oil hole"],
+                                  MEAN_CRITERION) for ci in range(C)]
+    except ValueError as exc:
+        raise MissingInputs([f"Fatigue/Bearings/Engine geometry of the crank throw: {exc}"]
+                            ) from None
     pin, jnl, pin_oil = (None if parts[0][n] is None else type(parts[0][n])(
         *(np.stack(x) for x in zip(*(p[n] for p in parts), strict=True))) for n in range(3))
-    sigma_bf = np.stack([p[3] for p in parts])  # (C, S, T, 2, N) nominal web bending [Pa]
-    sigma_qf = np.stack([p[4] for p in parts])
+    # (C, S, T, 2, N) nominal web bending and direct stress [Pa]
+    sigma_bf = np.stack([p.nominal.sigma_web_bending for p in parts])
+    sigma_qf = np.stack([p.nominal.sigma_web_direct for p in parts])
     results: dict[str, tuple] = {}
     if pin_oil is not None:
         results["pin oil hole"] = pin_oil  # (C, S, T, 2 torque variants)
     # main journals: candidate elements (front element of throw k, rear element of throw k-1)
-    main_el = np.empty((n_mains, 2), dtype=int)
-    for m in range(n_mains):
-        adj_el = ([sides[m, 0]] if m < n_pins else []) + ([sides[m - 1, 1]] if m > 0 else [])
-        main_el[m] = (adj_el * 2)[:2]
+    main_el = tf.main_journal_elements(sides, n_mains)
     if has["main oil hole"]:
         # torsion only (no bending at the journal centre): evaluated once per TV element, then
         # gathered per main journal and candidate element
-        tau_el = cs.torsional_stress(torque, g["journal_diameter"], g["journal_bore"])
         se, su = st("main oil hole")
-        per_el = fat.oil_hole_goodman(np.zeros((1, 1, 1, 1)), k["gamma_t_main"] * tau_el,
-                                      endurance_limit=se, ultimate_strength=su)  # (C,S,E+1)
+        per_el = tf.main_oil_hole_goodman(torque, g.journal_diameter, g.journal_bore,
+                                          k["gamma_t_main"], se, su)  # (C, S, E + 1)
         results["main oil hole"] = type(per_el)(*(
             x[:, :, main_el] for x in per_el))  # (C, S, M, 2 candidates)
 
@@ -523,15 +498,15 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     if uts is None:
         m53_base_missing.append(engine.describe_missing("Fatigue", "uts",
                                                         what="the crankshaft (M53 sigma_B)"))
-    radius = {"pin fillet": ("pin_fillet_radius", g["pin_diameter"], M53_K_FILLET),
-              "main fillet": ("main_fillet_radius", g["journal_diameter"], M53_K_FILLET),
-              "pin oil hole": (None, g["pin_diameter"], M53_K_OIL)}
+    radius = {"pin fillet": ("pin_fillet_radius", g.pin_diameter, M53_K_FILLET),
+              "main fillet": ("main_fillet_radius", g.journal_diameter, M53_K_FILLET),
+              "pin oil hole": (None, g.pin_diameter, M53_K_OIL)}
     clip_text = {}
     for lname, (rattr, dia, kk) in radius.items():
         if not has[lname]:
             continue
         if lname == "pin oil hole":
-            rx = None if oil is None or oil["diameter"] is None else oil["diameter"] / 2.0
+            rx = None if oil is None or oil.diameter is None else oil.diameter / 2.0
         else:
             rx = fa.get(rattr)
         if uts is None or rx is None:
@@ -550,15 +525,9 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         if why:
             q_missing[(qi,)] = list(dict.fromkeys(why))
             continue
-        a = cand["sigma_a"][:, :, i, :]
-        t = cand["tau_a"][:, :, i, :]
-        if lname == "pin oil hole":
-            sv = fat.oil_bore_equivalent_stress(a, t)
-        else:
-            sv = fat.equivalent_alternating_stress(a, t, SIGMA_ADD)
-        sv_max = sv.max(axis=-1)  # (C, S): worst fillet / torque variant
-        sv_pick[qi] = sv_max
-        q_vals[qi] = fat.m53_acceptability_factor(dw_of[lname], sv_max)
+        # (C, S): worst fillet / torque variant
+        sv_pick[qi], q_vals[qi] = tf.m53_q(cand["sigma_a"][:, :, i, :], cand["tau_a"][:, :, i, :],
+                                           dw_of[lname], lname == "pin oil hole", SIGMA_ADD)
         texts = list(findings.get((i,), []))
         if lname in clip_text:
             texts.append(clip_text[lname])
@@ -568,7 +537,7 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         if i in m53_items:
             q_find[(m53_items.index(i), ci, si)] = v
 
-    # ------------------------------------------------------------- assumptions and extras
+    # ------------------------------------------------------------- assumptions and details
     assumptions = [
         "Crankshaft fatigue (classical, Bell, Ricardo 2013, 'Crankshaft analysis (25)-(28)';"
         " IACS UR M53 §2-5): each throw"
@@ -618,40 +587,37 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                                   for e in main_el[int(adj[0][0])]))
         else:
             adj_text.append(side_text[lname])
-    common = {
-        "geometry": g, "scf": scf, "scf_findings": scf_find, "strengths": strengths,
-        "oil_hole": oil, "main_oil_hole_diameter": main_oil_d, "theta": theta,
-        "speeds": speeds, "locations": location, "sf_by_location": sf_by_loc,
-        "assumptions": assumptions,
-    }
-    extra = dict(
-        common,
-        sigma_eq_a=pick["sigma_eq_a"], sigma_eq_m=pick["sigma_eq_m"],  # (I, C, S) [Pa]
+    common = dict(
+        geometry=g, scf=scf, scf_findings=scf_find, strengths=strengths, oil_hole=oil,
+        main_oil_hole_diameter=main_oil_d, theta=theta, speeds=speeds, locations=location,
+        sf_by_location=sf_by_loc, assumptions=tuple(assumptions))
+    detail = GoodmanDetail(
+        **common,
+        sigma_eq_a=pick["sigma_eq_a"], sigma_eq_m=pick["sigma_eq_m"],
         sigma_a=pick["sigma_a"], sigma_m=pick["sigma_m"], tau_a=pick["tau_a"],
         tau_m=pick["tau_m"], governing=governing, candidates=adj_text,
-        sigma_eq_max=pick["sigma_eq_m"] + pick["sigma_eq_a"],  # (I, C, S) [Pa] mean + amp.
+        sigma_eq_max=pick["sigma_eq_m"] + pick["sigma_eq_a"],
         sigma_eq_min=pick["sigma_eq_m"] - pick["sigma_eq_a"],
-        endurance_limit=s_e, ultimate_strength=s_u,  # (I,) [Pa] (nan if missing)
-        haigh_x=pick["sigma_eq_m"] / s_u[:, None, None],  # sigma_eq,m / S_u
-        haigh_y=pick["sigma_eq_a"] / s_e[:, None, None],  # sigma_eq,a / S_e
-        candidate_sf=np.moveaxis(cand["safety_factor"], 2, 0),  # (I, C, S, 2)
-        pin_force_radial=f_r, pin_force_tangential=f_t,  # (C, S, T, N) [N]
+        endurance_limit=s_e, ultimate_strength=s_u,
+        haigh_x=pick["sigma_eq_m"] / s_u[:, None, None],
+        haigh_y=pick["sigma_eq_a"] / s_e[:, None, None],
+        candidate_sf=np.moveaxis(cand["safety_factor"], 2, 0),
+        pin_force_radial=f_r, pin_force_tangential=f_t,
         throw_angle=gamma, throw_elements=sides, main_elements=main_el,
-        nominal={"sigma_web_bending": sigma_bf,  # (C, S, T, 2, N) [Pa], journal-side face
-                 "sigma_web_direct": sigma_qf,
-                 "web_centre_distance": parts[0][5], "overlap": parts[0][6]},
+        nominal=ThrowNominal(sigma_web_bending=sigma_bf, sigma_web_direct=sigma_qf,
+                             web_centre_distance=parts[0].nominal.web_centre_distance,
+                             overlap=parts[0].nominal.overlap),
         element_names=list(et.coords["item"]) + ["free end"],
-        element_torque=torque,  # (C, S, E + 1, N) [N m], last = 0 (free end)
-        mean_criterion=MEAN_CRITERION)
+        element_torque=torque, mean_criterion=MEAN_CRITERION)
     coords = {"item": items, "case": cases, "speed": list(speeds)}
     q_items = [items[i] for i in m53_items]
     out = {
         "fatigue.goodman_sf": Quantity(GOODMAN, sf, coords, attrs, missing, findings,
-                                       extra=extra),
+                                       detail=detail),
         "fatigue.m53_q": Quantity(
             M53Q, q_vals, {"item": q_items, "case": cases, "speed": list(speeds)},
             {n: attrs[n] for n in q_items}, q_missing, q_find,
-            extra=dict(common, sigma_v=sv_pick, sigma_dw=dw_of, sigma_add=SIGMA_ADD,
-                       k_fillet=M53_K_FILLET, k_oil=M53_K_OIL)),
+            detail=M53Detail(**common, sigma_v=sv_pick, sigma_dw=dw_of, sigma_add=SIGMA_ADD,
+                             k_fillet=M53_K_FILLET, k_oil=M53_K_OIL)),
     }
     return out

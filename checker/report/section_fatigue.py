@@ -7,13 +7,13 @@ import numpy as np
 from ..api import CheckResult
 from ..calc.fatigue import goodman_line
 from ..calc.scf import VALIDITY
+from ..display import case_text
 from ..modules.fatigue import FACTORS_OF, LOCATIONS, SCF_FIELDS
+from ..results.fatigue import FatigueDetail, GoodmanDetail
 from . import judged as jd
 from .plots import LIMIT_STYLE, figure, legend_below, limit_line, literal, to_image
-from .sections import fmt, section
+from .sections import fmt, in_unit, rpm, section
 
-RPM = 2 * np.pi / 60
-CASE_TEXT = {"full": "full load", "no": "no load"}
 COLORS = {"pin fillet": "#1f77b4", "main fillet": "#2ca02c", "pin oil hole": "#d62728",
           "main oil hole": "#9467bd"}
 SF_PLOT_MAX = 6.0
@@ -28,38 +28,43 @@ def _limit(res: CheckResult, quantity: str) -> float | None:
     return None
 
 
+def mpa(v):
+    """Stress(es) in Pa as MPa."""
+    return in_unit(v, "Pa", "MPa")
+
+
 def _svg(fig) -> bytes:
     return to_image(fig)
 
 
-def _inputs(res: CheckResult, ex: dict, m53q) -> list[dict]:
+def _inputs(res: CheckResult, ex: FatigueDetail, m53q) -> list[dict]:
     eng = res.engine
     fa = eng.fatigue
-    g = ex["geometry"]
-    oil = ex["oil_hole"]
+    g = ex.geometry
+    oil = ex.oil_hole
 
     def cell(sheet: str, attr: str) -> str:
         c = eng.cell(sheet, attr)
         return f"{sheet} (blank)" if c == sheet else c
 
     def mm(v) -> str:
-        return "-" if v is None else fmt(v * 1e3)
+        return "-" if v is None else fmt(in_unit(v, "m", "mm"))
 
     rows = [
-        ["Crank-pin diameter", "D", mm(g["pin_diameter"]), "mm", "Bearings (big end)"],
-        ["Main journal diameter", "D_G", mm(g["journal_diameter"]), "mm", "Bearings (main)"],
-        ["Crank radius (stroke/2)", "E", mm(g["throw"]), "mm", cell("Engine", "stroke")],
-        ["Main journal spacing", "L3", mm(g["main_spacing"]), "mm",
+        ["Crank-pin diameter", "D", mm(g.pin_diameter), "mm", "Bearings (big end)"],
+        ["Main journal diameter", "D_G", mm(g.journal_diameter), "mm", "Bearings (main)"],
+        ["Crank radius (stroke/2)", "E", mm(g.throw), "mm", cell("Engine", "stroke")],
+        ["Main journal spacing", "L3", mm(g.main_spacing), "mm",
          cell("Engine", "main_spacing")],
-        ["Main journal length", "L_G", mm(g["main_journal_length"]), "mm", "Bearings (main)"],
-        ["Crank-pin length", "L_H", mm(g["pin_journal_length"]), "mm",
+        ["Main journal length", "L_G", mm(g.main_journal_length), "mm", "Bearings (main)"],
+        ["Crank-pin length", "L_H", mm(g.pin_journal_length), "mm",
          "Bearings (big end)"],
-        ["Web reduced thickness", "W", mm(g["web_thickness"]), "mm",
+        ["Web reduced thickness", "W", mm(g.web_thickness), "mm",
          cell("Fatigue", "web_thickness")],
-        ["Web width (minimum)", "B", mm(g["web_width"]), "mm", cell("Fatigue", "web_min_width")],
-        ["Web offset", "-", mm(g["web_offset"]), "mm", cell("Fatigue", "web_offset")],
+        ["Web width (minimum)", "B", mm(g.web_width), "mm", cell("Fatigue", "web_min_width")],
+        ["Web offset", "-", mm(g.web_offset), "mm", cell("Fatigue", "web_offset")],
         ["Pin / journal axial bore", "D_BH / D_BG",
-         f"{mm(g['pin_bore'])} / {mm(g['journal_bore'])}", "mm",
+         f"{mm(g.pin_bore)} / {mm(g.journal_bore)}", "mm",
          f"{cell('Fatigue', 'pin_bore')}, {cell('Fatigue', 'main_bore')}"],
         ["Pin fillet radius", "R_H", mm(fa.get("pin_fillet_radius")), "mm",
          cell("Fatigue", "pin_fillet_radius")],
@@ -75,30 +80,30 @@ def _inputs(res: CheckResult, ex: dict, m53q) -> list[dict]:
          f"{cell('Fatigue', 'pin_fillet_undercut')}, {cell('Fatigue', 'main_fillet_undercut')}"],
     ]
     if oil is not None:
-        rows.append(["Crank-pin oil hole diameter", "D_O", mm(oil["diameter"]), "mm",
+        rows.append(["Crank-pin oil hole diameter", "D_O", mm(oil.diameter), "mm",
                      cell("Fatigue", "pin_oil_hole_diameter")])
-        ang = oil["angle"]
+        ang = oil.angle
         rows.append(["Crank-pin oil hole angle from the throw axis (+ leading)", "φ",
-                     "-" if ang is None else fmt(np.degrees(ang)), "deg",
-                     f"Bearings {oil['row'].name}"])
-    if ex["main_oil_hole_diameter"] is not None:
+                     "-" if ang is None else fmt(in_unit(ang, "rad", "deg")), "deg",
+                     f"Bearings {oil.row.name}"])
+    if ex.main_oil_hole_diameter is not None:
         rows.append(["Main journal oil hole diameter", "D_O,G",
-                     mm(ex["main_oil_hole_diameter"]), "mm",
+                     mm(ex.main_oil_hole_diameter), "mm",
                      cell("Fatigue", "main_oil_hole_diameter")])
     blocks: list[dict] = [{"type": "table", "caption": "Geometry of the crank throw (SI inputs"
                            " shown in mm; sizes of the first/smallest bearing rows)",
                            "columns": ["parameter", "symbol", "value", "unit", "source"],
                            "rows": rows, "widths": [37, 12, 12, 6, 33]}]
     rows = []
-    dw = {} if m53q is None else m53q.extra["sigma_dw"]
+    dw = {} if m53q is None else m53q.detail.sigma_dw
     for loc in LOCATIONS:
-        st = ex["strengths"].get(loc)
+        st = ex.strengths.get(loc)
         if st is None:
             continue
         se, su, c_se, c_su = st
-        rows.append([loc, "-" if se is None else fmt(se / 1e6), c_se,
-                     "-" if su is None else fmt(su / 1e6), c_su,
-                     fmt(dw[loc] / 1e6) if loc in dw else "-"])
+        rows.append([loc, "-" if se is None else fmt(mpa(se)), c_se,
+                     "-" if su is None else fmt(mpa(su)), c_su,
+                     fmt(mpa(dw[loc])) if loc in dw else "-"])
     blocks.append({"type": "table", "caption": "Material strengths (sheet Fatigue) and the IACS"
                    " UR M53 §6 fatigue strength σ_DW (base UTS, no surface-treatment credit)",
                    "columns": ["location", "S_e [MPa]", "cell", "S_u [MPa]", "cell",
@@ -107,17 +112,17 @@ def _inputs(res: CheckResult, ex: dict, m53q) -> list[dict]:
     return blocks
 
 
-def _scf(ex: dict) -> list[dict]:
-    scf = ex["scf"]
-    find = ex["scf_findings"]
+def _scf(ex: FatigueDetail) -> list[dict]:
+    scf = ex.scf
+    find = ex.scf_findings
     rows = []
     for key, (_, sym, what) in SCF_FIELDS.items():
-        if not any(key in FACTORS_OF[loc] for loc in LOCATIONS if loc in ex["strengths"]):
+        if not any(key in FACTORS_OF[loc] for loc in LOCATIONS if loc in ex.strengths):
             continue
-        used = scf["used"][key]
+        used = scf.used[key]
         status = "; ".join(t.split("): ", 1)[-1] for t in find.get(key, [])) or (
-            "within M53 validity" if scf["source"][key].startswith("IACS") else "-")
-        rows.append([sym, what, fmt(used), scf["source"][key], fmt(scf["m53"][key]),
+            "within M53 validity" if scf.source[key].startswith("IACS") else "-")
+        rows.append([sym, what, fmt(used), scf.source[key], fmt(scf.m53[key]),
                      status])
     blocks: list[dict] = [{"type": "table", "caption": "Stress concentration factors: workbook"
                            " value where given, otherwise IACS UR M53 §3 (validity flags"
@@ -125,7 +130,7 @@ def _scf(ex: dict) -> list[dict]:
                            "columns": ["factor", "location and load", "used", "source",
                                        "M53 value", "M53 validity"], "rows": rows,
                            "widths": [8, 27, 8, 19, 9, 29]}]
-    ratios = scf.get("ratios")
+    ratios = scf.ratios
     if ratios is not None:
         rows = []
         for name in ("r_pin", "r_journal", "r_journal_torsion", "s", "w", "b", "d_O", "d_G",
@@ -192,8 +197,8 @@ def _governing(q) -> dict[str, int]:
 
 
 def _plots(res: CheckResult, q) -> list[dict]:
-    ex = q.extra
-    sp = np.array(q.coords["speed"]) / RPM
+    ex: GoodmanDetail = q.detail
+    sp = rpm(np.array(q.coords["speed"]))
     cases = q.coords["case"]
     gov = _governing(q)
     judged = jd.mask(q)
@@ -205,7 +210,7 @@ def _plots(res: CheckResult, q) -> list[dict]:
     lim = _limit(res, "fatigue.goodman_sf")
     fig, axes = figure(170, 66, ncols=len(cases), squeeze=False, sharey=True, wgap=8,
                        legend_rows=1)
-    by_loc = ex["sf_by_location"]
+    by_loc = ex.sf_by_location
     for ci, c in enumerate(cases):
         ax = axes[0, ci]
         jd.shade(ax, sp, judged[list(gov.values()), ci].any(axis=0))
@@ -216,7 +221,7 @@ def _plots(res: CheckResult, q) -> list[dict]:
         if lim is not None:
             limit_line(ax, lim, f"limit {lim:g} (FAT-001)")
         ax.set_ylim(0, SF_PLOT_MAX)
-        ax.set_title(CASE_TEXT.get(c, c))
+        ax.set_title(case_text(c))
         ax.set_xlabel("Engine speed [rpm]")
     axes[0, 0].set_ylabel("Goodman safety factor [-]")
     legend_below(fig, ncols=6)
@@ -225,8 +230,8 @@ def _plots(res: CheckResult, q) -> list[dict]:
         f" {SF_PLOT_MAX:g}).{note}")})
     # normalised Haigh (Goodman) diagram
     fig, ax = figure(170, 80, legend_rows=2)
-    x_max = max(1.05, float(np.nanmax(ex["haigh_x"][list(gov.values())])) * 1.1)
-    xs = np.linspace(min(-0.5, float(np.nanmin(ex["haigh_x"][list(gov.values())])) * 1.1),
+    x_max = max(1.05, float(np.nanmax(ex.haigh_x[list(gov.values())])) * 1.1)
+    xs = np.linspace(min(-0.5, float(np.nanmin(ex.haigh_x[list(gov.values())])) * 1.1),
                      x_max, 200)
     ax.plot(xs, goodman_line(xs, 1.0, 1.0, 1.0), color="k", lw=1.0, label="Goodman, SF = 1")
     if lim is not None:
@@ -237,12 +242,12 @@ def _plots(res: CheckResult, q) -> list[dict]:
     for loc, i in gov.items():
         for ci, c in enumerate(cases):
             j = judged[i, ci]
-            hx, hy = ex["haigh_x"][i, ci], ex["haigh_y"][i, ci]
+            hx, hy = ex.haigh_x[i, ci], ex.haigh_y[i, ci]
             # the operating points as a path over speed (one line per location and case),
             # the judged lowest safety factor marked
             ax.plot(np.where(j, hx, np.nan), np.where(j, hy, np.nan), color=COLORS[loc],
                     ls="-" if c == "full" else "--", lw=0.9,
-                    label=literal(f"{q.coords['item'][i]}, {CASE_TEXT.get(c, c)}"))
+                    label=literal(f"{q.coords['item'][i]}, {case_text(c)}"))
             if (~j).any():
                 ax.plot(np.where(j, np.nan, hx), np.where(j, np.nan, hy), color="0.55",
                         ls=":", lw=0.9, label=None if grey else "not judged")
@@ -252,12 +257,12 @@ def _plots(res: CheckResult, q) -> list[dict]:
                 k = p.index[-1]
                 ax.plot([hx[k]], [hy[k]], "o" if c == "full" else "^", ms=4,
                         color=COLORS[loc], mfc=COLORS[loc] if c == "full" else "white")
-            name = f"{q.coords['item'][i]}, {CASE_TEXT.get(c, c)}"
-            cols[f"{name}: mean / S_u"] = list(ex["haigh_x"][i, ci])
-            cols[f"{name}: alternating / S_e"] = list(ex["haigh_y"][i, ci])
+            name = f"{q.coords['item'][i]}, {case_text(c)}"
+            cols[f"{name}: mean / S_u"] = list(ex.haigh_x[i, ci])
+            cols[f"{name}: alternating / S_e"] = list(ex.haigh_y[i, ci])
     ax.axvline(0, color="k", lw=0.5)
     ax.set_xlim(xs[0], xs[-1])
-    ax.set_ylim(0, max(1.1, float(np.nanmax(ex["haigh_y"][list(gov.values())])) * 1.1))
+    ax.set_ylim(0, max(1.1, float(np.nanmax(ex.haigh_y[list(gov.values())])) * 1.1))
     ax.set_xlabel("Equivalent mean stress / S_u [-]")
     ax.set_ylabel("Equivalent alternating stress / S_e [-]")
     legend_below(fig, ncols=4)
@@ -279,24 +284,24 @@ def _plots(res: CheckResult, q) -> list[dict]:
 def _worst(res: CheckResult, q, m53q) -> list[dict]:
     """Lowest Goodman SF and M53 Q per location: the judged worst first (the values of the
     rule results), then, marked, lower values at points the rules do not judge."""
-    ex = q.extra
-    sp = np.array(q.coords["speed"]) / RPM
+    ex: GoodmanDetail = q.detail
+    sp = rpm(np.array(q.coords["speed"]))
     cases = q.coords["case"]
 
     def sf_cells(p):
         if p is None:
             return ["-"] * 6
         i, ci, si = p.index
-        side = ex["candidates"][i][int(ex["governing"][i, ci, si])]
-        return [fmt(p.value), CASE_TEXT.get(cases[ci], cases[ci]), f"{sp[si]:.0f}",
-                fmt(ex["sigma_eq_a"][i, ci, si] / 1e6),
-                fmt(ex["sigma_eq_m"][i, ci, si] / 1e6), side]
+        side = ex.candidates[i][int(ex.governing[i, ci, si])]
+        return [fmt(p.value), case_text(cases[ci]), f"{sp[si]:.0f}",
+                fmt(mpa(ex.sigma_eq_a[i, ci, si])),
+                fmt(mpa(ex.sigma_eq_m[i, ci, si])), side]
 
     def q_cells(p):
         if p is None:
             return ["-", "-"]
         _, cq, sq = p.index
-        return [fmt(p.value), f"{CASE_TEXT.get(cases[cq], cases[cq])}, {sp[sq]:.0f}"]
+        return [fmt(p.value), f"{case_text(cases[cq])}, {sp[sq]:.0f}"]
 
     rows, css = [], []
     for i, n in enumerate(q.coords["item"]):
@@ -352,7 +357,7 @@ def fatigue_section(res: CheckResult) -> dict:
         return {"id": "fatigue", "title": title, "intro": intro, "blocks": [
             {"type": "text", "text": "Crankshaft fatigue not computed: "
              + ("; ".join(reasons) or "no fatigue quantity was requested") + "."}]}
-    ex = q.extra
+    ex: FatigueDetail = q.detail
     blocks: list[dict] = [{"type": "heading", "text": "Inputs"}]
     blocks += _inputs(res, ex, m53q)
     blocks += _scf(ex)
@@ -401,7 +406,7 @@ def _nose(res: CheckResult) -> list[dict]:
             return []
         return out + [{"type": "text", "text": "Not evaluated: missing " + "; ".join(why)}]
     ex = nq.detail
-    sp = np.array(nq.coords["speed"]) * 30 / np.pi
+    sp = rpm(np.array(nq.coords["speed"]))
     rows, css = [], []
     found = [jd.worst(nq, (ci,), "min") for ci in range(len(nq.coords["case"]))]
     judged = sorted((j for j, _ in found if j is not None), key=lambda p: p.value)
@@ -410,8 +415,8 @@ def _nose(res: CheckResult) -> list[dict]:
         c = nq.coords["case"][ci]
         rows.append([f"{c} load", f"{sp[k]:.0f}", f"{nq.values[ci, k]:.4g}",
                      f"{ex.torque_min[ci, k]:.0f} / {ex.torque_max[ci, k]:.0f}",
-                     f"{ex.sigma_eq_a[ci, k] / 1e6:.1f}",
-                     f"{ex.sigma_eq_m[ci, k] / 1e6:.1f}",
+                     f"{mpa(ex.sigma_eq_a[ci, k]):.1f}",
+                     f"{mpa(ex.sigma_eq_m[ci, k]):.1f}",
                      jd.judged_text(res, nq, p, None, c)])
         css.append(jd.row_css(p))
     return out + [{"type": "table", "caption": f"Worst crank-nose point per load case (torque"

@@ -137,14 +137,3 @@ class M53Detail(FatigueDetail):
     sigma_add: float  # [Pa] additional bending stress (trunk piston)
     k_fillet: float  # [-] M53 §6 factor K at the fillets
     k_oil: float  # [-] M53 §6 factor K at the oil bore
-
-
-@dataclass(frozen=True, kw_only=True)
-class NoseDetail(Detail):
-    """Crank-nose Goodman safety factor (``fatigue.nose_goodman_sf``)."""
-
-    sigma_eq_a: np.ndarray  # (case, speed) [Pa] equivalent alternating stress
-    sigma_eq_m: np.ndarray  # (case, speed) [Pa] equivalent mean stress
-    torque_max: np.ndarray  # (case, speed) [N m] maximum torque over the cycle
-    torque_min: np.ndarray  # (case, speed) [N m] minimum torque over the cycle
-    element: str  # name of the TV element at the crank nose

@@ -90,7 +90,7 @@ def test_m53_validity_flags_are_findings(result):
 # ---------------------------------------------------------------------------------- physics
 def test_i4_throw_symmetry(result, example):
     q = _q(result)
-    nom = q.extra["nominal"]["sigma_web_bending"]  # (C, S, T, 2, N)
+    nom = q.detail.nominal.sigma_web_bending  # (C, S, T, 2, N)
     rng, mid = np.ptp(nom, axis=-1), nom.max(-1) + nom.min(-1)
     # throws 1/4 (0 deg) and 2/3 (180 deg) see the same bending, shifted by their firing angles
     for a, b in ((0, 3), (1, 2)):
@@ -114,32 +114,32 @@ def test_i4_throw_symmetry(result, example):
 
 def test_nominal_bending_of_throw_1_by_hand(result):
     q = _q(result)
-    ex = q.extra
+    ex = q.detail
     ci, si = 0, list(np.round(np.array(q.coords["speed"]) / RPM)).index(4000)
-    f_r = ex["pin_force_radial"][ci, si, 0]  # (N,) module's own pin force, throw 1 [N]
+    f_r = ex.pin_force_radial[ci, si, 0]  # (N,) module's own pin force, throw 1 [N]
     # example geometry (seed 000): L3 = 96, L_G = 27, L_H = 24.4, W = 21.3, B = 71.4 mm
     r_main = f_r * 48.0 / 96.0  # reaction at the front main (pin at mid-bay)
     lever = 27.0 / 2 + (96.0 - 27.0 - 24.4) / 4  # L1 = L_G/2 + W_full/2 = 24.65 mm
     w_b = 71.4 * 21.3**2 / 6  # B W^2 / 6 [mm^3]
     sigma = r_main * lever / w_b * 1e6  # N mm / mm^3 -> Pa
-    np.testing.assert_allclose(ex["nominal"]["sigma_web_bending"][ci, si, 0, 0], sigma,
+    np.testing.assert_allclose(ex.nominal.sigma_web_bending[ci, si, 0, 0], sigma,
                                rtol=1e-9)
-    np.testing.assert_allclose(ex["nominal"]["sigma_web_bending"][ci, si, 0, 1], sigma,
+    np.testing.assert_allclose(ex.nominal.sigma_web_bending[ci, si, 0, 1], sigma,
                                rtol=1e-9)  # rear web: same share with the pin at mid-bay
     # the pin force itself: at 1000 rpm full load the gas force pushes the pin inward,
     # F_R,min ~ -(p_max - p_cc) pi/4 B^2 cos(theta + beta)/cos(beta) near TDC (inertia small)
     f_gas = (53.4e5 - 1e5) * np.pi / 4 * 0.086**2
-    f_min = ex["pin_force_radial"][0, 0, 0].min()
+    f_min = ex.pin_force_radial[0, 0, 0].min()
     assert -1.0 * f_gas < f_min < -0.85 * f_gas
     # the pin fillet (crank-pin-side web face) is in tension under the gas load
     i = q.coords["item"].index("pin 1 fillet")
-    assert ex["sigma_m"][i, 0, 0] > 0
+    assert ex.sigma_m[i, 0, 0] > 0
 
 
 def test_tv_torque_signal_on_the_loads_crank_angle(result):
     qs = result.outcome.quantities
-    ex = qs["fatigue.goodman_sf"].extra
-    t = ex["element_torque"]  # (C, S, E + 1, N)
+    ex = qs["fatigue.goodman_sf"].detail
+    t = ex.element_torque  # (C, S, E + 1, N)
     et = qs["tv.element_torque"]
     # synthesised signal: mean as given, extremes as the TV module's (1 deg sampling)
     np.testing.assert_allclose(t[..., :-1, :].mean(-1), np.moveaxis(et.detail.mean, 0, -1),
@@ -153,34 +153,34 @@ def test_tv_torque_signal_on_the_loads_crank_angle(result):
     corr = [np.corrcoef(np.roll(added, k), cyl1)[0, 1] for k in (-10, 0, 10)]
     assert corr[1] > 0.99 and corr[1] > max(corr[0], corr[2])
     # mapping: throw 1 front/rear = elements nose -> cyl 1, cyl 1 -> cyl 2; main 5 = cyl 4 -> fw
-    names = ex["element_names"]
-    assert [names[e] for e in ex["throw_elements"][0]] == ["Crank nose -> Cylinder 1",
+    names = ex.element_names
+    assert [names[e] for e in ex.throw_elements[0]] == ["Crank nose -> Cylinder 1",
                                                            "Cylinder 1 -> Cylinder 2"]
-    assert names[ex["main_elements"][4][0]] == "Cylinder 4 -> Flywheel"
+    assert names[ex.main_elements[4][0]] == "Cylinder 4 -> Flywheel"
 
 
 def test_goodman_point_of_the_reported_worst_case(result):
     q = _q(result)
-    ex = q.extra
+    ex = q.detail
     r = min((r for r in result.results if r.rule == "FAT-001"), key=lambda r: r.value)
     i = q.coords["item"].index(r.item)
     judged = q.values[i] if q.applies is None else np.where(q.applies[i], q.values[i], np.inf)
     ci, si = np.unravel_index(int(np.argmin(judged)), judged.shape)
-    se, su = ex["endurance_limit"][i], ex["ultimate_strength"][i]
-    sa, sm = ex["sigma_eq_a"][i, ci, si], ex["sigma_eq_m"][i, ci, si]
+    se, su = ex.endurance_limit[i], ex.ultimate_strength[i]
+    sa, sm = ex.sigma_eq_a[i, ci, si], ex.sigma_eq_m[i, ci, si]
     assert se == pytest.approx(326e6) and su == pytest.approx(750e6)  # pin oil hole, seed 000
     assert r.value == pytest.approx(1 / (sa / se + max(sm, 0.0) / su), rel=1e-9)
     # the operating point lies on the Goodman line shrunk by its safety factor
     assert float(goodman_line(sm, se, su, r.value)) == pytest.approx(sa, rel=1e-9)
     # normalised Haigh coordinates of the report
-    assert ex["haigh_y"][i, ci, si] + max(ex["haigh_x"][i, ci, si], 0) == pytest.approx(
+    assert ex.haigh_y[i, ci, si] + max(ex.haigh_x[i, ci, si], 0) == pytest.approx(
         1 / r.value, rel=1e-9)
 
 
 # ---------------------------------------------------------------------------------- inputs
 def test_workbook_scfs_override_m53(tmp_path, result):
     base = _q(result)
-    a_b53 = base.extra["scf"]["m53"]["alpha_b"]
+    a_b53 = base.detail.scf.m53["alpha_b"]
     cells = {}
 
     def edit(wb):
@@ -190,13 +190,13 @@ def test_workbook_scfs_override_m53(tmp_path, result):
 
     res = api.check(edited(tmp_path, edit), select=["FAT-001", "FAT-002"])
     q = _q(res)
-    scf = q.extra["scf"]
-    assert scf["used"]["alpha_b"] == 3.0 and cells["ab"] in scf["source"]["alpha_b"]
-    assert scf["used"]["beta_t"] == 2.0 and cells["bt"] in scf["source"]["beta_t"]
-    assert scf["source"]["alpha_t"].startswith("IACS")
+    scf = q.detail.scf
+    assert scf.used["alpha_b"] == 3.0 and cells["ab"] in scf.source["alpha_b"]
+    assert scf.used["beta_t"] == 2.0 and cells["bt"] in scf.source["beta_t"]
+    assert scf.source["alpha_t"].startswith("IACS")
     # the pin-fillet bending amplitude scales with the factor used
     i = [q.coords["item"].index(n) for n in PINS]
-    np.testing.assert_allclose(q.extra["sigma_a"][i], base.extra["sigma_a"][i] * 3.0 / a_b53,
+    np.testing.assert_allclose(q.detail.sigma_a[i], base.detail.sigma_a[i] * 3.0 / a_b53,
                                rtol=1e-9)
     # the beta_T validity flag no longer applies: the user's factor replaced the formula
     by = {(r.rule, r.item): r for r in res.results}
