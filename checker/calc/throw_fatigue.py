@@ -61,9 +61,12 @@ def element_torque_cycle(orders: ArrayLike, coeffs: ArrayLike, mean: ArrayLike,
 
     Examples
     --------
-    >>> t = element_torque_cycle([1.0], np.full((1, 1, 1, 1), 2.0 + 0j), np.full((1, 1, 1), 5.0), 4)
-    >>> t[0, 0, 0].round(12).tolist(), t[0, 0, 1].tolist()
-    ([7.0, 3.0, 7.0, 3.0], [0.0, 0.0, 0.0, 0.0])
+    Mean 5 N m plus 2 N m at order 1 (theta_k = 0, 90°, 180° ...: 5 + 2 cos theta):
+
+    >>> coeffs, mean = np.full((1, 1, 1, 1), 2.0 + 0j), np.full((1, 1, 1), 5.0)
+    >>> t = element_torque_cycle([1.0], coeffs, mean, 8)
+    >>> t.shape, t[0, 0, 0].round(12).tolist(), bool(t[0, 0, 1].any())
+    ((1, 1, 2, 8), [7.0, 5.0, 3.0, 5.0, 7.0, 5.0, 3.0, 5.0], False)
     """
     mean = np.asarray(mean, dtype=float)
     _, vib = tv.synthesize(orders, coeffs, n_angles)  # (E, C, S, N)
