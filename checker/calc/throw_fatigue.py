@@ -24,6 +24,7 @@ eq. 6-46 (Goodman line).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import NamedTuple
 
 import numpy as np
@@ -278,3 +279,66 @@ def m53_q(sigma_a: ArrayLike, tau_a: ArrayLike, sigma_dw: float, oil_bore: bool,
         sv = fat.equivalent_alternating_stress(sigma_a, tau_a, sigma_add)
     sv_max = sv.max(axis=-1)
     return sv_max, fat.m53_acceptability_factor(sigma_dw, sv_max)
+
+
+def gather_candidates(results: Sequence[fat.CycleFatigue],
+                      index: Sequence[Sequence[tuple[int, int]]]) -> fat.CycleFatigue:
+    """The candidate results of each judged location, side by side.
+
+    A location (a journal fillet, an oil hole...) may be governed by one of K candidates (the
+    fillets on either web, the torque on either side). Item ``i`` takes, from every field of
+    ``results[i]`` (shape (..., A, B)), the K entries ``index[i] = [(a, b), ...]`` of its last
+    two axes (fancy indexing: no loop over speed or angle).
+
+    Parameters
+    ----------
+    results : sequence of checker.calc.fatigue.CycleFatigue, length I
+        Fields of shape (..., A, B) (for example (case, speed, throw, web)).
+    index : sequence of length I of K (a, b) pairs
+
+    Returns
+    -------
+    checker.calc.fatigue.CycleFatigue
+        Fields of shape (..., I, K).
+
+    Examples
+    --------
+    >>> r = fat.CycleFatigue(*[np.arange(4.0).reshape(2, 2)] * 7)
+    >>> gather_candidates([r, r], [[(0, 0), (0, 1)], [(1, 1), (1, 1)]]).safety_factor.tolist()
+    [[0.0, 1.0], [3.0, 3.0]]
+    """
+    k = len(index[0])
+    lead = np.shape(results[0].safety_factor)[:-2]
+    out = {f: np.empty(lead + (len(index), k)) for f in fat.CycleFatigue._fields}
+    for i, (r, idx) in enumerate(zip(results, index, strict=True)):
+        a_idx, b_idx = [a for a, _ in idx], [b for _, b in idx]
+        for f in fat.CycleFatigue._fields:
+            out[f][..., i, :] = getattr(r, f)[..., a_idx, b_idx]
+    return fat.CycleFatigue(**out)
+
+
+def governing_candidate(candidates: fat.CycleFatigue) -> tuple[fat.CycleFatigue, np.ndarray]:
+    """The candidate with the lowest Goodman safety factor (last axis) and its index.
+
+    Parameters
+    ----------
+    candidates : checker.calc.fatigue.CycleFatigue
+        Fields of shape (..., K) (:func:`gather_candidates`).
+
+    Returns
+    -------
+    (picked, index)
+        ``picked``: the fields of the governing candidate, shape (...); ``index``: int array,
+        shape (...), its position along the candidate axis.
+
+    Examples
+    --------
+    >>> c = fat.CycleFatigue(*[np.array([[2.0, 1.5], [1.0, 3.0]])] * 7)
+    >>> picked, k = governing_candidate(c)
+    >>> picked.safety_factor.tolist(), k.tolist()
+    ([1.5, 1.0], [1, 0])
+    """
+    worst = np.argmin(candidates.safety_factor, axis=-1)[..., None]
+    picked = fat.CycleFatigue(*(np.take_along_axis(np.asarray(v), worst, -1)[..., 0]
+                                for v in candidates))
+    return picked, worst[..., 0]

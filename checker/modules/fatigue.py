@@ -65,6 +65,8 @@ is one of :data:`LOCATIONS`.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from ..calc import crank_forces as cf
@@ -325,34 +327,33 @@ def _strengths(engine: Engine, has: dict) -> tuple[dict, dict]:
     return out, missing
 
 
-# ------------------------------------------------------------------------------- calculation
-@calculation("crank_fatigue", "fatigue", provides=("fatigue.goodman_sf", "fatigue.m53_q"),
-             needs=("loads.bearing_load", "tv.element_torque"),
-             reads=("fatigue", "params", "cylinders", "tv_model", "bearings.name", "bearings.type",
-                    "bearings.diameter", "bearings.journal_length", "bearings.row",
-                    "bearings.oil_holes", "bearings.oil_hole_diameter",
-                    "bearings.oil_hole_angle", "bearings.oil_hole_type"))
-def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
-    """Goodman safety factor and M53 Q at every fillet and oil hole, full/no load, all speeds."""
-    bl: Quantity = inputs["loads.bearing_load"]
-    et: Quantity = inputs["tv.element_torque"]
-    fa = engine.fatigue
-    g, rows, notes = _geometry(engine)
-    cyls = engine.cylinders
-    pins = np.array([c.pin - 1 for c in cyls])
-    n_pins = int(pins.max()) + 1
-    n_mains = n_pins + 1
-    theta = np.asarray(bl.detail.theta)
-    N = theta.size
-    cases, speeds = list(bl.coords["case"]), np.asarray(bl.coords["speed"], dtype=float)
-    C, S = len(cases), speeds.size
-    if list(et.coords["case"]) != cases or not np.allclose(et.coords["speed"], speeds):
-        raise MissingInputs(["tv.element_torque and loads.bearing_load disagree on the load"
-                             " cases or speeds (internal)"])
+@dataclass
+class _Locations:
+    """Which location types are evaluated and what each lacks (inputs of the node)."""
 
-    # ------------------------------------------------------------- locations and their inputs
-    oil, oil_missing = _pin_oil_hole(engine, rows["bigs"])
-    main_oil_d = fa.get("main_oil_hole_diameter")
+    oil: PinOilHole | None  # the crank-pin oil hole (None: none)
+    main_oil_d: float | None  # main journal oil hole diameter [m] (None: none)
+    has: dict[str, bool]  # location type -> evaluated
+    strengths: dict[str, LocationStrength]
+    scf: ScfInfo
+    scf_find: dict[str, list[str]]  # factor -> M53 validity texts
+    stress_missing: dict[str, list[str]]  # location type -> local stresses not available
+    loc_missing: dict[str, list[str]]  # location type -> Goodman not available
+
+    def strength(self, loc: str) -> tuple[float, float]:
+        """(S_e, S_u) [Pa] of a location type, 1.0 where missing (then not judged)."""
+        se, su = self.strengths.get(loc, (None, None, "", ""))[:2]
+        return (se or 1.0), (su or 1.0)
+
+    def factors(self) -> dict[str, float]:
+        """Stress concentration factors used, 1.0 where missing (then not judged)."""
+        return {key: (v if v is not None else 1.0) for key, v in self.scf.used.items()}
+
+
+def _locations(engine: Engine, g: ThrowGeometry, bigs: list, notes: list[str]) -> _Locations:
+    """The locations to evaluate, their strengths and factors, and what each lacks."""
+    oil, oil_missing = _pin_oil_hole(engine, bigs)
+    main_oil_d = engine.fatigue.get("main_oil_hole_diameter")
     has = {"pin fillet": True, "main fillet": True, "pin oil hole": oil is not None,
            "main oil hole": main_oil_d is not None}
     if oil is None:
@@ -363,8 +364,8 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                      " evaluated.")
     strengths, s_missing = _strengths(engine, has)
     scf, scf_missing, scf_find = _scfs(engine, g, oil, main_oil_d)
-    stress_missing: dict[str, list[str]] = {}  # local stresses (SCF, oil hole) not available
-    loc_missing: dict[str, list[str]] = {}  # Goodman: + the Goodman strengths
+    stress_missing: dict[str, list[str]] = {}
+    loc_missing: dict[str, list[str]] = {}
     for loc in LOCATIONS:
         if not has[loc]:
             continue
@@ -376,8 +377,15 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         why = list(s_missing.get(loc, [])) + why
         if why:
             loc_missing[loc] = why
+    return _Locations(oil, main_oil_d, has, strengths, scf, scf_find, stress_missing,
+                      loc_missing)
 
-    # ------------------------------------------------------------- pin forces (throw frame)
+
+def _pin_forces(engine: Engine, bl: Quantity, pins: np.ndarray, n_pins: int
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Con-rod force on each crank pin in the throw frame: F_R, F_T (C, S, T, N) [N], and the
+    throw angles (T,) [rad]."""
+    cyls = engine.cylinders
     firing = np.array([c.firing_angle for c in cyls])
     bank = np.array([c.bank_angle for c in cyls])
     f_pin = cf.crankpin_force(bl.detail.big_end_crank, pins, n_pins)  # (C, S, T, N)
@@ -386,124 +394,70 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     except ValueError as exc:
         raise MissingInputs([f"Cylinders: {exc}"]) from None
     f_r, f_t = cs.pin_force_in_throw_frame(f_pin.x, f_pin.y, gamma[:, None])
+    return f_r, f_t, gamma
 
-    # ------------------------------------------------------------- element torques (time signal)
-    n_el = len(et.coords["item"])
-    sides, st_missing = _station_elements(engine, n_pins, n_el)
-    if st_missing:
-        raise MissingInputs(st_missing)
-    # (C, S, E + 1, N): + a zero "element" for a free end
-    torque = tf.element_torque_cycle(et.detail.orders, et.detail.coeffs, et.detail.mean, N)
-    t_side = torque[:, :, sides, :]  # (C, S, T, 2, N): front / rear element of each throw
 
-    # ------------------------------------------------------------- nominal and local stresses
-    phi = 0.0 if oil is None or oil.angle is None else float(oil.angle)
-    k = {key: (v if v is not None else 1.0) for key, v in scf.used.items()}
+def _items(n_pins: int, n_mains: int, has: dict[str, bool], results: dict[str, object]
+           ) -> list[tuple[str, str, object, list[tuple[int, int]]]]:
+    """(item, location type, result, its two candidates) of every location.
 
-    def st(name: str) -> tuple[float, float]:
-        se, su = strengths.get(name, (None, None, "", ""))[:2]
-        return (se or 1.0), (su or 1.0)
-
-    # one load case at a time: halves the peak memory (fresh pages are the main cost here)
-    try:
-        parts = [tf.throw_goodman(f_r[ci], f_t[ci], t_side[ci], g.as_kwargs(), phi, k,
-                                  {n: st(n) for n in LOCATIONS}, has["pin oil hole"],
-                                  MEAN_CRITERION) for ci in range(C)]
-    except ValueError as exc:
-        raise MissingInputs([f"Fatigue/Bearings/Engine geometry of the crank throw: {exc}"]
-                            ) from None
-    pin, jnl, pin_oil = (None if parts[0][n] is None else type(parts[0][n])(
-        *(np.stack(x) for x in zip(*(p[n] for p in parts), strict=True))) for n in range(3))
-    # (C, S, T, 2, N) nominal web bending and direct stress [Pa]
-    sigma_bf = np.stack([p.nominal.sigma_web_bending for p in parts])
-    sigma_qf = np.stack([p.nominal.sigma_web_direct for p in parts])
-    results: dict[str, tuple] = {}
-    if pin_oil is not None:
-        results["pin oil hole"] = pin_oil  # (C, S, T, 2 torque variants)
-    # main journals: candidate elements (front element of throw k, rear element of throw k-1)
-    main_el = tf.main_journal_elements(sides, n_mains)
-    if has["main oil hole"]:
-        # torsion only (no bending at the journal centre): evaluated once per TV element, then
-        # gathered per main journal and candidate element
-        se, su = st("main oil hole")
-        per_el = tf.main_oil_hole_goodman(torque, g.journal_diameter, g.journal_bore,
-                                          k["gamma_t_main"], se, su)  # (C, S, E + 1)
-        results["main oil hole"] = type(per_el)(*(
-            x[:, :, main_el] for x in per_el))  # (C, S, M, 2 candidates)
-
-    # ------------------------------------------------------------- items
-    items: list[str] = []
-    attrs: dict[str, dict] = {}
-    sel: list[tuple[str, object, list[tuple[int, int]]]] = []  # (location, result, [(t, side)])
+    Candidates index the last two axes of the result: (throw, web) of a fillet, (throw,
+    torque side) of a pin oil hole, (main, element candidate) of a main oil hole."""
+    sel = []
     for j in range(n_pins):
-        sel.append(("pin fillet", pin, [(j, 0), (j, 1)]))
-        items.append(f"pin {j + 1} fillet")
+        sel.append((f"pin {j + 1} fillet", "pin fillet", results["pin fillet"],
+                    [(j, 0), (j, 1)]))
     for m in range(n_mains):
         adj = ([(m, 0)] if m < n_pins else []) + ([(m - 1, 1)] if m > 0 else [])
-        sel.append(("main fillet", jnl, adj))
-        items.append(f"main {m + 1} fillet")
-    if has["pin oil hole"]:
-        for j in range(n_pins):
-            sel.append(("pin oil hole", results["pin oil hole"], [(j, 0), (j, 1)]))
-            items.append(f"pin {j + 1} oil hole")
-    if has["main oil hole"]:
-        for m in range(n_mains):
-            sel.append(("main oil hole", results["main oil hole"], [(m, 0), (m, 1)]))
-            items.append(f"main {m + 1} oil hole")
-    n_it = len(items)
-    # gather (C, S, I, 2) arrays of every candidate (fancy indexing, no loop over speed/angle)
-    fields = ("safety_factor", "sigma_eq_a", "sigma_eq_m", "sigma_a", "sigma_m", "tau_a",
-              "tau_m")
-    cand = {f: np.empty((C, S, n_it, 2)) for f in fields}
-    for i, (_, r, adj) in enumerate(sel):
-        idx = (adj * 2)[:2]
-        t_idx, s_idx = [a[0] for a in idx], [a[1] for a in idx]
-        for f in fields:
-            cand[f][:, :, i, :] = getattr(r, f)[:, :, t_idx, s_idx]
-    worst = np.argmin(cand["safety_factor"], axis=-1)[..., None]  # (C, S, I, 1)
-    pick = {f: np.moveaxis(np.take_along_axis(v, worst, -1)[..., 0], 2, 0)
-            for f, v in cand.items()}  # (I, C, S)
-    sf = pick["safety_factor"].copy()
-    location = [s[0] for s in sel]
-    loc_arr = np.array(location)
-    missing: dict[tuple, list[str]] = {}
-    for i, lname in enumerate(location):
-        attrs[items[i]] = {"location": lname}
-        if lname in loc_missing:
-            sf[i] = np.nan
-            missing[(i,)] = loc_missing[lname]
-    # findings: M53 validity of the factors used; undamped TV resonance at (case, speed)
+        sel.append((f"main {m + 1} fillet", "main fillet", results["main fillet"], adj))
+    for loc, n in (("pin oil hole", n_pins), ("main oil hole", n_mains)):
+        if has[loc]:
+            word = loc.split()[0]
+            for j in range(n):
+                sel.append((f"{word} {j + 1} oil hole", loc, results[loc], [(j, 0), (j, 1)]))
+    return sel
+
+
+def _findings(location: list[str], where: _Locations, et: Quantity) -> dict[tuple, list[str]]:
+    """M53 validity of the factors a location uses; undamped TV resonance at (case, speed)."""
     findings: dict[tuple, list[str]] = {}
     for i, lname in enumerate(location):
-        texts = [t for key in FACTORS_OF[lname] for t in scf_find.get(key, [])]
-        if texts and lname not in loc_missing:
+        texts = [t for key in FACTORS_OF[lname] for t in where.scf_find.get(key, [])]
+        if texts and lname not in where.loc_missing:
             findings[(i,)] = list(dict.fromkeys(texts))
     tv_find: dict[tuple[int, int], list[str]] = {}
     for (_, ci, si), v in et.findings.items():
         lst = tv_find.setdefault((ci, si), [])
         lst += [x for x in v if x not in lst]
     for (ci, si), v in tv_find.items():
-        for i in range(n_it):
+        for i in range(len(location)):
             findings[(i, ci, si)] = list(v)
+    return findings
 
-    # ------------------------------------------------------------- M53 acceptability
+
+def _m53(engine: Engine, g: ThrowGeometry, where: _Locations, location: list[str],
+         cand, findings: dict[tuple, list[str]], shape: tuple[int, int]) -> dict:
+    """M53 Q of every location but the main oil holes: values, sigma_V, sigma_DW, missing
+    inputs and findings (indices into the M53 items)."""
+    fa = engine.fatigue
     m53_items = [i for i, lname in enumerate(location) if lname != "main oil hole"]
     uts = fa.get("uts")
-    q_vals = np.full((len(m53_items), C, S), np.nan)
+    q_vals = np.full((len(m53_items), *shape), np.nan)
+    sv_pick = np.full((len(m53_items), *shape), np.nan)
     q_missing: dict[tuple, list[str]] = {}
     q_find: dict[tuple, list[str]] = {}
     dw_of: dict[str, float] = {}
-    sv_pick = np.full((len(m53_items), C, S), np.nan)
     m53_base_missing = []
     if uts is None:
         m53_base_missing.append(engine.describe_missing("Fatigue", "uts",
                                                         what="the crankshaft (M53 sigma_B)"))
+    oil = where.oil
     radius = {"pin fillet": ("pin_fillet_radius", g.pin_diameter, M53_K_FILLET),
               "main fillet": ("main_fillet_radius", g.journal_diameter, M53_K_FILLET),
               "pin oil hole": (None, g.pin_diameter, M53_K_OIL)}
     clip_text = {}
     for lname, (rattr, dia, kk) in radius.items():
-        if not has[lname]:
+        if not where.has[lname]:
             continue
         if lname == "pin oil hole":
             rx = None if oil is None or oil.diameter is None else oil.diameter / 2.0
@@ -518,7 +472,7 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                                 " taken as 2 mm (IACS UR M53 §6)")
     for qi, i in enumerate(m53_items):
         lname = location[i]
-        why = list(m53_base_missing) + stress_missing.get(lname, [])
+        why = list(m53_base_missing) + where.stress_missing.get(lname, [])
         if lname != "pin oil hole" and fa.get(radius[lname][0]) is None:
             why.append(engine.describe_missing("Fatigue", radius[lname][0],
                                                what="the crankshaft (M53 sigma_DW)"))
@@ -526,7 +480,7 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
             q_missing[(qi,)] = list(dict.fromkeys(why))
             continue
         # (C, S): worst fillet / torque variant
-        sv_pick[qi], q_vals[qi] = tf.m53_q(cand["sigma_a"][:, :, i, :], cand["tau_a"][:, :, i, :],
+        sv_pick[qi], q_vals[qi] = tf.m53_q(cand.sigma_a[:, :, i, :], cand.tau_a[:, :, i, :],
                                            dw_of[lname], lname == "pin oil hole", SIGMA_ADD)
         texts = list(findings.get((i,), []))
         if lname in clip_text:
@@ -536,8 +490,12 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     for (i, ci, si), v in ((k_, v_) for k_, v_ in findings.items() if len(k_) == 3):
         if i in m53_items:
             q_find[(m53_items.index(i), ci, si)] = v
+    return {"items": m53_items, "values": q_vals, "sigma_v": sv_pick, "sigma_dw": dw_of,
+            "missing": q_missing, "findings": q_find}
 
-    # ------------------------------------------------------------- assumptions and details
+
+def _assumptions(engine: Engine, has: dict[str, bool], notes: list[str]) -> list[str]:
+    """The method's assumptions, then the notes of this run."""
     assumptions = [
         "Crankshaft fatigue (classical, Bell, Ricardo 2013, 'Crankshaft analysis (25)-(28)';"
         " IACS UR M53 §2-5): each throw"
@@ -564,60 +522,149 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                            " bending moment is zero at the journal centre), γ_T of M53's"
                            " crank-pin oil bore with d_O = D_O/D_G (M53 has no journal oil-bore"
                            " factor); evaluated at every main journal.")
-    assumptions += notes + loads.shared_pins_text(engine)
+    return assumptions + notes + loads.shared_pins_text(engine)
+
+
+def _candidate_names(sel: list, main_el: np.ndarray, element_names: list[str]
+                     ) -> list[tuple[str, ...]]:
+    """The two candidates of each item in words (web, torque side or TV element)."""
+    n_el = len(element_names)
+    side_text = {"pin fillet": ("front web", "rear web"),
+                 "pin oil hole": ("front torque", "rear torque")}
+    out = []
+    for _, lname, _, adj in sel:
+        if lname == "main fillet":
+            out.append(tuple(f"throw {t + 1} {'front' if s == 0 else 'rear'} web"
+                             for t, s in (adj * 2)[:2]))
+        elif lname == "main oil hole":
+            out.append(tuple(element_names[e] if e < n_el else "free end"
+                             for e in main_el[int(adj[0][0])]))
+        else:
+            out.append(side_text[lname])
+    return out
+
+
+# ------------------------------------------------------------------------------- calculation
+@calculation("crank_fatigue", "fatigue", provides=("fatigue.goodman_sf", "fatigue.m53_q"),
+             needs=("loads.bearing_load", "tv.element_torque"),
+             reads=("fatigue", "params", "cylinders", "tv_model", "bearings.name", "bearings.type",
+                    "bearings.diameter", "bearings.journal_length", "bearings.row",
+                    "bearings.oil_holes", "bearings.oil_hole_diameter",
+                    "bearings.oil_hole_angle", "bearings.oil_hole_type"))
+def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
+    """Goodman safety factor and M53 Q at every fillet and oil hole, full/no load, all speeds.
+
+    Gathers the inputs (geometry, factors, strengths, pin forces, element torques), calls
+    :mod:`checker.calc.throw_fatigue` and wraps the results (:mod:`checker.results.fatigue`).
+    """
+    bl: Quantity = inputs["loads.bearing_load"]
+    et: Quantity = inputs["tv.element_torque"]
+    g, rows, notes = _geometry(engine)
+    pins = np.array([c.pin - 1 for c in engine.cylinders])
+    n_pins = int(pins.max()) + 1
+    n_mains = n_pins + 1
+    theta = np.asarray(bl.detail.theta)
+    cases, speeds = list(bl.coords["case"]), np.asarray(bl.coords["speed"], dtype=float)
+    C, S = len(cases), speeds.size
+    if list(et.coords["case"]) != cases or not np.allclose(et.coords["speed"], speeds):
+        raise MissingInputs(["tv.element_torque and loads.bearing_load disagree on the load"
+                             " cases or speeds (internal)"])
+    where = _locations(engine, g, rows["bigs"], notes)
+    f_r, f_t, gamma = _pin_forces(engine, bl, pins, n_pins)
+    n_el = len(et.coords["item"])
+    sides, st_missing = _station_elements(engine, n_pins, n_el)
+    if st_missing:
+        raise MissingInputs(st_missing)
+    # (C, S, E + 1, N): + a zero "element" for a free end
+    torque = tf.element_torque_cycle(et.detail.orders, et.detail.coeffs, et.detail.mean,
+                                     theta.size)
+    t_side = torque[:, :, sides, :]  # (C, S, T, 2, N): front / rear element of each throw
+    main_el = tf.main_journal_elements(sides, n_mains)
+
+    # ------------------------------------------------------------- stresses and Goodman
+    oil = where.oil
+    phi = 0.0 if oil is None or oil.angle is None else float(oil.angle)
+    k = where.factors()
+    # one load case at a time: halves the peak memory (fresh pages are the main cost here)
+    try:
+        parts = [tf.throw_goodman(f_r[ci], f_t[ci], t_side[ci], g.as_kwargs(), phi, k,
+                                  {n: where.strength(n) for n in LOCATIONS},
+                                  where.has["pin oil hole"], MEAN_CRITERION) for ci in range(C)]
+    except ValueError as exc:
+        raise MissingInputs([f"Fatigue/Bearings/Engine geometry of the crank throw: {exc}"]
+                            ) from None
+    results: dict[str, object] = {  # (C, S, T, 2): per web or torque side
+        loc: None if parts[0][n] is None else type(parts[0][n])(
+            *(np.stack(x) for x in zip(*(p[n] for p in parts), strict=True)))
+        for n, loc in enumerate(("pin fillet", "main fillet", "pin oil hole"))}
+    if where.has["main oil hole"]:
+        # torsion only, once per TV element, then per main journal and candidate element
+        per_el = tf.main_oil_hole_goodman(torque, g.journal_diameter, g.journal_bore,
+                                          k["gamma_t_main"], *where.strength("main oil hole"))
+        results["main oil hole"] = type(per_el)(*(x[:, :, main_el] for x in per_el))
+
+    # ------------------------------------------------------------- items: governing candidate
+    sel = _items(n_pins, n_mains, where.has, results)
+    items = [s[0] for s in sel]
+    location = [s[1] for s in sel]
+    cand = tf.gather_candidates([s[2] for s in sel], [(s[3] * 2)[:2] for s in sel])
+    picked, governing = tf.governing_candidate(cand)  # (C, S, I)
+    pick = {f: np.moveaxis(v, 2, 0) for f, v in picked._asdict().items()}  # (I, C, S)
+    sf = pick["safety_factor"].copy()
+    attrs = {n: {"location": lname} for n, lname in zip(items, location, strict=True)}
+    missing: dict[tuple, list[str]] = {}
+    for i, lname in enumerate(location):
+        if lname in where.loc_missing:
+            sf[i] = np.nan
+            missing[(i,)] = where.loc_missing[lname]
+    findings = _findings(location, where, et)
+    m53 = _m53(engine, g, where, location, cand, findings, (C, S))
+
+    # ------------------------------------------------------------- details
+    loc_arr = np.array(location)
     sf_by_loc = np.full((len(LOCATIONS), C, S), np.nan)
     for li, lname in enumerate(LOCATIONS):
         rows_i = np.nonzero(loc_arr == lname)[0]
-        if rows_i.size and lname not in loc_missing:
+        if rows_i.size and lname not in where.loc_missing:
             sf_by_loc[li] = sf[rows_i].min(axis=0)
-    side_text = {"pin fillet": ("front web", "rear web"),
-                 "main fillet": None, "pin oil hole": ("front torque", "rear torque"),
-                 "main oil hole": None}
-    s_e = np.array([strengths.get(n, (None,))[0] or np.nan for n in location], dtype=float)
-    s_u = np.array([(strengths.get(n, (None, None))[1] or np.nan) for n in location],
+    s_e = np.array([where.strengths.get(n, (None,))[0] or np.nan for n in location],
                    dtype=float)
-    governing = np.moveaxis(worst[..., 0], 2, 0)  # (I, C, S) index into the candidates
-    adj_text = []
-    for lname, _, adj in sel:
-        if lname == "main fillet":
-            adj_text.append(tuple(f"throw {t + 1} {'front' if s == 0 else 'rear'} web"
-                                  for t, s in (adj * 2)[:2]))
-        elif lname == "main oil hole":
-            adj_text.append(tuple(et.coords["item"][e] if e < n_el else "free end"
-                                  for e in main_el[int(adj[0][0])]))
-        else:
-            adj_text.append(side_text[lname])
+    s_u = np.array([(where.strengths.get(n, (None, None))[1] or np.nan) for n in location],
+                   dtype=float)
+    element_names = list(et.coords["item"]) + ["free end"]
     common = dict(
-        geometry=g, scf=scf, scf_findings=scf_find, strengths=strengths, oil_hole=oil,
-        main_oil_hole_diameter=main_oil_d, theta=theta, speeds=speeds, locations=location,
-        sf_by_location=sf_by_loc, assumptions=tuple(assumptions))
+        geometry=g, scf=where.scf, scf_findings=where.scf_find, strengths=where.strengths,
+        oil_hole=oil, main_oil_hole_diameter=where.main_oil_d, theta=theta, speeds=speeds,
+        locations=location, sf_by_location=sf_by_loc,
+        assumptions=tuple(_assumptions(engine, where.has, notes)))
     detail = GoodmanDetail(
         **common,
         sigma_eq_a=pick["sigma_eq_a"], sigma_eq_m=pick["sigma_eq_m"],
         sigma_a=pick["sigma_a"], sigma_m=pick["sigma_m"], tau_a=pick["tau_a"],
-        tau_m=pick["tau_m"], governing=governing, candidates=adj_text,
+        tau_m=pick["tau_m"], governing=np.moveaxis(governing, 2, 0),
+        candidates=_candidate_names(sel, main_el, element_names[:-1]),
         sigma_eq_max=pick["sigma_eq_m"] + pick["sigma_eq_a"],
         sigma_eq_min=pick["sigma_eq_m"] - pick["sigma_eq_a"],
         endurance_limit=s_e, ultimate_strength=s_u,
         haigh_x=pick["sigma_eq_m"] / s_u[:, None, None],
         haigh_y=pick["sigma_eq_a"] / s_e[:, None, None],
-        candidate_sf=np.moveaxis(cand["safety_factor"], 2, 0),
+        candidate_sf=np.moveaxis(cand.safety_factor, 2, 0),
         pin_force_radial=f_r, pin_force_tangential=f_t,
         throw_angle=gamma, throw_elements=sides, main_elements=main_el,
-        nominal=ThrowNominal(sigma_web_bending=sigma_bf, sigma_web_direct=sigma_qf,
-                             web_centre_distance=parts[0].nominal.web_centre_distance,
-                             overlap=parts[0].nominal.overlap),
-        element_names=list(et.coords["item"]) + ["free end"],
-        element_torque=torque, mean_criterion=MEAN_CRITERION)
+        nominal=ThrowNominal(
+            sigma_web_bending=np.stack([p.nominal.sigma_web_bending for p in parts]),
+            sigma_web_direct=np.stack([p.nominal.sigma_web_direct for p in parts]),
+            web_centre_distance=parts[0].nominal.web_centre_distance,
+            overlap=parts[0].nominal.overlap),
+        element_names=element_names, element_torque=torque, mean_criterion=MEAN_CRITERION)
     coords = {"item": items, "case": cases, "speed": list(speeds)}
-    q_items = [items[i] for i in m53_items]
-    out = {
+    q_items = [items[i] for i in m53["items"]]
+    return {
         "fatigue.goodman_sf": Quantity(GOODMAN, sf, coords, attrs, missing, findings,
                                        detail=detail),
         "fatigue.m53_q": Quantity(
-            M53Q, q_vals, {"item": q_items, "case": cases, "speed": list(speeds)},
-            {n: attrs[n] for n in q_items}, q_missing, q_find,
-            detail=M53Detail(**common, sigma_v=sv_pick, sigma_dw=dw_of, sigma_add=SIGMA_ADD,
-                             k_fillet=M53_K_FILLET, k_oil=M53_K_OIL)),
+            M53Q, m53["values"], {"item": q_items, "case": cases, "speed": list(speeds)},
+            {n: attrs[n] for n in q_items}, m53["missing"], m53["findings"],
+            detail=M53Detail(**common, sigma_v=m53["sigma_v"], sigma_dw=m53["sigma_dw"],
+                             sigma_add=SIGMA_ADD, k_fillet=M53_K_FILLET, k_oil=M53_K_OIL)),
     }
-    return out

@@ -15,8 +15,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from checker.calc.fatigue import CycleFatigue
 from checker.calc.throw_fatigue import (
     element_torque_cycle,
+    gather_candidates,
+    governing_candidate,
     m53_q,
     main_journal_elements,
     main_oil_hole_goodman,
@@ -122,3 +125,23 @@ def test_m53_q_fillet_and_oil_bore():
     assert want == pytest.approx(55.54, abs=0.005)
     assert float(sv[0]) == pytest.approx(want * 1e6, rel=1e-12)
     assert float(q[0]) == pytest.approx(300 / want, rel=1e-12)
+
+
+def test_governing_candidate_is_the_lowest_safety_factor_of_the_gathered_pairs():
+    # two results over (case = 1, speed = 2, throw = 2, web = 2); each field a distinct ramp
+    base = np.arange(8.0).reshape(1, 2, 2, 2)
+    r = CycleFatigue(*(base + 100 * k for k in range(7)))  # safety_factor = base + 600
+    cand = gather_candidates([r, r], [[(0, 0), (1, 1)], [(1, 0), (1, 0)]])
+    assert cand.safety_factor.shape == (1, 2, 2, 2)
+    np.testing.assert_array_equal(cand.safety_factor[0, 1], [[604.0, 607.0], [606.0, 606.0]])
+    picked, k = governing_candidate(cand)
+    np.testing.assert_array_equal(k, [[[0, 0], [0, 0]]])
+    np.testing.assert_array_equal(picked.safety_factor, [[[600.0, 602.0], [604.0, 606.0]]])
+    # the other fields follow the governing candidate (sigma_a = base + 0)
+    np.testing.assert_array_equal(picked.sigma_a, picked.safety_factor - 600)
+    # a lower factor at the second candidate governs
+    sf = cand.safety_factor.copy()
+    sf[0, 0, 0, 1] = 1.0
+    picked, k = governing_candidate(cand._replace(safety_factor=sf))
+    assert k[0, 0, 0] == 1 and picked.safety_factor[0, 0, 0] == 1.0
+    assert picked.sigma_a[0, 0, 0] == cand.sigma_a[0, 0, 0, 1]
