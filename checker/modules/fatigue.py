@@ -133,7 +133,7 @@ _RATIOS_OF = {  # M53 related dimensions each factor depends on (validity, M53 �
     "beta_t": ("r_journal_torsion", "s", "w", "b"),
     "gamma_b": ("d_O",), "gamma_t": ("d_O",), "gamma_t_main": ("d_O",),
 }
-_EXTRA_FLAGS = {  # non-range M53 flags per factor -> text
+_M53_FLAGS = {  # non-range M53 flags per factor -> text
     "alpha_b": (("s_clipped", "s < -0.5: f(s,w) evaluated at s = -0.5 (M53 §3.1 extension)"),
                 ("recess_clipped", "f(recess) < 1 set to 1 (M53 §3.1 extension)")),
     "alpha_t": (("s_clipped", "s < -0.5: f(r,s) evaluated at s = -0.5 (M53 §3.1 extension)"),),
@@ -295,7 +295,7 @@ def _scfs(engine: Engine, g: ThrowGeometry, oil: PinOilHole | None, main_oil_d: 
                              f" [{'-inf' if lo is None else f'{lo:g}'},"
                              f" {'+inf' if hi is None else f'{hi:g}'}] (M53 §3.1); factor"
                              " used, confirm by FEM or give it in the Fatigue sheet")
-        for flag, text in _EXTRA_FLAGS.get(key, ()):
+        for flag, text in _M53_FLAGS.get(key, ()):
             if base.flags[flag].any():
                 texts.append(f"M53 {sym} ({what}): {text}")
         if texts:

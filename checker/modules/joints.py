@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..calc import bolted_joint as bj
+from ..display import case_text
 from ..engine import Engine, Joint
 from ..graph import (
     UNAVAILABLE,
@@ -325,8 +326,7 @@ def joint_computed_torque(engine: Engine, inputs: dict) -> dict[str, Quantity]:
             ratio[i, k] = comp[i, k] / design[i, k]
             if ratio[i, k] <= 1.0:
                 continue
-            case = {"full": "full load", "no": "no load"}.get(str(comp_case[i, k]),
-                                                              str(comp_case[i, k]))
+            case = case_text(str(comp_case[i, k]))
             where = ", ".join(x for x in (case, _rpm(comp_speed[i, k])) if x)
             at_given = _rpm(given_speed[i, k])
             text = (f"{n} at '{p}': the torsional model gives {comp[i, k]:.0f} N m"

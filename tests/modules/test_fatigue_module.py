@@ -247,7 +247,10 @@ def test_missing_fatigue_cells_are_named(tmp_path):
 
 def test_report_section(result):
     from checker.report.sections import build_sections
+    from checker.results.fatigue import GoodmanDetail, M53Detail
 
+    assert isinstance(_q(result).detail, GoodmanDetail) and not _q(result).extra
+    assert isinstance(_q(result, "fatigue.m53_q").detail, M53Detail)
     sec = {s["id"]: s for s in build_sections(result)}["fatigue"]
     types = [b["type"] for b in sec["blocks"]]
     assert types.count("figure") == 2 and "equations" in types  # SF against speed, Haigh

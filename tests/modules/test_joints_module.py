@@ -117,3 +117,35 @@ def test_jnt008_not_evaluated_without_a_torsional_model(tmp_path):
     assert r[("JNT-003", "crank nose")].value == pytest.approx(1.467, abs=5e-4)
     res = r[("JNT-008", "crank nose")]
     assert res.status == "not_evaluated" and any("TVModel" in m for m in res.missing)
+
+
+def test_typed_details_and_the_report_section(jnt):
+    """The joint quantities carry their declared detail types and the report section renders
+    from them (display units of the quantities, how each value was obtained)."""
+    from checker.report.sections import build_sections, fmt
+    from checker.results.joints import (
+        AppliedTorqueDetail,
+        ComputedTorqueDetail,
+        JointBoltsDetail,
+    )
+
+    q = jnt.outcome.quantities
+    assert isinstance(q["joint.preload"].detail, JointBoltsDetail)
+    assert q["joint.stress_area"].detail is q["joint.slip_capacity"].detail  # one per node
+    assert isinstance(q["joint.applied_torque"].detail, AppliedTorqueDetail)
+    assert isinstance(q["joint.cover_factor"].detail, AppliedTorqueDetail)
+    for name in ("joint.computed_torque", "joint.computed_cover_factor",
+                 "joint.computed_torque_ratio"):
+        assert isinstance(q[name].detail, ComputedTorqueDetail)
+        assert not q[name].extra
+    sec = {s["id"]: s for s in build_sections(jnt)}["joints"]
+    table = next(b for b in sec["blocks"] if b["type"] == "table"
+                 and b["caption"].startswith("Bolt and face"))
+    rows = {r[0]: r[1:] for r in table["rows"]}
+    area = q["joint.stress_area"].values
+    assert rows["Stress area A_s [mm²]"] == [fmt(a * 1e6) for a in area]
+    assert rows["Slip torque capacity T_cap [N·m]"][0] == fmt(SEED_CAPACITY["crank nose"])
+    assert rows["Bolt stress / proof stress [%]"] == [
+        fmt(v * 100) for v in q["joint.proof_stress_ratio"].values]
+    how = next(b for b in sec["blocks"] if b["type"] == "list")["items"]
+    assert how[0].startswith("crank nose: stress area: A_s = pi/4")
