@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from checker import api
-from checker.results.fatigue import NoseDetail
+from checker.results.crank_nose import CrankNoseDetail
 from tests.helpers import edited, example_path
 
 
@@ -38,7 +38,7 @@ def test_nose_safety_factor_hand_check(tmp_path):
     assert r.status in ("pass", "fail") and r.case
     q = res.outcome.quantities["fatigue.nose_goodman_sf"]
     ex = q.detail
-    assert isinstance(ex, NoseDetail)
+    assert isinstance(ex, CrankNoseDetail)
     ci, si = 0, 30
     d = 0.032
     wb_, wp = np.pi * d**3 / 32, np.pi * d**3 / 16
