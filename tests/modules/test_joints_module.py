@@ -137,7 +137,6 @@ def test_typed_details_and_the_report_section(jnt):
     for name in ("joint.computed_torque", "joint.computed_cover_factor",
                  "joint.computed_torque_ratio"):
         assert isinstance(q[name].detail, ComputedTorqueDetail)
-        assert not q[name].extra
     sec = {s["id"]: s for s in build_sections(jnt)}["joints"]
     table = next(b for b in sec["blocks"] if b["type"] == "table"
                  and b["caption"].startswith("Bolt and face"))
