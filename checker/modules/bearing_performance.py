@@ -9,7 +9,6 @@ import numpy as np
 
 from ..calc import bearing_performance as bp
 from ..calc import orbit as ob
-from ..calc import reynolds_map as rm
 from ..calc import viscosity as vs
 from ..engine import Bearing, Engine
 from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity, register_module
@@ -454,14 +453,10 @@ def film_pressure(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         length = np.array([b.length for b in sel])[col]
         clear = np.array([b.clearance for b in sel])[col]
         full = np.array([b.groove == "full" for b in sel])[col]
-        share = np.where(full, 0.5, 1.0)
         mu = np.asarray(fin.detail.viscosity, dtype=float)
         mu = mu[rows][..., None] if mu.ndim == 3 else mu
-        pm, _ = rm.film_state_map(lx * share, ly * share, orb.eps_x, orb.eps_y, dia,
-                                  length * share, clear, mu)
-        k = np.argmax(pm, axis=-1)
-        p_fin[rows] = np.take_along_axis(pm, k[..., None], axis=-1)[..., 0]
-        th_fin[rows] = np.asarray(orb.theta)[k]
+        p_fin[rows], th_fin[rows] = bp.peak_film_pressure_finite(
+            lx, ly, orb.eps_x, orb.eps_y, orb.theta, dia, length, clear, mu, full)
     missing_s = dict(short.missing)
     missing_f = dict(fin.missing)
     attrs = _limit_attrs(engine, bl, "max_film_pressure")
