@@ -12,6 +12,7 @@ from checker.calc import bearing_performance as bp
 from checker.calc import orbit as ob
 from checker.calc import viscosity as vs
 from checker.modules.moft import oil_fit
+from checker.results.bearings import FilmDetail, FilmOrbit, FilmPressureDetail, HeatBalanceDetail
 from tests.helpers import edited, example_path, set_cell, set_param
 
 RPM = 2 * np.pi / 60
@@ -21,6 +22,28 @@ RPM = 2 * np.pi / 60
 def result(tmp_path_factory):
     return api.check(example_path(tmp_path_factory.mktemp("perf")),
                      select=["BRG-007", "BRG-008", "BRG-009"])
+
+
+def test_results_are_typed(result):
+    """Every bearing quantity carries its declared detail type (issue 24), with the orbits of
+    the film-thickness calculation and the heat balance's record."""
+    q = result.outcome.quantities
+    for name, want in (("bearing.moft_short", FilmDetail), ("bearing.moft_finite", FilmDetail),
+                       ("bearing.film_temperature", HeatBalanceDetail),
+                       ("bearing.oil_flow", HeatBalanceDetail),
+                       ("engine.bearing_friction_power", HeatBalanceDetail),
+                       ("bearing.peak_film_pressure", FilmPressureDetail),
+                       ("bearing.peak_film_pressure_short", FilmPressureDetail)):
+        assert type(q[name].detail) is want, name
+        assert q[name].spec.detail is want, name
+        assert not q[name].extra, name
+    fin = q["bearing.moft_finite"].detail
+    assert isinstance(fin.orbit, FilmOrbit)
+    shape = q["bearing.moft_finite"].values.shape
+    assert fin.orbit.eps_x.shape[:3] == (fin.orbit.rows.size,) + shape[1:]
+    hb = q["bearing.film_temperature"].detail
+    assert hb.evaluations >= 1 and hb.t_range[0] <= hb.t_range[1]
+    assert set(hb.feeds) == set(q["bearing.film_temperature"].coords["item"])
 
 
 def test_quantities_finite_and_consistent(result):
