@@ -141,7 +141,7 @@ def bearing_performance_section(res: CheckResult) -> dict:
             if idx is None:
                 return ["-", "-"]
             return [fmt(None if ps is None else in_unit(ps.values[idx], "Pa", "MPa")),
-                    fmt(in_unit(pp.detail.theta_p_max[idx], "rad", "deg"))]
+                    fmt(np.degrees(pp.detail.theta_p_max[idx]))]
 
         blocks.append(_widths(worst_table(
             res, pp, lambda v: fmt(in_unit(v, "Pa", "MPa")), more_p,

@@ -76,7 +76,7 @@ def bearings_section(res: CheckResult) -> dict:
         def more_j(idx, jx=jx):
             if idx is None:
                 return ["-", "-"]
-            return [fmt(in_unit(jx.theta_h_min[idx], "rad", "deg")), fmt(jx.eps_max[idx])]
+            return [fmt(np.degrees(jx.theta_h_min[idx])), fmt(jx.eps_max[idx])]
 
         blocks.append(worst_table(
             res, jq, lambda v: fmt(in_unit(v, "m", "um")), more_j,
@@ -96,7 +96,7 @@ def bearings_section(res: CheckResult) -> dict:
         i, ci, k = judged_worst.index
         a = int(np.where(orb.rows == i)[0][0])
         exx, eyy = orb.eps_x[a, ci, k], orb.eps_y[a, ci, k]
-        th = in_unit(orb.theta, "rad", "deg")
+        th = np.degrees(orb.theta)
         fig = figure(170, 72, ncols=2)[0]
         fig.clf()
         ax0 = fig.add_axes((0.11, 0.16, 0.28, 0.72), aspect="equal")
@@ -122,7 +122,7 @@ def bearings_section(res: CheckResult) -> dict:
             f = in_unit(np.hypot(le.fx[i, ci, k], le.fy[i, ci, k]), "N", "kN")
             ax2 = ax1.twinx()
             fv = every(f.size)
-            ax2.plot(in_unit(le.theta, "rad", "deg")[fv], f[fv], color="#c0392b", lw=0.8)
+            ax2.plot(np.degrees(le.theta)[fv], f[fv], color="#c0392b", lw=0.8)
             ax2.set_ylabel("Bearing load |F| [kN]", color="#c0392b")
             ax2.tick_params(axis="y", colors="#c0392b")
             ax2.spines["right"].set_visible(True)
