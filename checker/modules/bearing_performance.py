@@ -8,6 +8,7 @@ import dataclasses
 import numpy as np
 
 from ..calc import bearing_performance as bp
+from ..calc import film_pressure as fp
 from ..calc import orbit as ob
 from ..calc import viscosity as vs
 from ..engine import Bearing, Engine
@@ -455,7 +456,7 @@ def film_pressure(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         full = np.array([b.groove == "full" for b in sel])[col]
         mu = np.asarray(fin.detail.viscosity, dtype=float)
         mu = mu[rows][..., None] if mu.ndim == 3 else mu
-        p_fin[rows], th_fin[rows] = bp.peak_film_pressure_finite(
+        p_fin[rows], th_fin[rows] = fp.peak_film_pressure_finite(
             lx, ly, orb.eps_x, orb.eps_y, orb.theta, dia, length, clear, mu, full)
     missing_s = dict(short.missing)
     missing_f = dict(fin.missing)
