@@ -78,7 +78,7 @@ def _scaled(q, k):
 def test_moft_trends_random(loads_4000, c, factor, scale):
     """More clearance at fixed load -> more eccentricity; more load -> less MOFT (every
     bearing, full and no load, 4000 rpm)."""
-    from checker.modules.moft import moft
+    from checker.modules.bearings import moft
 
     base, q = loads_4000
 

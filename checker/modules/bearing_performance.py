@@ -14,8 +14,8 @@ from ..calc import viscosity as vs
 from ..engine import Bearing, Engine
 from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity, register_module
 from ..results.bearings import FilmPressureDetail, HeatBalanceDetail
+from .bearings import oil_fit
 from .loads import CASES
-from .moft import oil_fit
 
 register_module("bearing_performance", "Bearing oil flow, friction and temperature")
 

@@ -11,7 +11,7 @@ from checker import api
 from checker.calc import bearing_performance as bp
 from checker.calc import orbit as ob
 from checker.calc import viscosity as vs
-from checker.modules.moft import oil_fit
+from checker.modules.bearings import oil_fit
 from checker.results.bearings import FilmDetail, FilmOrbit, FilmPressureDetail, HeatBalanceDetail
 from tests.helpers import edited, example_path, set_cell, set_param
 

@@ -32,7 +32,7 @@ METHOD_QUANTITY = {"closed_form": "bearing.moft_short", "reynolds_map": "bearing
 
 STEPS_PER_CYCLE = ob.DEFAULT_STEPS_PER_CYCLE
 """RK steps per 720 deg cycle (benchmarks/bench_moft.py; halving the step changes the example's
-MOFT by far less than 0.5 %, tests/modules/test_moft_module.py)."""
+MOFT by far less than 0.5 %, tests/modules/test_bearings_module.py)."""
 
 STEPS_PER_CYCLE_FINITE = 240
 """RK steps per cycle for the finite-length map (benchmarks/bench_finite_length.py: MOFT within
