@@ -45,7 +45,7 @@ def _run(engine, steps: int) -> tuple[dict, float, int]:
     dt = time.perf_counter() - t0
     q = out.quantities
     return ({k: q[k].values for k in WANTED}, dt,
-            q["bearing.film_temperature"].extra.get("evaluations", 0))
+            q["bearing.film_temperature"].detail.evaluations or 0)
 
 
 def resolution(path: Path, label: str) -> None:

@@ -7,7 +7,7 @@
    default short-bearing mobility and with ``Mobility model = finite length``. Issue 16 asks
    for at most 1.5 times the short-bearing default.
 2. Step convergence of the finite-length orbit: worst MOFT per bearing and load case at the
-   module default (:data:`checker.modules.moft.STEPS_PER_CYCLE_FINITE`) and at 360 steps,
+   module default (:data:`checker.modules.bearings.STEPS_PER_CYCLE_FINITE`) and at 360 steps,
    against 1440 steps per cycle.
 3. ``--direct`` (slow, ~15 minutes): the map-based orbit against a direct orbit that solves
    the Reynolds equation at every step (:func:`checker.calc.reynolds.mobility_reynolds`), at
@@ -39,7 +39,7 @@ sys.path.insert(0, str(ROOT))
 from checker import graph  # noqa: E402
 from checker.calc import orbit as ob  # noqa: E402
 from checker.engine import load_engine  # noqa: E402
-from checker.modules import moft as m_moft  # noqa: E402
+from checker.modules import bearings as m_bearings  # noqa: E402
 from checker.workbook.example import example_content, write_workbook  # noqa: E402
 from checker.workbook.example_i6 import i6_content  # noqa: E402
 
@@ -84,18 +84,18 @@ def step_convergence(path: Path) -> list[tuple[str, float, float]]:
     engine = load_engine(path)
     bl = graph.run(engine, ["loads.bearing_load"]).quantities
     rows = []
-    old = m_moft.STEPS_PER_CYCLE_FINITE
+    old = m_bearings.STEPS_PER_CYCLE_FINITE
     try:
-        m_moft.STEPS_PER_CYCLE_FINITE = 1440
-        ref = worst(m_moft._solve(engine, dict(bl), "reynolds_map", "bearing.moft_finite"))
+        m_bearings.STEPS_PER_CYCLE_FINITE = 1440
+        ref = worst(m_bearings._solve(engine, dict(bl), "reynolds_map", "bearing.moft_finite"))
         for n in sorted({old, 360}):
-            m_moft.STEPS_PER_CYCLE_FINITE = n
+            m_bearings.STEPS_PER_CYCLE_FINITE = n
             t0 = time.process_time()
-            q = m_moft._solve(engine, dict(bl), "reynolds_map", "bearing.moft_finite")
+            q = m_bearings._solve(engine, dict(bl), "reynolds_map", "bearing.moft_finite")
             t = time.process_time() - t0
             rows.append((f"{n} steps/cycle", t, float(np.nanmax(np.abs(worst(q) / ref - 1)))))
     finally:
-        m_moft.STEPS_PER_CYCLE_FINITE = old
+        m_bearings.STEPS_PER_CYCLE_FINITE = old
     return rows
 
 
@@ -108,7 +108,7 @@ def direct_comparison(path: Path, grid=None) -> list[tuple]:
     names = fin.coords["item"]
     bearings = {b.name: b for b in engine.bearings}
     speeds = np.array(fin.coords["speed"])
-    _, mu, _ = m_moft.oil_viscosity(engine)
+    _, mu, _ = m_bearings.oil_viscosity(engine)
     ex = bl.extra
     rows = []
     for typ in dict.fromkeys(bearings[n].type for n in names):
@@ -122,7 +122,7 @@ def direct_comparison(path: Path, grid=None) -> list[tuple]:
             args = (ex["fy"][i, ci, k], ex["fx"][i, ci, k], ex["omega_journal"][i, ci, k],
                     ex["omega_bearing"][i, ci, k], speeds[k], b.diameter, b.length,
                     b.clearance, mu)
-            kw = {"steps_per_cycle": m_moft.STEPS_PER_CYCLE_FINITE,
+            kw = {"steps_per_cycle": m_bearings.STEPS_PER_CYCLE_FINITE,
                   "full_groove": b.groove == "full"}
             t0 = time.perf_counter()
             res_map = ob.solve_orbit(*args, model="reynolds_map", **kw)
@@ -142,7 +142,7 @@ def groove_comparison(path: Path) -> list[tuple]:
 
     Angles of the workbook's groove (start, end) are taken in the loads' convention (0 along
     the cylinder axis towards the piston, positive with the rotation), which is the orbit
-    frame of :mod:`checker.modules.moft`. The grooved film spans the effective length plus the
+    frame of :mod:`checker.modules.bearings`. The grooved film spans the effective length plus the
     groove width (lands and groove; chamfers excluded).
     """
     engine = load_engine(path)
@@ -151,7 +151,7 @@ def groove_comparison(path: Path) -> list[tuple]:
     names = fin.coords["item"]
     bearings = {b.name: b for b in engine.bearings}
     speeds = np.array(fin.coords["speed"])
-    _, mu, _ = m_moft.oil_viscosity(engine)
+    _, mu, _ = m_bearings.oil_viscosity(engine)
     ex = bl.extra
     rows = []
     mains = [i for i, n in enumerate(names) if bearings[n].type == "main"]
@@ -165,7 +165,7 @@ def groove_comparison(path: Path) -> list[tuple]:
                                                    else 0.0), b.groove_width / b.diameter)
         args = (ex["fy"][i, ci, k], ex["fx"][i, ci, k], ex["omega_journal"][i, ci, k],
                 ex["omega_bearing"][i, ci, k], speeds[k], b.diameter)
-        kw = {"steps_per_cycle": m_moft.STEPS_PER_CYCLE_FINITE}
+        kw = {"steps_per_cycle": m_bearings.STEPS_PER_CYCLE_FINITE}
         eff = ob.solve_orbit(*args, b.length, b.clearance, mu, model="reynolds_map", **kw)
         wide = ob.solve_orbit(*args, width, b.clearance, mu, model="reynolds_map", **kw)
         t0 = time.perf_counter()

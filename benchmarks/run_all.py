@@ -32,8 +32,8 @@ sys.path.insert(0, str(ROOT))
 
 from checker import api, graph  # noqa: E402
 from checker.engine import load_engine  # noqa: E402
+from checker.modules import bearings as m_bearings  # noqa: E402
 from checker.modules import loads as m_loads  # noqa: E402
-from checker.modules import moft as m_moft  # noqa: E402
 from checker.modules import torsion as m_tv  # noqa: E402
 from checker.workbook.example import example_content, write_workbook  # noqa: E402
 from checker.workbook.example_i6 import i6_content  # noqa: E402
@@ -49,17 +49,17 @@ KEYS = {
 
 @contextlib.contextmanager
 def settings(step_deg=None, steps=None, orders=None):
-    old = (m_loads.CRANK_STEP, m_moft.STEPS_PER_CYCLE, m_tv.MAX_ORDER)
+    old = (m_loads.CRANK_STEP, m_bearings.STEPS_PER_CYCLE, m_tv.MAX_ORDER)
     if step_deg is not None:
         m_loads.CRANK_STEP = np.radians(step_deg)
     if steps is not None:
-        m_moft.STEPS_PER_CYCLE = steps
+        m_bearings.STEPS_PER_CYCLE = steps
     if orders is not None:
         m_tv.MAX_ORDER = orders
     try:
         yield
     finally:
-        m_loads.CRANK_STEP, m_moft.STEPS_PER_CYCLE, m_tv.MAX_ORDER = old
+        m_loads.CRANK_STEP, m_bearings.STEPS_PER_CYCLE, m_tv.MAX_ORDER = old
 
 
 def run(engine, repeat=1):

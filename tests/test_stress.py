@@ -78,7 +78,7 @@ def _scaled(q, k):
 def test_moft_trends_random(loads_4000, c, factor, scale):
     """More clearance at fixed load -> more eccentricity; more load -> less MOFT (every
     bearing, full and no load, 4000 rpm)."""
-    from checker.modules.moft import moft
+    from checker.modules.bearings import moft
 
     base, q = loads_4000
 
@@ -90,5 +90,5 @@ def test_moft_trends_random(loads_4000, c, factor, scale):
     e2 = copy.copy(base)
     e2.bearings = tuple(dataclasses.replace(b, clearance=c * factor) for b in base.bearings)
     q1, q2, q3 = run(e1), run(e2), run(e1, scale)
-    assert (q2.extra["eps_max"] > q1.extra["eps_max"]).all()
+    assert (q2.detail.eps_max > q1.detail.eps_max).all()
     assert (q3.values < q1.values).all()

@@ -4,9 +4,10 @@ temperature of a heat balance.
 Friction torque and power of the film: :func:`film_losses` (Couette shear over the full film
 plus the load term, any pressure field: short bearing or finite length); peak film pressures are
 :func:`checker.calc.mobility.short_bearing_peak_pressure` and
-:func:`checker.calc.reynolds_map.film_state_map`. This module adds the flows and the heat
-balance. All inputs SI; vectorised over any batch shape (bearing x load case x speed x crank
-angle).
+:func:`checker.calc.reynolds_map.film_state_map` (over an orbit:
+:func:`checker.calc.film_pressure.peak_film_pressure_finite`). This module adds the flows
+and the heat balance. All inputs SI; vectorised over any batch shape (bearing x load case x
+speed x crank angle).
 
 Frames: eccentricity vectors and angles in one frame fixed to the bearing shell (the orbit
 frame of :mod:`checker.calc.orbit`); the film is thinnest in the direction of the
@@ -30,6 +31,10 @@ __all__ = [
     "hole_feed_flow",
     "rotating_hole_film_factor",
     "centrifugal_pressure_rise",
+    "fixed_hole_film_factor",
+    "crank_hole_radius",
+    "cycle_mean_feed_flow",
+    "start_temperature",
     "oil_specific_heat",
     "HeatBalance",
     "solve_heat_balance",
@@ -545,3 +550,229 @@ def solve_heat_balance(
         if partial:
             active = ~conv
     return HeatBalance(t, conv, change, n, state)
+
+
+def fixed_hole_film_factor(eps_x: ArrayLike, eps_y: ArrayLike, hole_angle: float) -> np.ndarray:
+    """``(h / c)^3`` at a feed hole fixed in the bearing shell.
+
+    .. math:: \\left(\\frac{h}{c}\\right)^3 = (1 - \\varepsilon_x\\cos\\varphi
+              - \\varepsilon_y\\sin\\varphi)^3
+
+    (film ``h = c (1 - eps cos(theta - phi_eps))`` at the hole angle ``theta = phi``).
+
+    Parameters
+    ----------
+    eps_x, eps_y : array_like [-]
+        Eccentricity ratio vector in the bearing frame (``|eps| <= 1``), any shape.
+    hole_angle : float [rad]
+        Angle of the hole in the bearing frame (from the frame's X axis, counter-clockwise).
+
+    Returns
+    -------
+    numpy.ndarray [-]
+        Shape of ``eps_x``.
+
+    Notes
+    -----
+    Film geometry of the plain journal bearing (Budynas and Nisbett, Shigley's Mechanical
+    Engineering Design, 9th ed., 2011, sec. 12-6). Validity: ``|eps| <= 1`` (a touching film,
+    ``|eps| = 1`` at the hole, has no hole flow).
+
+    Examples
+    --------
+    >>> float(fixed_hole_film_factor(0.5, 0.0, 0.0))  # hole at the thinnest film
+    0.125
+    """
+    ex, ey = (_checks.finite(n, a) for n, a in (("eps_x", eps_x), ("eps_y", eps_y)))
+    if np.any(ex * ex + ey * ey > 1.0 + 1e-12):
+        raise ValueError("eccentricity ratio must be <= 1")
+    phi = float(hole_angle)
+    return (1.0 - ex * np.cos(phi) - ey * np.sin(phi))**3
+
+
+def crank_hole_radius(crank_radius: ArrayLike, pin_radius: ArrayLike,
+                      hole_angle: ArrayLike) -> np.ndarray:
+    """Distance from the crank axis of the outlet of an oil hole on a crank pin's surface.
+
+    .. math:: r_h = \\sqrt{r^2 + R_p^2 + 2\\,r R_p \\cos\\varphi}
+
+    (law of cosines in the crank throw's plane).
+
+    Parameters
+    ----------
+    crank_radius : array_like [m]
+        ``r``: half the stroke (crank axis to pin centre).
+    pin_radius : array_like [m]
+        ``R_p``: half the pin diameter.
+    hole_angle : array_like [rad]
+        ``phi``: angle of the hole on the pin, measured at the pin centre from the crank
+        radius pointing away from the crank axis (0: the pin's outermost point).
+
+    Returns
+    -------
+    numpy.ndarray [m]
+
+    Examples
+    --------
+    >>> round(float(crank_hole_radius(0.04, 0.02, 0.0)), 12)  # outermost point: r + R_p
+    0.06
+    """
+    r = _checks.non_negative("crank_radius", crank_radius)
+    rp = _checks.non_negative("pin_radius", pin_radius)
+    phi = _checks.finite("hole_angle", hole_angle)
+    return np.sqrt(r * r + rp * rp + 2 * r * rp * np.cos(phi))
+
+
+def cycle_mean_feed_flow(
+    eps_x: ArrayLike, eps_y: ArrayLike, viscosity: ArrayLike, supply_pressure: float,
+    diameter: float, length: float, clearance: float, *, full_groove: bool = False,
+    groove_arc: tuple[float, float] | None = None, holes: int = 0,
+    hole_diameter: float | None = None, hole_angle: float | None = None,
+    hole_pressure_rise: ArrayLike | None = None,
+) -> np.ndarray:
+    """Cycle-mean pressure-fed oil flow of one bearing: full groove, partial groove and feed
+    holes superposed.
+
+    .. math::
+
+        \\bar Q = \\overline{Q_{groove}(\\varepsilon(t))}
+        + n_h\\,Q_{hole}\\!\\left(c\\,\\sqrt[3]{\\overline{(h/c)^3}},\\ p_s + \\Delta p\\right)
+
+    * full groove: :func:`groove_feed_flow` over ``0..2 pi`` across both lands (land width
+      ``L/2``), averaged over the orbit;
+    * partial groove: :func:`groove_feed_flow` over the groove arc (an end below the start
+      wraps by ``2 pi``), averaged over the orbit;
+    * holes: :func:`hole_feed_flow` (``n_h`` holes, edge distance ``L/2``) in the film whose
+      cube is the orbit's mean ``(h/c)^3`` at the hole: :func:`fixed_hole_film_factor` for a
+      hole fixed in the shell (``hole_angle`` given), :func:`rotating_hole_film_factor` for a
+      hole turning relative to the film (journal hole; ``hole_angle`` None); hole pressure
+      ``p_s`` plus ``hole_pressure_rise`` (the centrifugal rise of a crank drilling,
+      :func:`centrifugal_pressure_rise`), negative pressures taken as zero.
+
+    Parameters
+    ----------
+    eps_x, eps_y : array_like [-]
+        Eccentricity ratio along the orbit in the bearing frame, shape ``(..., angle)``.
+    viscosity : array_like [Pa s]
+        Dynamic viscosity, shape ``(...)``.
+    supply_pressure : float [Pa]
+        Oil supply pressure (gauge, >= 0).
+    diameter, length, clearance : float [m]
+        Journal diameter, effective bearing length, radial clearance.
+    full_groove : bool
+        A full circumferential groove in the middle of the bearing.
+    groove_arc : (float, float) [rad], optional
+        Start and end of a partial groove in the bearing frame.
+    holes : int
+        Number of feed holes (0: none).
+    hole_diameter : float [m]
+        Diameter of each hole (required with ``holes > 0``).
+    hole_angle : float [rad], optional
+        Angle of a hole fixed in the shell; None: the hole turns relative to the film.
+    hole_pressure_rise : array_like [Pa], optional
+        Pressure added to the supply pressure in the hole, broadcast to ``(...)``.
+
+    Returns
+    -------
+    numpy.ndarray [m^3/s]
+        Shape ``(...)`` (the viscosity's shape).
+
+    Notes
+    -----
+    Groove flow: Budynas and Nisbett, Shigley's Mechanical Engineering Design, 9th ed., 2011,
+    sec. 12-10; hole flow: line source in a strip (see :func:`hole_feed_flow`). The feeds and
+    the hydrodynamic film are superposed (they interact through the film's boundary
+    conditions: an approximation of concept level). Validity: that of the functions used
+    (``|eps| < 1``; hole radius / edge distance <= :data:`HOLE_RATIO_MAX`).
+    """
+    ex = np.asarray(eps_x, dtype=float)
+    ey = np.asarray(eps_y, dtype=float)
+    mu = np.asarray(viscosity, dtype=float)
+    mu4 = mu[..., None]
+    q = np.zeros(mu.shape)
+    if full_groove:
+        q += groove_feed_flow(ex, ey, supply_pressure, mu4, diameter, 0.5 * length, clearance,
+                              0.0, 2.0 * np.pi).mean(axis=-1)
+    if groove_arc is not None:
+        t1, t2 = groove_arc
+        t2 = t2 if t2 > t1 else t2 + 2.0 * np.pi
+        q += groove_feed_flow(ex, ey, supply_pressure, mu4, diameter, 0.5 * length, clearance,
+                              t1, t2).mean(axis=-1)
+    if holes:
+        if hole_diameter is None:
+            raise ValueError("hole_diameter is required with holes > 0")
+        p_hole = np.full(mu.shape, float(supply_pressure))
+        if hole_angle is None:
+            h3 = rotating_hole_film_factor(np.sqrt(ex**2 + ey**2)).mean(axis=-1)
+        else:
+            h3 = fixed_hole_film_factor(ex, ey, hole_angle).mean(axis=-1)
+        if hole_pressure_rise is not None:
+            p_hole = p_hole + hole_pressure_rise
+        q += holes * hole_feed_flow(clearance * np.cbrt(h3), np.maximum(p_hole, 0.0), mu,
+                                    hole_diameter, 0.5 * length)
+    return q
+
+
+def start_temperature(
+    t_supply: ArrayLike, omega_journal: ArrayLike, omega_bearing: ArrayLike,
+    diameter: ArrayLike, length: ArrayLike, clearance: ArrayLike, feed_coefficient: ArrayLike,
+    rho_cp: ArrayLike, heat_to_oil: float, viscosity_of: Callable[[np.ndarray], np.ndarray],
+    eps: float = 0.6,
+) -> np.ndarray:
+    """First estimate of the effective film temperature for :func:`solve_heat_balance`:
+    the balance of a film at a fixed eccentricity, solved exactly.
+
+    .. math::
+
+        P = \\frac{2\\pi R^3 L\\,\\mu}{c\\sqrt{1-\\varepsilon^2}}\\,\\overline{\\Delta\\omega^2},
+        \\qquad Q = D c L\\,\\varepsilon\\,\\overline{|\\bar\\omega|} + d / \\mu,
+        \\qquad T = T_s + \\tfrac12 f\\,\\frac{P(T)}{\\rho c_p Q(T)}
+
+    Couette (Petroff) friction of the full film at eccentricity ``eps``, steady short-bearing
+    side leakage ``U c L eps`` (``U = R (omega_J + omega_B)``), the feed flow at unit viscosity
+    ``d`` (``Q_feed mu``, concentric); solved by :func:`model_temperature`. Usually a few
+    kelvin from the balance: saves an orbit evaluation; the balance does not depend on it
+    beyond its tolerance.
+
+    Parameters
+    ----------
+    t_supply : array_like [K]
+        Oil supply temperature, batch shape ``(...)``.
+    omega_journal, omega_bearing : array_like [rad/s]
+        Angular velocities of journal and shell over the cycle, shape ``(..., angle)``.
+    diameter, length, clearance : array_like [m]
+        Broadcastable to ``(...)``.
+    feed_coefficient : array_like [m^3 Pa]
+        ``d = Q_feed mu`` of the concentric film (0 without feed).
+    rho_cp : array_like [J/(m^3 K)]
+        Volumetric heat capacity of the oil at ``t_supply``.
+    heat_to_oil : float [-]
+        Fraction ``f`` of the heat carried away by the oil.
+    viscosity_of : callable
+        ``mu(T)`` [Pa s], decreasing.
+    eps : float [-]
+        Eccentricity ratio of the estimate (0 <= eps < 1).
+
+    Returns
+    -------
+    numpy.ndarray [K]
+
+    Notes
+    -----
+    Petroff N.P. (1883) friction with the ``1/sqrt(1 - eps^2)`` factor of the full film
+    (Hamrock, Schmid and Jacobson, Fundamentals of Fluid Film Lubrication, 2nd ed., 2004,
+    ch. 10); side leakage: Ocvirk 1952; heat balance: ISO 7902-1:2020.
+    """
+    if not 0.0 <= eps < 1.0:
+        raise ValueError("eps must be in [0, 1)")
+    dia = _checks.positive("diameter", diameter)
+    ln = _checks.positive("length", length)
+    cl = _checks.positive("clearance", clearance)
+    wj = _checks.finite("omega_journal", omega_journal)
+    wb = _checks.finite("omega_bearing", omega_bearing)
+    a = (2.0 * np.pi * (0.5 * dia) ** 3 * ln / cl / np.sqrt(1.0 - eps**2)
+         * ((wj - wb) ** 2).mean(axis=-1))
+    qs = dia * cl * ln * eps * np.abs(0.5 * (wj + wb)).mean(axis=-1)
+    return model_temperature(t_supply, a, qs, feed_coefficient, rho_cp,
+                             EFFECTIVE_TEMPERATURE_WEIGHT * heat_to_oil, viscosity_of)
+

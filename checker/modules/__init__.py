@@ -12,7 +12,7 @@ from .. import graph
 
 REGISTRY: tuple[tuple[str, str, str], ...] = (
     ("loads", "Crank-train loads", "loads"),
-    ("bearings", "Bearing oil film (MOFT)", "moft"),
+    ("bearings", "Bearing oil film (MOFT)", "bearings"),
     ("bearing_performance", "Bearing oil flow, friction and temperature", "bearing_performance"),
     ("torsion", "Torsional vibration", "torsion"),
     ("joints", "Bolted joints", "joints"),
@@ -33,12 +33,12 @@ for _name, _title, _file in REGISTRY:
 from . import (  # noqa: E402, F401  (after the registry: their calculations name its modules)
     balance,
     bearing_performance,
+    bearings,
     crank_nose,
     damper_tuning,
     fatigue,
     flywheel,
     joints,
     loads,
-    moft,
     torsion,
 )

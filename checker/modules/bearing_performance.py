@@ -8,13 +8,14 @@ import dataclasses
 import numpy as np
 
 from ..calc import bearing_performance as bp
+from ..calc import film_pressure as fp
 from ..calc import orbit as ob
-from ..calc import reynolds_map as rm
 from ..calc import viscosity as vs
 from ..engine import Bearing, Engine
 from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity, register_module
+from ..results.bearings import FilmPressureDetail, HeatBalanceDetail
+from .bearings import oil_fit
 from .loads import CASES
-from .moft import oil_fit
 
 register_module("bearing_performance", "Bearing oil flow, friction and temperature")
 
@@ -23,50 +24,55 @@ FILM_TEMPERATURE = quantity(QuantitySpec(
     "bearing.film_temperature", "K", ("item", "case", "speed"),
     "Effective oil-film temperature of the heat balance (friction power carried away by the"
     " bearing's oil flow; mean of inlet and outlet, ISO 7902-1)", "°C", _F,
-    coords={"case": CASES}))
+    coords={"case": CASES}, detail=HeatBalanceDetail))
 FRICTION_POWER = quantity(QuantitySpec(
     "bearing.friction_power", "W", ("item", "case", "speed"),
     "Friction power of the oil film, cycle mean (Couette shear over the full film + squeeze"
-    " term), at the effective film temperature", "W", _F, coords={"case": CASES}))
+    " term), at the effective film temperature", "W", _F, coords={"case": CASES},
+    detail=HeatBalanceDetail))
 FRICTION_POWER_PEAK = quantity(QuantitySpec(
     "bearing.friction_power_peak", "W", ("item", "case", "speed"),
     "Friction power of the oil film, largest value over the cycle", "W", _F,
-    coords={"case": CASES}))
+    coords={"case": CASES}, detail=HeatBalanceDetail))
 FRICTION_TORQUE = quantity(QuantitySpec(
     "bearing.friction_torque", "N*m", ("item", "case", "speed"),
     "Friction torque of the oil film resisting the journal's rotation relative to the shell,"
-    " cycle mean", "N m", _F, coords={"case": CASES}))
+    " cycle mean", "N m", _F, coords={"case": CASES},
+    detail=HeatBalanceDetail))
 FRICTION_TORQUE_PEAK = quantity(QuantitySpec(
     "bearing.friction_torque_peak", "N*m", ("item", "case", "speed"),
     "Friction torque of the oil film resisting the journal's rotation, largest value over the"
-    " cycle", "N m", _F, coords={"case": CASES}))
+    " cycle", "N m", _F, coords={"case": CASES},
+    detail=HeatBalanceDetail))
 SIDE_FLOW = quantity(QuantitySpec(
     "bearing.side_flow", "m**3/s", ("item", "case", "speed"),
     "Hydrodynamic side leakage of the short-bearing film, cycle mean", "l/min", _F,
-    coords={"case": CASES}))
+    coords={"case": CASES}, detail=HeatBalanceDetail))
 FEED_FLOW = quantity(QuantitySpec(
     "bearing.feed_flow", "m**3/s", ("item", "case", "speed"),
     "Pressure-driven flow from the oil feed (groove or holes) at the supply pressure, cycle"
-    " mean", "l/min", _F, coords={"case": CASES}))
+    " mean", "l/min", _F, coords={"case": CASES},
+    detail=HeatBalanceDetail))
 OIL_FLOW = quantity(QuantitySpec(
     "bearing.oil_flow", "m**3/s", ("item", "case", "speed"),
     "Oil flow through the bearing: side leakage + pressure-fed flow, cycle mean", "l/min", _F,
-    coords={"case": CASES}))
+    coords={"case": CASES}, detail=HeatBalanceDetail))
 ENGINE_FRICTION = quantity(QuantitySpec(
     "engine.bearing_friction_power", "W", ("case", "speed"),
     "Friction power of all main and big-end bearings (hydrodynamic films only)", "W",
-    coords={"case": CASES}))
+    coords={"case": CASES}, detail=HeatBalanceDetail))
 PRESSURE_COMPARE = (("finite length", "bearing.peak_film_pressure"),
                     ("short bearing", "bearing.peak_film_pressure_short"))
 PEAK_PRESSURE = quantity(QuantitySpec(
     "bearing.peak_film_pressure", "Pa", ("item", "case", "speed"),
     "Peak oil-film pressure over the cycle, finite-length film (Reynolds equation, along the"
     " finite-length orbit of the film-thickness calculation)", "MPa", _F,
-    coords={"case": CASES}, compare=PRESSURE_COMPARE))
+    coords={"case": CASES}, compare=PRESSURE_COMPARE, detail=FilmPressureDetail))
 PEAK_PRESSURE_SHORT = quantity(QuantitySpec(
     "bearing.peak_film_pressure_short", "Pa", ("item", "case", "speed"),
     "Peak oil-film pressure over the cycle, short-bearing (Ocvirk) pressure field along the"
-    " short-bearing orbit", "MPa", _F, coords={"case": CASES}, compare=PRESSURE_COMPARE))
+    " short-bearing orbit", "MPa", _F, coords={"case": CASES}, compare=PRESSURE_COMPARE,
+    detail=FilmPressureDetail))
 
 HEAT_BALANCE_TOL = 0.1
 """[K] Convergence tolerance of the film temperature (benchmarks/bench_bearing_performance.py:
@@ -177,7 +183,7 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         raise MissingInputs([engine.describe_missing("Oil", "supply_temperature")])
     fit, notes = oil_fit(engine)
     bearings = {b.name: b for b in engine.bearings}
-    ex = vars(bl.detail)
+    ex = bl.detail
     speeds = np.array(bl.coords["speed"])
     nb, nc, ns = bl.values.shape
     missing: dict[tuple, list[str]] = {k: list(v) for k, v in bl.missing.items()}
@@ -213,70 +219,54 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         clear = np.array([b.clearance for b in sel])[col]
         full = np.array([b.groove == "full" for b in sel])[col]
         n_steps = STEPS_PER_CYCLE
-        fx_s = _resample(ex["fx"][rows], n_steps)
-        fy_s = _resample(ex["fy"][rows], n_steps)
-        wj_full = np.broadcast_to(ex["omega_journal"][rows], ex["fx"][rows].shape)
-        wb_full = np.broadcast_to(ex["omega_bearing"][rows], ex["fx"][rows].shape)
+        fx_s = _resample(ex.fx[rows], n_steps)
+        fy_s = _resample(ex.fy[rows], n_steps)
+        wj_full = np.broadcast_to(ex.omega_journal[rows], ex.fx[rows].shape)
+        wb_full = np.broadcast_to(ex.omega_bearing[rows], ex.fx[rows].shape)
         wj_s, wb_s = _resample(wj_full, n_steps), _resample(wb_full, n_steps)
         bdim = tuple(np.broadcast_to(a, shape) for a in (dia, length, clear, full))
         warm: dict = {}
 
+        def feed_kwargs(b: Bearing) -> dict:
+            """The feed of one bearing as arguments of :func:`bp.cycle_mean_feed_flow`."""
+            kind = feeds[b.name].split("+")
+            kw: dict = {"full_groove": "full" in kind}
+            if "partial" in kind:
+                kw["groove_arc"] = (b.groove_start, b.groove_end)
+            if "hole" in kind:
+                crank_fed = (b.oil_feed or "").strip().lower() == "crank"
+                kw.update(holes=b.oil_holes or 0, hole_diameter=b.oil_hole_diameter,
+                          hole_angle=None if crank_fed else b.oil_hole_angle)
+                if (crank_fed and b.type == "big end" and b.oil_hole_angle is not None
+                        and r_main is not None and stroke is not None):
+                    r_out = bp.crank_hole_radius(0.5 * stroke, 0.5 * b.diameter,
+                                                 b.oil_hole_angle)
+                    rho = float(vs.oil_density(float(t_supply), dens15))
+                    kw["hole_pressure_rise"] = bp.centrifugal_pressure_rise(
+                        rho, speeds[None, :], r_out, r_main)
+            return kw
+
+        fed = [(a, b, feed_kwargs(b)) for a, b in enumerate(sel)
+               if feeds[b.name] != "none" and int(rows[a]) not in feed_missing]
+
         def feed_flow(eps_x, eps_y, mu):
             """Cycle-mean pressure-fed flow [m^3/s] of every selected bearing, (B, C, S)."""
             q = np.zeros(shape)
-            mu4 = mu[..., None]
-            for a, b in enumerate(sel):
-                kind = feeds[b.name]
-                if kind == "none" or int(rows[a]) in feed_missing:
-                    continue
-                e_x, e_y = eps_x[a], eps_y[a]
-                if "full" in kind:
-                    q[a] += bp.groove_feed_flow(e_x, e_y, p_supply, mu4[a], b.diameter,
-                                                0.5 * b.length, b.clearance, 0.0,
-                                                2.0 * np.pi).mean(axis=-1)
-                if "partial" in kind:
-                    t1 = b.groove_start
-                    t2 = b.groove_end if b.groove_end > t1 else b.groove_end + 2.0 * np.pi
-                    q[a] += bp.groove_feed_flow(e_x, e_y, p_supply, mu4[a], b.diameter,
-                                                0.5 * b.length, b.clearance, t1,
-                                                t2).mean(axis=-1)
-                if "hole" in kind:
-                    eps2 = e_x**2 + e_y**2
-                    crank_fed = (b.oil_feed or "").strip().lower() == "crank"
-                    p_hole = np.full((nc, ns), float(p_supply))
-                    if crank_fed or b.oil_hole_angle is None:
-                        h3 = bp.rotating_hole_film_factor(np.sqrt(eps2)).mean(axis=-1)
-                    else:
-                        phi = b.oil_hole_angle
-                        h3 = ((1.0 - e_x * np.cos(phi) - e_y * np.sin(phi))**3).mean(axis=-1)
-                    if (crank_fed and b.type == "big end" and b.oil_hole_angle is not None
-                            and r_main is not None and stroke is not None):
-                        r = 0.5 * stroke
-                        rp = 0.5 * b.diameter
-                        r_out = np.sqrt(r * r + rp * rp + 2 * r * rp * np.cos(b.oil_hole_angle))
-                        rho = float(vs.oil_density(float(t_supply), dens15))
-                        p_hole = p_hole + bp.centrifugal_pressure_rise(
-                            rho, speeds[None, :], r_out, r_main)
-                    q[a] += (b.oil_holes or 0) * bp.hole_feed_flow(
-                        b.clearance * np.cbrt(h3), np.maximum(p_hole, 0.0), mu[a],
-                        b.oil_hole_diameter, 0.5 * b.length)
+            for a, b, kw in fed:
+                q[a] = bp.cycle_mean_feed_flow(eps_x[a], eps_y[a], mu[a], p_supply, b.diameter,
+                                               b.length, b.clearance, **kw)
             return q
 
         def start_estimate(ts):
-            """Couette friction, side leakage at eps 0.6 and the feed at eps 0: a first
-            temperature a few kelvin from the balance (saves an orbit evaluation; the result
-            does not depend on it beyond the tolerance)."""
+            """First film temperature (:func:`bp.start_temperature`), feed at eps 0."""
             mu0 = fit.viscosity(ts)
-            a = (2.0 * np.pi * (0.5 * dia) ** 3 * length / clear / np.sqrt(1.0 - 0.6**2)
-                 * ((wj_s - wb_s) ** 2).mean(axis=-1))
-            qs = dia * clear * length * 0.6 * np.abs(0.5 * (wj_s + wb_s)).mean(axis=-1)
             z0 = np.zeros(shape + (1,))
-            d = feed_flow(z0, z0, mu0) * mu0
             rho_cp = vs.oil_density(ts, dens15) * bp.oil_specific_heat(ts, dens15)
-            return bp.model_temperature(ts, a, qs, d, rho_cp, 0.5 * heat_to_oil,
+            return bp.start_temperature(ts, wj_s, wb_s, dia, length, clear,
+                                        feed_flow(z0, z0, mu0) * mu0, rho_cp, heat_to_oil,
                                         fit.viscosity)
 
-        load_shape = ex["fx"][rows].shape
+        load_shape = ex.fx[rows].shape
 
         def evaluate(t, active=None):
             """Every point (``active`` None) or only the points still iterating: their
@@ -284,8 +274,8 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
             mu = fit.viscosity(t)
             if active is None:
                 res = ob.solve_orbit(
-                    ex["fy"][rows], ex["fx"][rows], ex["omega_journal"][rows],
-                    ex["omega_bearing"][rows], speeds[None, None, :], *bdim[:3], mu,
+                    ex.fy[rows], ex.fx[rows], ex.omega_journal[rows],
+                    ex.omega_bearing[rows], speeds[None, None, :], *bdim[:3], mu,
                     model="closed_form", full_groove=bdim[3], steps_per_cycle=n_steps,
                     eps0_x=warm.get("x"),
                     eps0_y=warm.get("y"), squeeze_velocity=True)
@@ -294,8 +284,8 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                     return np.broadcast_to(a, load_shape)[active]
 
                 part = ob.solve_orbit(
-                    sub(ex["fy"][rows]), sub(ex["fx"][rows]), sub(ex["omega_journal"][rows]),
-                    sub(ex["omega_bearing"][rows]), np.broadcast_to(speeds, shape)[active],
+                    sub(ex.fy[rows]), sub(ex.fx[rows]), sub(ex.omega_journal[rows]),
+                    sub(ex.omega_bearing[rows]), np.broadcast_to(speeds, shape)[active],
                     *(a[active] for a in bdim[:3]), mu[active], model="closed_form",
                     full_groove=bdim[3][active], steps_per_cycle=n_steps,
                     eps0_x=warm["x"][active], eps0_y=warm["y"][active],
@@ -399,14 +389,14 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     if info.get("extrapolated"):
         assumptions.append("The effective film temperature lies beyond the viscosity data"
                            " (Vogel fit extrapolated).")
-    extra = {"feeds": feeds, "heat_to_oil": heat_to_oil, "t_supply": float(t_supply),
-             "p_supply": p_supply, "assumptions": assumptions, **info}
+    detail = HeatBalanceDetail(feeds=feeds, heat_to_oil=heat_to_oil, t_supply=float(t_supply),
+                               p_supply=p_supply, assumptions=tuple(assumptions), **info)
     coords = bl.coords
     miss_tq = {k: v for k, v in missing.items()}
 
     def q(spec, values, limit_attr=None, label=""):
         return Quantity(spec, values, coords, attrs(limit_attr, label), dict(miss_tq),
-                        findings, extra)
+                        findings, detail=detail)
 
     eng = np.sum(out["p"], axis=0) if nb else np.full((nc, ns), np.nan)
     eng_missing = {}
@@ -426,7 +416,7 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         "bearing.oil_flow": q(OIL_FLOW, qtot, "min_oil_flow", "minimum oil flow"),
         "engine.bearing_friction_power": Quantity(
             ENGINE_FRICTION, eng, {"case": coords["case"], "speed": coords["speed"]}, {},
-            eng_missing, {}, {"assumptions": assumptions}),
+            eng_missing, {}, detail=detail),
     }
 
 
@@ -445,45 +435,43 @@ def film_pressure(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     nb, nc, ns = bl.values.shape
     p_short = np.full((nb, nc, ns), np.nan)
     th_short = np.full((nb, nc, ns), np.nan)
-    sx = short.extra
-    if sx.get("p_max") is not None:
-        p_short[:] = sx["p_max"]
-        th_short[:] = sx["theta_p_max"]
+    sx = short.detail
+    if sx.p_max is not None:
+        p_short[:] = sx.p_max
+        th_short[:] = sx.theta_p_max
     p_fin = np.full((nb, nc, ns), np.nan)
     th_fin = np.full((nb, nc, ns), np.nan)
-    orb = fin.extra.get("orbit") or {}
-    if orb:
-        rows = orb["rows"]
-        n = orb["eps_x"].shape[-1]
-        ex = vars(bl.detail)
-        lx = _resample(ex["fy"][rows], n)
-        ly = _resample(ex["fx"][rows], n)
+    orb = fin.detail.orbit
+    if orb is not None:
+        rows = orb.rows
+        n = orb.eps_x.shape[-1]
+        ex = bl.detail
+        lx = _resample(ex.fy[rows], n)
+        ly = _resample(ex.fx[rows], n)
         col = (slice(None), None, None, None)
         sel = [bearings[names[i]] for i in rows]
         dia = np.array([b.diameter for b in sel])[col]
         length = np.array([b.length for b in sel])[col]
         clear = np.array([b.clearance for b in sel])[col]
         full = np.array([b.groove == "full" for b in sel])[col]
-        share = np.where(full, 0.5, 1.0)
-        mu = np.asarray(fin.extra["viscosity"], dtype=float)
+        mu = np.asarray(fin.detail.viscosity, dtype=float)
         mu = mu[rows][..., None] if mu.ndim == 3 else mu
-        pm, _ = rm.film_state_map(lx * share, ly * share, orb["eps_x"], orb["eps_y"], dia,
-                                  length * share, clear, mu)
-        k = np.argmax(pm, axis=-1)
-        p_fin[rows] = np.take_along_axis(pm, k[..., None], axis=-1)[..., 0]
-        th_fin[rows] = np.asarray(orb["theta"])[k]
+        p_fin[rows], th_fin[rows] = fp.peak_film_pressure_finite(
+            lx, ly, orb.eps_x, orb.eps_y, orb.theta, dia, length, clear, mu, full)
     missing_s = dict(short.missing)
     missing_f = dict(fin.missing)
     attrs = _limit_attrs(engine, bl, "max_film_pressure")
-    extra_f = {"theta_p_max": th_fin, "film_temperature": fin.extra.get("film_temperature"),
-               "model_text": "finite-length Reynolds film (mobility map) along the"
-                             " finite-length orbit"}
-    extra_s = {"theta_p_max": th_short, "film_temperature": short.extra.get("film_temperature"),
-               "model_text": "short-bearing (Ocvirk) pressure along the short-bearing orbit"}
+    detail_f = FilmPressureDetail(
+        theta_p_max=th_fin, film_temperature=fin.detail.film_temperature,
+        model_text="finite-length Reynolds film (mobility map) along the finite-length orbit")
+    detail_s = FilmPressureDetail(
+        theta_p_max=th_short, film_temperature=short.detail.film_temperature,
+        model_text="short-bearing (Ocvirk) pressure along the short-bearing orbit")
     return {
         "bearing.peak_film_pressure": Quantity(PEAK_PRESSURE, p_fin, bl.coords, attrs,
-                                               missing_f, dict(fin.findings), extra_f),
+                                               missing_f, dict(fin.findings),
+                                               detail=detail_f),
         "bearing.peak_film_pressure_short": Quantity(PEAK_PRESSURE_SHORT, p_short, bl.coords,
                                                      attrs, missing_s, dict(short.findings),
-                                                     extra_s),
+                                                     detail=detail_s),
     }

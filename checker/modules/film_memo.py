@@ -2,9 +2,9 @@
 
 A variant that moves one bearing's inputs (its clearance, its width) leaves the orbits of the
 other bearings unchanged; the film calculation is nevertheless one node of the calculation
-graph (:mod:`checker.modules.moft`), so without this memo every such variant solves the orbits
+graph (:mod:`checker.modules.bearings`), so without this memo every such variant solves the orbits
 of all bearings again. :func:`orbits` wraps the orbit kernel call of
-:func:`checker.modules.moft._orbits`: each bearing row of each prepared engine gets a key, and
+:func:`checker.modules.bearings._orbits`: each bearing row of each prepared engine gets a key, and
 rows whose key was solved before are taken from the memo; the others are solved in one kernel
 call, as before.
 

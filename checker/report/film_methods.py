@@ -6,9 +6,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..api import CheckResult
-from .sections import fmt
-
-CASE_TEXT = {"full": "full load", "no": "no load", "part": "part load"}
+from ..display import case_text
+from .sections import fmt, in_unit, rpm
 
 
 def film_method_blocks(res: CheckResult) -> list[dict]:
@@ -29,9 +28,11 @@ def film_method_blocks(res: CheckResult) -> list[dict]:
                 np.nanargmin(np.where(ok, f, np.inf)))
             r = s[kf] / f[kf]
             ratios.append(r)
-            rpm = lambda k: f"{float(short.coords['speed'][k]) * 30 / np.pi:.0f}"  # noqa: E731
-            rows.append([n, CASE_TEXT.get(str(c), str(c)), fmt(s[ks] * 1e6), rpm(ks),
-                         fmt(f[kf] * 1e6), rpm(kf), fmt(r)])
+            def at(k: int) -> str:
+                return f"{float(rpm(short.coords['speed'][k])):.0f}"
+
+            rows.append([n, case_text(str(c)), fmt(in_unit(s[ks], "m", "um")), at(ks),
+                         fmt(in_unit(f[kf], "m", "um")), at(kf), fmt(r)])
     if not rows:
         return []
     lo, hi = min(ratios), max(ratios)

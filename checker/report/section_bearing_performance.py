@@ -10,10 +10,8 @@ import numpy as np
 from ..api import CheckResult
 from .plots import figure, legend_below, literal, to_image
 from .section_loads import CURVE_COLORS, bearing_speed_figure, shade_caption, worst_table
-from .sections import fmt, merge_items, section
+from .sections import fmt, in_unit, merge_items, rpm, section
 
-RPM = 2 * np.pi / 60
-LPM = 6e4  # m^3/s -> l/min
 FEED_WORDS = {"full": "full groove", "partial": "partial groove", "hole": "feed hole(s)",
               "none": "none given"}
 
@@ -27,9 +25,14 @@ def _widths(table: dict, widths: list[int]) -> dict:
     return {**table, "widths": widths}
 
 
+def _lpm(v):
+    """A flow [m^3/s] in l/min."""
+    return in_unit(v, "m**3/s", "l/min")
+
+
 def _celsius(q):
     """The same quantity in °C for plotting (display unit of the report)."""
-    return replace(q, values=q.values - 273.15)
+    return replace(q, values=in_unit(q.values, "K", "°C"))
 
 
 @section("bearing_performance", label="bearing flow, friction and temperature")
@@ -49,16 +52,16 @@ def bearing_performance_section(res: CheckResult) -> dict:
     ref = t if t is not None else pp
     names = ref.coords["item"]
     if t is not None:
-        ex = t.extra
+        ex = t.detail
         oil = eng.oil
         blocks.append({"type": "table", "caption": "Oil supply and heat balance (sheet Oil)",
                        "columns": ["parameter", "value", "unit", "cell"], "rows": [
-            ["Oil supply pressure", fmt(None if ex["p_supply"] is None else
-                                        ex["p_supply"] / 1e5), "bar(g)",
+            ["Oil supply pressure", fmt(None if ex.p_supply is None else
+                                        in_unit(ex.p_supply, "Pa", "bar")), "bar(g)",
              eng.cell("Oil", "supply_pressure")],
-            ["Oil supply temperature", fmt(ex["t_supply"] - 273.15), "°C",
+            ["Oil supply temperature", fmt(in_unit(ex.t_supply, "K", "°C")), "°C",
              eng.cell("Oil", "supply_temperature")],
-            ["Heat fraction carried by the oil", fmt(ex["heat_to_oil"]), "-",
+            ["Heat fraction carried by the oil", fmt(ex.heat_to_oil), "-",
              eng.cell("Oil", "heat_to_oil")],
             ["Film temperature of the film thickness",
              oil.get("film_temperature_method") or "supply plus rise", "-",
@@ -67,11 +70,12 @@ def bearing_performance_section(res: CheckResult) -> dict:
         rows = []
         for n in names:
             b = bearings[n]
-            rows.append([n, _feed_text(ex["feeds"][n]),
+            rows.append([n, _feed_text(ex.feeds[n]),
                          fmt(None if b.max_film_temperature is None
-                             else b.max_film_temperature - 273.15),
-                         fmt(None if b.max_film_pressure is None else b.max_film_pressure / 1e6),
-                         fmt(None if b.min_oil_flow is None else b.min_oil_flow * LPM)])
+                             else in_unit(b.max_film_temperature, "K", "°C")),
+                         fmt(None if b.max_film_pressure is None
+                             else in_unit(b.max_film_pressure, "Pa", "MPa")),
+                         fmt(None if b.min_oil_flow is None else _lpm(b.min_oil_flow))])
         rows, _ = merge_items(rows, [""] * len(rows))
         blocks.append({"type": "table", "caption": "Oil feed and the supplier's limits per"
                        " bearing (sheet Bearings; '-': not given, the rule is not evaluated)",
@@ -107,11 +111,11 @@ def bearing_performance_section(res: CheckResult) -> dict:
         def more_t(idx):
             if idx is None:
                 return ["-", "-", "-"]
-            return [fmt(flow.values[idx] * LPM), fmt(powq.values[idx]),
+            return [fmt(_lpm(flow.values[idx])), fmt(powq.values[idx]),
                     fmt(None if peak is None else peak.values[idx])]
 
         blocks.append(_widths(worst_table(
-            res, t, lambda v: fmt(v - 273.15), more_t,
+            res, t, lambda v: fmt(in_unit(v, "K", "°C")), more_t,
             "Hottest film per bearing and load case (effective temperature of the heat"
             " balance): the judged worst first, then, marked, a hotter film at a point the"
             " rules do not judge",
@@ -121,11 +125,11 @@ def bearing_performance_section(res: CheckResult) -> dict:
         def more_q(idx):
             if idx is None:
                 return ["-", "-"]
-            return [fmt(qs["bearing.side_flow"].values[idx] * LPM),
-                    fmt(qs["bearing.feed_flow"].values[idx] * LPM)]
+            return [fmt(_lpm(qs["bearing.side_flow"].values[idx])),
+                    fmt(_lpm(qs["bearing.feed_flow"].values[idx]))]
 
         blocks.append(_widths(worst_table(
-            res, flow, lambda v: fmt(v * LPM), more_q,
+            res, flow, lambda v: fmt(_lpm(v)), more_q,
             "Smallest oil flow per bearing and load case (side leakage + pressure-fed flow,"
             " cycle mean)",
             ["bearing", "case", "oil flow [l/min]", "speed [rpm]", "side leakage [l/min]",
@@ -136,11 +140,11 @@ def bearing_performance_section(res: CheckResult) -> dict:
         def more_p(idx):
             if idx is None:
                 return ["-", "-"]
-            return [fmt(None if ps is None else ps.values[idx] / 1e6),
-                    fmt(np.degrees(pp.extra["theta_p_max"][idx]))]
+            return [fmt(None if ps is None else in_unit(ps.values[idx], "Pa", "MPa")),
+                    fmt(np.degrees(pp.detail.theta_p_max[idx]))]
 
         blocks.append(_widths(worst_table(
-            res, pp, lambda v: fmt(v / 1e6), more_p,
+            res, pp, lambda v: fmt(in_unit(v, "Pa", "MPa")), more_p,
             "Highest oil-film pressure per bearing and load case: finite-length film (judged),"
             " the short-bearing value at the same point beside it",
             ["bearing", "case", "p_max finite [MPa]", "speed [rpm]", "p_max short [MPa]",
@@ -149,11 +153,11 @@ def bearing_performance_section(res: CheckResult) -> dict:
     ef = qs.get("engine.bearing_friction_power")
     powq = qs.get("bearing.friction_power")
     if ef is not None and powq is not None:
-        sp = np.array(ef.coords["speed"]) / RPM
+        sp = rpm(np.array(ef.coords["speed"]))
         fig, axes = figure(170, 70, ncols=2, legend_rows=2)
         ax = axes[0]
         for ci, c in enumerate(ef.coords["case"]):
-            ax.plot(sp, ef.values[ci] / 1e3, label=f"{c} load",
+            ax.plot(sp, in_unit(ef.values[ci], "W", "kW"), label=f"{c} load",
                     color=CURVE_COLORS[ci], ls="-" if ci == 0 else "--")
         ax.set_xlabel("Engine speed [rpm]")
         ax.set_ylabel("Bearing friction power [kW]")
@@ -185,7 +189,7 @@ def bearing_performance_section(res: CheckResult) -> dict:
                        + shade_caption(t), "data": [t.name]})
         flow = qs.get("bearing.oil_flow")
         blocks.append({"type": "figure", "png": bearing_speed_figure(
-            res, flow, LPM, "Oil flow [l/min]", "l/min"),
+            res, flow, float(_lpm(1.0)), "Oil flow [l/min]", "l/min"),
             "caption": "Oil flow through each bearing (side leakage + pressure-fed flow)"
                        " against speed." + shade_caption(flow), "data": [flow.name]})
     if pp is not None:
@@ -199,10 +203,10 @@ def bearing_performance_section(res: CheckResult) -> dict:
              " orbits of the film-thickness section (finite length judged, short bearing"
              " beside it).")
     if t is not None:
-        ex = t.extra
-        if "t_range" in ex:
-            intro += (f" Effective film temperatures {ex['t_range'][0] - 273.15:.1f}.."
-                      f"{ex['t_range'][1] - 273.15:.1f} °C (supply"
-                      f" {ex['t_supply'] - 273.15:.0f} °C), converged to"
-                      f" {ex['change_max']:.2g} K in {ex['evaluations']} orbit evaluations.")
+        ex = t.detail
+        if ex.t_range is not None:
+            lo, hi = in_unit(np.asarray(ex.t_range), "K", "°C")
+            intro += (f" Effective film temperatures {lo:.1f}..{hi:.1f} °C (supply"
+                      f" {in_unit(ex.t_supply, 'K', '°C'):.0f} °C), converged to"
+                      f" {ex.change_max:.2g} K in {ex.evaluations} orbit evaluations.")
     return {"id": "bearing_performance", "title": title, "intro": intro, "blocks": blocks}

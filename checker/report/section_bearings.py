@@ -9,9 +9,7 @@ from . import judged as jd
 from .film_methods import film_method_blocks
 from .plots import every, figure, to_image
 from .section_loads import bearing_speed_figure, lining_text, shade_caption, worst_table
-from .sections import fmt, merge_items, section
-
-RPM = 2 * np.pi / 60
+from .sections import fmt, in_unit, merge_items, rpm, section
 
 
 @section("bearings", label="bearing oil film")
@@ -22,15 +20,16 @@ def bearings_section(res: CheckResult) -> dict:
     if q is None:
         return {"id": "bearings", "title": "Bearing oil film (MOFT)", "intro": "Not computed.",
                 "blocks": []}
-    ex = q.extra
+    d = q.detail
     eng = res.engine
     bearings = {b.name: b for b in eng.bearings}
     names = q.coords["item"]
     rows = []
     for n in names:
         b = bearings[n]
-        rows.append([n, b.type, fmt(b.diameter * 1e3), fmt(b.length * 1e3),
-                     fmt(b.clearance * 1e6), fmt(ex["l_over_d"][n]), b.groove,
+        rows.append([n, b.type, fmt(in_unit(b.diameter, "m", "mm")),
+                     fmt(in_unit(b.length, "m", "mm")), fmt(in_unit(b.clearance, "m", "um")),
+                     fmt(d.l_over_d[n]), b.groove,
                      str(b.oil_holes or 0), lining_text(b.lining) if b.lining else "-"])
     rows, _ = merge_items(rows, [""] * len(rows))
     blocks.append({"type": "table", "caption": "Bearings (sheet Bearings; bearings with equal"
@@ -38,18 +37,19 @@ def bearings_section(res: CheckResult) -> dict:
                    "columns": ["bearing", "type", "D [mm]", "L_eff [mm]", "c [µm]", "L/D",
                                "groove", "oil holes", "lining"], "rows": rows,
                    "widths": [22, 9, 9, 10, 8, 8, 12, 10, 12]})
-    tf, mu = np.asarray(ex["film_temperature"], float), np.asarray(ex["viscosity"], float)
+    tf = in_unit(np.asarray(d.film_temperature, float), "K", "°C")
+    mu = in_unit(np.asarray(d.viscosity, float), "Pa*s", "mPa*s")
     if tf.ndim == 0:
-        film = (f"Film temperature {float(tf) - 273.15:.0f} °C, dynamic viscosity"
-                f" {float(mu) * 1e3:.3f} mPa·s.")
+        film = (f"Film temperature {float(tf):.0f} °C, dynamic viscosity"
+                f" {float(mu):.3f} mPa·s.")
     else:
         ok = np.isfinite(tf)
         film = ("Film temperature from each bearing's heat balance (section 'Bearing oil flow,"
-                f" friction and temperature'): {tf[ok].min() - 273.15:.0f}.."
-                f"{tf[ok].max() - 273.15:.0f} °C, dynamic viscosity"
-                f" {mu[ok].min() * 1e3:.3f}..{mu[ok].max() * 1e3:.3f} mPa·s.") if ok.any() \
+                f" friction and temperature'): {tf[ok].min():.0f}.."
+                f"{tf[ok].max():.0f} °C, dynamic viscosity"
+                f" {mu[ok].min():.3f}..{mu[ok].max():.3f} mPa·s.") if ok.any() \
             else "Film temperature of the heat balance: not available."
-    blocks.append({"type": "text", "text": f"Model: {ex['model_text']}. {film}"})
+    blocks.append({"type": "text", "text": f"Model: {d.model_text}. {film}"})
     blocks.append({"type": "equations", "items": [
         ("Journal motion", "dε/dt = |F| ψ² /(μ L D) · M(ε, F̂) + ω̄ ẑ × ε,  ψ = c/R",
          "Booker, Dynamically loaded journal bearings: mobility method of solution, J. Basic"
@@ -61,7 +61,7 @@ def bearings_section(res: CheckResult) -> dict:
          " Dynamics 2006"),
         ("MOFT", "h_min = c (1 − max ε) over the periodic cycle", "Booker 1965"),
     ]})
-    sp = np.array(q.coords["speed"]) / RPM
+    sp = rpm(np.array(q.coords["speed"]))
     cases = q.coords["case"]
 
     blocks.append({"type": "heading", "text": "Judged worst cases"})
@@ -71,16 +71,16 @@ def bearings_section(res: CheckResult) -> dict:
                      r.quantity == x.name and any(rr.rule == r.id for rr in res.results)
                      for r in res.rules)]
     for jq in judged_qs or [q]:
-        jx = jq.extra
+        jx = jq.detail
 
         def more_j(idx, jx=jx):
             if idx is None:
                 return ["-", "-"]
-            return [fmt(np.degrees(jx["theta_h_min"][idx])), fmt(jx["eps_max"][idx])]
+            return [fmt(np.degrees(jx.theta_h_min[idx])), fmt(jx.eps_max[idx])]
 
         blocks.append(worst_table(
-            res, jq, lambda v: fmt(v * 1e6), more_j,
-            f"Thinnest film per bearing and load case, {jx['model_text']}: the judged worst"
+            res, jq, lambda v: fmt(in_unit(v, "m", "um")), more_j,
+            f"Thinnest film per bearing and load case, {jx.model_text}: the judged worst"
             " first (the value of the rule result), then, marked, a thinner film at a point the"
             " rules do not judge",
             ["bearing", "case", "MOFT [µm]", "speed [rpm]", "crank angle [°]",
@@ -90,13 +90,13 @@ def bearings_section(res: CheckResult) -> dict:
     blocks.append({"type": "figure", "png": bearing_speed_figure(res, q, 1e6, "MOFT [µm]", "µm"),
                    "caption": "Minimum oil film thickness against speed, full and no load."
                               + shade_caption(q), "data": [q.name]})
-    orb = ex.get("orbit") or {}
+    orb = d.orbit
     judged_worst = jd.worst(q, (), jd.direction(res, q.name, "min"))[0]
-    if orb and judged_worst is not None:
+    if orb is not None and judged_worst is not None:
         i, ci, k = judged_worst.index
-        a = int(np.where(orb["rows"] == i)[0][0])
-        exx, eyy = orb["eps_x"][a, ci, k], orb["eps_y"][a, ci, k]
-        th = np.degrees(orb["theta"])
+        a = int(np.where(orb.rows == i)[0][0])
+        exx, eyy = orb.eps_x[a, ci, k], orb.eps_y[a, ci, k]
+        th = np.degrees(orb.theta)
         fig = figure(170, 72, ncols=2)[0]
         fig.clf()
         ax0 = fig.add_axes((0.11, 0.16, 0.28, 0.72), aspect="equal")
@@ -111,23 +111,23 @@ def bearings_section(res: CheckResult) -> dict:
         ax0.set_title("Journal orbit")
         ax1 = fig.add_axes((0.52, 0.16, 0.38, 0.72))
         c_ = bearings[names[i]].clearance
-        h = c_ * (1 - np.hypot(exx, eyy)) * 1e6
+        h = in_unit(c_ * (1 - np.hypot(exx, eyy)), "m", "um")
         ax1.plot(th[ev], h[ev], color="#1f77b4", label="film thickness h")
         ax1.set_xlim(0, 720)
         ax1.set_xticks(np.arange(0, 721, 180))
         bl = res.outcome.quantities.get("loads.bearing_load")
         cols = {"crank angle [°]": th, "eps_x [-]": exx, "eps_y [-]": eyy, "h [µm]": h}
         if bl is not None:
-            le = vars(bl.detail)
-            f = np.hypot(le["fx"][i, ci, k], le["fy"][i, ci, k]) / 1e3
+            le = bl.detail
+            f = in_unit(np.hypot(le.fx[i, ci, k], le.fy[i, ci, k]), "N", "kN")
             ax2 = ax1.twinx()
             fv = every(f.size)
-            ax2.plot(np.degrees(le["theta"])[fv], f[fv], color="#c0392b", lw=0.8)
+            ax2.plot(np.degrees(le.theta)[fv], f[fv], color="#c0392b", lw=0.8)
             ax2.set_ylabel("Bearing load |F| [kN]", color="#c0392b")
             ax2.tick_params(axis="y", colors="#c0392b")
             ax2.spines["right"].set_visible(True)
             ax2.grid(False)
-            if len(le["theta"]) == th.size:
+            if len(le.theta) == th.size:
                 cols["|F| [kN]"] = f
         ax1.set_xlabel("Crank angle [°]")
         ax1.set_ylabel("Film thickness h [µm]", color="#1f77b4")

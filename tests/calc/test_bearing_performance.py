@@ -539,3 +539,97 @@ def test_bad_inputs_outside_validity():
     with pytest.raises(ValueError, match="oil flow"):
         bp.solve_heat_balance(lambda t: (1.0, 0.0, 0.0, 1.7e6, None), 330.0,
                               lambda t: 0.01 + 0 * t)
+
+
+# ------------------------------------------------------------------------------------------
+# Feed flow of one bearing over its orbit, crank drilling geometry, start temperature
+# (physics moved out of the bearing-performance graph node, issue 24)
+# ------------------------------------------------------------------------------------------
+def _orbit(eps, n=720):
+    """A whirling orbit of constant eccentricity ``eps``: the direction turns once per cycle,
+    shape (1, n) (one point of the batch, n steps)."""
+    t = np.linspace(0.0, 2.0 * np.pi, n, endpoint=False)
+    return (eps * np.cos(t))[None, :], (eps * np.sin(t))[None, :]
+
+
+def test_fixed_hole_film_factor_hand_values_and_whirl_mean():
+    """(h/c)^3 at a shell hole: hand values; averaged over a whirling orbit it is the film
+    seen by a turning hole, 1 + 1.5 eps^2 (closed form of the mean of (1 - eps cos u)^3)."""
+    assert float(bp.fixed_hole_film_factor(0.3, 0.4, 0.5 * np.pi)) == pytest.approx(0.6**3)
+    assert float(bp.fixed_hole_film_factor(0.3, 0.4, np.pi)) == pytest.approx(1.3**3)
+    ex, ey = _orbit(0.7)
+    mean = bp.fixed_hole_film_factor(ex, ey, 1.234).mean(axis=-1)
+    assert float(mean[0]) == pytest.approx(1.0 + 1.5 * 0.49, rel=1e-12)
+    with pytest.raises(ValueError, match="eccentricity"):
+        bp.fixed_hole_film_factor(0.8, 0.8, 0.0)
+
+
+def test_crank_hole_radius_hand_values():
+    """Law of cosines: r = 45 mm, R_p = 24 mm; hole outward r + R_p = 69 mm, sideways
+    sqrt(45^2 + 24^2) = 51 mm, inward r - R_p = 21 mm."""
+    r = bp.crank_hole_radius(0.045, 0.024, np.array([0.0, 0.5 * np.pi, np.pi]))
+    np.testing.assert_allclose(r, [0.069, 0.051, 0.021], rtol=1e-12)
+
+
+FEED = {"supply_pressure": 3e5, "diameter": D, "length": 2 * 0.009, "clearance": C}
+
+
+def test_cycle_mean_feed_full_groove_is_shigley():
+    """Full groove, orbit at |eps| = 0.5: Shigley's pi p_s D c^3 (1 + 1.5 eps^2) / (6 mu b),
+    b = L/2 (Budynas and Nisbett 2011, sec. 12-10)."""
+    ex, ey = _orbit(0.5)
+    q = bp.cycle_mean_feed_flow(ex, ey, np.array([MU]), full_groove=True, **FEED)
+    ref = np.pi * 3e5 * D * C**3 * (1.0 + 1.5 * 0.25) / (6.0 * MU * 0.009)
+    assert float(q[0]) == pytest.approx(ref, rel=1e-12)
+
+
+def test_cycle_mean_feed_partial_arc_wraps_and_halves():
+    """A half arc given with its end below its start (270 deg .. 90 deg) wraps by 2 pi; in a
+    concentric film it carries half the full groove's flow."""
+    z = np.zeros((1, 4))
+    full = bp.cycle_mean_feed_flow(z, z, np.array([MU]), full_groove=True, **FEED)
+    half = bp.cycle_mean_feed_flow(z, z, np.array([MU]), groove_arc=(1.5 * np.pi, 0.5 * np.pi),
+                                   **FEED)
+    assert float(half[0]) == pytest.approx(0.5 * float(full[0]), rel=1e-12)
+    both = bp.cycle_mean_feed_flow(z, z, np.array([MU]), full_groove=True,
+                                   groove_arc=(1.5 * np.pi, 0.5 * np.pi), **FEED)
+    assert float(both[0]) == pytest.approx(1.5 * float(full[0]), rel=1e-12)
+
+
+def test_cycle_mean_feed_holes_hand_formula():
+    """Two holes of 5 mm, edge distance 9 mm: Q = n h^3/(12 mu) 2 pi p / ln(4b/(pi a));
+    a shell hole in a concentric film sees h = c, a turning hole in a whirling film at
+    eps 0.6 sees h^3 = (1 + 1.5 * 0.36) c^3; a centrifugal rise adds to the supply pressure
+    and a net negative pressure feeds nothing."""
+    def ref(h3, p):
+        return 2 * h3 / (12.0 * MU) * 2.0 * np.pi * p / np.log(4.0 * 0.009 / (np.pi * 0.0025))
+
+    z = np.zeros((1, 8))
+    holes = {"holes": 2, "hole_diameter": 0.005}
+    q = bp.cycle_mean_feed_flow(z, z, np.array([MU]), hole_angle=0.3, **holes, **FEED)
+    assert float(q[0]) == pytest.approx(ref(C**3, 3e5), rel=1e-12)
+    ex, ey = _orbit(0.6)
+    q = bp.cycle_mean_feed_flow(ex, ey, np.array([MU]), **holes, **FEED)
+    assert float(q[0]) == pytest.approx(ref(1.54 * C**3, 3e5), rel=1e-12)
+    q = bp.cycle_mean_feed_flow(z, z, np.array([MU, MU]), hole_angle=0.0,
+                                hole_pressure_rise=np.array([1e5, -5e5]), **holes, **FEED)
+    assert float(q[0]) == pytest.approx(ref(C**3, 4e5), rel=1e-12)
+    assert float(q[1]) == 0.0
+
+
+def test_start_temperature_closed_form_at_constant_viscosity():
+    """Constant viscosity, no feed: T = T_s + 0.5 f P / (rho c_p Q) with the Petroff power at
+    eps 0.6, P = T_Petroff omega / sqrt(1 - 0.36), and the short-bearing side leakage
+    Q = D c L 0.6 omega/2 (shell fixed: mean angular velocity omega/2; Ocvirk 1952)."""
+    ts = np.array([373.15])
+    wj = np.full((1, 16), W)
+    wb = np.zeros((1, 16))
+    rho_cp = 1.6e6
+    t = bp.start_temperature(ts, wj, wb, D, L, C, 0.0, rho_cp, 0.8, lambda x: MU + 0.0 * x)
+    power = petroff_torque(MU, R, L, W, C) * W / 0.8
+    flow = D * C * L * 0.6 * 0.5 * W
+    assert float(t[0]) == pytest.approx(373.15 + 0.5 * 0.8 * power / (rho_cp * flow), abs=1e-9)
+    with pytest.raises(ValueError, match="eps"):
+        bp.start_temperature(ts, wj, wb, D, L, C, 0.0, rho_cp, 0.8, lambda x: MU + 0.0 * x,
+                             eps=1.0)
+

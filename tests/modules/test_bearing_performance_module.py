@@ -11,7 +11,8 @@ from checker import api
 from checker.calc import bearing_performance as bp
 from checker.calc import orbit as ob
 from checker.calc import viscosity as vs
-from checker.modules.moft import oil_fit
+from checker.modules.bearings import oil_fit
+from checker.results.bearings import FilmDetail, FilmOrbit, FilmPressureDetail, HeatBalanceDetail
 from tests.helpers import edited, example_path, set_cell, set_param
 
 RPM = 2 * np.pi / 60
@@ -21,6 +22,28 @@ RPM = 2 * np.pi / 60
 def result(tmp_path_factory):
     return api.check(example_path(tmp_path_factory.mktemp("perf")),
                      select=["BRG-007", "BRG-008", "BRG-009"])
+
+
+def test_results_are_typed(result):
+    """Every bearing quantity carries its declared detail type (issue 24), with the orbits of
+    the film-thickness calculation and the heat balance's record."""
+    q = result.outcome.quantities
+    for name, want in (("bearing.moft_short", FilmDetail), ("bearing.moft_finite", FilmDetail),
+                       ("bearing.film_temperature", HeatBalanceDetail),
+                       ("bearing.oil_flow", HeatBalanceDetail),
+                       ("engine.bearing_friction_power", HeatBalanceDetail),
+                       ("bearing.peak_film_pressure", FilmPressureDetail),
+                       ("bearing.peak_film_pressure_short", FilmPressureDetail)):
+        assert type(q[name].detail) is want, name
+        assert q[name].spec.detail is want, name
+        assert not q[name].extra, name
+    fin = q["bearing.moft_finite"].detail
+    assert isinstance(fin.orbit, FilmOrbit)
+    shape = q["bearing.moft_finite"].values.shape
+    assert fin.orbit.eps_x.shape[:3] == (fin.orbit.rows.size,) + shape[1:]
+    hb = q["bearing.film_temperature"].detail
+    assert hb.evaluations >= 1 and hb.t_range[0] <= hb.t_range[1]
+    assert set(hb.feeds) == set(q["bearing.film_temperature"].coords["item"])
 
 
 def test_quantities_finite_and_consistent(result):
@@ -37,7 +60,7 @@ def test_quantities_finite_and_consistent(result):
     np.testing.assert_allclose(q["engine.bearing_friction_power"].values,
                                q["bearing.friction_power"].values.sum(axis=0), rtol=1e-12)
     # the film is warmer than the supply and friction grows with speed
-    assert (t.values > t.extra["t_supply"]).all()
+    assert (t.values > t.detail.t_supply).all()
     p = q["engine.bearing_friction_power"].values
     assert (np.diff(p, axis=-1) > 0).all()
     # friction power = torque x relative speed on average for the mains (omega_bar = omega/2:
@@ -57,7 +80,7 @@ def test_heat_balance_closes_on_its_own_numbers(result):
     t = q["bearing.film_temperature"].values
     p = q["bearing.friction_power"].values
     flow = q["bearing.oil_flow"].values
-    ts = q["bearing.film_temperature"].extra["t_supply"]
+    ts = q["bearing.film_temperature"].detail.t_supply
     rho_cp = vs.oil_density(t, vs.DENSITY_15C_DEFAULT) * bp.oil_specific_heat(
         t, vs.DENSITY_15C_DEFAULT)
     balance = ts + 0.5 * p / (rho_cp * flow)
@@ -89,9 +112,9 @@ def test_peak_pressure_short_equals_orbit_solver(result):
     k = int(np.argmin(np.abs(np.array(bl.coords["speed"]) - 3000 * RPM)))
     t_film = eng.oil["supply_temperature"] + (eng.oil.get("temperature_rise") or 0.0)
     mu = float(oil_fit(eng)[0].viscosity(t_film))
-    ex = vars(bl.detail)
-    res = ob.solve_orbit(ex["fy"][0, 0, k], ex["fx"][0, 0, k], ex["omega_journal"][0, 0, k],
-                         ex["omega_bearing"][0, 0, k], bl.coords["speed"][k], b.diameter,
+    ex = bl.detail
+    res = ob.solve_orbit(ex.fy[0, 0, k], ex.fx[0, 0, k], ex.omega_journal[0, 0, k],
+                         ex.omega_bearing[0, 0, k], bl.coords["speed"][k], b.diameter,
                          b.length, b.clearance, mu, peak_pressure=True)
     assert q["bearing.peak_film_pressure_short"].values[0, 0, k] == pytest.approx(
         float(res.p_max), rel=1e-9)
@@ -150,9 +173,9 @@ def test_film_thickness_at_heat_balance_temperature(tmp_path, result):
     b = eng.bearings[5]
     k = 10
     mu = float(oil_fit(eng)[0].viscosity(t[5, 0, k]))
-    ex = vars(bl.detail)
-    direct = ob.solve_orbit(ex["fy"][5, 0, k], ex["fx"][5, 0, k], ex["omega_journal"][5, 0, k],
-                            ex["omega_bearing"][5, 0, k], bl.coords["speed"][k], b.diameter,
+    ex = bl.detail
+    direct = ob.solve_orbit(ex.fy[5, 0, k], ex.fx[5, 0, k], ex.omega_journal[5, 0, k],
+                            ex.omega_bearing[5, 0, k], bl.coords["speed"][k], b.diameter,
                             b.length, b.clearance, mu)
     assert h_hb[5, 0, k] == pytest.approx(float(direct.h_min), rel=1e-9)
 

@@ -31,7 +31,8 @@ def _films(res) -> list[np.ndarray]:
     for q in ("bearing.moft", "bearing.moft_short", "bearing.moft_finite"):
         if q in res.outcome.quantities:
             x = res.outcome.quantities[q]
-            out += [x.values, x.extra["eps_max"], x.extra["orbit"].get("eps_x", np.zeros(0))]
+            out += [x.values, x.detail.eps_max,
+                    x.detail.orbit.eps_x if x.detail.orbit is not None else np.zeros(0)]
     return out
 
 

@@ -12,7 +12,7 @@ import pytest
 from checker import api, graph
 from checker.calc import orbit as ob
 from checker.engine import Params, load_engine
-from checker.modules import moft as moft_module
+from checker.modules import bearings as bearings_module
 from tests.helpers import example_path
 
 
@@ -54,7 +54,7 @@ def test_states_model_and_viscosity(result):
 def test_halving_the_step_changes_moft_less_than_half_percent(engine, monkeypatch):
     # issue 4 acceptance: halving the crank-angle step changes MOFT by < 0.5 % on the example
     base = _moft(engine).values
-    monkeypatch.setattr(moft_module, "STEPS_PER_CYCLE", 2 * moft_module.STEPS_PER_CYCLE)
+    monkeypatch.setattr(bearings_module, "STEPS_PER_CYCLE", 2 * bearings_module.STEPS_PER_CYCLE)
     fine = _moft(engine).values
     assert np.max(np.abs(base / fine - 1)) < 0.005
 
@@ -100,8 +100,8 @@ def test_film_collapse_is_finite_and_reported(engine, tmp_path):
 
 
 def test_more_clearance_more_eccentricity(engine):
-    a = _moft(_with_bearings(engine, clearance=0.020e-3)).extra["eps_max"]
-    b = _moft(_with_bearings(engine, clearance=0.030e-3)).extra["eps_max"]
+    a = _moft(_with_bearings(engine, clearance=0.020e-3)).detail.eps_max
+    b = _moft(_with_bearings(engine, clearance=0.030e-3)).detail.eps_max
     be = slice(5, 9)
     assert (b[be] > a[be]).all()
 
@@ -126,7 +126,7 @@ def test_finite_length_option_is_stated(coarse):
     e.oil = Params({**coarse.oil, "mobility_model": "finite length"})
     q = _moft(e)
     assert np.isfinite(q.values).all() and len(q.coords["speed"]) == 5
-    assert "Reynolds equation" in q.extra["model_text"]
+    assert "Reynolds equation" in q.detail.model_text
     # finite-length theory gives thinner films than the optimistic short bearing everywhere;
     # at the worst speed of each bearing and case 1.35..2.4 times (issue 16, on the example)
     short = _moft(coarse).values
@@ -139,7 +139,7 @@ def test_butenschoen_fits_remain_a_named_option(coarse):
     e = copy.copy(coarse)
     e.oil = Params({**coarse.oil, "mobility_model": "Butenschoen fits"})
     q = _moft(e)
-    assert "Butenschoen" in q.extra["model_text"] and np.isfinite(q.values).all()
+    assert "Butenschoen" in q.detail.model_text and np.isfinite(q.values).all()
 
 
 def test_both_methods_per_bearing_case_and_speed(coarse):
@@ -187,7 +187,7 @@ def test_finite_length_film_collapse_is_finite_and_reported(engine, monkeypatch)
     monkeypatch.setattr(ob, "solve_orbit",
                         functools.partial(ob.solve_orbit, max_cycles=2, max_substeps=2))
     q = graph.run(e, ["bearing.moft"]).quantities["bearing.moft"]
-    assert q.extra["model"] == "butenschoen"
+    assert q.detail.model == "butenschoen"
     assert np.isfinite(q.values).all() and (q.values > 0).all()
     c = 0.3e-3
     assert (q.values <= c * (1 - ob.COLLAPSE_EPS)).all()  # eps >= 0.999: collapsed

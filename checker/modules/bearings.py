@@ -9,6 +9,7 @@ from ..calc import orbit as ob
 from ..calc import viscosity as vs
 from ..engine import Engine
 from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity, register_module
+from ..results.bearings import FilmDetail, FilmOrbit
 from .loads import CASES
 
 register_module("bearings", "Bearing oil film (MOFT)")
@@ -31,7 +32,7 @@ METHOD_QUANTITY = {"closed_form": "bearing.moft_short", "reynolds_map": "bearing
 
 STEPS_PER_CYCLE = ob.DEFAULT_STEPS_PER_CYCLE
 """RK steps per 720 deg cycle (benchmarks/bench_moft.py; halving the step changes the example's
-MOFT by far less than 0.5 %, tests/modules/test_moft_module.py)."""
+MOFT by far less than 0.5 %, tests/modules/test_bearings_module.py)."""
 
 STEPS_PER_CYCLE_FINITE = 240
 """RK steps per cycle for the finite-length map (benchmarks/bench_finite_length.py: MOFT within
@@ -54,17 +55,18 @@ MOFT = quantity(QuantitySpec(
     "bearing.moft", "m", ("item", "case", "speed"),
     "Minimum oil film thickness over the cycle (periodic journal orbit), by the mobility model"
     " chosen in the workbook (Oil sheet 'Mobility model'; default short bearing)", "um",
-    ("type", "lining"), coords={"case": CASES}, methods=METHODS, compare=COMPARE))
+    ("type", "lining"), coords={"case": CASES}, methods=METHODS, compare=COMPARE,
+    detail=FilmDetail))
 MOFT_SHORT = quantity(QuantitySpec(
     "bearing.moft_short", "m", ("item", "case", "speed"),
     "Minimum oil film thickness by the short-bearing mobility (Booker's closed form), whatever"
     " the workbook's model", "um", ("type", "lining"), coords={"case": CASES},
-    methods=METHODS, compare=COMPARE))
+    methods=METHODS, compare=COMPARE, detail=FilmDetail))
 MOFT_FINITE = quantity(QuantitySpec(
     "bearing.moft_finite", "m", ("item", "case", "speed"),
     "Minimum oil film thickness by the finite-length Reynolds mobility map, whatever the"
     " workbook's model", "um", ("type", "lining"), coords={"case": CASES},
-    methods=METHODS, compare=COMPARE))
+    methods=METHODS, compare=COMPARE, detail=FilmDetail))
 SPECS = {"bearing.moft": MOFT, "bearing.moft_short": MOFT_SHORT,
          "bearing.moft_finite": MOFT_FINITE}
 
@@ -144,7 +146,7 @@ def moft(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     if alias is not None and alias in inputs:
         q = inputs[alias]
         return {"bearing.moft": Quantity(MOFT, q.values, q.coords, q.item_attrs,
-                                         dict(q.missing), q.findings, q.extra)}
+                                         dict(q.missing), q.findings, detail=q.detail)}
     return {"bearing.moft": _solve(engine, inputs, model, "bearing.moft")}
 
 
@@ -210,7 +212,7 @@ def _prepare(engine: Engine, inputs: dict, model: str) -> dict:
     bl = inputs["loads.bearing_load"]
     if not bl.coords["item"]:
         raise MissingInputs(["Bearings: no bearings given (sheet Bearings)"])
-    ex = vars(bl.detail)
+    ex = bl.detail
     names = bl.coords["item"]
     ft = inputs.get("bearing.film_temperature") if heat_balance_asked(engine) else None
     if ft is None:
@@ -244,16 +246,16 @@ def _prepare(engine: Engine, inputs: dict, model: str) -> dict:
     ok_rows = np.where(ok)[0]
     sel = ok_rows
     nsel = sel.size
-    n_pts = ex["fx"].shape[-1]
+    n_pts = ex.fx.shape[-1]
     shp = (nsel, nc, ns)
     arg = {}
     if nsel:
         col = (slice(None), None, None)
         arg = {
-            "fy": np.broadcast_to(ex["fy"][sel], shp + (n_pts,)).reshape(-1, n_pts),
-            "fx": np.broadcast_to(ex["fx"][sel], shp + (n_pts,)).reshape(-1, n_pts),
-            "wj": np.broadcast_to(ex["omega_journal"][sel], shp + (n_pts,)).reshape(-1, n_pts),
-            "wb": np.broadcast_to(ex["omega_bearing"][sel], shp + (n_pts,)).reshape(-1, n_pts),
+            "fy": np.broadcast_to(ex.fy[sel], shp + (n_pts,)).reshape(-1, n_pts),
+            "fx": np.broadcast_to(ex.fx[sel], shp + (n_pts,)).reshape(-1, n_pts),
+            "wj": np.broadcast_to(ex.omega_journal[sel], shp + (n_pts,)).reshape(-1, n_pts),
+            "wb": np.broadcast_to(ex.omega_bearing[sel], shp + (n_pts,)).reshape(-1, n_pts),
             "speed": np.broadcast_to(speeds[None, None, :], shp).reshape(-1),
             "d": np.broadcast_to(np.array([bearings[names[i]].diameter for i in sel])[col],
                                  shp).reshape(-1),
@@ -321,7 +323,7 @@ def _finish(p: dict, model: str, name: str) -> Quantity:
     p_max = np.full((nb, nc, ns), np.nan) if model == "closed_form" else None
     th_p = np.full((nb, nc, ns), np.nan) if model == "closed_form" else None
     findings: dict[tuple, list[str]] = {}
-    orbit_store = {}
+    orbit = None
     res = p["res"]
     if res is not None:
         sel = p["sel"]
@@ -342,9 +344,9 @@ def _finish(p: dict, model: str, name: str) -> Quantity:
                 text = (f"orbit not periodic after {res['n_cycles'][a, ci, si]} cycles at"
                         f" {rpm:.0f} rpm ({CASES[ci]} load)")
             findings.setdefault((int(sel[a]), int(ci), int(si)), []).append(text)
-        orbit_store = {"rows": sel, "theta": res["theta"], "eps_x": res["eps_x"],
-                       "eps_y": res["eps_y"], "converged": converged,
-                       "collapse": collapse, "n_cycles": res["n_cycles"]}
+        orbit = FilmOrbit(rows=sel, theta=res["theta"], eps_x=res["eps_x"],
+                          eps_y=res["eps_y"], converged=converged, collapse=collapse,
+                          n_cycles=res["n_cycles"])
     assumptions = [
         f"MOFT by the mobility method: {MODEL_TEXT[model]}; rigid journal and housing,"
         " statically determinate loads, mean cold radial clearance (Bell, Ricardo 2013 concept"
@@ -370,12 +372,13 @@ def _finish(p: dict, model: str, name: str) -> Quantity:
         ld = ", ".join(f"{n} {bearings[n].length / bearings[n].diameter:.2f}" for n in names)
         assumptions.append("Short-bearing theory is optimistic at engine L/D (reference notes"
                            f" 1.5: +28 % h_min at L/D 1/3, eps 0.9); L/D: {ld}.")
-    extra = {"eps_max": eps, "theta_h_min": th_min, "viscosity": mu, "film_temperature": t_film,
-             "p_max": p_max, "theta_p_max": th_p,
-             "model": model, "model_text": MODEL_TEXT[model], "orbit": orbit_store,
-             "assumptions": assumptions,
-             "l_over_d": {n: bearings[n].length / bearings[n].diameter for n in names}}
-    return Quantity(SPECS[name], h, bl.coords, bl.item_attrs, missing, findings, extra)
+    detail = FilmDetail(
+        model=model, model_text=MODEL_TEXT[model], eps_max=eps, theta_h_min=th_min,
+        viscosity=mu, film_temperature=t_film, p_max=p_max, theta_p_max=th_p, orbit=orbit,
+        l_over_d={n: bearings[n].length / bearings[n].diameter for n in names},
+        assumptions=tuple(assumptions))
+    return Quantity(SPECS[name], h, bl.coords, bl.item_attrs, missing, findings,
+                    detail=detail)
 
 
 def _film_text(t_film, mu) -> str:
