@@ -109,7 +109,7 @@ def direct_comparison(path: Path, grid=None) -> list[tuple]:
     bearings = {b.name: b for b in engine.bearings}
     speeds = np.array(fin.coords["speed"])
     _, mu, _ = m_bearings.oil_viscosity(engine)
-    ex = bl.extra
+    ex = bl.detail
     rows = []
     for typ in dict.fromkeys(bearings[n].type for n in names):
         idx = [i for i, n in enumerate(names) if bearings[n].type == typ]
@@ -119,8 +119,8 @@ def direct_comparison(path: Path, grid=None) -> list[tuple]:
             i = idx[ii]
             n = names[i]
             b = bearings[n]
-            args = (ex["fy"][i, ci, k], ex["fx"][i, ci, k], ex["omega_journal"][i, ci, k],
-                    ex["omega_bearing"][i, ci, k], speeds[k], b.diameter, b.length,
+            args = (ex.fy[i, ci, k], ex.fx[i, ci, k], ex.omega_journal[i, ci, k],
+                    ex.omega_bearing[i, ci, k], speeds[k], b.diameter, b.length,
                     b.clearance, mu)
             kw = {"steps_per_cycle": m_bearings.STEPS_PER_CYCLE_FINITE,
                   "full_groove": b.groove == "full"}
@@ -152,7 +152,7 @@ def groove_comparison(path: Path) -> list[tuple]:
     bearings = {b.name: b for b in engine.bearings}
     speeds = np.array(fin.coords["speed"])
     _, mu, _ = m_bearings.oil_viscosity(engine)
-    ex = bl.extra
+    ex = bl.detail
     rows = []
     mains = [i for i, n in enumerate(names) if bearings[n].type == "main"]
     for ci, case in enumerate(fin.coords["case"]):
@@ -163,8 +163,8 @@ def groove_comparison(path: Path) -> list[tuple]:
         width = b.length + b.groove_width
         groove = (b.groove_start, b.groove_end + (2 * np.pi if b.groove_end <= b.groove_start
                                                    else 0.0), b.groove_width / b.diameter)
-        args = (ex["fy"][i, ci, k], ex["fx"][i, ci, k], ex["omega_journal"][i, ci, k],
-                ex["omega_bearing"][i, ci, k], speeds[k], b.diameter)
+        args = (ex.fy[i, ci, k], ex.fx[i, ci, k], ex.omega_journal[i, ci, k],
+                ex.omega_bearing[i, ci, k], speeds[k], b.diameter)
         kw = {"steps_per_cycle": m_bearings.STEPS_PER_CYCLE_FINITE}
         eff = ob.solve_orbit(*args, b.length, b.clearance, mu, model="reynolds_map", **kw)
         wide = ob.solve_orbit(*args, width, b.clearance, mu, model="reynolds_map", **kw)

@@ -288,7 +288,7 @@ def _apply_envelope(outcome: graph.RunOutcome) -> None:
             continue
         mask = np.broadcast_to(env, q.values.shape)
         q.applies = mask if q.applies is None else (q.applies & mask)
-        if not (q.applies_text or q.extra.get("applies_text")):
+        if not q.applies_text:
             q.applies_text = "outside the operating envelope"
 
 
@@ -346,7 +346,7 @@ def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = No
         wanted |= {n for r in chosen for _, n in graph.QUANTITIES[r.quantity].compare}
     outcome = graph.run(engine, wanted, progress=progress, cache=cache)
     if cache is not None:  # cached quantities are shared between variants: judge on copies
-        outcome.quantities = {k: replace(q, extra=dict(q.extra))
+        outcome.quantities = {k: replace(q)
                               for k, q in outcome.quantities.items()}
     _apply_envelope(outcome)
     results: list[RuleResult] = []

@@ -69,7 +69,6 @@ class Quantity:
     item_attrs: dict[str, dict[str, Any]] = field(default_factory=dict)
     missing: dict[tuple, list[str]] = field(default_factory=dict)
     findings: dict[tuple, list[str]] = field(default_factory=dict)
-    extra: dict[str, Any] = field(default_factory=dict)  # legacy, being replaced by detail
     applies: np.ndarray | None = None  # bool mask: points a rule judges (None = all)
     detail: Any = None
     """The node's typed result beside the numbers (curves, inputs, intermediate values for
@@ -89,11 +88,6 @@ class Quantity:
                              f" coords {shape}")
         if self.applies is not None:
             self.applies = np.broadcast_to(np.asarray(self.applies, dtype=bool), shape)
-        if (self.detail is None or isinstance(self.detail, _ExtraView)) and self.extra:
-            # TRANSITION (issue 24): a producer not yet typed; consumers already read
-            # attributes named as the old extra keys. Removed with ``extra``.
-            self.detail = _ExtraView(self.extra)
-            return
         want = self.spec.detail
         if want is not None and self.detail is not None and not isinstance(self.detail, want):
             raise TypeError(f"{self.spec.name}: detail is a {type(self.detail).__name__}, the"
@@ -101,22 +95,6 @@ class Quantity:
         if want is None and self.detail is not None:
             raise TypeError(f"{self.spec.name}: carries a {type(self.detail).__name__} detail"
                             " but declares none (QuantitySpec.detail)")
-
-
-class _ExtraView:
-    """TRANSITION (issue 24): attribute view of a legacy ``extra`` dict (missing keys read as
-    None), so consumers can read ``q.detail.<field>`` before their producer is typed."""
-
-    def __init__(self, extra: dict[str, Any]):
-        object.__setattr__(self, "_extra", extra)
-
-    def __getattr__(self, name: str) -> Any:
-        if name.startswith("__"):
-            raise AttributeError(name)
-        v = self._extra.get(name)
-        if name in ("assumptions", "caveats"):
-            return tuple(v or ())
-        return v
 
 
 def resonant_peaks(values: np.ndarray, axis: int = -1, envelope: np.ndarray | None = None

@@ -33,8 +33,6 @@ def test_declared_detail_types_are_frozen_details():
 
 def test_every_computed_detail_has_its_declared_type(i4):
     for name, q in i4.outcome.quantities.items():
-        if isinstance(q.detail, graph._ExtraView):  # TRANSITION (issue 24): untyped producer
-            continue
         if q.spec.detail is not None and q.detail is not None:
             assert isinstance(q.detail, q.spec.detail), name
         if q.spec.detail is None:

@@ -41,7 +41,7 @@ def mask(q) -> np.ndarray:
 
 def reason(q) -> str:
     """Why points of ``q`` are not judged (the quantity's own text)."""
-    return str(q.applies_text or q.extra.get("applies_text") or "not judged by the rules")
+    return str(q.applies_text or "not judged by the rules")
 
 
 def direction(res: CheckResult, quantity: str, default: str = "max") -> str:

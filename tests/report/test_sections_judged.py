@@ -224,7 +224,7 @@ def _quantity(values, applies=None, dims=("item", "case", "speed")) -> Quantity:
     coords["case"] = ["full", "no", "part"][:len(coords["case"])]
     coords["speed"] = [k * 100 * RPM for k in coords["speed"]]  # 0, 100, 200 ... rpm
     return Quantity(spec, values, coords, applies=applies,
-                    extra={"applies_text": "outside the test band"})
+                    applies_text="outside the test band")
 
 
 @pytest.mark.parametrize("seed", range(5))
