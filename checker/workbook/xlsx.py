@@ -9,9 +9,10 @@ own: the normal mode creates every cell of the used range (a formatted cell at r
 costs gigabytes), and the read-only mode scans a sheet without a ``<dimension>`` element once
 just to open it and then costs about 40 us per cell on each of the two passes needed for
 stored values and formulas. Cell values follow openpyxl's rules
-(``openpyxl.worksheet._reader.WorkSheetParser``): numbers as int or float, shared and inline strings, booleans, error codes as text, ISO dates, and
-numbers with a date format as ``datetime``. Every failure (zip, XML, a missing part) raises;
-the loader turns it into one file-level input error.
+(``openpyxl.worksheet._reader.WorkSheetParser``): numbers as int or float, shared and inline
+strings, booleans, error codes as text, ISO dates, and numbers with a date format as
+``datetime``. Every failure (zip, XML, a missing part) raises; the loader turns it into one
+file-level input error.
 """
 
 from __future__ import annotations
