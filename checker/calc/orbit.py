@@ -573,7 +573,7 @@ def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: 
                     idx = np.flatnonzero(flag)
                     stiff_cap[idx[nbase * need[idx] > max_substeps]] = True
                     nsubs = _nsub_each(nbase * need[idx], max_substeps)
-                    for nsub in np.unique(nsubs):
+                    for nsub in sorted(set(nsubs.tolist())):
                         if nsub <= nbase:
                             continue
                         g = idx[nsubs == nsub]
@@ -767,7 +767,7 @@ def _shared_rows(fx, fy, w, scalars, grooved, group, p: int):
         r = rep[dup]
         ok = np.ones(dup.size, dtype=bool)
         d_shift = (o[dup] - o[r]) % n_pts  # arr[d, j] == arr[r, j - d_shift]
-        for s in np.unique(d_shift):  # a few distinct shifts: whole rows rolled at once
+        for s in sorted(set(d_shift.tolist())):  # a few distinct shifts: whole rows rolled
             m = np.flatnonzero(d_shift == s)
             for arr, sc in ((fx, sf), (fy, sf), (w, sw)):
                 dev = np.abs(arr[dup[m]] - np.roll(arr[r[m]], int(s), axis=1)).max(axis=1)
@@ -948,6 +948,12 @@ def solve_orbit(
         done = err < tol
         last = cyc == int(max_cycles)
         fin = np.ones(z.size, dtype=bool) if last else done
+        if gid.size == size and fin.all():  # every orbit ends in this cycle: no copies
+            out_zh, out_kh, out_iwb = zh, kh, prob.arr["iwb"][0::2]
+            out["err"], out["conv"] = err, done
+            out["ncyc"] = np.full(size, cyc)
+            out["capped"], out["stiffcap"] = capped, stiff_cap
+            break
         if fin.any():
             g = gid[fin]
             out_zh[:, g] = zh[:, fin]
@@ -972,14 +978,16 @@ def solve_orbit(
     vs = None
     if squeeze_velocity:
         vs = (out_kh - out_iwb * out_zh) * bear_all["speed"]
+    zt = out_zh.T  # (orbits, steps)
+    vst = None if vs is None else vs.T
     if uniq.size < size_all:  # shared orbits: the solved orbit shifted by whole steps
         eps_max, zmax = eps_max[rpos], zmax[rpos]
         pos = (pos[rpos] + shift) % n
         out = {k: v[rpos] for k, v in out.items()}
-        rows = (np.arange(n)[:, None] - shift[None, :]) % n
-        out_zh = out_zh[rows, rpos[None, :]]
+        cols = (np.arange(n)[None, :] - shift[:, None]) % n  # gathered in output order
+        zt = zt[rpos[:, None], cols]
         if vs is not None:
-            vs = vs[rows, rpos[None, :]]
+            vst = vst[rpos[:, None], cols]
         if peak_pressure:
             pm, jp = pm[rpos], (jp[rpos] + shift) % n
         size = size_all
@@ -1007,15 +1015,18 @@ def solve_orbit(
             )
         msg[i] = "; ".join(parts)
     shp = prob.shape
-    zt = out_zh.T.reshape(shp + (n,))
+
+    def part(a):  # one contiguous copy of a real or imaginary part, batch shape + (n,)
+        return np.ascontiguousarray(a).reshape(shp + (n,))
+
     return OrbitResult(
         h_min=h_min.reshape(shp),
         theta_h_min=(pos * prob.h).reshape(shp),
         eps_max=eps_max.reshape(shp),
         phi_h_min=np.angle(zmax).reshape(shp),
         theta=np.arange(n) * prob.h,
-        eps_x=zt.real.copy(),
-        eps_y=zt.imag.copy(),
+        eps_x=part(zt.real),
+        eps_y=part(zt.imag),
         p_max=p_max,
         theta_p_max=theta_p,
         converged=out["conv"].reshape(shp),
@@ -1025,8 +1036,8 @@ def solve_orbit(
         message=msg.reshape(shp),
         model=model,
         steps_per_cycle=n,
-        vs_x=None if vs is None else vs.real.T.reshape(shp + (n,)).copy(),
-        vs_y=None if vs is None else vs.imag.T.reshape(shp + (n,)).copy(),
+        vs_x=None if vs is None else part(vst.real),
+        vs_y=None if vs is None else part(vst.imag),
     )
 
 
