@@ -261,7 +261,7 @@ def _keep_freed_memory() -> None:
 
         libc = ctypes.CDLL(None)
         libc.mallopt(-3, 32 * 2**20)  # M_MMAP_THRESHOLD: arrays up to 32 MB on the heap
-        libc.mallopt(-1, 512 * 2**20)  # M_TRIM_THRESHOLD: keep up to 512 MB of freed heap
+        libc.mallopt(-1, 128 * 2**20)  # M_TRIM_THRESHOLD: keep up to 128 MB of freed heap
     except (OSError, AttributeError):  # not glibc: the allocator's defaults
         return
 
