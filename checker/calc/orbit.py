@@ -252,14 +252,14 @@ class _Problem:
         if np.any(cl >= 0.05 * dia):
             raise ValueError("radial clearance must be small compared with the diameter")
         grooved = np.broadcast_to(np.asarray(full_groove, dtype=bool), lead).reshape(-1)
+        if np.prod(shp) > 0:  # checked before broadcasting (same verdict, less work)
+            for name, val in (("load", fx), ("load", fy), ("omega_journal", wj),
+                              ("omega_bearing", wb)):
+                if not np.all(np.isfinite(val)):
+                    raise ValueError(f"{name} must be finite")
         fx = np.broadcast_to(fx, shp).reshape(-1, n_pts)
         fy = np.broadcast_to(fy, shp).reshape(-1, n_pts)
-        wj = np.broadcast_to(wj, shp).reshape(-1, n_pts)
-        wb = np.broadcast_to(wb, shp).reshape(-1, n_pts)
-        for name, val in (("load", fx), ("load", fy), ("omega_journal", wj),
-                          ("omega_bearing", wb)):
-            if not np.all(np.isfinite(val)):
-                raise ValueError(f"{name} must be finite")
+        w = np.broadcast_to(wj + wb, shp).reshape(-1, n_pts)  # whirl: the sum only
 
         n = int(steps_per_cycle)
         if model == "butenschoen":  # stiff model: steps of at most 1 deg
@@ -276,12 +276,12 @@ class _Problem:
         if share and size_all > 1 and n_pts % n == 0:
             grp = (np.zeros(size_all, np.int64) if group is None
                    else np.broadcast_to(np.asarray(group), lead).reshape(-1))
-            self.rep, self.shift = _shared_rows(fx, fy, wj + wb, (sp, dia, ln, cl, mu),
+            self.rep, self.shift = _shared_rows(fx, fy, w, (sp, dia, ln, cl, mu),
                                                 grooved, grp, n_pts // n)
             self.uniq = np.flatnonzero(self.rep == np.arange(size_all))
             if self.uniq.size < size_all:
                 u = self.uniq
-                fx, fy, wj, wb = fx[u], fy[u], wj[u], wb[u]
+                fx, fy, w = fx[u], fy[u], w[u]
                 sp, dia, ln, cl, mu, grooved = sp[u], dia[u], ln[u], cl[u], mu[u], grooved[u]
         self.rpos = np.searchsorted(self.uniq, self.rep)  # each orbit's solved orbit
         self.cycle_angle = float(cycle_angle)
@@ -302,10 +302,10 @@ class _Problem:
             f = np.empty((2 * n, fx.shape[0]), dtype=complex)
             f.real, f.imag = fx.T, fy.T
             iwb = np.zeros((2 * n, fx.shape[0]), dtype=complex)
-            np.add(wj.T, wb.T, out=iwb.imag)
+            iwb.imag = w.T
         else:
             f = np.ascontiguousarray(_resample_periodic(fx + 1j * fy, 2 * n).T)
-            iwb = 1j * np.ascontiguousarray(_resample_periodic(wj + wb, 2 * n).T)
+            iwb = 1j * np.ascontiguousarray(_resample_periodic(w, 2 * n).T)
         iwb *= 0.5 / sp
         fa = np.abs(f)
         uc = np.conj(f)
