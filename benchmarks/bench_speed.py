@@ -137,6 +137,9 @@ def commands(files: dict[str, Path], before: Path | None, repeat: int, tmp: Path
                         stages[tag].setdefault(f"{label}|{mod}", []).append(sec)
             cells += [f"{statistics.median(walls):.2f} s", f"{statistics.median(cpus):.2f} s"]
         print(f"| {label} | " + " | ".join(cells) + " |", flush=True)
+    print(f"\n(load average at the end: {os.getloadavg()[0]:.1f}; the CPU time is user +"
+          " system of the process, the better measure while other jobs share the machine)")
+    imports(files["i4"], before)
     print("\n## Time per stage (JSON `timings`, median) [s]\n")
     print("| command | stage | before | after |")
     print("|---|---|---|---|")
@@ -158,6 +161,41 @@ def commands(files: dict[str, Path], before: Path | None, repeat: int, tmp: Path
             diff = {q: d for q, d in _compare(ob, oa).items() if d > 0}
             text = ", ".join(f"{q} {d:.1e}" for q, d in sorted(diff.items(), key=lambda x: -x[1]))
             print(f"* {name.upper()}: {text or 'identical'}")
+
+
+HEAVY = ("numpy", "pint", "openpyxl", "urllib.request", "numpy.ma", "checker.remedies",
+         "checker.calc.reynolds_map")
+
+
+def imports(i4: Path, before: Path | None) -> None:
+    """What a check of the I4 imports (``python -X importtime``, cumulative microseconds of
+    the packages that cost most; one run each, wall time of the imports, so indicative only
+    while other jobs run)."""
+    print("\n## Imports of `checker check` I4 (`-X importtime`, cumulative ms, one run)\n")
+    print("| tree | all imports | " + " | ".join(HEAVY) + " |")
+    print("|---|---|" + "---|" * len(HEAVY))
+    for tag, tree in (("before", before), ("after", None)):
+        if tag == "before" and before is None:
+            continue
+        env = _env()
+        if tree is not None:
+            env["PYTHONPATH"] = str(tree)
+        cmd = [sys.executable, "-X", "importtime", "-m", "checker", "check", str(i4),
+               "--format", "json", "-o", os.devnull]
+        for _ in range(2):  # the first run writes the byte code
+            err = subprocess.run(cmd, env=env, capture_output=True, text=True,
+                                 cwd=tempfile.gettempdir()).stderr
+        cum: dict[str, int] = {}
+        total = 0
+        for line in err.splitlines():
+            if not line.startswith("import time:") or "self [us]" in line:
+                continue
+            _, c, name = line.split("|")
+            if not name.startswith("  "):  # top level: counted once
+                total += int(c)
+            cum.setdefault(name.strip(), int(c))
+        cells = [f"{cum[m] / 1e3:.0f}" if m in cum else "not imported" for m in HEAVY]
+        print(f"| {tag} | {total / 1e3:.0f} | " + " | ".join(cells) + " |", flush=True)
 
 
 def orbits(i4: Path) -> None:

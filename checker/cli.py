@@ -165,6 +165,8 @@ def _attach_extras(res, workbook, rules, select, ignore, remedies, corners, leve
 
 
 def _exit_code(res) -> int:
+    if not res.corners:  # no tolerance corners asked: checker.remedies not imported
+        return res.exit_code
     from .remedies import corners_fail
 
     return max(res.exit_code, 1 if corners_fail(res) else 0)
@@ -243,6 +245,25 @@ class _Group(click.Group):
 @click.version_option(__version__, prog_name="checker")
 def main() -> None:
     """Design-rule checker for engine crank trains."""
+    _keep_freed_memory()
+
+
+def _keep_freed_memory() -> None:
+    """Keep freed memory in the process (glibc ``mallopt``): the orbit kernels allocate and
+    free arrays of a few MB thousands of times; by default each is a fresh ``mmap`` (or heap
+    memory is returned to the system), and touching fresh pages again costs about 40 % more
+    page faults, about 0.1 s of system time per check (benchmarks/bench_speed.py). Numbers
+    are unchanged; elsewhere (other C libraries) nothing happens."""
+    if not sys.platform.startswith("linux"):
+        return
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL(None)
+        libc.mallopt(-3, 32 * 2**20)  # M_MMAP_THRESHOLD: arrays up to 32 MB on the heap
+        libc.mallopt(-1, 128 * 2**20)  # M_TRIM_THRESHOLD: keep up to 128 MB of freed heap
+    except (OSError, AttributeError):  # not glibc: the allocator's defaults
+        return
 
 
 @main.command()

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import json
-from xml.sax.saxutils import escape, quoteattr
 
 from .api import CheckResult
 
@@ -55,6 +54,8 @@ def to_json(res: CheckResult, timings: bool = True) -> str:
 
 def to_junit(res: CheckResult) -> str:
     """JUnit XML: one test case per rule result (fail -> failure, not evaluated -> skipped)."""
+    from xml.sax.saxutils import escape, quoteattr  # imports urllib.request: only here
+
     c = res.counts()
     failing = {id(r) for r in res.failed}
     failures = len(failing)

@@ -22,7 +22,7 @@ from . import modules as _modules  # noqa: F401  (registers the quantities rules
 from .engine import Engine
 from .errors import InputError, InputErrors, RuleFileError, UsageProblem
 from .graph import QUANTITIES, Quantity, QuantitySpec, ensure_registered
-from .units import Q_, from_si
+from .units import convert_affine, from_si
 
 ID_PATTERN = re.compile(r"^[A-Z]{2,5}-\d{3}$")
 CHECKS = (">=", "<=", ">", "<", "between")
@@ -166,7 +166,7 @@ def _parse_rule(raw: dict, origin: str, problems: list[str]) -> Rule | None:
     unit = str(raw["unit"]).strip()
     unit = "" if unit in ("-", "1") else unit
     try:
-        Q_(1.0, unit.replace("%", "percent") or "").to(spec.unit or "")
+        convert_affine(spec.unit or "", unit.replace("%", "percent"))
     except Exception:
         problems.append(f"{pre}: unit '{raw['unit']}' does not fit quantity {spec.name}"
                         f" (SI unit '{spec.unit or '-'}')")
@@ -726,10 +726,7 @@ def _compare_at(spec, others, q, index: tuple[int, ...], factor
 def _affine(si_unit: str, unit: str):
     """Conversion from an SI unit to a rule's unit, ``x -> a x + b`` (offset units such as
     °C convert affinely)."""
-    src = si_unit or ""
-    dst = (unit or "").replace("%", "percent")
-    b = float(Q_(0.0, src).to(dst).magnitude)
-    a = float(Q_(1.0, src).to(dst).magnitude) - b
+    a, b = convert_affine(si_unit or "", (unit or "").replace("%", "percent"))
     if b == 0.0:
         return lambda x: x * a
     return lambda x: x * a + b

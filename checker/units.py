@@ -24,6 +24,10 @@ import math
 import re
 import sys
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import pint
 
 
 def _import_pint():
@@ -77,8 +81,6 @@ def _metadata_stub():
     return mod
 
 
-pint = _import_pint()
-
 _PREPROCESSORS = [
     # Nm, kNm, mNm, MNm as torque, not number-metre (word boundary so "Nmm" is untouched)
     lambda s: re.sub(r"(?<![A-Za-z_])([kmM]?)Nm(?![A-Za-z_])", r"\1N*m", s),
@@ -91,7 +93,7 @@ _PREPROCESSORS = [
 ]
 
 
-def _registry() -> pint.UnitRegistry:
+def _registry(pint):
     """The registry, with pint's parsed-definitions cache (user cache folder) when it can be
     used: building the registry from the definition file costs about 1 s, reading the cache
     about 0.1 s. Without a writable cache folder the registry is built as usual."""
@@ -101,9 +103,26 @@ def _registry() -> pint.UnitRegistry:
         return pint.UnitRegistry(preprocessors=_PREPROCESSORS)
 
 
-ureg = _registry()
-pint.set_application_registry(ureg)
-Q_ = ureg.Quantity
+@functools.cache
+def _pint():
+    """``(pint, ureg, Q_)``: pint and the project's registry, imported and built on first use.
+
+    pint costs about 0.2 s of CPU per process (import and registry); the units of the
+    template workbooks and of the shipped rules convert through the table of
+    :mod:`checker.unit_table` (pint's own numbers, tests check them against pint), so a
+    check of such a workbook never needs it. ``checker.units.pint``, ``.ureg`` and ``.Q_``
+    are still available as module attributes (importing pint then)."""
+    pint = _import_pint()
+    ureg = _registry(pint)
+    pint.set_application_registry(ureg)
+    return pint, ureg, ureg.Quantity
+
+
+def __getattr__(name: str):
+    if name in ("pint", "ureg", "Q_"):
+        return _pint()[("pint", "ureg", "Q_").index(name)]
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 ATMOSPHERE_PA = 101325.0
 """Standard atmosphere [Pa] used to convert gauge to absolute pressure."""
@@ -200,6 +219,7 @@ def parse_unit(unit: str) -> pint.Unit:
     """Parse a unit string with the project's registry (pint errors become UnitProblem).
 
     Cached: a workbook repeats a few unit strings hundreds of times."""
+    pint, _, Q_ = _pint()
     try:
         q = Q_(1.0, unit)
     except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError) as exc:
@@ -210,7 +230,7 @@ def parse_unit(unit: str) -> pint.Unit:
 
 
 def _dimension_words(unit: pint.Unit) -> str:
-    dim = ureg.Quantity(1.0, unit).dimensionality
+    dim = _pint()[1].Quantity(1.0, unit).dimensionality
     known = {
         "[length]": "length",
         "[mass]": "mass",
@@ -298,7 +318,15 @@ def _to_si(value: float, unit: str | None, kind: str, percent_formatted: bool = 
 
 @functools.lru_cache(maxsize=4096)
 def _affine(unit: str, kind: str, percent_formatted: bool) -> tuple[float, float] | str:
-    """(scale, offset) of the conversion of ``unit`` to SI for ``kind``, or the problem text."""
+    """(scale, offset) of the conversion of ``unit`` to SI for ``kind``, or the problem text.
+
+    Units of the table :data:`checker.unit_table.TO_SI` (pint's own numbers for the units of
+    the template workbooks and the usual spellings; tests compare every entry with pint) are
+    taken from it without importing pint."""
+    if not percent_formatted:
+        got = _table().TO_SI.get((unit, kind))
+        if got is not None:
+            return got
     try:
         offset = _to_si_pint(0.0, unit, kind, percent_formatted)
         scale = _to_si_pint(1.0, unit, kind, percent_formatted) - offset
@@ -360,17 +388,18 @@ def _to_si_pint_checked(value: float, unit: str, kind: str, percent_formatted: b
             )
         return float(value)
 
-    if kind in ("dimensionless", "ratio"):
-        if u.lower() in _DIMENSIONLESS_SPELLINGS:
+    dimensionless = kind in ("dimensionless", "ratio")
+    if u.lower() in _DIMENSIONLESS_SPELLINGS:
+        if dimensionless:
             return float(value)
+        raise UnitProblem(f"expected {expected}, but the unit cell is empty")
+    pint, _, Q_ = _pint()
+    if dimensionless:
         units = parse_unit(u)
         q = Q_(float(value), units)
         if not q.dimensionless or str(units) in _ANGLE_UNITS:
             raise UnitProblem(f"expected {expected}, found unit '{u}' ({_dimension_words(units)})")
         return float(q.to("").magnitude)
-
-    if u.lower() in _DIMENSIONLESS_SPELLINGS:
-        raise UnitProblem(f"expected {expected}, but the unit cell is empty")
 
     if kind == "angle":
         units = parse_unit(u.replace("°", "degree"))
@@ -441,6 +470,31 @@ def _to_si_pint_checked(value: float, unit: str, kind: str, percent_formatted: b
         ) from exc
 
 
+def _table():
+    from . import unit_table
+
+    return unit_table
+
+
+@functools.lru_cache(maxsize=1024)
+def convert_affine(src: str, dst: str) -> tuple[float, float]:
+    """``(a, b)`` with ``x[dst] = a x[src] + b`` (pint unit strings; offset units such as °C
+    convert affinely): ``b = Q(0, src).to(dst)``, ``a = Q(1, src).to(dst) - b``. From the
+    table :data:`checker.unit_table.CONVERT` (the pairs of the shipped rules and of the
+    workbook ranges, pint's own numbers) or by pint. Raises :class:`UnitProblem` when the
+    units do not fit each other."""
+    got = _table().CONVERT.get((src, dst))
+    if got is not None:
+        return got
+    _, _, Q_ = _pint()
+    try:
+        b = float(Q_(0.0, src).to(dst).magnitude)
+        a = float(Q_(1.0, src).to(dst).magnitude) - b
+    except Exception as exc:  # noqa: BLE001 - pint raises several kinds
+        raise UnitProblem(f"cannot convert '{src}' to '{dst}'") from exc
+    return a, b
+
+
 def from_si(value, si_unit: str, display: str):
     """Convert an SI magnitude (float or array) to a display unit (report layer only)."""
     if si_unit == "rad/s" and display == "rpm":
@@ -451,5 +505,9 @@ def from_si(value, si_unit: str, display: str):
         return value * 180.0 / math.pi
     if si_unit == display:
         return value
-    factor = Q_(1.0, si_unit if si_unit else "").to(display.replace("%", "percent")).magnitude
+    src, dst = si_unit if si_unit else "", display.replace("%", "percent")
+    got = _table().CONVERT.get((src, dst))
+    if got is not None and got[1] == 0.0:  # a factor: Q(1, src).to(dst) - 0.0
+        return value * got[0]
+    factor = _pint()[2](1.0, src).to(dst).magnitude
     return value * factor

@@ -115,7 +115,8 @@ def test_pint_imported_without_metadata_keeps_versions():
     import subprocess
     import sys
 
-    code = ("import sys, checker.units, pint, flexcache, flexparser;"
+    code = ("import sys, checker.units; checker.units.ureg;"
+            " import pint, flexcache, flexparser;"
             " assert 'importlib.metadata' not in sys.modules;"
             " import importlib.metadata as m;"
             " print([(p.__version__, m.version(p.__name__))"

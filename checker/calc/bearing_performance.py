@@ -243,10 +243,12 @@ def groove_feed_flow(
 def _cubed_film_integral(eps: np.ndarray, u1: np.ndarray, span: np.ndarray) -> np.ndarray:
     """``int_{u1}^{u1+span} (1 - eps cos u)^3 du`` in closed form (expanded cubic; ``int cos^2
     = u/2 + sin 2u / 4``, ``int cos^3 = sin u - sin^3 u / 3``)."""
+    e1, e2, e3 = 3.0 * eps, 3.0 * eps**2, eps**3  # shared by both ends
+
     def prim(u):
         su = np.sin(u)
-        return (u - 3.0 * eps * su + 3.0 * eps**2 * (0.5 * u + 0.25 * np.sin(2.0 * u))
-                - eps**3 * (su - su**3 / 3.0))
+        return (u - e1 * su + e2 * (0.5 * u + 0.25 * np.sin(2.0 * u))
+                - e3 * (su - su**3 / 3.0))
     return prim(u1 + span) - prim(u1)
 
 

@@ -252,14 +252,14 @@ class _Problem:
         if np.any(cl >= 0.05 * dia):
             raise ValueError("radial clearance must be small compared with the diameter")
         grooved = np.broadcast_to(np.asarray(full_groove, dtype=bool), lead).reshape(-1)
+        if np.prod(shp) > 0:  # checked before broadcasting (same verdict, less work)
+            for name, val in (("load", fx), ("load", fy), ("omega_journal", wj),
+                              ("omega_bearing", wb)):
+                if not np.all(np.isfinite(val)):
+                    raise ValueError(f"{name} must be finite")
         fx = np.broadcast_to(fx, shp).reshape(-1, n_pts)
         fy = np.broadcast_to(fy, shp).reshape(-1, n_pts)
-        wj = np.broadcast_to(wj, shp).reshape(-1, n_pts)
-        wb = np.broadcast_to(wb, shp).reshape(-1, n_pts)
-        for name, val in (("load", fx), ("load", fy), ("omega_journal", wj),
-                          ("omega_bearing", wb)):
-            if not np.all(np.isfinite(val)):
-                raise ValueError(f"{name} must be finite")
+        w = np.broadcast_to(wj + wb, shp).reshape(-1, n_pts)  # whirl: the sum only
 
         n = int(steps_per_cycle)
         if model == "butenschoen":  # stiff model: steps of at most 1 deg
@@ -276,12 +276,12 @@ class _Problem:
         if share and size_all > 1 and n_pts % n == 0:
             grp = (np.zeros(size_all, np.int64) if group is None
                    else np.broadcast_to(np.asarray(group), lead).reshape(-1))
-            self.rep, self.shift = _shared_rows(fx, fy, wj + wb, (sp, dia, ln, cl, mu),
+            self.rep, self.shift = _shared_rows(fx, fy, w, (sp, dia, ln, cl, mu),
                                                 grooved, grp, n_pts // n)
             self.uniq = np.flatnonzero(self.rep == np.arange(size_all))
             if self.uniq.size < size_all:
                 u = self.uniq
-                fx, fy, wj, wb = fx[u], fy[u], wj[u], wb[u]
+                fx, fy, w = fx[u], fy[u], w[u]
                 sp, dia, ln, cl, mu, grooved = sp[u], dia[u], ln[u], cl[u], mu[u], grooved[u]
         self.rpos = np.searchsorted(self.uniq, self.rep)  # each orbit's solved orbit
         self.cycle_angle = float(cycle_angle)
@@ -302,10 +302,10 @@ class _Problem:
             f = np.empty((2 * n, fx.shape[0]), dtype=complex)
             f.real, f.imag = fx.T, fy.T
             iwb = np.zeros((2 * n, fx.shape[0]), dtype=complex)
-            np.add(wj.T, wb.T, out=iwb.imag)
+            iwb.imag = w.T
         else:
             f = np.ascontiguousarray(_resample_periodic(fx + 1j * fy, 2 * n).T)
-            iwb = 1j * np.ascontiguousarray(_resample_periodic(wj + wb, 2 * n).T)
+            iwb = 1j * np.ascontiguousarray(_resample_periodic(w, 2 * n).T)
         iwb *= 0.5 / sp
         fa = np.abs(f)
         uc = np.conj(f)
@@ -573,7 +573,7 @@ def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: 
                     idx = np.flatnonzero(flag)
                     stiff_cap[idx[nbase * need[idx] > max_substeps]] = True
                     nsubs = _nsub_each(nbase * need[idx], max_substeps)
-                    for nsub in np.unique(nsubs):
+                    for nsub in sorted(set(nsubs.tolist())):
                         if nsub <= nbase:
                             continue
                         g = idx[nsubs == nsub]
@@ -767,7 +767,7 @@ def _shared_rows(fx, fy, w, scalars, grooved, group, p: int):
         r = rep[dup]
         ok = np.ones(dup.size, dtype=bool)
         d_shift = (o[dup] - o[r]) % n_pts  # arr[d, j] == arr[r, j - d_shift]
-        for s in np.unique(d_shift):  # a few distinct shifts: whole rows rolled at once
+        for s in sorted(set(d_shift.tolist())):  # a few distinct shifts: whole rows rolled
             m = np.flatnonzero(d_shift == s)
             for arr, sc in ((fx, sf), (fy, sf), (w, sw)):
                 dev = np.abs(arr[dup[m]] - np.roll(arr[r[m]], int(s), axis=1)).max(axis=1)
@@ -948,6 +948,12 @@ def solve_orbit(
         done = err < tol
         last = cyc == int(max_cycles)
         fin = np.ones(z.size, dtype=bool) if last else done
+        if gid.size == size and fin.all():  # every orbit ends in this cycle: no copies
+            out_zh, out_kh, out_iwb = zh, kh, prob.arr["iwb"][0::2]
+            out["err"], out["conv"] = err, done
+            out["ncyc"] = np.full(size, cyc)
+            out["capped"], out["stiffcap"] = capped, stiff_cap
+            break
         if fin.any():
             g = gid[fin]
             out_zh[:, g] = zh[:, fin]
@@ -972,14 +978,16 @@ def solve_orbit(
     vs = None
     if squeeze_velocity:
         vs = (out_kh - out_iwb * out_zh) * bear_all["speed"]
+    zt = out_zh.T  # (orbits, steps)
+    vst = None if vs is None else vs.T
     if uniq.size < size_all:  # shared orbits: the solved orbit shifted by whole steps
         eps_max, zmax = eps_max[rpos], zmax[rpos]
         pos = (pos[rpos] + shift) % n
         out = {k: v[rpos] for k, v in out.items()}
-        rows = (np.arange(n)[:, None] - shift[None, :]) % n
-        out_zh = out_zh[rows, rpos[None, :]]
+        cols = (np.arange(n)[None, :] - shift[:, None]) % n  # gathered in output order
+        zt = zt[rpos[:, None], cols]
         if vs is not None:
-            vs = vs[rows, rpos[None, :]]
+            vst = vst[rpos[:, None], cols]
         if peak_pressure:
             pm, jp = pm[rpos], (jp[rpos] + shift) % n
         size = size_all
@@ -1007,15 +1015,18 @@ def solve_orbit(
             )
         msg[i] = "; ".join(parts)
     shp = prob.shape
-    zt = out_zh.T.reshape(shp + (n,))
+
+    def part(a):  # one contiguous copy of a real or imaginary part, batch shape + (n,)
+        return np.ascontiguousarray(a).reshape(shp + (n,))
+
     return OrbitResult(
         h_min=h_min.reshape(shp),
         theta_h_min=(pos * prob.h).reshape(shp),
         eps_max=eps_max.reshape(shp),
         phi_h_min=np.angle(zmax).reshape(shp),
         theta=np.arange(n) * prob.h,
-        eps_x=zt.real.copy(),
-        eps_y=zt.imag.copy(),
+        eps_x=part(zt.real),
+        eps_y=part(zt.imag),
         p_max=p_max,
         theta_p_max=theta_p,
         converged=out["conv"].reshape(shp),
@@ -1025,8 +1036,8 @@ def solve_orbit(
         message=msg.reshape(shp),
         model=model,
         steps_per_cycle=n,
-        vs_x=None if vs is None else vs.real.T.reshape(shp + (n,)).copy(),
-        vs_y=None if vs is None else vs.imag.T.reshape(shp + (n,)).copy(),
+        vs_x=None if vs is None else part(vst.real),
+        vs_y=None if vs is None else part(vst.imag),
     )
 
 

@@ -267,8 +267,15 @@ class SynthesizedTrace(NamedTuple):
 
 
 def _wiebe(psi: np.ndarray, start: np.ndarray, duration: np.ndarray, a: float, m: float):
-    z = np.clip((psi - start) / duration, 0.0, None)
-    return 1.0 - np.exp(-a * z ** (m + 1.0))
+    """Wiebe burned fraction ``1 - exp(-a z^(m+1))``, ``z = max((psi - start)/duration, 0)``;
+    the power and exponential only where ``z > 0`` (before the start the fraction is 0, as the
+    formula gives: ``1 - exp(-0) = 0``), about half the grid of the closed cycle."""
+    z = (psi - start) / duration
+    out = np.zeros(z.shape)
+    burn = z > 0.0
+    zb = z[burn]
+    out[burn] = 1.0 - np.exp(-a * zb ** (m + 1.0))
+    return out
 
 
 def synthesize_trace(

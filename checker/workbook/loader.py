@@ -1,6 +1,6 @@
 """Read an engine workbook defensively: every problem found, each with its sheet and cell.
 
-The cells are streamed by :mod:`checker.workbook.xlsx` (openpyxl for the package, one expat
+The cells are streamed by :mod:`checker.workbook.xlsx` (standard library, one expat
 pass per sheet): stored values, number formats, formulas (a formula cell without a stored
 result, which pandas/openpyxl would silently read as empty, is an error) and merged ranges.
 Only cells that hold something are kept, so a sheet whose used range reaches row 1,048,576
@@ -22,8 +22,6 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
-
-from openpyxl.utils import get_column_letter
 
 from ..errors import InputError, InputErrors
 from ..units import KINDS, UnitProblem, from_si, to_si
@@ -74,9 +72,17 @@ _LETTERS: dict[int, str] = {}
 
 
 def _letter(col: int) -> str:
+    """Column letters of a 1-based column number (1 -> A, 27 -> AA), as
+    ``openpyxl.utils.get_column_letter`` (without importing openpyxl)."""
     got = _LETTERS.get(col)
     if got is None:
-        got = _LETTERS[col] = get_column_letter(col)
+        if not 1 <= col <= LAST_COLUMN:
+            raise ValueError(f"invalid column index {col}")
+        n, text = col, ""
+        while n:
+            n, r = divmod(n - 1, 26)
+            text = chr(65 + r) + text
+        got = _LETTERS[col] = text
     return got
 
 

@@ -1,15 +1,18 @@
 """Stream the cells of an .xlsx workbook: plain values, number formats, formulas, merged ranges.
 
-openpyxl reads the package (content types, workbook part, shared strings, styles); the sheet
-XML is then parsed here in one expat pass per sheet that keeps only the cells holding
-something. Neither openpyxl mode fits a defensive loader on its own: the normal mode creates
-every cell of the used range (a formatted cell at row 1,048,576 costs gigabytes), and the
-read-only mode scans a sheet without a ``<dimension>`` element once just to open it and then
-costs about 40 us per cell on each of the two passes needed for stored values and formulas.
-Cell values follow openpyxl's rules (``openpyxl.worksheet._reader.WorkSheetParser``): numbers
-as int or float, shared and inline strings, booleans, error codes as text, ISO dates, and
-numbers with a date format as ``datetime``. Every failure (zip, XML, a missing part) raises;
-the loader turns it into one file-level input error.
+The package (content types, workbook part and its relationships, shared strings, number
+formats) is read with the standard library the way openpyxl reads it (openpyxl itself costs
+about 0.15 s of CPU to import; it is imported only for a date cell or a number format with
+date letters, to apply its rules); the sheet XML is parsed in one expat pass per sheet that
+keeps only the cells holding something. Neither openpyxl mode fits a defensive loader on its
+own: the normal mode creates every cell of the used range (a formatted cell at row 1,048,576
+costs gigabytes), and the read-only mode scans a sheet without a ``<dimension>`` element once
+just to open it and then costs about 40 us per cell on each of the two passes needed for
+stored values and formulas. Cell values follow openpyxl's rules
+(``openpyxl.worksheet._reader.WorkSheetParser``): numbers as int or float, shared and inline
+strings, booleans, error codes as text, ISO dates, and numbers with a date format as
+``datetime``. Every failure (zip, XML, a missing part) raises; the loader turns it into one
+file-level input error.
 """
 
 from __future__ import annotations
@@ -44,70 +47,203 @@ class SheetCells:
     merged: list[str] = field(default_factory=list)
 
 
+# ECMA-376 Part 1, 18.8.30 numFmt: the built-in number formats (as openpyxl lists them,
+# openpyxl.styles.numbers.BUILTIN_FORMATS; a test compares the two)
+BUILTIN_FORMATS: dict[int, str] = {
+    0: "General", 1: "0", 2: "0.00", 3: "#,##0", 4: "#,##0.00",
+    5: '"$"#,##0_);("$"#,##0)', 6: '"$"#,##0_);[Red]("$"#,##0)',
+    7: '"$"#,##0.00_);("$"#,##0.00)', 8: '"$"#,##0.00_);[Red]("$"#,##0.00)',
+    9: "0%", 10: "0.00%", 11: "0.00E+00", 12: "# ?/?", 13: "# ??/??",
+    14: "mm-dd-yy", 15: "d-mmm-yy", 16: "d-mmm", 17: "mmm-yy", 18: "h:mm AM/PM",
+    19: "h:mm:ss AM/PM", 20: "h:mm", 21: "h:mm:ss", 22: "m/d/yy h:mm",
+    37: "#,##0_);(#,##0)", 38: "#,##0_);[Red](#,##0)", 39: "#,##0.00_);(#,##0.00)",
+    40: "#,##0.00_);[Red](#,##0.00)",
+    41: r'_(* #,##0_);_(* \(#,##0\);_(* "-"_);_(@_)',
+    42: r'_("$"* #,##0_);_("$"* \(#,##0\);_("$"* "-"_);_(@_)',
+    43: r'_(* #,##0.00_);_(* \(#,##0.00\);_(* "-"??_);_(@_)',
+    44: r'_("$"* #,##0.00_)_("$"* \(#,##0.00\)_("$"* "-"??_)_(@_)',
+    45: "mm:ss", 46: "[h]:mm:ss", 47: "mmss.0", 48: "##0.0E+0", 49: "@",
+}
+
+# content types of the package parts (ECMA-376 Part 1, 12.3; openpyxl.xml.constants)
+_WORKBOOK_TYPES = (  # openpyxl's order of preference
+    "application/vnd.ms-excel.template.macroEnabled.main+xml",
+    "application/vnd.openxmlformats-officedocument.spreadsheetml.template.main+xml",
+    "application/vnd.ms-excel.sheet.macroEnabled.main+xml",
+    "application/vnd.openxmlformats-officedocument.spreadsheetml.sheet.main+xml",
+)
+_SHARED_STRINGS = "application/vnd.openxmlformats-officedocument.spreadsheetml.sharedStrings+xml"
+_STYLES = "xl/styles.xml"  # where openpyxl looks for the stylesheet
+_DATE_LETTERS = re.compile(r"[dmhysDMHYS]")
+
+
+def _local(tag: str) -> str:
+    return tag.rsplit("}", 1)[-1]
+
+
+def _parse(data: bytes):
+    import xml.etree.ElementTree as ET
+
+    return ET.fromstring(data)
+
+
 @dataclass
 class Package:
     """An opened workbook: its sheets (name, part, kind) and what their cells need."""
 
     sheets: list[tuple[str, str, str]]  # (name, part path in the zip, "worksheet"|"chartsheet")
-    _reader: Any
+    archive: Any
+    strings: list[str] = field(default_factory=list)
+    date1904: bool = False
+    _xf_formats: list[int] = field(default_factory=lambda: [0])  # numFmtId per cell style
+    _custom: dict[int, str] = field(default_factory=dict)  # numFmtId -> format code
     _formats: dict[int, tuple[str, bool, bool]] = field(default_factory=dict)
 
     def close(self) -> None:
-        self._reader.archive.close()
+        self.archive.close()
 
     def cells(self, part: str, max_col: int = LAST_COLUMN) -> SheetCells:
         """Parse one worksheet part, keeping cells in columns ``1..max_col``."""
         return _SheetParser(self, max_col).parse(part)
 
     def number_format(self, style_id: int) -> tuple[str, bool, bool]:
-        """(number format, is a date format, is a time-delta format) of a cell style."""
+        """(number format, is a date format, is a time-delta format) of a cell style (as
+        openpyxl: a custom format of the style's id, else the built-in one, else General)."""
         got = self._formats.get(style_id)
         if got is None:
-            from openpyxl.styles.numbers import (
-                BUILTIN_FORMATS,
-                BUILTIN_FORMATS_MAX_SIZE,
-                is_date_format,
-                is_timedelta_format,
-            )
-
-            wb = self._reader.wb
-            styles = wb._cell_styles
-            fmt_id = styles[style_id].numFmtId if 0 <= style_id < len(styles) else 0
-            if fmt_id < BUILTIN_FORMATS_MAX_SIZE:
+            xf = self._xf_formats
+            fmt_id = xf[style_id] if 0 <= style_id < len(xf) else 0
+            fmt = self._custom.get(fmt_id)
+            if fmt is None:
                 fmt = BUILTIN_FORMATS.get(fmt_id, "General")
-            else:
-                fmt = wb._number_formats[fmt_id - BUILTIN_FORMATS_MAX_SIZE]
-            got = (fmt, is_date_format(fmt), is_timedelta_format(fmt))
+            if _DATE_LETTERS.search(fmt) is None:  # no date or time letter at all
+                got = (fmt, False, False)
+            else:  # openpyxl's rules for the rest (literals, locales, [h]...)
+                from openpyxl.styles.numbers import is_date_format, is_timedelta_format
+
+                got = (fmt, is_date_format(fmt), is_timedelta_format(fmt))
             self._formats[style_id] = got
         return got
 
+    def epoch(self):
+        from openpyxl.utils.datetime import CALENDAR_MAC_1904, CALENDAR_WINDOWS_1900
+
+        return CALENDAR_MAC_1904 if self.date1904 else CALENDAR_WINDOWS_1900
+
+
+def _rels(archive, part: str) -> dict[str, tuple[str, str]]:
+    """Relationships of ``part``: id -> (target path in the zip, type), targets made absolute
+    as openpyxl does (``openpyxl.packaging.relationship.get_dependents``)."""
+    import posixpath
+
+    folder, name = posixpath.split(part)
+    path = posixpath.join(folder, "_rels", f"{name}.rels")
+    root = _parse(archive.read(path))
+    parent = posixpath.split(posixpath.dirname(path))[0]
+    out = {}
+    for r in root:
+        if _local(r.tag) != "Relationship":
+            continue
+        target = r.get("Target", "")
+        if r.get("TargetMode") != "External":
+            target = target[1:] if target.startswith("/") else posixpath.normpath(
+                posixpath.join(parent, target))
+        out[r.get("Id", "")] = (target, r.get("Type", ""))
+    return out
+
+
+def _shared_strings(src) -> list[str]:
+    """The shared-string table as openpyxl reads it (``read_string_table``): per ``si`` its
+    plain text and the text of its runs (phonetic runs left out), ``x005F_`` removed."""
+    import xml.etree.ElementTree as ET
+
+    out = []
+    for _, node in ET.iterparse(src):
+        if _local(node.tag) != "si":
+            continue
+        plain = ""
+        runs = []
+        for child in node:
+            tag = _local(child.tag)
+            if tag == "t":
+                plain = child.text or ""
+            elif tag == "r":
+                for t in child:
+                    if _local(t.tag) == "t" and t.text is not None:
+                        runs.append(t.text)
+        out.append((plain + "".join(runs)).replace("x005F_", ""))
+        node.clear()
+    return out
+
 
 def open_package(path: Path) -> Package:
-    """Open the package with openpyxl's reader (no worksheet is parsed here).
+    """Open the package (content types, workbook part and its relationships, shared strings,
+    number formats) with the standard library, as openpyxl's reader does; no worksheet is
+    parsed here (tests compare every value with openpyxl's).
 
-    Raises whatever zipfile/openpyxl/XML parsing raise for a file that is not a workbook, and
-    :class:`PackageProblem` when a sheet's part is missing (openpyxl would drop that sheet
-    silently).
+    Raises whatever zipfile and the XML parser raise for a file that is not a workbook
+    (``KeyError`` for a missing part, ``OSError`` for a package without a workbook part),
+    and :class:`PackageProblem` when a sheet's part is missing (openpyxl would drop that
+    sheet silently).
     """
-    from openpyxl.reader.excel import ExcelReader
-    from openpyxl.styles.stylesheet import apply_stylesheet
+    import zipfile
 
-    reader = ExcelReader(str(path), read_only=True, data_only=True, keep_links=False)
+    archive = zipfile.ZipFile(str(path))
     try:
-        reader.read_manifest()
-        reader.read_strings()
-        reader.read_workbook()
-        apply_stylesheet(reader.archive, reader.wb)
+        manifest = _parse(archive.read("[Content_Types].xml"))
+        overrides = [(n.get("PartName", ""), n.get("ContentType", "")) for n in manifest
+                     if _local(n.tag) == "Override"]
+        defaults = {n.get("ContentType", "") for n in manifest if _local(n.tag) == "Default"}
+        strings: list[str] = []
+        ss = next((name for name, ct in overrides if ct == _SHARED_STRINGS), None)
+        if ss is not None:
+            with archive.open(ss[1:]) as src:
+                strings = _shared_strings(src)
+        wb_part = next((name[1:] for ct in _WORKBOOK_TYPES for name, c in overrides
+                        if c == ct), None)
+        if wb_part is None:
+            if not defaults & set(_WORKBOOK_TYPES):
+                raise OSError("File contains no valid workbook part")
+            wb_part = "xl/workbook.xml"
+        wb = _parse(archive.read(wb_part))
+        date1904 = False
+        sheet_nodes = []
+        for node in wb:
+            tag = _local(node.tag)
+            if tag == "workbookPr":
+                date1904 = node.get("date1904", "").strip().lower() in ("1", "true")
+            elif tag == "sheets":
+                sheet_nodes = [s for s in node if _local(s.tag) == "sheet"]
+        xf_formats, custom = [0], {}
+        if _STYLES in archive.namelist():
+            for node in _parse(archive.read(_STYLES)):
+                tag = _local(node.tag)
+                if tag == "numFmts":
+                    custom = {int(n.get("numFmtId")): n.get("formatCode", "") for n in node
+                              if _local(n.tag) == "numFmt"}
+                elif tag == "cellXfs":
+                    xfs = [int(x.get("numFmtId", "0")) for x in node if _local(x.tag) == "xf"]
+                    xf_formats = xfs or xf_formats
+        valid = set(archive.namelist())
+        rels = None
         sheets = []
-        for sheet, rel in reader.parser.find_sheets():
-            if rel.target not in reader.valid_files:
-                raise PackageProblem(f"the content of sheet '{sheet.name}' is missing")
-            kind = "chartsheet" if "chartsheet" in str(rel.Type) else "worksheet"
-            sheets.append((str(sheet.name), rel.target, kind))
+        for node in sheet_nodes:
+            rid = next((v for k, v in node.attrib.items() if k.startswith("{")
+                        and _local(k) == "id"), None)
+            if not rid:  # openpyxl drops such a sheet with a warning
+                continue
+            if rels is None:
+                rels = _rels(archive, wb_part)
+            target, rtype = rels[rid]
+            name = node.get("name", "")
+            if target not in valid:
+                raise PackageProblem(f"the content of sheet '{name}' is missing")
+            kind = "chartsheet" if "chartsheet" in rtype else "worksheet"
+            sheets.append((name, target, kind))
     except BaseException:
-        reader.archive.close()
+        archive.close()
         raise
-    return Package(sheets, reader)
+    return Package(sheets, archive, strings, date1904, xf_formats, custom)
 
 
 def _cast_number(text: str) -> int | float:
@@ -131,8 +267,7 @@ class _SheetParser:
         self.pkg = package
         self.max_col = max_col
         self.out = SheetCells()
-        self.strings = package._reader.shared_strings
-        self.epoch = package._reader.wb.epoch
+        self.strings = package.strings
         self.row = 0
         self.col = 0
         self.cell_row = 0
@@ -151,7 +286,7 @@ class _SheetParser:
         p.StartElementHandler = self.start
         p.EndElementHandler = self.end
         p.CharacterDataHandler = self.chars
-        with self.pkg._reader.archive.open(part) as src:
+        with self.pkg.archive.open(part) as src:
             p.ParseFile(src)
         return self.out
 
@@ -225,7 +360,7 @@ class _SheetParser:
                     from openpyxl.utils.datetime import from_excel
 
                     try:
-                        value = from_excel(value, self.epoch, timedelta=is_delta)
+                        value = from_excel(value, self.pkg.epoch(), timedelta=is_delta)
                     except (OverflowError, ValueError):
                         value = "#VALUE!"  # as openpyxl: a date outside the calendar
             elif t == "s":

@@ -104,3 +104,77 @@ def test_kinds_formulas_and_merged(tmp_path):
     assert cells.formulas == {(1, 9): "=2*47.3", (1, 10): "=1/0"}
     assert cells.merged == ["A7:B8"]
     assert 40 not in cells.rows and sorted(cells.rows) == [1, 3, 5, 7]
+
+
+def test_builtin_formats_are_openpyxls():
+    from openpyxl.styles.numbers import BUILTIN_FORMATS
+
+    from checker.workbook.xlsx import BUILTIN_FORMATS as OURS
+
+    assert OURS == BUILTIN_FORMATS
+
+
+def _restyled(tmp_path, src, name, edit):
+    """A copy of ``src`` with ``edit(member name, bytes) -> bytes`` applied to each member."""
+    p = tmp_path / name
+    with zipfile.ZipFile(src) as z:
+        items = {i.filename: z.read(i.filename) for i in z.infolist()}
+    with zipfile.ZipFile(p, "w", zipfile.ZIP_DEFLATED) as z:
+        for n, data in items.items():
+            z.writestr(n, edit(n, data))
+    return p
+
+
+def test_package_details_as_openpyxl(tmp_path):
+    """Custom and built-in number formats, date formats, rich-text and phonetic shared
+    strings, the 1904 date system: the same values and formats as openpyxl."""
+    p = tmp_path / "fmt.xlsx"
+    wb = openpyxl.Workbook()
+    ws = wb.active
+    ws.title = "Fmt"
+    for col, (value, fmt) in enumerate([
+            (0.25, "0.0%"), (1234.5, "#,##0.00"), (3.5, '0.0 "mm"'), (45000.5, "dd/mm/yyyy"),
+            (0.75, "[h]:mm:ss"), (12.0, "0.00E+00"), (7, '"days" 0'), (45000, "mm-dd-yy"),
+            (2.0, "General"), ("text", "@")], start=1):
+        ws.cell(1, col, value).number_format = fmt
+    ws["A2"] = "plain"
+    wb.save(p)
+
+    sst = (b'<sst xmlns="http://schemas.openxmlformats.org/spreadsheetml/2006/main"'
+           b' count="2" uniqueCount="2"><si><t>first</t></si><si><r><t>ri</t></r>'
+           b'<r><rPr><b/></rPr><t>ch x005F_y</t></r><rPh sb="0" eb="1"><t>PH</t></rPh>'
+           b"</si></sst>")
+
+    def edit(name, data):
+        # a shared-string table (openpyxl writes inline strings) with a rich-text string
+        # and a phonetic run, and the 1904 date system
+        if name == "[Content_Types].xml":
+            data = data.replace(b"</Types>", b'<Override PartName="/xl/sharedStrings.xml"'
+                                b' ContentType="application/vnd.openxmlformats-officedocument'
+                                b'.spreadsheetml.sharedStrings+xml"/></Types>')
+        elif name == "xl/_rels/workbook.xml.rels":
+            data = data.replace(b"</Relationships>", b'<Relationship Id="rIdS" Type="http://'
+                                b"schemas.openxmlformats.org/officeDocument/2006/relationships"
+                                b'/sharedStrings" Target="sharedStrings.xml"/></Relationships>')
+        elif name == "xl/worksheets/sheet1.xml":
+            cell = b'<c r="A2" t="inlineStr"><is><t>plain</t></is></c>'
+            assert cell in data, data
+            data = data.replace(cell, b'<c r="A2" t="s"><v>1</v></c><c r="B2" t="s">'
+                                b"<v>0</v></c>")
+        elif name == "xl/workbook.xml":
+            assert b"<workbookPr" in data, data
+            data = data.replace(b"<workbookPr", b'<workbookPr date1904="1"', 1)
+        return data
+
+    def add(path):
+        with zipfile.ZipFile(path, "a") as z:
+            z.writestr("xl/sharedStrings.xml", sst)
+        return path
+
+    q = add(_restyled(tmp_path, p, "fmt1904.xlsx", edit))
+    for path in (p, q):
+        theirs, ours = _openpyxl_values(path), _ours(path)
+        assert ours == theirs
+    got = _ours(q)["Fmt"]
+    assert got[(2, 1)][0] == "rich y" and got[(2, 2)][0] == "first"
+    assert got[(1, 4)][0].year == 2027  # day 45000 of the 1904 system (2023 in 1900)
