@@ -393,7 +393,7 @@ def check_batch(engines: list[Engine], rules: str | Path | RuleTable | None = No
     list of CheckResult
         One per engine, in order.
     """
-    from .modules import bearings as _bearings
+    from .modules import bearings as m_bearings
 
     fail_on = parse_fail_on(fail_on)
     cache = {} if cache is None else cache
@@ -421,7 +421,7 @@ def check_batch(engines: list[Engine], rules: str | Path | RuleTable | None = No
             if any(d not in pre.quantities for d in deps):
                 continue  # an input is missing: the variant's own run reports it
             items.append((engine, key, {d: pre.quantities[d] for d in deps}))
-        outs = _bearings.solve_many([(e, inp) for e, _, inp in items], model, qname)
+        outs = m_bearings.solve_many([(e, inp) for e, _, inp in items], model, qname)
         for (_, key, _), out in zip(items, outs):
             if isinstance(out, graph.MissingInputs):
                 cache[key] = ({}, {qname: out.reasons})

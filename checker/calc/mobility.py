@@ -52,8 +52,8 @@ import functools
 import numpy as np
 from numpy.typing import ArrayLike
 
-from checker.calc import pi_film as _pf
-from checker.calc import reynolds_map as _rm
+from checker.calc import pi_film as pf
+from checker.calc import reynolds_map as rm
 from checker.calc.pi_film import check_in_disk as _check_in_disk
 from checker.calc.pi_film import j_integrals as _j_integrals
 from checker.calc.pi_film import m_closed as _m_closed
@@ -88,7 +88,7 @@ on 4000 random points biased towards ``eps -> 1``: 2.1e-4; re-checked in the tes
 BUTENSCHOEN_B_OVER_D_RANGE = (0.125, 1.0)
 """Range of width/diameter ratios covered by Butenschoen's tables and fits."""
 
-_FOUR_OVER_PI = _pf.FOUR_OVER_PI
+_FOUR_OVER_PI = pf.FOUR_OVER_PI
 
 
 # --------------------------------------------------------------------------------------------
@@ -706,16 +706,16 @@ def mobility(
 
 def _mobility_finite(zeta, kappa, l_over_d, model: str) -> tuple[np.ndarray, np.ndarray]:
     """Finite-length Reynolds mobility: stored map, or the solver itself (per point)."""
-    from checker.calc import reynolds as _ry  # scipy: only for the direct solution
+    from checker.calc import reynolds as ry  # scipy: only for the direct solution
 
     if model == "reynolds_map":
-        return _rm.mobility_map(zeta, kappa, l_over_d)
+        return rm.mobility_map(zeta, kappa, l_over_d)
     z, k, lod = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (zeta, kappa,
                                                                            l_over_d)))
     _check_in_disk(z, k)
     mz, mk = np.empty(z.shape), np.empty(z.shape)
     for idx in np.ndindex(z.shape):
-        a, b = _ry.mobility_reynolds(z[idx], k[idx], float(lod[idx]))
+        a, b = ry.mobility_reynolds(z[idx], k[idx], float(lod[idx]))
         mz[idx], mk[idx] = float(a), float(b)
     return mz, mk
 

@@ -59,7 +59,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from checker.calc import mobility as _mob
+from checker.calc import mobility as mb
 
 __all__ = [
     "DEFAULT_STEPS_PER_CYCLE",
@@ -220,8 +220,8 @@ class _Problem:
         viscosity, model, full_groove, steps_per_cycle, cycle_angle, solver_grid=None,
         solver_groove=None, share: bool = False, group=None,
     ):
-        if model not in _mob.MOBILITY_MODELS:
-            raise ValueError(f"unknown model {model!r}; choose one of {_mob.MOBILITY_MODELS}")
+        if model not in mb.MOBILITY_MODELS:
+            raise ValueError(f"unknown model {model!r}; choose one of {mb.MOBILITY_MODELS}")
         if int(steps_per_cycle) != steps_per_cycle or steps_per_cycle < 8:
             raise ValueError("steps_per_cycle must be an integer >= 8")
         if not (np.isfinite(cycle_angle) and cycle_angle > 0.0):
@@ -289,7 +289,7 @@ class _Problem:
         land = np.where(grooved, 0.5 * ln, ln)
         lod = land / dia
         if model == "butenschoen":
-            _mob._check_b_over_d(lod)
+            mb._check_b_over_d(lod)
         psi = 2.0 * cl / dia
         k = psi**2 / (mu * ln * dia * sp)  # |f| = |F| k  [1/rad]
         scale = k / lod**2 if model != "butenschoen" else k
@@ -321,9 +321,9 @@ class _Problem:
         self.shared = {}
         tid = np.zeros(lod.size, dtype=np.intp)
         if model in ("reynolds_map", "reynolds"):
-            from checker.calc import reynolds_map as _rm
+            from checker.calc import reynolds_map as rm
 
-            mob, _, _, tid = _rm.stack_tables(lod)  # ValueError outside the map's L/D range
+            mob, _, _, tid = rm.stack_tables(lod)  # ValueError outside the map's L/D range
             self.shared["map_mobility"] = mob
             if model == "reynolds":
                 self.shared["solver_grid"] = solver_grid
@@ -331,7 +331,7 @@ class _Problem:
         self.bear = {
             "tid": tid,
             "lod": lod,
-            "coef": _mob._butenschoen_coefficients(lod).T.copy() if model == "butenschoen"
+            "coef": mb._butenschoen_coefficients(lod).T.copy() if model == "butenschoen"
             else np.zeros((lod.size, 0)),
             "clearance": cl,
             "viscosity": mu,
@@ -370,34 +370,34 @@ def _make_rate(model: str, bear: dict, shared: dict | None = None):
     if model == "exact_table":
 
         def rate(z, fk, uc, iwb, sel=None):
-            return fk * _mob._m_exact_table(clip(z * uc)) + iwb * z
+            return fk * mb._m_exact_table(clip(z * uc)) + iwb * z
 
         return rate
     if model == "exact":
 
         def rate(z, fk, uc, iwb, sel=None):
-            return fk * _mob._m_exact(clip(z * uc)) + iwb * z
+            return fk * mb._m_exact(clip(z * uc)) + iwb * z
 
         return rate
     if model == "reynolds_map":
-        from checker.calc import reynolds_map as _rm
+        from checker.calc import reynolds_map as rm
 
         mob = shared["map_mobility"]
         tid = bear["tid"]
 
         def rate(z, fk, uc, iwb, sel=None):
             t = tid if sel is None else tid[sel]
-            return fk * _rm.map_kernel(z * uc, mob, t) + iwb * z
+            return fk * rm.map_kernel(z * uc, mob, t) + iwb * z
 
         return rate
     if model == "reynolds":
-        from checker.calc import reynolds as _ry
-        from checker.calc import reynolds_map as _rm
+        from checker.calc import reynolds as ry
+        from checker.calc import reynolds_map as rm
 
         mob = shared["map_mobility"]
         tid = bear["tid"]
         lod_all = bear["lod"]
-        grid = shared.get("solver_grid") or _ry.DEFAULT_GRID
+        grid = shared.get("solver_grid") or ry.DEFAULT_GRID
         groove = shared.get("solver_groove")
 
         def rate(z, fk, uc, iwb, sel=None):
@@ -405,15 +405,15 @@ def _make_rate(model: str, bear: dict, shared: dict | None = None):
             lods = lod_all if sel is None else lod_all[sel]
             w = clip(z * uc)
             aw = np.abs(w)
-            w = np.where(aw > _ry.EPS_MAX, w * (_ry.EPS_MAX / np.maximum(aw, _ry.EPS_MAX)), w)
-            guess = _rm.map_kernel(w, mob, t)  # initial squeeze direction from the map
+            w = np.where(aw > ry.EPS_MAX, w * (ry.EPS_MAX / np.maximum(aw, ry.EPS_MAX)), w)
+            guess = rm.map_kernel(w, mob, t)  # initial squeeze direction from the map
             alpha0 = np.angle(guess) - np.angle(w)  # M is along V_s: alpha = arg M + chi
             m = np.empty(w.shape, dtype=complex)
             phi = np.angle(z)  # eccentricity direction in the caller's frame
             for i in range(w.size):
                 g_e = None if groove is None else (
                     groove[0] - phi[i], groove[1] - phi[i], groove[2])
-                mz, mk = _ry.mobility_reynolds(w.real[i], w.imag[i], float(lods[i]),
+                mz, mk = ry.mobility_reynolds(w.real[i], w.imag[i], float(lods[i]),
                                                grid=grid, alpha0=alpha0[i], groove=g_e)
                 m[i] = complex(float(mz), float(mk)) * lods[i] ** 2
             return fk * m + iwb * z
@@ -424,8 +424,8 @@ def _make_rate(model: str, bear: dict, shared: dict | None = None):
 
     def rate(z, fk, uc, iwb, sel=None):
         if sel is None:
-            return fk * _mob._m_butenschoen(clip(z * uc), x, a) + iwb * z
-        return fk * _mob._m_butenschoen(clip(z * uc), x[sel], a[:, sel]) + iwb * z
+            return fk * mb._m_butenschoen(clip(z * uc), x, a) + iwb * z
+        return fk * mb._m_butenschoen(clip(z * uc), x[sel], a[:, sel]) + iwb * z
 
     return rate
 
@@ -712,7 +712,7 @@ def _peak_pressure(zh, kh, iwb_steps, bear, n_refine: int = 8):
     cand = np.argpartition(-screen, k - 1, axis=0)[:k]  # (k, B)
     cols = np.arange(zh.shape[1])
     zs, vv = zc[cand, cols], vs[cand, cols]
-    p, _ = _mob.short_bearing_peak_pressure(zs.real, zs.imag, vv.real, vv.imag, bear["land"],
+    p, _ = mb.short_bearing_peak_pressure(zs.real, zs.imag, vv.real, vv.imag, bear["land"],
                                             bear["clearance"], bear["viscosity"])
     best = np.argmax(p, axis=0)
     return p[best, cols], cand[best, cols]

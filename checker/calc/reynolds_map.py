@@ -46,7 +46,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike
 
-from checker.calc import pi_film as _pf
+from checker.calc import pi_film as pf
 
 __all__ = [
     "MAP_FILE",
@@ -138,8 +138,8 @@ def map_directions(eps: float, n_t: int = MAP_N_T) -> tuple[np.ndarray, np.ndarr
     e = np.full(n_t, float(eps))
     th = _theta_of_t(t, e)
     chi = -th
-    a0 = np.angle(_pf.m_closed(eps * np.exp(1j * th))) + chi
-    return th, _pf.solve_alpha(e, chi, a0)
+    a0 = np.angle(pf.m_closed(eps * np.exp(1j * th))) + chi
+    return th, pf.solve_alpha(e, chi, a0)
 
 
 # --------------------------------------------------------------------------------------------
@@ -174,9 +174,9 @@ def generate_map(
         ``l_over_d (K,)``, ``eps (I,)``, ``alpha (K, I, J)``, ``w (K, I, J)`` complex,
         ``p_max (K, I, J)``, ``q_side (K, I, J)``, ``grid (2,)``.
     """
-    from checker.calc import reynolds as _rey
+    from checker.calc import reynolds as ry
 
-    grid = _rey.DEFAULT_GRID if grid is None else grid
+    grid = ry.DEFAULT_GRID if grid is None else grid
     lods = np.atleast_1d(np.asarray(l_over_d, dtype=float))
     eps = map_eccentricities(n_x)
     sel = np.arange(n_x) if rows is None else np.atleast_1d(np.asarray(rows, dtype=int))
@@ -191,14 +191,14 @@ def generate_map(
             e = float(eps[i])
             _, al = map_directions(e, n_t)
             if e == 0.0:  # isotropic: one solve, rotated
-                s = _rey.solve_film(0.0, 0.0, float(lod), grid=grid)
+                s = ry.solve_film(0.0, 0.0, float(lod), grid=grid)
                 alpha[k, i] = al
                 w[k, i] = complex(s.w_r, s.w_t) * np.exp(1j * al)
                 pm[k, i] = s.p_max
                 qs[k, i] = s.q_side
                 continue
             for j in range(n_t):
-                s = _rey.solve_film(e, float(al[j]), float(lod), grid=grid)
+                s = ry.solve_film(e, float(al[j]), float(lod), grid=grid)
                 alpha[k, i, j] = al[j]
                 w[k, i, j] = complex(s.w_r, s.w_t)
                 pm[k, i, j] = s.p_max
@@ -316,7 +316,7 @@ def _node_values(data: dict, k: int) -> tuple[np.ndarray, np.ndarray, np.ndarray
     th = np.abs(np.angle(np.exp(-1j * chi)))  # e from the load, 0..pi
     wl = eps * np.exp(1j * th)  # eccentricity in the load frame
     m = 4.0 * lod**3 / wabs * np.exp(1j * (alpha - chi))  # mobility * (L/D)^2, load frame
-    log_r = np.log(m / _pf.m_closed(wl))
+    log_r = np.log(m / pf.m_closed(wl))
     log_r.imag = np.unwrap(log_r.imag, axis=1)
     with np.errstate(divide="ignore", invalid="ignore"):
         t = np.where(eps > 0.0, _t_of_theta(th, np.broadcast_to(eps, th.shape)),
@@ -429,7 +429,7 @@ def table_for(l_over_d: float) -> MapTable:
     log_g = s @ np.tensordot(wts, data["rows_log_gamma"], axes=1)
     d = (1.0 - eps_fine)[:, None]
     wl = eps_fine[:, None] * ((1.0 - qf) + 1j * sin_th)  # load-frame eccentricity, kappa >= 0
-    m = np.exp(log_r) * _pf.m_closed(wl) / d**1.5
+    m = np.exp(log_r) * pf.m_closed(wl) / d**1.5
     kap = eps_fine[:, None] * sin_th
     with np.errstate(divide="ignore", invalid="ignore"):
         b = np.where(kap > 0.0, m.imag / kap, np.nan)
@@ -580,7 +580,7 @@ def mobility_map(zeta: ArrayLike, kappa: ArrayLike, l_over_d: ArrayLike
     """
     z, k, lod = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (zeta, kappa,
                                                                            l_over_d)))
-    _pf.check_in_disk(z, k)
+    pf.check_in_disk(z, k)
     mob, _, _, off = stack_tables(lod)
     m = map_kernel(z + 1j * k, mob, off) / lod**2
     return m.real, m.imag
@@ -612,7 +612,7 @@ def film_kernels(zeta: ArrayLike, kappa: ArrayLike, l_over_d: ArrayLike
     """
     z, k, lod = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (zeta, kappa,
                                                                            l_over_d)))
-    _pf.check_in_disk(z, k)
+    pf.check_in_disk(z, k)
     _, lp, lg, off = stack_tables(lod)
     i0, tx, tt, _, _ = _coords(z + 1j * k)
     return np.exp(_bilinear(lp, i0 + off, tx, tt)), np.exp(_bilinear(lg, i0 + off, tx, tt))

@@ -63,7 +63,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from . import example_derived as _derived
+from . import example_derived as dv
 from .example_data import about, load_example, split_tv_stations
 
 
@@ -79,19 +79,19 @@ def v8_content(split_stations: bool = False, link: float = 1e13) -> dict[str, An
 
 def throw_unbalance() -> dict[str, float]:
     """Equivalent first-order rotating unbalance of one throw [kg m] and its parts."""
-    return _derived.v8_throw_unbalance(load_example("v8"))
+    return dv.v8_throw_unbalance(load_example("v8"))
 
 
 def counterweights() -> dict[int, tuple[float, float]]:
     """Counterweight unbalance vector (Z, Y) [kg m] of webs 1..8 (module docstring)."""
-    return _derived.v8_counterweights(load_example("v8"))
+    return dv.v8_counterweights(load_example("v8"))
 
 
 def __getattr__(name: str) -> Any:
     """``PIN_THROW`` (crank pin -> throw angle from throw 1 [deg]) and ``ASSUMED`` (what the
     example assumes), from the data file when asked for."""
     if name == "PIN_THROW":
-        return _derived.v8_pin_throw(load_example("v8"))
+        return dv.v8_pin_throw(load_example("v8"))
     if name == "ASSUMED":
         return about("v8").get("assumed", {})
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -5,7 +5,7 @@ import pytest
 from scipy.integrate import quad
 from scipy.optimize import minimize_scalar
 
-from checker.calc import damper as dm
+from checker.calc import damper as dmp
 from checker.calc import torsional as tv
 
 # torsion.md 3.5 worked case: G' = 1 MPa, eta = 0.25, r_i = 60 mm, r_o = 65 mm, L = 25 mm,
@@ -19,30 +19,30 @@ DPHI = np.deg2rad(0.3)
 
 def test_worked_case_power_equals_heat_volume_integral():
     g_star = G_STORAGE * (1 + 1j * ETA)
-    k_star = dm.annulus_stiffness(g_star, R_I, R_O, LENGTH)
-    p = dm.dissipated_power(DPHI, OMEGA, k_star.real, ETA)
+    k_star = dmp.annulus_stiffness(g_star, R_I, R_O, LENGTH)
+    p = dmp.dissipated_power(DPHI, OMEGA, k_star.real, ETA)
     np.testing.assert_allclose(p, 57.6175, rtol=1e-5)  # source: 6 significant digits
-    torque = dm.damper_torque(DPHI, OMEGA, k_star.real, ETA)
+    torque = dmp.damper_torque(DPHI, OMEGA, k_star.real, ETA)
     np.testing.assert_allclose(abs(torque), abs(k_star) * DPHI, rtol=1e-14)
 
     def integrand(r):
-        q = dm.annulus_local_heat_density(torque, OMEGA, g_star, r, LENGTH)
+        q = dmp.annulus_local_heat_density(torque, OMEGA, g_star, r, LENGTH)
         return q * 2 * np.pi * r * LENGTH
 
     heat, _ = quad(integrand, R_I, R_O, epsabs=0, epsrel=1e-12)
     np.testing.assert_allclose(heat, p, rtol=1e-10)  # identity, quadrature accuracy
 
-    vol = dm.annulus_volume(R_I, R_O, LENGTH)
-    q_mean, q_peak = dm.annulus_heat_density(p, R_I, R_O, LENGTH)
+    vol = dmp.annulus_volume(R_I, R_O, LENGTH)
+    q_mean, q_peak = dmp.annulus_heat_density(p, R_I, R_O, LENGTH)
     np.testing.assert_allclose(vol * 1e6, 49.1, atol=0.05)  # cm^3, 3 digits
     np.testing.assert_allclose(q_mean * 1e-6, 1.17, atol=0.005)  # W/cm^3, 3 digits
     np.testing.assert_allclose(q_peak / q_mean, (R_O / R_I) ** 2, rtol=1e-14)
     # peak equals the local density at the inner radius (q ~ 1/r^4 integrated exactly)
-    q_inner = dm.annulus_local_heat_density(torque, OMEGA, g_star, R_I, LENGTH)
+    q_inner = dmp.annulus_local_heat_density(torque, OMEGA, g_star, R_I, LENGTH)
     np.testing.assert_allclose(q_peak, q_inner, rtol=1e-12)
     # gamma_max = tau_max/|G*| = 7.1 % (source, 2 digits). The source's tau_max = 0.071 MPa is
     # the storage part G' gamma_max; the full stress amplitude |G*| gamma_max is 0.073 MPa.
-    tau_max = dm.annulus_shear_stress(abs(torque), R_I, LENGTH)
+    tau_max = dmp.annulus_shear_stress(abs(torque), R_I, LENGTH)
     gamma_max = tau_max / abs(g_star)
     np.testing.assert_allclose(gamma_max, 0.071, atol=0.0005)
     np.testing.assert_allclose(G_STORAGE * gamma_max * 1e-6, 0.071, atol=0.0005)  # MPa
@@ -52,22 +52,22 @@ def test_worked_case_power_equals_heat_volume_integral():
 def test_annulus_stiffness_thin_layer_limit_and_equilibrium():
     # thin layer h << R: k -> 2 pi G R^3 L / h (torsion.md 3.5); relative difference O((h/R)^2)
     r_mid, h = 0.1, 1e-4
-    k = dm.annulus_stiffness(1e6, r_mid - h / 2, r_mid + h / 2, 0.02)
+    k = dmp.annulus_stiffness(1e6, r_mid - h / 2, r_mid + h / 2, 0.02)
     np.testing.assert_allclose(k, 2 * np.pi * 1e6 * r_mid**3 * 0.02 / h, rtol=1e-5)
     # torque equilibrium: tau(r) 2 pi r^2 L = T at every radius
     r = np.linspace(R_I, R_O, 7)
-    tau = dm.annulus_shear_stress(100.0, R_I, LENGTH, radius=r)
+    tau = dmp.annulus_shear_stress(100.0, R_I, LENGTH, radius=r)
     np.testing.assert_allclose(tau * 2 * np.pi * r**2 * LENGTH, 100.0, rtol=1e-14)
 
     # integrating the strain gamma = tau/G = r dphi/dr from r_i to r_o gives T/k
     def dphi_dr(rr):
-        return dm.annulus_shear_stress(100.0, R_I, LENGTH, radius=rr) / 1e6 / rr
+        return dmp.annulus_shear_stress(100.0, R_I, LENGTH, radius=rr) / 1e6 / rr
 
     twist, _ = quad(dphi_dr, R_I, R_O, epsrel=1e-12)
     k_ref = 100.0 / twist
-    np.testing.assert_allclose(dm.annulus_stiffness(1e6, R_I, R_O, LENGTH), k_ref, rtol=1e-10)
+    np.testing.assert_allclose(dmp.annulus_stiffness(1e6, R_I, R_O, LENGTH), k_ref, rtol=1e-10)
     with pytest.raises(ValueError):
-        dm.annulus_stiffness(1e6, 0.07, 0.06, 0.02)
+        dmp.annulus_stiffness(1e6, 0.07, 0.06, 0.02)
 
 
 def test_total_power_is_sum_over_orders_time_domain():
@@ -78,12 +78,12 @@ def test_total_power_is_sum_over_orders_time_domain():
     rng = np.random.default_rng(7)
     dphi = (rng.normal(size=24) + 1j * rng.normal(size=24)) * 1e-3 / orders
     c = 0.8
-    p_n = dm.dissipated_power(dphi, orders * w, damping=c)
+    p_n = dmp.dissipated_power(dphi, orders * w, damping=c)
     t = np.linspace(0, 4 * np.pi / w, 20_000, endpoint=False)
     rate = (1j * orders * w * dphi * np.exp(1j * orders * w * t[:, None])).real.sum(-1)
     np.testing.assert_allclose(p_n.sum(), np.mean(c * rate**2), rtol=1e-12)
     # hysteretic: the same law with c = k''/Omega per order
-    p_h = dm.dissipated_power(dphi, orders * w, storage_stiffness=2e4, loss_factor=0.2)
+    p_h = dmp.dissipated_power(dphi, orders * w, storage_stiffness=2e4, loss_factor=0.2)
     np.testing.assert_allclose(p_h, 0.5 * orders * w * 0.2 * 2e4 * np.abs(dphi) ** 2, rtol=1e-14)
 
 
@@ -103,14 +103,14 @@ def test_power_balance_of_the_engine_model():
     r = tv.forced_response(model, speeds, orders, f)
     om = r.omega[:, None, :]
     p_in = 0.5 * np.real(np.conj(1j * om * r.theta) * f).sum(axis=(1, 2))
-    dphi = dm.relative_twist(r.theta[:, 1], r.theta[:, 0])
-    p_damper = dm.dissipated_power(dphi, r.omega, 25500.0, 0.2).sum(-1)
+    dphi = dmp.relative_twist(r.theta[:, 1], r.theta[:, 0])
+    p_damper = dmp.dissipated_power(dphi, r.omega, 25500.0, 0.2).sum(-1)
     p_abs = (0.5 * d_abs[:, None] * om**2 * np.abs(r.theta) ** 2).sum(axis=(1, 2))
     np.testing.assert_allclose(p_in, p_damper + p_abs, rtol=1e-9)
     # rubber torque from the damper module equals the element torque of the model
-    t_d = dm.damper_torque(dphi, r.omega, 25500.0, 0.2)
+    t_d = dmp.damper_torque(dphi, r.omega, 25500.0, 0.2)
     np.testing.assert_allclose(t_d, -r.element_torque[:, 0], rtol=1e-12)  # element 0: ring->hub
-    amp = dm.synthesized_amplitude(orders, t_d)
+    amp = dmp.synthesized_amplitude(orders, t_d)
     assert np.all(amp <= np.abs(t_d).sum(-1)) and np.all(amp >= np.abs(t_d).max(-1))
 
 
@@ -118,10 +118,10 @@ def test_den_hartog_fixed_points_have_equal_height():
     # Den Hartog 1956 sec. 3.3: at optimum tuning f = 1/(1+mu) every damping curve passes through
     # the fixed points r^2 = (1 +- sqrt(mu/(2+mu)))/(1+mu) with height sqrt(1 + 2/mu). Exact.
     for mu in (0.05, 0.1, 0.2):
-        f_opt, _, peak = dm.den_hartog_optimum(mu)
+        f_opt, _, peak = dmp.den_hartog_optimum(mu)
         r2 = (1 + np.array([-1, 1]) * np.sqrt(mu / (2 + mu))) / (1 + mu)
         for g in (0.01, 0.1, 0.3, 3.0):
-            xi = dm.absorber_magnification(np.sqrt(r2), mu, f_opt, g)
+            xi = dmp.absorber_magnification(np.sqrt(r2), mu, f_opt, g)
             np.testing.assert_allclose(xi, peak, rtol=1e-10)
 
 
@@ -132,10 +132,10 @@ def test_den_hartog_fixed_points_have_equal_height():
 def test_den_hartog_optimum_peak(mu, f_ref, zeta_ref, peak_num):
     # torsion.md 3.4 (numerical check of Den Hartog): f, zeta to 4 digits; with zeta_opt the true
     # maximum is ~0.1-0.3 % above sqrt(1+2/mu) (6.408 vs 6.403 etc.), asserted within 0.5 %.
-    f_opt, zeta, peak = dm.den_hartog_optimum(mu)
+    f_opt, zeta, peak = dmp.den_hartog_optimum(mu)
     np.testing.assert_allclose([f_opt, zeta], [f_ref, zeta_ref], atol=5e-5)
     r = np.linspace(0.6, 1.4, 40_001)
-    xi_max = dm.absorber_magnification(r, mu, f_opt, zeta).max()
+    xi_max = dmp.absorber_magnification(r, mu, f_opt, zeta).max()
     np.testing.assert_allclose(xi_max, peak_num, atol=1.5e-3)
     assert peak <= xi_max < 1.005 * peak
 
@@ -153,13 +153,13 @@ def test_absorber_formula_against_two_dof_model():
     r = np.linspace(0.5, 1.5, 41)
     resp = tv.forced_response(model, r * wn, [1.0], [[1.0], [0.0]])
     np.testing.assert_allclose(
-        np.abs(resp.theta[:, 0, 0]) * k, dm.absorber_magnification(r, mu, f, g), rtol=1e-10
+        np.abs(resp.theta[:, 0, 0]) * k, dmp.absorber_magnification(r, mu, f, g), rtol=1e-10
     )
     # the optimum damping minimises the maximum (numerically, Brent on the sweep maximum)
-    f_opt, z_opt, _ = dm.den_hartog_optimum(mu)
+    f_opt, z_opt, _ = dmp.den_hartog_optimum(mu)
     rr = np.linspace(0.6, 1.4, 8001)
     res = minimize_scalar(
-        lambda z: dm.absorber_magnification(rr, mu, f_opt, z).max(),
+        lambda z: dmp.absorber_magnification(rr, mu, f_opt, z).max(),
         bounds=(0.05, 0.4),
         method="bounded",
         options={"xatol": 1e-6},
@@ -171,11 +171,11 @@ def test_absorber_formula_against_two_dof_model():
 
 def test_validation():
     with pytest.raises(ValueError):
-        dm.dissipated_power(1e-3, 100.0, 1e4, -0.1)
+        dmp.dissipated_power(1e-3, 100.0, 1e4, -0.1)
     with pytest.raises(ValueError):
-        dm.annulus_heat_density(-1.0, R_I, R_O, LENGTH)
+        dmp.annulus_heat_density(-1.0, R_I, R_O, LENGTH)
     with pytest.raises(ValueError):
-        dm.den_hartog_optimum(0.0)
+        dmp.den_hartog_optimum(0.0)
 
 
 def test_annulus_shear_modulus_inverts_the_stiffness():
@@ -183,11 +183,11 @@ def test_annulus_shear_modulus_inverts_the_stiffness():
     # at R = 60 mm recovers G' within the layer's first-order curvature term (h / R)
     r, h = R_I, 0.001
     k_thin = 2 * np.pi * G_STORAGE * r**3 * LENGTH / h
-    g = dm.annulus_shear_modulus(k_thin, r - h / 2, r + h / 2, LENGTH)
+    g = dmp.annulus_shear_modulus(k_thin, r - h / 2, r + h / 2, LENGTH)
     np.testing.assert_allclose(g, G_STORAGE, rtol=2 * (h / r) ** 2)
     # exact round trip through the closed form
-    k = dm.annulus_stiffness(G_STORAGE, R_I, R_O, LENGTH)
-    np.testing.assert_allclose(dm.annulus_shear_modulus(k, R_I, R_O, LENGTH), G_STORAGE,
+    k = dmp.annulus_stiffness(G_STORAGE, R_I, R_O, LENGTH)
+    np.testing.assert_allclose(dmp.annulus_shear_modulus(k, R_I, R_O, LENGTH), G_STORAGE,
                                rtol=1e-14)
     with pytest.raises(ValueError):
-        dm.annulus_shear_modulus(0.0, R_I, R_O, LENGTH)
+        dmp.annulus_shear_modulus(0.0, R_I, R_O, LENGTH)

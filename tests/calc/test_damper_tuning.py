@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from checker.calc import damper as dm
+from checker.calc import damper as dmp
 from checker.calc import damper_tuning as dt
 from checker.calc import torsional as tv
 
@@ -89,4 +89,4 @@ def test_validation():
         dt.absorber_tuning(0.005, 1e4, -0.1, 0.0, 100.0, 0.1)
     # the damper module's optimum is the one used
     assert dt.absorber_tuning(0.01, 1e4, 0.1, 0.0, 100.0, 0.1).tuning_optimum == pytest.approx(
-        float(dm.den_hartog_optimum(0.1)[0]))
+        float(dmp.den_hartog_optimum(0.1)[0]))

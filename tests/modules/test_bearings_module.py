@@ -12,7 +12,7 @@ import pytest
 from checker import api, graph
 from checker.calc import orbit as ob
 from checker.engine import Params, load_engine
-from checker.modules import bearings as bearings_module
+from checker.modules import bearings as m_bearings
 from tests.helpers import example_path
 
 
@@ -54,7 +54,7 @@ def test_states_model_and_viscosity(result):
 def test_halving_the_step_changes_moft_less_than_half_percent(engine, monkeypatch):
     # issue 4 acceptance: halving the crank-angle step changes MOFT by < 0.5 % on the example
     base = _moft(engine).values
-    monkeypatch.setattr(bearings_module, "STEPS_PER_CYCLE", 2 * bearings_module.STEPS_PER_CYCLE)
+    monkeypatch.setattr(m_bearings, "STEPS_PER_CYCLE", 2 * m_bearings.STEPS_PER_CYCLE)
     fine = _moft(engine).values
     assert np.max(np.abs(base / fine - 1)) < 0.005
 

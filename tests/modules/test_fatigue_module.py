@@ -15,7 +15,7 @@ import pytest
 
 from checker import api
 from checker.calc.fatigue import goodman_line
-from checker.modules import fatigue as fm
+from checker.modules import fatigue as m_fatigue
 from tests.helpers import edited, example_path, param_row, set_param
 
 RPM = 2 * np.pi / 60
@@ -101,8 +101,9 @@ def test_i4_throw_symmetry(result, example):
     et = res_tv["tv.element_torque"]
     zero = dataclasses.replace(et, detail=dataclasses.replace(
         et.detail, coeffs=np.zeros_like(et.detail.coeffs), mean=np.zeros_like(et.detail.mean)))
-    out = fm.crank_fatigue(result.engine, {"loads.bearing_load": res_tv["loads.bearing_load"],
-                                           "tv.element_torque": zero})["fatigue.goodman_sf"]
+    out = m_fatigue.crank_fatigue(result.engine,
+                                  {"loads.bearing_load": res_tv["loads.bearing_load"],
+                                   "tv.element_torque": zero})["fatigue.goodman_sf"]
     for a, b in (("pin 1 fillet", "pin 4 fillet"), ("pin 2 fillet", "pin 3 fillet"),
                  ("main 1 fillet", "main 5 fillet"), ("main 2 fillet", "main 4 fillet"),
                  ("pin 1 oil hole", "pin 4 oil hole"), ("pin 2 oil hole", "pin 3 oil hole")):
