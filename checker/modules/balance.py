@@ -28,7 +28,7 @@ import numpy as np
 from ..calc import balance as bal
 from ..calc import crank_forces as cf
 from ..engine import Engine
-from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity, register_module
+from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
 from ..results.balance import (
     BalanceDetail,
     BalanceRatioDetail,
@@ -36,8 +36,6 @@ from ..results.balance import (
     FreeOrderDetail,
     InternalMomentDetail,
 )
-
-register_module("balance", "Crankshaft balancing")
 
 RPM = 2.0 * np.pi / 60.0
 MAX_ORDER = bal.DEFAULT_MAX_ORDER

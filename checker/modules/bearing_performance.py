@@ -12,12 +12,10 @@ from ..calc import film_pressure as fp
 from ..calc import orbit as ob
 from ..calc import viscosity as vs
 from ..engine import Bearing, Engine
-from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity, register_module
+from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
 from ..results.bearings import FilmPressureDetail, HeatBalanceDetail
 from .bearings import oil_fit
 from .loads import CASES
-
-register_module("bearing_performance", "Bearing oil flow, friction and temperature")
 
 _F = ("type", "lining")
 FILM_TEMPERATURE = quantity(QuantitySpec(

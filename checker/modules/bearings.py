@@ -8,11 +8,9 @@ import numpy as np
 from ..calc import orbit as ob
 from ..calc import viscosity as vs
 from ..engine import Engine
-from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity, register_module
+from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
 from ..results.bearings import FilmDetail, FilmOrbit
 from .loads import CASES
-
-register_module("bearings", "Bearing oil film (MOFT)")
 
 MODELS = {"short bearing": "closed_form", "exact short bearing": "exact_table",
           "finite length": "reynolds_map", "Butenschoen fits": "butenschoen"}

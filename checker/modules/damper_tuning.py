@@ -31,12 +31,9 @@ from ..graph import (
     QuantitySpec,
     calculation,
     quantity,
-    register_module,
     resonant_peaks,
 )
 from ..results.damper import DamperTuningDetail
-
-register_module("damper", "TV damper tuning")
 
 CASES = ("full", "no")
 

@@ -75,7 +75,7 @@ from ..calc import fatigue as fat
 from ..calc import scf as scf_mod
 from ..calc import throw_fatigue as tf
 from ..engine import Engine
-from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity, register_module
+from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
 from ..results.fatigue import (
     GoodmanDetail,
     LocationStrength,
@@ -87,8 +87,6 @@ from ..results.fatigue import (
 )
 from . import joints, loads, torsion  # noqa: F401  (registered first: report order)
 from .loads import CASES
-
-register_module("fatigue", "Crankshaft fatigue")
 
 LOCATIONS = ("pin fillet", "main fillet", "pin oil hole", "main oil hole")
 M53_K_FILLET = 1.05

@@ -21,10 +21,8 @@ import numpy as np
 
 from ..calc import flywheel as fw
 from ..engine import Engine
-from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity, register_module
+from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
 from ..results.flywheel import FlywheelDetail
-
-register_module("flywheel", "Flywheel and cyclic irregularity")
 
 CASES = ("full", "no")
 

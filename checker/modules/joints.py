@@ -14,11 +14,8 @@ from ..graph import (
     QuantitySpec,
     calculation,
     quantity,
-    register_module,
 )
 from ..results.joints import AppliedTorqueDetail, ComputedTorqueDetail, JointBoltsDetail
-
-register_module("joints", "Bolted joints")
 
 POINTS = ("tv peak", "max power", "overspeed")
 _FILTERS = ("location", "tightening", "clamped_material", "property_class")

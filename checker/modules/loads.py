@@ -11,10 +11,8 @@ from ..calc import pressure as pr
 from ..calc.kinematics import DEFAULT_STEP, cycle_grid
 from ..calc.specific_load import peak_specific_load
 from ..engine import Bearing, Engine
-from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity, register_module
+from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
 from ..results.loads import BearingLoadDetail, Cycle, CycleDetail, SpecificLoadDetail
-
-register_module("loads", "Crank-train loads")
 
 RPM = 2.0 * np.pi / 60.0
 CASES = ("full", "no")

@@ -90,7 +90,6 @@ from ..graph import (
     QuantitySpec,
     calculation,
     quantity,
-    register_module,
     resonant_peaks,
 )
 from ..results.torsion import (
@@ -107,8 +106,6 @@ from ..results.torsion import (
     TwistDetail,
 )
 from .joints import POINTS
-
-register_module("torsion", "Torsional vibration")
 
 RPM = 2.0 * np.pi / 60.0
 CASES = ("full", "no")
