@@ -4,13 +4,15 @@ For every failing result and every passing one within :data:`NEAR` of its limit,
 of the lever table that applies to it (:mod:`checker.levers`) is moved from today's
 value in its allowed direction until the result's margin reaches zero:
 
-* continuous levers: a few trial values are evaluated at once (a starting guess from the
-  proportionality of value and input, then 1/8, 1/4, 1/2 and all of the way to the bound),
-  the first sign change brackets the root, which regula falsi (Illinois variant) refines
-  until the passing end of the bracket has a margin below :data:`TOL` (each step a direct
-  evaluation: the answer is always a value that was checked);
+* continuous levers: a starting guess from the proportionality of value and input (only a
+  guess; 1/8 of the way to the bound without one), then secant steps through the two
+  points farthest from today towards the middle of the accepted margin window (the step
+  doubled while the margin does not move towards the limit, never beyond the bound) until a
+  value passes; the bracket is then refined by inverse quadratic interpolation / regula
+  falsi (Illinois variant) until the passing end has a margin in [0, :data:`TOL`] (each step
+  a direct evaluation: the answer is always a value that was checked);
 * discrete levers (bolt size, number of bolts, oil grade): the first choice beyond today's
-  value that passes;
+  value that passes (one choice per round, the next only while none passes);
 * "no value within the bounds" is an answer, with the best margin reached.
 
 Jobs of separable levers (a result depends only on its own row, e.g. the clearance of one
@@ -181,6 +183,7 @@ class _Job:
     side: int = 0  # Illinois: which end was kept last
     done: bool = False
     queue: list[Any] = field(default_factory=list)
+    cands: list[Any] = field(default_factory=list)  # discrete: choices still to try
 
     @property
     def key(self) -> str:
@@ -304,11 +307,14 @@ def _advance(job: _Job, evaluated: list[tuple[Any, float | None]]) -> None:
     job.pts += evaluated
     job.remedy.evaluations += len(own)
     if job.lever.discrete:
-        for x, m in evaluated:  # candidates in order
+        for x, m in evaluated:  # candidates in order, one per round
             if job.ok(m):
                 _accept(job, x, m)
                 return
-        best = [m for _, m in evaluated if m is not None]
+        if job.cands:
+            job.queue = [job.cands.pop(0)]
+            return
+        best = [m for _, m in job.pts if m is not None]
         job.remedy.best_margin = max(best) if best else None
         job.remedy.reason = ("no standard choice within the table passes" if job.want_pass
                              else "no choice reaches the limit")
@@ -648,7 +654,8 @@ def find_remedies(nominal, ev: Evaluator, levers: list[Lever], near: float = NEA
                     if not cands:
                         rm.reason = "no further choice in that direction"
                         job.done = True
-                    job.queue = cands
+                    # the first choice beyond today's, then the next while none passes
+                    job.queue, job.cands = cands[:1], cands[1:]
                 else:
                     _start(job, r.value, r.limit_values, r.check)
                 jobs.append(job)
