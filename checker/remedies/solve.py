@@ -261,8 +261,9 @@ def _start(job: _Job, value: float | None, limits: list[float] | None, check: st
         ratio = target / value if value else None
         if ratio and ratio > 0:
             p = 1.0 if ((job.sign > 0) == up) else -1.0
-            # aimed at the middle of the accepted window (the margin relative to the limit)
-            g = x0 * (ratio * (1.0 + (0.5 * TOL if up else -0.5 * TOL))) ** (1.0 / p)
+            g = x0 * ratio ** (1.0 / p)
+            if job.want_pass:
+                g = x0 + (g - x0) * (1 + 1e-6)  # exact when proportional: just passing
             if (g - x0) * job.sign > 0 and abs(g - x0) < abs(xb - x0):
                 job.guess = g
                 first = g
