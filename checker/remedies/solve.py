@@ -442,8 +442,8 @@ def _iqi(job: _Job, lo: float, hi: float, aim: float = 0.0) -> float | None:
 
 def _pack(requests: list[tuple[_Job, Any]], pack: bool = True
           ) -> list[list[tuple[_Job, Any]]]:
-    """Variants: requests of separable jobs on different items share one; others alone
-    (``pack=False``: every request alone, the one-by-one path)."""
+    """Variants: requests of one separable lever's jobs on different items share one;
+    others alone (``pack=False``: every request alone, the one-by-one path)."""
     if not pack:
         return [[r] for r in requests]
     variants: list[list[tuple[_Job, Any]]] = []
@@ -453,8 +453,11 @@ def _pack(requests: list[tuple[_Job, Any]], pack: bool = True
         placed = False
         if job.lever.separable:
             for v, ks, cs in zip(variants, keys, cells):
+                # only the same lever's jobs on other items: 'separable' is a property of
+                # one lever (a bearing's width leaves the other bearings' films alone, but
+                # the flywheel joint's slip depends on the bearings' friction)
                 if job.key in ks or (cs & job.binding.cells) or any(
-                        not j.lever.separable for j, _ in v):
+                        j.lever.id != job.lever.id for j, _ in v):
                     continue
                 v.append((job, x))
                 ks.add(job.key)
@@ -508,11 +511,20 @@ def _run(jobs: list[_Job], ev: Evaluator, pack: bool = True) -> None:
             for k, r in zip(ks, ev.evaluate_variants([changes[k] for k in ks],
                                                      select=sorted(sel))):
                 results[k] = r
+        # a packed variant that is not a valid workbook (one job's trial value outside a
+        # field's range): its requests checked alone, so the others' values still count
+        alone: dict[tuple[int, str], Any] = {}
+        bad = [(j, x) for v, k in zip(variants, index) if len(v) > 1
+               and not hasattr(results[k], "results") for j, x in v]
+        if bad:
+            for (j, x), r in zip(bad, ev.evaluate_variants(
+                    [j.binding.changes(x) for j, x in bad], select=[j.rule for j, _ in bad])):
+                alone[(id(j), repr(x))] = r
         got: dict[int, list] = {}
         seen: set[tuple[int, Any]] = set()
         for v, k in zip(variants, index):
-            res = results[k]
             for j, x in v:
+                res = alone.get((id(j), repr(x)), results[k])
                 if (id(j), repr(x)) not in seen:
                     seen.add((id(j), repr(x)))
                     got.setdefault(id(j), []).append((x, _margin_of(res, j.rule, j.item)))
