@@ -123,6 +123,17 @@ class Evaluator:
         return out
 
 
+    def release(self) -> None:
+        """Drop the variants' results from the cache (the check's own stay) and empty the
+        film memo: hundreds of megabytes the report need not carry (its worker processes are
+        forked from this one)."""
+        from ..modules import film_memo
+
+        for k in [k for k in self.cache if self._pinned is not None and k not in self._pinned]:
+            del self.cache[k]
+        self._sizes.clear()
+        film_memo.clear()
+
     def _evict(self) -> None:
         """Drop the oldest variant results beyond :attr:`keep_bytes`."""
         extra = [k for k in self.cache if k not in self._pinned]
