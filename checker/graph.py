@@ -229,10 +229,13 @@ ENGINE_PARTS = ("params", "cylinders", "bearings", "crank_mass", "tv_model", "jo
 """Parts of :class:`checker.engine.Engine` that calculations read (``reads`` entries)."""
 
 
-def engine_projection(engine: Engine, reads: tuple[str, ...] | None) -> tuple:
+def engine_projection(engine: Engine, reads: tuple[str, ...] | None, where: bool = True
+                      ) -> tuple:
     """The values of the engine inputs named by ``reads`` (all parts when None), plus the
-    cell addresses (messages name cells), as a plain tuple with a deterministic ``repr``."""
-    out: list = [("where", tuple(sorted((repr(k), v) for k, v in engine.where.items())))]
+    cell addresses (messages name cells; ``where=False``: without them), as a plain tuple
+    with a deterministic ``repr``."""
+    out: list = [("where", tuple(sorted((repr(k), v) for k, v in engine.where.items())))
+                 ] if where else []
     for entry in sorted(ENGINE_PARTS if reads is None else reads):
         part, _, fld = entry.partition(".")
         obj = getattr(engine, part)
@@ -246,13 +249,28 @@ def engine_projection(engine: Engine, reads: tuple[str, ...] | None) -> tuple:
     return tuple(out)
 
 
+def _where_digest(engine: Engine) -> bytes:
+    """Digest of the engine's cell addresses, computed once per engine (every calculation's
+    key covers them; hundreds of cells)."""
+    import hashlib
+
+    w = engine.where
+    hit = engine.__dict__.get("_where_digest")
+    if hit is not None and hit[0] is w and hit[1] == len(w):
+        return hit[2]
+    d = hashlib.sha256(repr(tuple(sorted((repr(k), v) for k, v in w.items()))).encode()).digest()
+    engine.__dict__["_where_digest"] = (w, len(w), d)
+    return d
+
+
 def input_key(engine: Engine, calc: Calculation, upstream: Iterable[str]) -> str:
     """Cache key of one calculation: its name, the engine inputs it reads and the keys of the
     calculations upstream of it (a change anywhere upstream changes the key)."""
     import hashlib
 
     h = hashlib.sha256(calc.name.encode())
-    h.update(repr(engine_projection(engine, calc.reads)).encode())
+    h.update(_where_digest(engine))
+    h.update(repr(engine_projection(engine, calc.reads, where=False)).encode())
     for k in upstream:
         h.update(k.encode())
     return h.hexdigest()

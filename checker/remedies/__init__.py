@@ -83,6 +83,7 @@ def attach(res, remedies: bool = False, corners: bool = False, levers_file: str 
         res.corners = {"results": out_c, "tolerances": tols,
                        "evaluations": ev.evaluations - n0,
                        "seconds": time.perf_counter() - t0}
+    ev.release()
 
 
 def corners_fail(res) -> bool:

@@ -308,13 +308,23 @@ def evaluate_corners(nominal, ev: Evaluator, tols: list[Tolerance]) -> list[Corn
             probes.append((key, i, u))
     uniq: dict[tuple, int] = {}
     pts: list[dict] = []
-    for _, _, u in probes:
+    rules_at: list[set[str]] = []
+    for key, _, u in probes:
         k = tuple(sorted(u.items()))
         if k not in uniq:
             uniq[k] = len(pts)
             pts.append(u)
+            rules_at.append(set())
+        rules_at[uniq[k]].add(key[0])
     sel = sorted({k[0] for k in out})
-    pm = [_margins(r) for r in run(pts, select=sel)] if pts else []
+    # each probe checked on the rules of the results probed there (one call per selection)
+    pm: list[dict] = [{} for _ in pts]
+    by_sel: dict[tuple[str, ...], list[int]] = {}
+    for i, rs in enumerate(rules_at):
+        by_sel.setdefault(tuple(sorted(rs)), []).append(i)
+    for rs, idx in by_sel.items():
+        for i, r in zip(idx, run([pts[i] for i in idx], select=list(rs))):
+            pm[i] = _margins(r)
     refine: dict[tuple[str, str], list[int]] = {}
     for key, i, u in probes:
         m = pm[uniq[tuple(sorted(u.items()))]].get(key)

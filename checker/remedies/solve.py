@@ -4,13 +4,15 @@ For every failing result and every passing one within :data:`NEAR` of its limit,
 of the lever table that applies to it (:mod:`checker.levers`) is moved from today's
 value in its allowed direction until the result's margin reaches zero:
 
-* continuous levers: a few trial values are evaluated at once (a starting guess from the
-  proportionality of value and input, then 1/8, 1/4, 1/2 and all of the way to the bound),
-  the first sign change brackets the root, which regula falsi (Illinois variant) refines
-  until the passing end of the bracket has a margin below :data:`TOL` (each step a direct
-  evaluation: the answer is always a value that was checked);
+* continuous levers: a starting guess from the proportionality of value and input (only a
+  guess; 1/8 of the way to the bound without one), then secant steps through the two
+  points farthest from today towards the middle of the accepted margin window (the step
+  doubled while the margin does not move towards the limit, never beyond the bound) until a
+  value passes; the bracket is then refined by inverse quadratic interpolation / regula
+  falsi (Illinois variant) until the passing end has a margin in [0, :data:`TOL`] (each step
+  a direct evaluation: the answer is always a value that was checked);
 * discrete levers (bolt size, number of bolts, oil grade): the first choice beyond today's
-  value that passes;
+  value that passes (one choice per round, the next only while none passes);
 * "no value within the bounds" is an answer, with the best margin reached.
 
 Jobs of separable levers (a result depends only on its own row, e.g. the clearance of one
@@ -181,6 +183,7 @@ class _Job:
     side: int = 0  # Illinois: which end was kept last
     done: bool = False
     queue: list[Any] = field(default_factory=list)
+    cands: list[Any] = field(default_factory=list)  # discrete: choices still to try
 
     @property
     def key(self) -> str:
@@ -234,7 +237,8 @@ def _discrete_candidates(job: _Job) -> list[Any]:
 
 
 def _start(job: _Job, value: float | None, limits: list[float] | None, check: str) -> None:
-    """Trial values of a continuous job: the proportional guess and fractions to the bound."""
+    """The first trial value of a continuous job: the proportional guess (value ~ input^p,
+    p = +-1), or 1/8 of the way to the bound when there is none."""
     lv = job.lever
     x0 = job.binding.nominal[0]
     if not isinstance(x0, (int, float)):
@@ -249,7 +253,7 @@ def _start(job: _Job, value: float | None, limits: list[float] | None, check: st
         job.done, job.remedy.reason = True, "today's value is at the lever's bound"
         return
     job.x0, job.xb = x0, xb
-    pts = [x0 + (xb - x0) * f for f in FRACTIONS]
+    first = x0 + (xb - x0) * FRACTIONS[0]
     # proportional starting guess (value ~ input^p, p = +-1): only a guess, always checked
     if value and limits and lv.kind != "temperature" and x0 != 0 and lv.separable:
         target = min(limits, key=lambda L: abs(L - value))
@@ -259,16 +263,35 @@ def _start(job: _Job, value: float | None, limits: list[float] | None, check: st
             p = 1.0 if ((job.sign > 0) == up) else -1.0
             g = x0 * ratio ** (1.0 / p)
             if job.want_pass:
-                g = x0 + (g - x0) * (1 + 1e-6)
+                g = x0 + (g - x0) * (1 + 1e-6)  # exact when proportional: just passing
             if (g - x0) * job.sign > 0 and abs(g - x0) < abs(xb - x0):
                 job.guess = g
-                pts = [g] + pts
-    job.queue = sorted((float(f"{x:.10g}") for x in pts), key=lambda x: abs(x - x0))
+                first = g
+    job.queue = [float(f"{first:.10g}")]
+
+
+def _aim(job: _Job) -> float:
+    """The margin aimed at: the middle of the accepted window ([0, TOL] for a failing result,
+    [-TOL, 0] for a passing one), so that one interpolation step usually lands in it."""
+    return 0.5 * TOL if job.want_pass else -0.5 * TOL
+
+
+def _accept(job: _Job, x: Any, m: float) -> None:
+    job.remedy.value, job.remedy.margin, job.remedy.found = x, m, True
+    job.done = True
+
+
+def _in_window(job: _Job, m: float | None) -> bool:
+    if m is None or not job.ok(m):
+        return False
+    return m <= TOL if job.want_pass else m >= -TOL
 
 
 def _advance(job: _Job, evaluated: list[tuple[Any, float | None]]) -> None:
     """Take the margins of the job's trial values (and points shared by other jobs of the
-    same lever) and queue the next ones."""
+    same lever) and queue the next one: a secant step towards the aimed margin from the two
+    points nearest to it until a value passes (doubling the step when the margin does not
+    improve), then inverse quadratic interpolation / Illinois regula falsi in the bracket."""
     own = [p for p in evaluated if len(p) == 2]
     shared = [(p[0], p[1]) for p in evaluated if len(p) == 3]
     if job.done:
@@ -285,39 +308,54 @@ def _advance(job: _Job, evaluated: list[tuple[Any, float | None]]) -> None:
     job.pts += evaluated
     job.remedy.evaluations += len(own)
     if job.lever.discrete:
-        for x, m in evaluated:  # candidates in order
+        for x, m in evaluated:  # candidates in order, one per round
             if job.ok(m):
-                job.remedy.value, job.remedy.margin, job.remedy.found = x, m, True
-                job.done = True
+                _accept(job, x, m)
                 return
-        best = [m for _, m in evaluated if m is not None]
+        if job.cands:
+            job.queue = [job.cands.pop(0)]
+            return
+        best = [m for _, m in job.pts if m is not None]
         job.remedy.best_margin = max(best) if best else None
         job.remedy.reason = ("no standard choice within the table passes" if job.want_pass
                              else "no choice reaches the limit")
         job.done = True
         return
+    aim = _aim(job)
     if job.bracket is None:
-        # points ordered by distance from today: first one on the other side
+        # points ordered by distance from today: the first one that passes brackets the root
         prev = (job.x0, job.res.margin)
-        evaluated = [p for p in job.pts]
-        for x, m in sorted(evaluated, key=lambda p: abs(p[0] - job.x0)):
+        walked: list[tuple[float, float]] = []
+        for x, m in sorted(job.pts, key=lambda p: abs(p[0] - job.x0)):
             if m is None:  # invalid input there: treat as the end of the range
                 break
             if job.ok(m):
-                if abs(m) <= TOL and (m >= -REL_TOL):
-                    job.remedy.value, job.remedy.margin, job.remedy.found = x, m, True
-                    job.done = True
+                if _in_window(job, m):
+                    _accept(job, x, m)
                     return
                 job.bracket = ((prev[0], prev[1]), (x, m))
                 break
             prev = (x, m)
+            walked.append((x, m))
         if job.bracket is None:
-            ms = [m for _, m in evaluated if m is not None]
-            job.remedy.best_margin = max(ms) if ms and job.want_pass else (
-                min(ms) if ms else None)
-            job.remedy.reason = "no value within the bounds" + (
-                f" ({with_unit(job.xb, job.lever.unit)})" if job.xb is not None else "")
-            job.done = True
+            invalid = any(m is None for _, m in job.pts)
+            at_bound = any(abs(x - job.xb) <= 1e-12 * max(abs(job.xb), 1.0)
+                           for x, _ in walked)
+            if invalid or at_bound:
+                ms = [m for _, m in job.pts if m is not None]
+                job.remedy.best_margin = max(ms) if ms and job.want_pass else (
+                    min(ms) if ms else None)
+                job.remedy.reason = "no value within the bounds" + (
+                    f" ({with_unit(job.xb, job.lever.unit)})" if job.xb is not None else "")
+                job.done = True
+                return
+            if job.remedy.evaluations >= MAX_STEPS:
+                job.done, job.remedy.reason = True, "root finding did not converge"
+                return
+            if not walked:
+                job.queue = [float(f"{job.x0 + (job.xb - job.x0) * FRACTIONS[0]:.10g}")]
+                return
+            job.queue = [_reach(job, [(job.x0, job.res.margin)] + walked, aim)]
             return
     else:
         (xa, ma), (xg, mg) = job.bracket
@@ -328,18 +366,17 @@ def _advance(job: _Job, evaluated: list[tuple[Any, float | None]]) -> None:
                 job.done, job.remedy.reason = True, "the input becomes invalid"
                 return
             if job.ok(m):
-                if m >= -REL_TOL and m <= TOL or (not job.want_pass and abs(m) <= TOL):
-                    job.remedy.value, job.remedy.margin, job.remedy.found = x, m, True
-                    job.done = True
+                if _in_window(job, m):
+                    _accept(job, x, m)
                     return
                 xg, mg = x, m
                 if job.side == 1:
-                    ma /= 2.0
+                    ma = aim + (ma - aim) / 2.0
                 job.side = 1
             else:
                 xa, ma = x, m
                 if job.side == -1:
-                    mg /= 2.0
+                    mg = aim + (mg - aim) / 2.0
                 job.side = -1
         job.bracket = ((xa, ma), (xg, mg))
     if job.remedy.evaluations >= MAX_STEPS:
@@ -348,30 +385,51 @@ def _advance(job: _Job, evaluated: list[tuple[Any, float | None]]) -> None:
     (xa, ma), (xg, mg) = job.bracket
     lo, hi = sorted((xa, xg))
     w = hi - lo
-    x = _iqi(job, lo, hi)
+    x = _iqi(job, lo, hi, aim)
     if x is None:
         if mg == ma:
             x = 0.5 * (xa + xg)
         else:
-            x = xg - mg * (xg - xa) / (mg - ma)
+            x = xg - (mg - aim) * (xg - xa) / (mg - ma)
     if not (lo + 1e-3 * w < x < hi - 1e-3 * w):
         x = 0.5 * (xa + xg)
     if job.want_pass:
         x = x + (xg - xa) * 1e-9  # nudge to the passing side
     x = float(f"{x:.10g}")  # equal jobs (four identical big ends) share their evaluations
     if abs(xg - xa) <= 1e-12 * max(abs(xg), 1.0):
-        job.remedy.value, job.remedy.margin, job.remedy.found = xg, mg, True
-        job.done = True
+        _accept(job, xg, mg)
         return
     job.queue = [x]
 
 
-def _iqi(job: _Job, lo: float, hi: float) -> float | None:
+def _reach(job: _Job, walked: list[tuple[float, float]], aim: float) -> float:
+    """The next trial value before a passing one is known: the secant through the two
+    evaluated points farthest from today (today included) extrapolated to the aimed margin,
+    by at most four times the last step; the step doubled when the margin did not move
+    towards the limit; never beyond the lever's bound."""
+    x0, xb = job.x0, job.xb
+    (xp, mp), (xl, ml) = walked[-2], walked[-1]
+    step = xl - xp
+    toward = (ml - mp) * (1.0 if job.want_pass else -1.0) > 0
+    if toward and step != 0:
+        x = xl + (aim - ml) * step / (ml - mp)
+        x = xl + max(min((x - xl) / step, 4.0), 0.25) * step  # within 1/4..4 last steps
+    else:
+        x = xl + 2.0 * (xl - x0 if xl != x0 else (xb - x0) * FRACTIONS[0])
+    if (x - xb) * job.sign > 0:
+        x = xb
+    if job.want_pass and x != xb:
+        x = x + (x - xl) * 1e-9  # nudge to the passing side
+    return float(f"{x:.10g}")
+
+
+def _iqi(job: _Job, lo: float, hi: float, aim: float = 0.0) -> float | None:
     """Inverse quadratic interpolation through the three evaluated points nearest to the
-    root (x as a quadratic in the margin, at margin 0); None when not inside the bracket."""
-    pts = [(x, m) for x, m in job.pts if m is not None and lo <= x <= hi]
-    ends = {(x, m) for (x, m) in (job.bracket or ())}
-    pts = sorted(set(pts) | ends, key=lambda p: abs(p[1]))[:3]
+    root (x as a quadratic in the margin, at the aimed margin); None when not inside the
+    bracket."""
+    pts = [(x, m - aim) for x, m in job.pts + [(job.x0, job.res.margin)]
+           if m is not None and x is not None and lo <= x <= hi]
+    pts = sorted(set(pts), key=lambda p: abs(p[1]))[:3]
     if len(pts) < 3:
         return None
     (x0, f0), (x1, f1), (x2, f2) = pts
@@ -384,8 +442,8 @@ def _iqi(job: _Job, lo: float, hi: float) -> float | None:
 
 def _pack(requests: list[tuple[_Job, Any]], pack: bool = True
           ) -> list[list[tuple[_Job, Any]]]:
-    """Variants: requests of separable jobs on different items share one; others alone
-    (``pack=False``: every request alone, the one-by-one path)."""
+    """Variants: requests of one separable lever's jobs on different items share one;
+    others alone (``pack=False``: every request alone, the one-by-one path)."""
     if not pack:
         return [[r] for r in requests]
     variants: list[list[tuple[_Job, Any]]] = []
@@ -395,8 +453,11 @@ def _pack(requests: list[tuple[_Job, Any]], pack: bool = True
         placed = False
         if job.lever.separable:
             for v, ks, cs in zip(variants, keys, cells):
+                # only the same lever's jobs on other items: 'separable' is a property of
+                # one lever (a bearing's width leaves the other bearings' films alone, but
+                # the flywheel joint's slip depends on the bearings' friction)
                 if job.key in ks or (cs & job.binding.cells) or any(
-                        not j.lever.separable for j, _ in v):
+                        j.lever.id != job.lever.id for j, _ in v):
                     continue
                 v.append((job, x))
                 ks.add(job.key)
@@ -450,11 +511,20 @@ def _run(jobs: list[_Job], ev: Evaluator, pack: bool = True) -> None:
             for k, r in zip(ks, ev.evaluate_variants([changes[k] for k in ks],
                                                      select=sorted(sel))):
                 results[k] = r
+        # a packed variant that is not a valid workbook (one job's trial value outside a
+        # field's range): its requests checked alone, so the others' values still count
+        alone: dict[tuple[int, str], Any] = {}
+        bad = [(j, x) for v, k in zip(variants, index) if len(v) > 1
+               and not hasattr(results[k], "results") for j, x in v]
+        if bad:
+            for (j, x), r in zip(bad, ev.evaluate_variants(
+                    [j.binding.changes(x) for j, x in bad], select=[j.rule for j, _ in bad])):
+                alone[(id(j), repr(x))] = r
         got: dict[int, list] = {}
         seen: set[tuple[int, Any]] = set()
         for v, k in zip(variants, index):
-            res = results[k]
             for j, x in v:
+                res = alone.get((id(j), repr(x)), results[k])
                 if (id(j), repr(x)) not in seen:
                     seen.add((id(j), repr(x)))
                     got.setdefault(id(j), []).append((x, _margin_of(res, j.rule, j.item)))
@@ -597,7 +667,8 @@ def find_remedies(nominal, ev: Evaluator, levers: list[Lever], near: float = NEA
                     if not cands:
                         rm.reason = "no further choice in that direction"
                         job.done = True
-                    job.queue = cands
+                    # the first choice beyond today's, then the next while none passes
+                    job.queue, job.cands = cands[:1], cands[1:]
                 else:
                     _start(job, r.value, r.limit_values, r.check)
                 jobs.append(job)

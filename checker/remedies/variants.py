@@ -43,13 +43,16 @@ class Evaluator:
     cache: dict = field(default_factory=dict)
     evaluations: int = 0
     seconds: float = 0.0
-    keep: int = 48
-    """Calculation results of variants kept in the cache beyond the check's own (the oldest
-    are dropped: a film calculation of all bearings holds tens of megabytes)."""
+    keep_bytes: int = 512 * 2**20
+    """Memory of the calculation results of variants kept in the cache beyond the check's own
+    (the oldest are dropped first: the bearing loads hold about 30 MB, a film calculation of
+    all bearings about 5 MB, a heat balance 10 kB, so the small results of the variants whose
+    answers are checked again for their side effects stay)."""
     batch: int = 8
     """Variants checked together (:func:`checker.api.check_batch`: their film orbits in one
     kernel call); bounded because each variant's films stay in memory until the batch ends."""
     _pinned: set | None = None
+    _sizes: dict = field(default_factory=dict)
 
     def evaluate_variants(self, changes: list[Changes], select: list[str] | None = None
                           ) -> list[Any]:
@@ -115,11 +118,53 @@ class Evaluator:
                     except (ValueError, ArithmeticError) as exc:
                         out.append(refused(exc))
                 self.evaluations += 1
-            extra = [k for k in self.cache if k not in self._pinned]
-            for k in extra[:max(0, len(extra) - self.keep)]:
-                del self.cache[k]
+            self._evict()
         self.seconds += time.perf_counter() - t0
         return out
+
+
+    def release(self) -> None:
+        """Drop the variants' results from the cache (the check's own stay) and empty the
+        film memo: hundreds of megabytes the report need not carry (its worker processes are
+        forked from this one)."""
+        from ..modules import film_memo
+
+        for k in [k for k in self.cache if self._pinned is not None and k not in self._pinned]:
+            del self.cache[k]
+        self._sizes.clear()
+        film_memo.clear()
+
+    def _evict(self) -> None:
+        """Drop the oldest variant results beyond :attr:`keep_bytes`."""
+        extra = [k for k in self.cache if k not in self._pinned]
+        for k in extra:
+            if k not in self._sizes:
+                self._sizes[k] = _nbytes(self.cache[k])
+        total = sum(self._sizes[k] for k in extra)
+        for k in extra:
+            if total <= self.keep_bytes:
+                break
+            total -= self._sizes.pop(k)
+            del self.cache[k]
+
+
+def _nbytes(obj: Any, seen: set | None = None) -> int:
+    """Memory of the arrays held by a cached calculation result (quantities, their extras)."""
+    import numpy as np
+
+    seen = set() if seen is None else seen
+    if id(obj) in seen:
+        return 0
+    seen.add(id(obj))
+    if isinstance(obj, np.ndarray):
+        return int(obj.nbytes)
+    if isinstance(obj, dict):
+        return sum(_nbytes(v, seen) for v in obj.values())
+    if isinstance(obj, (list, tuple)):
+        return sum(_nbytes(v, seen) for v in obj)
+    if hasattr(obj, "__dataclass_fields__"):
+        return sum(_nbytes(getattr(obj, f), seen) for f in obj.__dataclass_fields__)
+    return 0
 
 
 def find(res: Any, rule: str, item: str):
