@@ -8,6 +8,14 @@ element between hub and inertia ring has the complex stiffness
 
 (hysteretic loss factor ``eta`` and/or viscous ``c``). Formulas and checks: torsion.md
 sections 3.4-3.5.
+
+References
+----------
+.. [1] J. P. Den Hartog, "Mechanical Vibrations", 4th ed., 1956, sec. 2.8 (work per cycle), eqs.
+   3.12, 3.19, 3.23, 3.24 (optimum tuned absorber).
+.. [2] A. N. Gent (ed.), "Engineering with Rubber", 3rd ed., Hanser, 2012, ch. 8 (rubber in shear).
+.. [3] L. Drapal, P. Novotny, "Torsional vibration analysis of crank train with low friction
+   losses", J. Vibroeng. 19(7), 2017, doi:10.21595/jve.2017.17876, eq. 9.
 """
 
 from __future__ import annotations

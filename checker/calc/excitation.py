@@ -18,6 +18,16 @@ Phasing: cylinder ``i`` fires ``phi_i`` [rad] of crank angle after cylinder 1, s
 ``T_i(theta) = T_1(theta - phi_i)`` and its complex order-``n`` amplitude is
 ``F_{i,n} = c_n exp(-j n phi_i)`` (Ker Wilson, *Practical Solution of Torsional Vibration
 Problems*, Vol. 2, ch. 19; torsion.md section 3.3).
+
+References
+----------
+.. [1] W. Ker Wilson, "Practical Solution of Torsional Vibration Problems", Vol. 2, ch. 19 (phasing
+   of cylinder excitation, vector sums).
+.. [2] L. Drapal, P. Novotny, "Torsional vibration analysis of crank train with low friction
+   losses", J. Vibroeng. 19(7), 2017, doi:10.21595/jve.2017.17876, eq. 1 (discrete Fourier series).
+.. [3] J. B. Heywood, "Internal Combustion Engine Fundamentals", McGraw-Hill, 1988, sec. 2.2.
+.. [4] C. F. Taylor, "The Internal-Combustion Engine in Theory and Practice", Vol. 2, 1985, ch. 8
+   (inertia torque harmonics).
 """
 
 from __future__ import annotations

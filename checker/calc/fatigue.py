@@ -34,6 +34,18 @@ Stress criteria chosen for the Goodman check (and why)
   ``"von_mises"`` (unsigned, most conservative).
 * Oil-bore outlet: M53's maximum-principal combination (§5(4)) is applied to the amplitudes
   and, with signs, to the means.
+
+References
+----------
+.. [1] D. Bell, "Cranktrain Analysis Using ENGDYN and VALDYN", Ricardo, 4 February 2013, slides
+   'Crankshaft analysis (25)-(28)' (Goodman safety factor >= 1.5, worked fatigue strengths).
+.. [2] IACS Unified Requirement M53, "Calculation of crankshafts for I.C. engines", as transcribed
+   in Korean Register, "Rules for the Classification of Steel Ships", 2025, Pt 5, Annex 5-3
+   "Guidance for Calculation of Crankshaft Stress", §2-7 (acceptability factor Q >= 1.15).
+.. [3] "Cummins Crankshaft and Bearing Analysis Process", Cummins, 2002, §2.1 (mean shear from the
+   brake torque).
+.. [4] R. G. Budynas, J. K. Nisbett, "Shigley's Mechanical Engineering Design", 10th ed.,
+   McGraw-Hill, 2015, eq. 6-46 (Goodman line).
 """
 
 from __future__ import annotations
@@ -223,9 +235,10 @@ def goodman_safety_factor(
     sigma_m : array_like [Pa]
         (Equivalent) mean stress, signed.
     endurance_limit : array_like [Pa]
-        Fully reversed fatigue strength S_e at the location (e.g. seed: pin fillet 619 MPa).
+        Fully reversed fatigue strength S_e at the location (e.g. Bell, Ricardo 2013: pin
+        fillet 619 MPa).
     ultimate_strength : array_like [Pa]
-        Tensile strength S_u at the location (e.g. seed: fillet UTS 920 MPa).
+        Tensile strength S_u at the location (e.g. Bell, Ricardo 2013: fillet UTS 920 MPa).
     credit_compressive_mean : bool
         If False (default) a compressive mean is set to 0 (the factor is then S_e/sigma_a).
 

@@ -54,6 +54,13 @@ TDC before the reference, for the example engine's 0.8 mm pin offset towards the
 side).
 
 The crank speed ``omega`` is constant (no cyclic speed fluctuation).
+
+References
+----------
+.. [1] M. Agostini, "Powertrain Components Design - Engine", course notes, Master Degree in
+   Automotive Engineering, Politecnico di Torino, 2019 (A.Y. 2018-2019), ch. 1 "Offset layout",
+   "Methods to decrease slap".
+.. [2] J. B. Heywood, "Internal Combustion Engine Fundamentals", McGraw-Hill, 1988, eq. 2.5.
 """
 
 from __future__ import annotations

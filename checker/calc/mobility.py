@@ -43,6 +43,16 @@ Models
 ``"reynolds"``
     The same film solved directly at every call (:func:`checker.calc.reynolds.mobility_reynolds`;
     reference, about 0.1-0.3 s per point).
+
+References
+----------
+.. [1] J. F. Booker, "Dynamically loaded journal bearings: mobility method of solution", Trans. ASME
+   J. Basic Eng. 87(3), 1965, pp. 537-546.
+.. [2] P. Flores et al., "Journal bearings subjected to dynamic loads: the analytical mobility
+   method", 2006 (closed-form short-bearing mobility).
+.. [3] F. W. Ocvirk, "Short-bearing approximation for full journal bearings", NACA TN 2808, 1952.
+.. [4] H.-J. Butenschoen, "Das hydrodynamische, zylindrische Gleitlager endlicher Breite unter
+   instationaerer Belastung", Dissertation, Universitaet Karlsruhe, 1976.
 """
 
 from __future__ import annotations

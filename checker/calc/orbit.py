@@ -50,6 +50,16 @@ Frames and signs (how the caller passes loads and angular velocities)
 
 Defaults (justified by ``benchmarks/bench_moft.py``: 61 speeds x 2 load cases x 9 bearings
 of the example I4 with a synthetic load; see the module constants).
+
+References
+----------
+.. [1] J. F. Booker, "Dynamically loaded journal bearings: mobility method of solution", Trans. ASME
+   J. Basic Eng. 87(3), 1965, pp. 537-546.
+.. [2] H.-J. Butenschoen, "Das hydrodynamische, zylindrische Gleitlager endlicher Breite unter
+   instationaerer Belastung", Dissertation, Universitaet Karlsruhe, 1976.
+.. [3] J. G. Verwer, E. J. Spee, J. G. Blom, W. Hundsdorfer, "A second-order Rosenbrock method
+   applied to photochemical dispersion problems", SIAM J. Sci. Comput. 20, 1999, pp. 1456-1480, eq.
+   2.2 (ROS2).
 """
 
 from __future__ import annotations

@@ -61,6 +61,19 @@ stops when the active set repeats, i.e. when ``min(P, A P - f) = 0`` holds to ro
 
 Accuracy (tests): Butenschoen's (1976) tables of the rotation and squeeze Sommerfeld numbers
 and of the side flow, Ocvirk's short-bearing solution as ``L/D -> 0``, grid convergence.
+
+References
+----------
+.. [1] J. F. Booker, "Dynamically loaded journal bearings: mobility method of solution", Trans. ASME
+   J. Basic Eng. 87(3), 1965, pp. 537-546.
+.. [2] H.-J. Butenschoen, "Das hydrodynamische, zylindrische Gleitlager endlicher Breite unter
+   instationaerer Belastung", Dissertation, Universitaet Karlsruhe, 1976.
+.. [3] F. W. Ocvirk, "Short-bearing approximation for full journal bearings", NACA TN 2808, 1952.
+.. [4] M. Hintermueller, K. Ito, K. Kunisch, "The primal-dual active set strategy as a semismooth
+   Newton method", SIAM J. Optim. 13, 2002, pp. 865-888.
+.. [5] M. Giacopini, M. T. Fowell, D. Dini, A. Strozzi, "A mass-conserving complementarity
+   formulation to study lubricant films in the presence of cavitation", J. Tribol. 132, 2010,
+   041702.
 """
 
 from __future__ import annotations

@@ -28,6 +28,13 @@ Coefficient note: the KR transcription prints ``-0.85 b^3`` in ``f(b)`` of ``alp
 ``-1.5276`` as the IACS values (marked "from memory, verify"). This module uses 0.857 and
 1.5276 (module constants below) and reproduces the notes' worked numbers (§1.12) with them;
 with 0.85, ``alpha_T`` is about 2 % higher.
+
+References
+----------
+.. [1] IACS Unified Requirement M53, "Calculation of crankshafts for I.C. engines", as transcribed
+   in Korean Register, "Rules for the Classification of Steel Ships", 2025, Pt 5, Annex 5-3
+   "Guidance for Calculation of Crankshaft Stress", §3 (stress concentration factors; fillet
+   formulae from FVV, oil bore from ESDU).
 """
 
 from __future__ import annotations

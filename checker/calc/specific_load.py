@@ -6,6 +6,11 @@ effective shell length, excluding grooves and chamfers (bearings.md sec. 3.1: "D
 max|F| / (D L_eff), with L_eff excluding grooves and chamfers (the usual convention)"). Bell,
 Ricardo 2013,
 lists e.g. main bearings D = 55 mm, L_eff = 18.2 mm and big ends D = 48 mm, L_eff = 17.8 mm.
+
+References
+----------
+.. [1] D. Bell, "Cranktrain Analysis Using ENGDYN and VALDYN", Ricardo, 4 February 2013
+   (projected-area specific loads, limiting values).
 """
 
 from __future__ import annotations

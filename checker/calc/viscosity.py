@@ -14,6 +14,19 @@ Three ways to get ``mu(T)``:
 
 Monograde reference curves (Seireg & Dandage, as quoted by Shigley) are in
 :func:`seireg_dandage_viscosity`.
+
+References
+----------
+.. [1] H. Vogel, "Das Temperaturabhaengigkeitsgesetz der Viskositaet von Fluessigkeiten",
+   Physikalische Zeitschrift 22, 1921, pp. 645-646.
+.. [2] SAE J300 (2015-01), "Engine Oil Viscosity Classification".
+.. [3] ASTM D341, "Standard practice for viscosity-temperature equations and charts for liquid
+   petroleum or hydrocarbon products" (Walther equation).
+.. [4] ASTM D4683 / ASTM D5481 (high-temperature high-shear viscosity at 150 C).
+.. [5] ASTM D1250 / ISO 91 (petroleum measurement tables; oil density).
+.. [6] A. Seireg, S. Dandage, "Empirical design procedure for the thermohydrodynamic behavior of
+   journal bearings", J. Lubr. Technol. 104, 1982, pp. 135-148, as given in R. G. Budynas, J. K.
+   Nisbett, "Shigley's Mechanical Engineering Design".
 """
 
 from __future__ import annotations
