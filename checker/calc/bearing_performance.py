@@ -24,11 +24,13 @@ References
 .. [4] ISO 7902-1:2020 (DIN 31652-1:1983), "Hydrodynamic plain journal bearings under steady-state
    conditions - Circular cylindrical bearings - Part 1: Calculation procedure".
 .. [5] B. J. Hamrock, S. R. Schmid, B. O. Jacobson, "Fundamentals of Fluid Film Lubrication", 2nd
-   ed., 2004, ch. 10 (friction of the film).
+   ed., 2004, ch. 10 (Petroff friction of the full film).
 .. [6] H.-J. Butenschoen, "Das hydrodynamische, zylindrische Gleitlager endlicher Breite unter
-   instationaerer Belastung", Dissertation, Universitaet Karlsruhe, 1976. (friction coefficient).
+   instationaerer Belastung", Dissertation, Universitaet Karlsruhe, 1976 (friction coefficient).
 .. [7] P. M. Morse, H. Feshbach, "Methods of Theoretical Physics", 1953, ch. 7 (Green's functions by
    images; feed-hole flow).
+.. [8] C. S. Cragoe, "Thermal properties of petroleum products", U.S. Bureau of Standards
+   Miscellaneous Publication 97, 1929 (specific heat of oil).
 """
 
 from __future__ import annotations

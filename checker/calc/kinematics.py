@@ -179,7 +179,7 @@ def slider_kinematics(
     lacks the ``cos(phi)`` term and has the sign of the ``s sin(phi)`` term reversed; the forms
     above are checked against finite differences and a direct vector construction in
     ``tests/calc/test_kinematics.py``). For ``e = 0`` they reduce to Heywood (1988, *Internal
-    Combustion Engine Fundamentals*, eq. 2.5) and torsion.md section 3.1.
+    Combustion Engine Fundamentals*, eq. 2.5).
 
     Parameters
     ----------
