@@ -4,7 +4,7 @@ pi-film force integrals and the squeeze direction of a given load direction.
 
 Kept in their own module so that the mobility models and the finite-length map (which is
 expressed relative to the closed form) import this one without importing each other.
-Equations and sources: :mod:`checker.calc.mobility` (Booker 1965; notes ``bearings.md``).
+Equations and sources: :mod:`checker.calc.mobility` (Booker 1965).
 
 References
 ----------

@@ -8,7 +8,7 @@ Booker's squeeze formulation
 ----------------------------
 Journal and bearing surface speeds and the motion of the journal centre enter the Reynolds
 equation only through the *squeeze velocity* ``V_s = d e/dt - omega_bar z_hat x e`` with
-``omega_bar = (omega_journal + omega_bearing) / 2`` (Booker 1965; notes ``bearings.md`` 1.1):
+``omega_bar = (omega_journal + omega_bearing) / 2`` (Booker 1965):
 
 .. math::
 
@@ -815,8 +815,8 @@ def mobility_reynolds(
         |\\mathbf M| = \\frac{4\\,L/D}{|\\mathbf W(\\varepsilon, \\alpha)|}, \\qquad
         \\angle\\mathbf M = \\alpha \\ (\\text{from } \\mathbf e)
 
-    so that ``d eps/dt = |F| psi^2 / (mu L D) M + omega_bar z_hat x eps`` (notes
-    ``bearings.md`` 1.2). Slow (one root find of a few LCP solutions per point): the
+    so that ``d eps/dt = |F| psi^2 / (mu L D) M + omega_bar z_hat x eps`` (Booker
+    1965). Slow (one root find of a few LCP solutions per point): the
     reference for :mod:`checker.calc.reynolds_map` and for direct orbits.
 
     Parameters
