@@ -13,7 +13,9 @@ ROOT = Path(__file__).resolve().parents[2]
 CALC = ROOT / "checker" / "calc"
 CALC_MODULES = sorted(p for p in CALC.glob("*.py") if p.name not in {"__init__.py", "_checks.py"})
 ENTRY = re.compile(r"^\.\. \[(\d+)\] \S", re.MULTILINE)
-INTERNAL = ("seed 0", "shared/seeds")
+#: the project's seed documents and research notes are not publications: cite the source instead
+INTERNAL = ("seed 0", "shared/seeds", "../shared", "bearings.md", "torsion.md", "standards.md",
+            "practices.md")
 
 
 def _references(path: Path) -> str | None:
