@@ -64,8 +64,8 @@ bending; they differ in journal torque.
 References
 ----------
 .. [1] IACS Unified Requirement M53, "Calculation of crankshafts for I.C. engines", as transcribed
-   in Korean Register, "Rules for the Classification of Steel Ships", 2025, Pt 5, Annex 5-3
-   "Guidance for Calculation of Crankshaft Stress", §2 (nominal stresses), §3.1, Figs 1 and 3.
+   in Korean Register, "Rules for Classification of Steel Ships", 2025, Pt 5, Annex 5-3 "Guidance
+   for Calculation of Crankshaft Stress", §2 (nominal stresses), §3.1, Figs 1 and 3.
 .. [2] D. Bell, "Cranktrain Analysis Using ENGDYN and VALDYN", Ricardo, 4 February 2013, slides
    'Crankshaft analysis (25)-(28)' (classical stress analysis).
 .. [3] "Cummins Crankshaft and Bearing Analysis Process", Cummins, 2002, §2 (statically determinate

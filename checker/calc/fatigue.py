@@ -40,8 +40,8 @@ References
 .. [1] D. Bell, "Cranktrain Analysis Using ENGDYN and VALDYN", Ricardo, 4 February 2013, slides
    'Crankshaft analysis (25)-(28)' (Goodman safety factor >= 1.5, worked fatigue strengths).
 .. [2] IACS Unified Requirement M53, "Calculation of crankshafts for I.C. engines", as transcribed
-   in Korean Register, "Rules for the Classification of Steel Ships", 2025, Pt 5, Annex 5-3
-   "Guidance for Calculation of Crankshaft Stress", §2-7 (acceptability factor Q >= 1.15).
+   in Korean Register, "Rules for Classification of Steel Ships", 2025, Pt 5, Annex 5-3 "Guidance
+   for Calculation of Crankshaft Stress", §2-7 (acceptability factor Q >= 1.15).
 .. [3] "Cummins Crankshaft and Bearing Analysis Process", Cummins, 2002, §2.1 (mean shear from the
    brake torque).
 .. [4] R. G. Budynas, J. K. Nisbett, "Shigley's Mechanical Engineering Design", 10th ed.,

@@ -31,9 +31,9 @@ and 1.5276 (module constants below); with 0.85, ``alpha_T`` is about 2 % higher.
 References
 ----------
 .. [1] IACS Unified Requirement M53, "Calculation of crankshafts for I.C. engines", as transcribed
-   in Korean Register, "Rules for the Classification of Steel Ships", 2025, Pt 5, Annex 5-3
-   "Guidance for Calculation of Crankshaft Stress", §3 (stress concentration factors; fillet
-   formulae from FVV, oil bore from ESDU).
+   in Korean Register, "Rules for Classification of Steel Ships", 2025, Pt 5, Annex 5-3 "Guidance
+   for Calculation of Crankshaft Stress", §3 (stress concentration factors; fillet formulae from
+   FVV, oil bore from ESDU).
 """
 
 from __future__ import annotations

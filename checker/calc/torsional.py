@@ -35,8 +35,7 @@ References
 ----------
 .. [1] M. I. Friswell, J. E. T. Penny, S. D. Garvey, A. W. Lees, "Dynamics of Rotating Machines",
    Cambridge University Press, 2010, ch. 2-3 and 9.
-.. [2] K. E. Hafner, H. Maass, "Torsionsschwingungen in der Verbrennungskraftmaschine", Springer,
-   1985.
+.. [2] K. E. Hafner, H. Maass, "Torsionsschwingungen in der Verbrennungskraftmaschine", 1985.
 .. [3] L. Drapal, P. Novotny, "Torsional vibration analysis of crank train with low friction
    losses", J. Vibroeng. 19(7), 2017, doi:10.21595/jve.2017.17876, eq. 3.
 .. [4] J. P. Den Hartog, "Mechanical Vibrations", 4th ed., 1956, ch. 2.
