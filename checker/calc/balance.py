@@ -26,6 +26,18 @@ plane ``z = 0``; gas forces are internal and do not appear.
   a piston decelerating at TDC pulls the engine toward the head;
 * rotating masses (webs, counterweights, crank pins, rod big ends): ``F = omega^2 sum m rho``,
   ``rho`` the centre of mass in the crank frame turned into the block frame (first order only).
+
+References
+----------
+.. [1] C. F. Taylor, "The Internal-Combustion Engine in Theory and Practice", Vol. 2, 1985, ch. 8
+   (shaking forces and moments, balance factor, internal couple).
+.. [2] R. L. Norton, "Design of Machinery", chs. 13-14, secs. 14.3, 14.5, 14.7 (balancing of in-line
+   and V engines).
+.. [3] J. B. Heywood, "Internal Combustion Engine Fundamentals", McGraw-Hill, 1988, eq. 2.5
+   (slider-crank displacement).
+.. [4] M. Agostini, "Powertrain Components Design - Engine", course notes, Master Degree in
+   Automotive Engineering, Politecnico di Torino, 2019 (A.Y. 2018-2019), "Crankshaft"
+   (counterweights).
 """
 
 from __future__ import annotations

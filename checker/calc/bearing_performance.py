@@ -12,6 +12,25 @@ speed x crank angle).
 Frames: eccentricity vectors and angles in one frame fixed to the bearing shell (the orbit
 frame of :mod:`checker.calc.orbit`); the film is thinnest in the direction of the
 eccentricity vector, ``h(theta) = c (1 - eps cos(theta - phi))``.
+
+References
+----------
+.. [1] F. W. Ocvirk, "Short-bearing approximation for full journal bearings", NACA TN 2808, 1952.
+.. [2] J. F. Booker, "Dynamically loaded journal bearings: mobility method of solution", Trans. ASME
+   J. Basic Eng. 87(3), 1965, pp. 537-546.
+.. [3] R. G. Budynas, J. K. Nisbett, "Shigley's Mechanical Engineering Design", 9th ed.,
+   McGraw-Hill, 2011, secs. 12-6, 12-9, 12-10 (film geometry, average film temperature, pressure-fed
+   bearings).
+.. [4] ISO 7902-1:2020 (DIN 31652-1:1983), "Hydrodynamic plain journal bearings under steady-state
+   conditions - Circular cylindrical bearings - Part 1: Calculation procedure".
+.. [5] B. J. Hamrock, S. R. Schmid, B. O. Jacobson, "Fundamentals of Fluid Film Lubrication", 2nd
+   ed., 2004, ch. 10 (Petroff friction of the full film).
+.. [6] H.-J. Butenschoen, "Das hydrodynamische, zylindrische Gleitlager endlicher Breite unter
+   instationaerer Belastung", Dissertation, Universitaet Karlsruhe, 1976 (friction coefficient).
+.. [7] P. M. Morse, H. Feshbach, "Methods of Theoretical Physics", 1953, ch. 7 (Green's functions by
+   images; feed-hole flow).
+.. [8] C. S. Cragoe, "Thermal properties of petroleum products", U.S. Bureau of Standards
+   Miscellaneous Publication 97, 1929 (specific heat of oil).
 """
 
 from __future__ import annotations

@@ -24,6 +24,18 @@ Sign of bearing loads: a **bearing load is the force the journal exerts on the b
 con-rod's big-end bearing; main bearing = force of the main journal on the block's bearing. The
 force of a rod on its crank pin is the negative of its big-end load. Torque is positive when it
 drives the crankshaft in its direction of rotation.
+
+References
+----------
+.. [1] D. Bell, "Cranktrain Analysis Using ENGDYN and VALDYN", Ricardo, 4 February 2013, "Concept
+   level bearing analysis assumptions" (statically determinate main loads, example engine masses).
+.. [2] M. Agostini, "Powertrain Components Design - Engine", course notes, Master Degree in
+   Automotive Engineering, Politecnico di Torino, 2019 (A.Y. 2018-2019), ch. 1 "Dynamics" (two-mass
+   con-rod, inertia forces).
+.. [3] J. F. Booker, "Dynamically loaded journal bearings: mobility method of solution", Trans. ASME
+   J. Basic Eng. 87(3), 1965, pp. 537-546 (journal load convention).
+.. [4] J. B. Heywood, "Internal Combustion Engine Fundamentals", McGraw-Hill, 1988, sec. 2.2 (gas
+   torque of a centred slider crank).
 """
 
 from __future__ import annotations
@@ -272,7 +284,7 @@ def cylinder_loads(
         side    = L_t
 
     With zero offsets and no masses the torque is ``(p - p_cc) A r sin(phi) [1 + lam cos(phi) /
-    sqrt(1 - lam^2 sin^2 phi)]`` (torsion.md sec. 3.1); at TDC without gas the big-end load is
+    sqrt(1 - lam^2 sin^2 phi)]`` (Heywood 1988, sec. 2.2); at TDC without gas the big-end load is
     ``-(m_rec (1 + lam) + m_b) r omega^2`` along ``c`` (Agostini, Powertrain Components Design,
     Politecnico di Torino, 2019, "Dynamics").
 

@@ -60,6 +60,17 @@ Web quantities get an axis of length 2 inserted before the crank-angle axis: ind
 web (the one next to the front main journal, x = L1), index 1 = rear web (x = L3 - L1). With
 the pin centred in the bay (L2 = L3/2, the in-line case of M53 Fig 1) both webs carry the same
 bending; they differ in journal torque.
+
+References
+----------
+.. [1] IACS Unified Requirement M53, "Calculation of crankshafts for I.C. engines", as transcribed
+   in Korean Register, "Rules for Classification of Steel Ships", 2025, Pt 5, Annex 5-3 "Guidance
+   for Calculation of Crankshaft Stress", §2 (nominal stresses), §3.1, Figs 1 and 3.
+.. [2] D. Bell, "Cranktrain Analysis Using ENGDYN and VALDYN", Ricardo, 4 February 2013, slides
+   'Crankshaft analysis (25)-(28)' (classical stress analysis).
+.. [3] "Cummins Crankshaft and Bearing Analysis Process", Cummins, 2002, §2 (statically determinate
+   scheme).
+.. [4] "Roark's Formulas for Stress and Strain" (torsion of solid and hollow circular shafts).
 """
 
 from __future__ import annotations

@@ -6,8 +6,15 @@ element between hub and inertia ring has the complex stiffness
 
     k*(Omega) = k' + j (k'' + Omega c),   k'' = eta k'
 
-(hysteretic loss factor ``eta`` and/or viscous ``c``). Formulas and checks: torsion.md
-sections 3.4-3.5.
+(hysteretic loss factor ``eta`` and/or viscous ``c``). Sources of the formulas: References.
+
+References
+----------
+.. [1] J. P. Den Hartog, "Mechanical Vibrations", 4th ed., 1956, sec. 2.8 (work per cycle), eqs.
+   3.12, 3.19, 3.23, 3.24 (optimum tuned absorber).
+.. [2] A. N. Gent (ed.), "Engineering with Rubber", 3rd ed., Hanser, 2012, ch. 8 (rubber in shear).
+.. [3] L. Drapal, P. Novotny, "Torsional vibration analysis of crank train with low friction
+   losses", J. Vibroeng. 19(7), 2017, doi:10.21595/jve.2017.17876, eq. 9.
 """
 
 from __future__ import annotations
@@ -86,7 +93,7 @@ def damper_torque(
     -------
     numpy.ndarray, complex [N m]
         Torque transmitted from hub to ring; ``|T_n| = k' |dphi_n| sqrt(1 + eta^2)`` for pure
-        hysteretic damping (torsion.md 3.5).
+        hysteretic damping.
     """
     w = np.asarray(omega, dtype=float)
     ks, kpp = _loss_stiffness(w, storage_stiffness, loss_factor, damping)
@@ -122,7 +129,7 @@ def dissipated_power(
     Notes
     -----
     Den Hartog, *Mechanical Vibrations*, 4th ed. 1956, sec. 2.8 (work of a viscous / hysteretic
-    force per cycle); torsion.md 3.5 (checked by time integration, 22.9676 W).
+    force per cycle).
     """
     w = np.asarray(omega, dtype=float)
     _, kpp = _loss_stiffness(w, storage_stiffness, loss_factor, damping)
@@ -184,7 +191,7 @@ def annulus_stiffness(
     Notes
     -----
     Torque equilibrium ``T = 2 pi r^2 L tau(r)`` with ``tau = G r dphi/dr`` integrated from
-    ``r_i`` to ``r_o`` (Gent, *Engineering with Rubber*, 3rd ed. 2012, ch. 8; torsion.md 3.5).
+    ``r_i`` to ``r_o`` (Gent, *Engineering with Rubber*, 3rd ed. 2012, ch. 8).
     Linear (small-strain) rubber, bonded faces, no end effects.
     """
     ri, ro, ln = _check_annulus(r_inner, r_outer, length)
@@ -293,7 +300,7 @@ def annulus_heat_density(
     """Mean and peak heat generation per unit rubber volume of a bonded annulus.
 
     ``q_mean = P / V``; since ``q(r) ~ 1/r^4`` the peak at the inner radius is
-    ``q_peak = q_mean (r_o / r_i)^2`` (torsion.md 3.5, checked there numerically).
+    ``q_peak = q_mean (r_o / r_i)^2``.
 
     Parameters
     ----------
@@ -333,8 +340,7 @@ def den_hartog_optimum(mass_ratio: ArrayLike) -> tuple[np.ndarray, np.ndarray, n
     -----
     Den Hartog, *Mechanical Vibrations*, 4th ed. 1956, eqs. (3.19), (3.23), (3.24) (equal-height
     fixed points; the damping is the average of the two values that put the maximum at either
-    fixed point, so the true maximum slightly exceeds ``sqrt(1+2/mu)``: +0.1 % at mu = 0.05-0.2,
-    torsion.md 3.4).
+    fixed point, so the true maximum slightly exceeds ``sqrt(1+2/mu)``: +0.1 % at mu = 0.05-0.2).
     """
     mu = np.asarray(mass_ratio, dtype=float)
     if np.any(mu <= 0):

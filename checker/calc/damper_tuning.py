@@ -16,6 +16,12 @@ Damping is compared as the viscous ratio ``zeta = c/(2 J_d omega_n)``; a hystere
 equivalent at the ring frequency to ``c = eta k_d / omega_d``, i.e. ``zeta = eta f / 2`` and
 ``eta_opt = 2 zeta_opt / f_opt`` (equal dissipation per cycle at the ring frequency). The
 optimum rubber is ``k_opt = J_d (f_opt omega_n)^2`` with loss factor ``eta_opt``.
+
+References
+----------
+.. [1] J. P. Den Hartog, "Mechanical Vibrations", 4th ed., 1956, sec. 3.3, eqs. 3.19, 3.23.
+.. [2] L. Drapal, P. Novotny, "Torsional vibration analysis of crank train with low friction
+   losses", J. Vibroeng. 19(7), 2017, doi:10.21595/jve.2017.17876, eq. 3 (equivalent inertia).
 """
 
 from __future__ import annotations

@@ -17,7 +17,17 @@ positive during the expansion stroke).
 Phasing: cylinder ``i`` fires ``phi_i`` [rad] of crank angle after cylinder 1, so its torque is
 ``T_i(theta) = T_1(theta - phi_i)`` and its complex order-``n`` amplitude is
 ``F_{i,n} = c_n exp(-j n phi_i)`` (Ker Wilson, *Practical Solution of Torsional Vibration
-Problems*, Vol. 2, ch. 19; torsion.md section 3.3).
+Problems*, Vol. 2, ch. 19).
+
+References
+----------
+.. [1] W. Ker Wilson, "Practical Solution of Torsional Vibration Problems", Vol. 2, ch. 19 (phasing
+   of cylinder excitation, vector sums).
+.. [2] L. Drapal, P. Novotny, "Torsional vibration analysis of crank train with low friction
+   losses", J. Vibroeng. 19(7), 2017, doi:10.21595/jve.2017.17876, eq. 1 (discrete Fourier series).
+.. [3] J. B. Heywood, "Internal Combustion Engine Fundamentals", McGraw-Hill, 1988, sec. 2.2.
+.. [4] C. F. Taylor, "The Internal-Combustion Engine in Theory and Practice", Vol. 2, 1985, ch. 8
+   (inertia torque harmonics).
 """
 
 from __future__ import annotations
@@ -45,7 +55,7 @@ __all__ = [
 #: synthesised flywheel-side element torque by <= 0.15 %; at 16 by 0.45 % / 1.4 %, at 12 by
 #: 2.2 % / 7.9 %. Orders kept are unaffected by truncation (linear model). The TV sweep takes
 #: 35-50 ms at 24 orders (70 ms at 48) on the shared 2-core development machine. Order 24 also
-#: covers the "18-24 orders for V6 nose checks" guideline (torsion.md section 6).
+#: covers the 18-24 orders commonly used for V6 crank-nose checks.
 DEFAULT_MAX_ORDER = 24.0
 
 
@@ -117,7 +127,7 @@ def gas_torque(
 
     ``T_g = (p - p_cc) A_p dx/dtheta = (p - p_cc) A_p r sin(theta) [1 + lam cos(theta)/
     sqrt(1 - lam^2 sin^2 theta)]`` with ``x`` the piston displacement from TDC toward the crank
-    (:func:`checker.calc.kinematics.slider_kinematics`; torsion.md section 3.1; Heywood 1988,
+    (:func:`checker.calc.kinematics.slider_kinematics`; Heywood 1988,
     sec. 2.2). The full per-cylinder torque with offsets and con-rod dynamics is
     :func:`checker.calc.crank_forces.cylinder_loads` (``.torque``).
 
@@ -157,7 +167,7 @@ def reciprocating_inertia_torque(
 ) -> np.ndarray:
     """Exact crank torque of the reciprocating mass at constant crank speed (zero offsets).
 
-    ``T_i = -m_rec omega^2 x''(theta) x'(theta)`` (torsion.md section 3.1; ``x`` from
+    ``T_i = -m_rec omega^2 x''(theta) x'(theta)`` (``x`` from
     :func:`checker.calc.kinematics.slider_kinematics`).
 
     Parameters
@@ -193,7 +203,7 @@ def inertia_torque_series_coefficients(lam: float) -> tuple[np.ndarray, np.ndarr
     Taylor, *The Internal-Combustion Engine in Theory and Practice*, Vol. 2, ch. 8), and
     ``T_i = -m omega^2 x'' x'``. Leading terms: ``b1 = lam/4 + lam^3/16``, ``b2 = -(1/2 +
     lam^4/32)``, ``b3 = -(3 lam/4 + 9 lam^3/32)``, ``b4 = -(lam^2/4 + lam^4/8)``, ``b5 =
-    5 lam^3/32`` (torsion.md section 3.1).
+    5 lam^3/32``.
 
     Parameters
     ----------
@@ -285,7 +295,7 @@ def vector_sum(
 ) -> np.ndarray:
     """Vector ("phase") sum of the cylinder excitations for each order.
 
-    ``S_n = |sum_i beta_i exp(-j n phi_i)|`` (torsion.md section 3.3; Ker Wilson vol. 2). With
+    ``S_n = |sum_i beta_i exp(-j n phi_i)|`` (Ker Wilson vol. 2). With
     ``beta`` = relative mode-shape amplitudes at the cylinders it measures how strongly order ``n``
     excites that mode; with ``beta = 1`` (rigid body) it identifies the major orders.
 

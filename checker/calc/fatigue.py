@@ -1,6 +1,6 @@
 """Crankshaft fatigue: cycle amplitudes/means, equivalent stresses, Goodman and IACS M53 checks.
 
-Two assessments are provided; they are **not** equivalent criteria (``standards.md`` §3):
+Two assessments are provided; they are **not** equivalent criteria:
 
 1. **Goodman safety factor** (the Ricardo ENGDYN classical-stress output, Bell, Ricardo 2013,
    'Crankshaft analysis (25)-(28)': "Goodman fatigue safety factor ... minimum safety factor
@@ -10,7 +10,7 @@ Two assessments are provided; they are **not** equivalent criteria (``standards.
    overload).
 2. **IACS UR M53 acceptability** ``Q = sigma_DW / sigma_V >= 1.15`` with alternating stresses
    only (means neglected), ``sigma_V = sqrt((sigma_BH + sigma_add)^2 + 3 tau_H^2)`` and the M53
-   fatigue strength formula (M53 §5-7; ``standards.md`` §1.5-1.8).
+   fatigue strength formula (M53 §5-7).
 
 Stress criteria chosen for the Goodman check (and why)
 ------------------------------------------------------
@@ -34,6 +34,18 @@ Stress criteria chosen for the Goodman check (and why)
   ``"von_mises"`` (unsigned, most conservative).
 * Oil-bore outlet: M53's maximum-principal combination (§5(4)) is applied to the amplitudes
   and, with signs, to the means.
+
+References
+----------
+.. [1] D. Bell, "Cranktrain Analysis Using ENGDYN and VALDYN", Ricardo, 4 February 2013, slides
+   'Crankshaft analysis (25)-(28)' (Goodman safety factor >= 1.5, worked fatigue strengths).
+.. [2] IACS Unified Requirement M53, "Calculation of crankshafts for I.C. engines", as transcribed
+   in Korean Register, "Rules for Classification of Steel Ships", 2025, Pt 5, Annex 5-3 "Guidance
+   for Calculation of Crankshaft Stress", §2-7 (acceptability factor Q >= 1.15).
+.. [3] "Cummins Crankshaft and Bearing Analysis Process", Cummins, 2002, §2.1 (mean shear from the
+   brake torque).
+.. [4] R. G. Budynas, J. K. Nisbett, "Shigley's Mechanical Engineering Design", 10th ed.,
+   McGraw-Hill, 2015, eq. 6-46 (Goodman line).
 """
 
 from __future__ import annotations
@@ -166,8 +178,8 @@ def equivalent_mean_stress(
 
     Notes
     -----
-    Choice and rationale in the module docstring; the notes (``standards.md`` §3) list these
-    practices without a primary source ([MEM]).
+    Choice and rationale in the module docstring; these are common practice, for which no
+    primary source is cited here.
     """
     sm = _finite("sigma_m", sigma_m)
     tm = _finite("tau_m", tau_m)
@@ -223,9 +235,10 @@ def goodman_safety_factor(
     sigma_m : array_like [Pa]
         (Equivalent) mean stress, signed.
     endurance_limit : array_like [Pa]
-        Fully reversed fatigue strength S_e at the location (e.g. seed: pin fillet 619 MPa).
+        Fully reversed fatigue strength S_e at the location (e.g. Bell, Ricardo 2013: pin
+        fillet 619 MPa).
     ultimate_strength : array_like [Pa]
-        Tensile strength S_u at the location (e.g. seed: fillet UTS 920 MPa).
+        Tensile strength S_u at the location (e.g. Bell, Ricardo 2013: fillet UTS 920 MPa).
     credit_compressive_mean : bool
         If False (default) a compressive mean is set to 0 (the factor is then S_e/sigma_a).
 
@@ -238,7 +251,7 @@ def goodman_safety_factor(
     Notes
     -----
     Goodman relation, 1/n = sigma_a/S_e + sigma_m/S_u (e.g. Shigley's Mechanical Engineering
-    Design, 10th ed., eq. 6-46; ``standards.md`` §3). Points on the line
+    Design, 10th ed., eq. 6-46). Points on the line
     ``sigma_a = S_e (1 - sigma_m/S_u)`` give SF = 1; scaling both stresses by k divides SF by
     k. Valid for 0 <= sigma_m <= S_u (tensile side; yield is not checked here).
     """
@@ -413,7 +426,7 @@ def fatigue_strength(
     size_factor, surface_factor, treatment_factor : array_like [-]
         Multiplicative factors (Bell 2013 example: size 0.868 pin / 0.858 main; rolled fillet 1.9,
         induction-hardened oil hole 1.0). Treatment factors are user data: M53 accepts
-        surface-treatment gains only from tests (``standards.md`` §1.10, §3).
+        surface-treatment gains only from tests (M53 Appendix V).
 
     Returns
     -------
@@ -465,7 +478,7 @@ def m53_fatigue_strength(
 
     Notes
     -----
-    IACS UR M53 §6 (KR Annex 5-3 §6(1)-(2); ``standards.md`` §1.7), sigma_B in N/mm^2, D and
+    IACS UR M53 §6 (KR Annex 5-3 §6(1)-(2)), sigma_B in N/mm^2, D and
     R_X in mm::
 
         sigma_DW = K (0.42 sigma_B + 39.3) [0.264 + 1.073 D^-0.2 + (785 - sigma_B)/4900

@@ -5,6 +5,14 @@ The finite-length film's peak pressure at each orbit step comes from the stored 
 and treats a full circumferential groove as two lands. The short-bearing (Ocvirk) peak is
 computed along its orbit by :mod:`checker.calc.orbit` (``peak_pressure=True``). All inputs SI;
 vectorised over any batch shape (bearing x load case x speed x crank angle).
+
+References
+----------
+.. [1] J. F. Booker, "Dynamically loaded journal bearings: mobility method of solution", Trans. ASME
+   J. Basic Eng. 87(3), 1965, pp. 537-546.
+.. [2] P. K. Goenka, "Analytical curve fits for solution parameters of dynamically loaded journal
+   bearings", Trans. ASME J. Tribol. 106, 1984, pp. 421-428.
+.. [3] F. W. Ocvirk, "Short-bearing approximation for full journal bearings", NACA TN 2808, 1952.
 """
 
 from __future__ import annotations

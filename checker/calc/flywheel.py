@@ -21,6 +21,14 @@ check is run at, and the two differ by O(delta^2): for ``omega = w0 (1 + a sin t
 time mean is ``w0 sqrt(1 - a^2)``). ``omega_min`` is solved so that the time-mean speed of the
 cycle equals the given engine speed, which is exact for the model. The classical estimate
 ``delta ~ dE/(J w^2)`` is returned too.
+
+References
+----------
+.. [1] M. Agostini, "Powertrain Components Design - Engine", course notes, Master Degree in
+   Automotive Engineering, Politecnico di Torino, 2019 (A.Y. 2018-2019), "Engine degree of
+   irregularity", "flywheel dimensioning".
+.. [2] C. F. Taylor, "The Internal-Combustion Engine in Theory and Practice", Vol. 2, 1985, ch. 8
+   "flywheel".
 """
 
 from __future__ import annotations

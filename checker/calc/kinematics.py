@@ -54,6 +54,13 @@ TDC before the reference, for the example engine's 0.8 mm pin offset towards the
 side).
 
 The crank speed ``omega`` is constant (no cyclic speed fluctuation).
+
+References
+----------
+.. [1] M. Agostini, "Powertrain Components Design - Engine", course notes, Master Degree in
+   Automotive Engineering, Politecnico di Torino, 2019 (A.Y. 2018-2019), ch. 1 "Offset layout",
+   "Methods to decrease slap".
+.. [2] J. B. Heywood, "Internal Combustion Engine Fundamentals", McGraw-Hill, 1988, eq. 2.5.
 """
 
 from __future__ import annotations
@@ -172,7 +179,7 @@ def slider_kinematics(
     lacks the ``cos(phi)`` term and has the sign of the ``s sin(phi)`` term reversed; the forms
     above are checked against finite differences and a direct vector construction in
     ``tests/calc/test_kinematics.py``). For ``e = 0`` they reduce to Heywood (1988, *Internal
-    Combustion Engine Fundamentals*, eq. 2.5) and torsion.md section 3.1.
+    Combustion Engine Fundamentals*, eq. 2.5).
 
     Parameters
     ----------

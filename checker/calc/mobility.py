@@ -14,7 +14,7 @@ Conventions
   eccentricity rotated by ``-angle(F)``. The dimensionless mobility ``M = (M_zeta, M_kappa)``
   is resolved in the same frame.
 * Booker's mobility equation (vector form, any frame in which ``omega_bar`` is defined, see
-  Booker 1965 and the notes ``bearings.md`` section 1.1/1.2)::
+  Booker 1965)::
 
       d eps / dt = |F| psi**2 / (mu L D) * M(eps, F_hat) + omega_bar * z_hat x eps,
       omega_bar = (omega_journal + omega_bearing) / 2
@@ -36,13 +36,23 @@ Models
     ``M`` against ``"exact"``: 2.5e-4 (:data:`EXACT_TABLE_MAX_REL_ERROR`, checked in the tests).
 ``"butenschoen"``
     Butenschoen's (1976) curve fits of the finite-length (B/D = 1/8 .. 1) solution, rotation and
-    squeeze superposed and inverted into a mobility (notes ``bearings.md`` section 1.5).
+    squeeze superposed and inverted into a mobility.
 ``"reynolds_map"``
     Finite-length mobility of the Reynolds equation with the Swift-Stieber condition, from the
     map computed once by checker's own solver (:mod:`checker.calc.reynolds_map`, L/D 1/16..1).
 ``"reynolds"``
     The same film solved directly at every call (:func:`checker.calc.reynolds.mobility_reynolds`;
     reference, about 0.1-0.3 s per point).
+
+References
+----------
+.. [1] J. F. Booker, "Dynamically loaded journal bearings: mobility method of solution", Trans. ASME
+   J. Basic Eng. 87(3), 1965, pp. 537-546.
+.. [2] P. Flores et al., "Journal bearings subjected to dynamic loads: the analytical mobility
+   method", 2006 (closed-form short-bearing mobility).
+.. [3] F. W. Ocvirk, "Short-bearing approximation for full journal bearings", NACA TN 2808, 1952.
+.. [4] H.-J. Butenschoen, "Das hydrodynamische, zylindrische Gleitlager endlicher Breite unter
+   instationaerer Belastung", Dissertation, Universitaet Karlsruhe, 1976.
 """
 
 from __future__ import annotations
@@ -149,7 +159,7 @@ def mobility_closed_form(
     not verified). Exact at ``eps = 0``; against the exact short-bearing pi-film mobility the
     magnitude ratio exact/closed-form lies in 0.943..1.131 and the direction differs by at most
     4.4 degrees over the whole disk; the along-load ratio M_zeta is 0.944..1.133 for
-    eps <= 0.99 (computed here, see ``"exact"``; the notes quote 0.94..1.13). In steady rotation
+    eps <= 0.99 (computed here, see ``"exact"``). In steady rotation
     this makes h_min 0..+1.4 % optimistic (attitude within 0.7 deg).
     Validity: ``zeta**2 + kappa**2 < 1``, ``l_over_d > 0``; short-bearing theory is
     optimistic for L/D above about 0.25 (use ``"butenschoen"`` to gauge).
@@ -191,7 +201,7 @@ def squeeze_load_integral(eps: ArrayLike, alpha: ArrayLike) -> tuple[np.ndarray,
 
     Notes
     -----
-    Derivation: notes ``bearings.md`` section 1.4 [DERIVED, VERIFIED there]; the short-bearing
+    Derivation: the short-bearing
     (Ocvirk) Reynolds equation with Booker's squeeze-velocity substitution (Booker 1965).
     Pure approach (``alpha = 0``) equals :func:`squeeze_load_radial`.
     """
@@ -223,7 +233,8 @@ def squeeze_load_radial(eps: ArrayLike) -> np.ndarray:
 
     Notes
     -----
-    Notes ``bearings.md`` section 1.4 [DERIVED, VERIFIED]; identical to the bracket of
+    Derived from the short-bearing (Ocvirk) film with Booker's squeeze velocity; identical to the
+    bracket of
     Butenschoen's squeeze Sommerfeld number (So_V = 2 (B/D)**2 G_rad for the short bearing).
     """
     e = np.asarray(eps, dtype=float)
@@ -270,7 +281,7 @@ def mobility_exact(
 
     Notes
     -----
-    Notes ``bearings.md`` section 1.4 [DERIVED, VERIFIED]; reproduces Ocvirk's steady
+    Short-bearing (Ocvirk) film with Booker's squeeze velocity; reproduces Ocvirk's steady
     solution to rounding (tests). Root find converges to 1e-14 rad in ``alpha`` for
     ``eps <= 1 - 1e-12``. Cost: about 1 ms per 1000 points; use ``"exact_table"`` in orbits.
     """
@@ -513,7 +524,7 @@ def butenschoen_sommerfeld_rotation(eps: ArrayLike, b_over_d: ArrayLike) -> np.n
     -----
     Butenschoen H.-J. (1976), "Das hydrodynamische, zylindrische Gleitlager endlicher Breite
     unter instationaerer Belastung", Diss. TU Karlsruhe (not read); fit coefficients as in
-    alex-marinov/mbdyn ``hydrodynamic_plain_bearing_force.f95`` (notes ``bearings.md`` 1.5).
+    alex-marinov/mbdyn ``hydrodynamic_plain_bearing_force.f95``.
     Error against Butenschoen's tables (tests): -3.3 % .. +6.8 % for eps = 0.1 .. 0.99.
     """
     e, x = np.broadcast_arrays(np.asarray(eps, dtype=float), np.asarray(b_over_d, dtype=float))
@@ -601,7 +612,7 @@ def _m_butenschoen(w: np.ndarray, x: np.ndarray, a: np.ndarray) -> np.ndarray:
 
     Load frame: F_hat = 1, e_r = exp(i psi), e_t = i exp(i psi), so F_hat.e_r = cos(psi),
     F_hat.e_t = -sin(psi). Tangential balance gives the rotation part, the remaining radial
-    load F_V = F.e_r - |F.e_t| cot(beta) drives the squeeze (notes 1.5, explicit inversion):
+    load F_V = F.e_r - |F.e_t| cot(beta) drives the squeeze (explicit inversion):
 
         M_r = F_V/|F| / So_V(+-eps),   M_t = (F_hat.e_t) / (2 (So_D/eps) sin(beta))
     """
@@ -650,7 +661,7 @@ def mobility_butenschoen(
 
     Notes
     -----
-    Inversion of Butenschoen's force model [DERIVED in notes ``bearings.md`` 1.5]. The
+    Inversion of Butenschoen's force model (derived here). The
     superposition of a cavitated rotation and a cavitated squeeze force is an approximation
     (the short-bearing mobility of ``"exact"`` is not a superposition). Steady states
     reproduce the fitted So_D and beta exactly (tests). This module's choices: the switch
@@ -777,7 +788,7 @@ def eccentricity_rate(
     Notes
     -----
     Booker J.F. (1965), J. Basic Eng. 87:537-546 (mobility method; not read); the vector form and
-    ``omega_bar`` follow notes ``bearings.md`` sections 1.1-1.2 [DERIVED, VERIFIED].
+    ``omega_bar`` are derived here (module docstring).
     """
     wj, wb = np.broadcast_arrays(np.asarray(omega_journal, dtype=float),
                                  np.asarray(omega_bearing, dtype=float))

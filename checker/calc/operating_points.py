@@ -8,7 +8,10 @@ held (never extrapolated linearly) outside them, with the held points flagged.
 
 References
 ----------
-Bell, D., *Cranktrain Analysis Using ENGDYN and VALDYN*, Ricardo Software, 2013.
+.. [1] D. Bell, "Cranktrain Analysis Using ENGDYN and VALDYN", Ricardo, 4 February 2013, 'Bearing
+   analysis assumptions'.
+.. [2] J. B. Heywood, "Internal Combustion Engine Fundamentals", McGraw-Hill, 1988, sec. 2.7 (mean
+   effective pressures).
 """
 
 from __future__ import annotations

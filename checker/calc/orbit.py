@@ -12,7 +12,7 @@ bearing's orbit does not depend on the other bearings of the batch. Cycles are r
 the orbit closes (``|eps(end of cycle) - eps(start)| < tol``); converged bearings leave the
 active set. ``|eps|`` is clamped at :data:`EPS_CAP`.
 
-Equation (notes ``bearings.md`` 1.1-1.2, Booker 1965), integrated in crank angle
+Equation (Booker 1965), integrated in crank angle
 ``theta`` (``d theta / dt = speed``)::
 
     d eps / d theta = |F| psi**2 / (mu L D speed) * M(eps, F_hat) + (omega_bar / speed) z_hat x eps
@@ -50,6 +50,16 @@ Frames and signs (how the caller passes loads and angular velocities)
 
 Defaults (justified by ``benchmarks/bench_moft.py``: 61 speeds x 2 load cases x 9 bearings
 of the example I4 with a synthetic load; see the module constants).
+
+References
+----------
+.. [1] J. F. Booker, "Dynamically loaded journal bearings: mobility method of solution", Trans. ASME
+   J. Basic Eng. 87(3), 1965, pp. 537-546.
+.. [2] H.-J. Butenschoen, "Das hydrodynamische, zylindrische Gleitlager endlicher Breite unter
+   instationaerer Belastung", Dissertation, Universitaet Karlsruhe, 1976.
+.. [3] J. G. Verwer, E. J. Spee, J. G. Blom, W. Hundsdorfer, "A second-order Rosenbrock method
+   applied to photochemical dispersion problems", SIAM J. Sci. Comput. 20, 1999, pp. 1456-1480, eq.
+   2.2 (ROS2).
 """
 
 from __future__ import annotations
@@ -112,9 +122,9 @@ COLLAPSE_EPS = 0.999
 
 COLLAPSE_H_MIN = 50e-9
 """[ASSUMPTION] Film-collapse flag threshold on the film thickness [m]: 0.05 um is about an
-eighth of the composite roughness of engine bearings (sigma ~ 0.4 um, notes ``bearings.md``
-3.2), i.e. deep in boundary lubrication where the rigid, isoviscous mobility result has no
-physical meaning. (Design limits on MOFT, ~0.6..2 um, are applied by the rule layer.)"""
+eighth of the composite roughness of engine bearings (sigma ~ 0.4 um), i.e. deep in boundary
+lubrication where the rigid, isoviscous mobility result has no physical meaning. (Design limits
+on MOFT, ~0.6..2 um, are applied by the rule layer.)"""
 
 _S_MIN = 1.0 - EPS_CAP
 _C4PI = 4.0 / np.pi
@@ -857,7 +867,7 @@ def solve_orbit(
         a few bearings; seconds per step).
     full_groove : array_like of bool, shape (...)
         Full circumferential central groove: two lands of ``length/2`` each carrying half the
-        load (notes ``bearings.md`` 1.6).
+        load.
     steps_per_cycle : int
         RK4 steps per cycle (``"butenschoen"``: at least one step per degree, each made of two
         ROS2 sub-steps; the stored orbit then has that many points).
@@ -910,10 +920,10 @@ def solve_orbit(
     Notes
     -----
     Booker J.F. (1965), "Dynamically loaded journal bearings: mobility method of solution",
-    J. Basic Eng. 87:537-546 (not read); ``omega_bar`` and frames: notes ``bearings.md`` 1.1
-    [DERIVED, VERIFIED]; practical algorithm: notes 1.6. Rigid journal and bearing,
+    J. Basic Eng. 87:537-546 (not read); ``omega_bar`` and frames derived here (module
+    docstring). Rigid journal and bearing,
     isoviscous, short-bearing (or Butenschoen finite-length) pi-film, no feed holes or partial
-    grooves. Short-bearing MOFT is optimistic at L/D > 0.25 (notes 1.5). Flags: ``collapse``
+    grooves. Short-bearing MOFT is optimistic at L/D > 0.25. Flags: ``collapse``
     when ``eps_max >= COLLAPSE_EPS`` or ``h_min < collapse_h_min`` (result kept, finite,
     ``>= c (1 - EPS_CAP)``),
     ``converged`` false after ``max_cycles``; never NaN.

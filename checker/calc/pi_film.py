@@ -4,7 +4,13 @@ pi-film force integrals and the squeeze direction of a given load direction.
 
 Kept in their own module so that the mobility models and the finite-length map (which is
 expressed relative to the closed form) import this one without importing each other.
-Equations and sources: :mod:`checker.calc.mobility` (Booker 1965; notes ``bearings.md``).
+Equations and sources: :mod:`checker.calc.mobility` (Booker 1965).
+
+References
+----------
+.. [1] J. F. Booker, "Dynamically loaded journal bearings: mobility method of solution", Trans. ASME
+   J. Basic Eng. 87(3), 1965, pp. 537-546.
+.. [2] F. W. Ocvirk, "Short-bearing approximation for full journal bearings", NACA TN 2808, 1952.
 """
 
 from __future__ import annotations

@@ -18,6 +18,15 @@ Contents
   also matches a target IMEP at the given peak pressure.
 * :func:`peak_pressure_at_speed` - linear interpolation of a peak-pressure table over speed with an
   explicit extrapolation mask.
+
+References
+----------
+.. [1] J. B. Heywood, "Internal Combustion Engine Fundamentals", McGraw-Hill, 1988, secs. 2.4, 2.7,
+   7.6, ch. 9 sec. 9.2 (Wiebe function), ch. 13 (Barnes-Moss friction correlation).
+.. [2] S. K. Chen, P. F. Flynn, SAE Technical Paper 650733, 1965 (friction mean effective pressure
+   form).
+.. [3] F. N. Fritsch, R. E. Carlson, "Monotone piecewise cubic interpolation", SIAM J. Numer. Anal.
+   17(2), 1980.
 """
 
 from __future__ import annotations

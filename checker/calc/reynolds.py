@@ -8,7 +8,7 @@ Booker's squeeze formulation
 ----------------------------
 Journal and bearing surface speeds and the motion of the journal centre enter the Reynolds
 equation only through the *squeeze velocity* ``V_s = d e/dt - omega_bar z_hat x e`` with
-``omega_bar = (omega_journal + omega_bearing) / 2`` (Booker 1965; notes ``bearings.md`` 1.1):
+``omega_bar = (omega_journal + omega_bearing) / 2`` (Booker 1965):
 
 .. math::
 
@@ -61,6 +61,19 @@ stops when the active set repeats, i.e. when ``min(P, A P - f) = 0`` holds to ro
 
 Accuracy (tests): Butenschoen's (1976) tables of the rotation and squeeze Sommerfeld numbers
 and of the side flow, Ocvirk's short-bearing solution as ``L/D -> 0``, grid convergence.
+
+References
+----------
+.. [1] J. F. Booker, "Dynamically loaded journal bearings: mobility method of solution", Trans. ASME
+   J. Basic Eng. 87(3), 1965, pp. 537-546.
+.. [2] H.-J. Butenschoen, "Das hydrodynamische, zylindrische Gleitlager endlicher Breite unter
+   instationaerer Belastung", Dissertation, Universitaet Karlsruhe, 1976.
+.. [3] F. W. Ocvirk, "Short-bearing approximation for full journal bearings", NACA TN 2808, 1952.
+.. [4] M. Hintermueller, K. Ito, K. Kunisch, "The primal-dual active set strategy as a semismooth
+   Newton method", SIAM J. Optim. 13, 2002, pp. 865-888.
+.. [5] M. Giacopini, M. T. Fowell, D. Dini, A. Strozzi, "A mass-conserving complementarity
+   formulation to study lubricant films in the presence of cavitation", J. Tribol. 132, 2010,
+   041702.
 """
 
 from __future__ import annotations
@@ -802,8 +815,8 @@ def mobility_reynolds(
         |\\mathbf M| = \\frac{4\\,L/D}{|\\mathbf W(\\varepsilon, \\alpha)|}, \\qquad
         \\angle\\mathbf M = \\alpha \\ (\\text{from } \\mathbf e)
 
-    so that ``d eps/dt = |F| psi^2 / (mu L D) M + omega_bar z_hat x eps`` (notes
-    ``bearings.md`` 1.2). Slow (one root find of a few LCP solutions per point): the
+    so that ``d eps/dt = |F| psi^2 / (mu L D) M + omega_bar z_hat x eps`` (Booker
+    1965). Slow (one root find of a few LCP solutions per point): the
     reference for :mod:`checker.calc.reynolds_map` and for direct orbits.
 
     Parameters

@@ -34,6 +34,13 @@ a common ``t`` grid, then across the width ratio (cubic spline in ``ln(L/D)``), 
 ``x`` onto a fine grid; the orbit reads that fine table bilinearly (:func:`table_for`). Below
 the last row (``1 - eps < 1e-4``) ``log r`` is extended linearly in ``x``. The same is done
 for the peak pressure and side flow per unit load (:func:`film_kernels`).
+
+References
+----------
+.. [1] J. F. Booker, "Dynamically loaded journal bearings: mobility method of solution", Trans. ASME
+   J. Basic Eng. 87(3), 1965, pp. 537-546.
+.. [2] P. K. Goenka, "Analytical curve fits for solution parameters of dynamically loaded journal
+   bearings", Trans. ASME J. Tribol. 106, 1984, pp. 421-428.
 """
 
 from __future__ import annotations

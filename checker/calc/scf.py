@@ -24,10 +24,16 @@ caller reports it), except where M53 itself prescribes a substitution (``s < -0.
 the caller, not here.
 
 Coefficient note: the KR transcription prints ``-0.85 b^3`` in ``f(b)`` of ``alpha_T`` and
-``-1.527 w^2`` in ``f_B(s, w)`` of ``beta_B``; the research notes give ``-0.857`` and
-``-1.5276`` as the IACS values (marked "from memory, verify"). This module uses 0.857 and
-1.5276 (module constants below) and reproduces the notes' worked numbers (§1.12) with them;
-with 0.85, ``alpha_T`` is about 2 % higher.
+``-1.527 w^2`` in ``f_B(s, w)`` of ``beta_B``; ``-0.857`` and ``-1.5276`` are taken as the
+IACS values (recalled, not yet checked against the IACS document). This module uses 0.857
+and 1.5276 (module constants below); with 0.85, ``alpha_T`` is about 2 % higher.
+
+References
+----------
+.. [1] IACS Unified Requirement M53, "Calculation of crankshafts for I.C. engines", as transcribed
+   in Korean Register, "Rules for Classification of Steel Ships", 2025, Pt 5, Annex 5-3 "Guidance
+   for Calculation of Crankshaft Stress", §3 (stress concentration factors; fillet formulae from
+   FVV, oil bore from ESDU).
 """
 
 from __future__ import annotations
@@ -49,7 +55,7 @@ __all__ = [
     "m53_scf",
 ]
 
-#: Cubic coefficient of f(b) in alpha_T (IACS value per the notes; KR copy prints 0.85).
+#: Cubic coefficient of f(b) in alpha_T (IACS value, unverified; KR copy prints 0.85).
 ALPHA_T_FB_CUBIC = 0.857
 #: w^2 coefficient of the first bracket of f_B(s, w) in beta_B (KR copy prints 1.527).
 BETA_B_FSW_QUADRATIC = 1.5276
@@ -299,7 +305,7 @@ def m53_scf(
 
     Notes
     -----
-    Equations (IACS UR M53 §3.2-3.4; ``standards.md`` §1.4)::
+    Equations (IACS UR M53 §3.2-3.4)::
 
         alpha_B = 2.6914 f(s,w) f(w) f(b) f(r) f(d_G) f(d_H) f(recess)
         alpha_T = 0.8 f(r,s) f(b) f(w)

@@ -2,10 +2,13 @@
 
 ``p_spec = max_theta |F(theta)| / (D L_eff)`` per bearing, with the crank angle (and, for the
 envelope over an operating-point axis, the speed) at which the maximum occurs. ``L_eff`` is the
-effective shell length, excluding grooves and chamfers (bearings.md sec. 3.1: "Define p =
-max|F| / (D L_eff), with L_eff excluding grooves and chamfers (the usual convention)"). Bell,
-Ricardo 2013,
-lists e.g. main bearings D = 55 mm, L_eff = 18.2 mm and big ends D = 48 mm, L_eff = 17.8 mm.
+effective shell length, excluding grooves and chamfers (the usual convention). Bell, Ricardo
+2013, lists e.g. main bearings D = 55 mm, L_eff = 18.2 mm and big ends D = 48 mm, L_eff = 17.8 mm.
+
+References
+----------
+.. [1] D. Bell, "Cranktrain Analysis Using ENGDYN and VALDYN", Ricardo, 4 February 2013
+   (projected-area specific loads, limiting values).
 """
 
 from __future__ import annotations
@@ -91,8 +94,8 @@ def peak_specific_load(
 
     Notes
     -----
-    Projected-area specific load, the usual lining-capacity measure (bearings.md sec. 3.1; limits
-    there are indicative and method-dependent, Bell, Ricardo 2013: "Ricardo limiting values should
+    Projected-area specific load, the usual lining-capacity measure (limits
+    are indicative and method-dependent, Bell, Ricardo 2013: "Ricardo limiting values should
     only be
     applied when using Ricardo calculation methods"). The maximum is taken on the grid: its
     discretisation error is quantified in ``benchmarks/bench_loads.py``.

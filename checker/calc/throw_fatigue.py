@@ -15,11 +15,12 @@ NumPy functions on SI arrays (no loop over crank angle or speed):
 
 References
 ----------
-IACS UR M53, "Calculation of crankshafts for I.C. engines", Rev. 3, 2015, §2-7.
-Bell, D., "Cranktrain Analysis Using ENGDYN and VALDYN", Ricardo, 2013, 'Crankshaft analysis
-(25)-(28)' (classical stress analysis, Goodman safety factor >= 1.5).
-Budynas, R. G., Nisbett, J. K., "Shigley's Mechanical Engineering Design", 10th ed., 2015,
-eq. 6-46 (Goodman line).
+.. [1] IACS Unified Requirement M53, "Calculation of crankshafts for I.C. engines", Rev. 3, 2015,
+   §2-7.
+.. [2] D. Bell, "Cranktrain Analysis Using ENGDYN and VALDYN", Ricardo, 4 February 2013, slides
+   'Crankshaft analysis (25)-(28)' (classical stress analysis, Goodman safety factor >= 1.5).
+.. [3] R. G. Budynas, J. K. Nisbett, "Shigley's Mechanical Engineering Design", 10th ed.,
+   McGraw-Hill, 2015, eq. 6-46 (Goodman line).
 """
 
 from __future__ import annotations

@@ -9,10 +9,10 @@ part, positive in the direction of rotation).
 
 References
 ----------
-Bell, D. (2013). *Crankshaft torsional vibration, concept-level analysis* (VALDYN practice).
-Ricardo. Friswell, M. I., Penny, J. E. T., Garvey, S. D. & Lees, A. W. (2010). *Dynamics of
-Rotating Machines*. Cambridge University Press, ch. 3 (free-free rotor modes, mass
-orthogonality).
+.. [1] D. Bell, "Cranktrain Analysis Using ENGDYN and VALDYN", Ricardo, 4 February 2013
+   (concept-level torsional vibration analysis with VALDYN).
+.. [2] M. I. Friswell, J. E. T. Penny, S. D. Garvey, A. W. Lees, "Dynamics of Rotating Machines",
+   Cambridge University Press, 2010, ch. 3 (free-free rotor modes, mass orthogonality).
 """
 
 from __future__ import annotations

@@ -16,7 +16,7 @@ incidence matrix ``B`` (``B[e, a_e] = 1``, ``B[e, b_e] = -1``)
     D(Omega) = B^T diag(z(Omega)) B + diag(g + j Omega d) - Omega^2 diag(J)
 
 and the steady-state response to order ``n`` at mean crank speed ``w`` (``Omega = n w``) solves
-``D(Omega) Theta_n = F_n`` (torsion.md section 3.3; Friswell et al. 2010, *Dynamics of Rotating
+``D(Omega) Theta_n = F_n`` (Friswell et al. 2010, *Dynamics of Rotating
 Machines*, ch. 3 and 9; Hafner & Maass 1985, *Torsionsschwingungen in der
 Verbrennungskraftmaschine*).
 
@@ -30,6 +30,17 @@ Conventions
 * "Amplitude" of a synthesised quantity = half peak-to-peak, ``(max - min)/2`` of the time signal
   of all orders over 720 deg (Lloyd's Register rules "half-range"; Drapal & Novotny 2017).
 * Array layout: speed axis first, order axis last: ``Theta`` is (n_speed, n_station, n_order).
+
+References
+----------
+.. [1] M. I. Friswell, J. E. T. Penny, S. D. Garvey, A. W. Lees, "Dynamics of Rotating Machines",
+   Cambridge University Press, 2010, ch. 2-3 and 9.
+.. [2] K. E. Hafner, H. Maass, "Torsionsschwingungen in der Verbrennungskraftmaschine", 1985.
+.. [3] L. Drapal, P. Novotny, "Torsional vibration analysis of crank train with low friction
+   losses", J. Vibroeng. 19(7), 2017, doi:10.21595/jve.2017.17876, eq. 3.
+.. [4] J. P. Den Hartog, "Mechanical Vibrations", 4th ed., 1956, ch. 2.
+.. [5] Lloyd's Register, Rules and Regulations for the Classification of Naval Ships, Vol. 2, Pt 5,
+   Ch 1, Sec 3 (half-range amplitude of the synthesis of all harmonic orders).
 """
 
 from __future__ import annotations

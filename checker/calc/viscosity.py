@@ -14,6 +14,19 @@ Three ways to get ``mu(T)``:
 
 Monograde reference curves (Seireg & Dandage, as quoted by Shigley) are in
 :func:`seireg_dandage_viscosity`.
+
+References
+----------
+.. [1] H. Vogel, "Das Temperaturabhaengigkeitsgesetz der Viskositaet von Fluessigkeiten",
+   Physikalische Zeitschrift 22, 1921, pp. 645-646.
+.. [2] SAE J300 (2015-01), "Engine Oil Viscosity Classification".
+.. [3] ASTM D341, "Standard practice for viscosity-temperature equations and charts for liquid
+   petroleum or hydrocarbon products" (Walther equation).
+.. [4] ASTM D4683 / ASTM D5481 (high-temperature high-shear viscosity at 150 C).
+.. [5] ASTM D1250 / ISO 91 (petroleum measurement tables; oil density).
+.. [6] A. Seireg, S. Dandage, "Empirical design procedure for the thermohydrodynamic behavior of
+   journal bearings", J. Lubr. Technol. 104, 1982, pp. 135-148, as given in R. G. Budynas, J. K.
+   Nisbett, "Shigley's Mechanical Engineering Design".
 """
 
 from __future__ import annotations
@@ -74,7 +87,7 @@ SAE_J300_2015: dict[str, tuple[float, float, float]] = {
     "50": (16.3e-6, 21.9e-6, 3.7e-3),
     "60": (21.9e-6, 26.1e-6, 3.7e-3),
 }
-"""SAE J300 (2015-01) high-temperature limits per grade [FOUND, notes ``bearings.md`` 5.1]:
+"""SAE J300 (2015-01) high-temperature limits per grade (SAE J300, 2015-01):
 ``(KV100 min [m^2/s], KV100 upper limit (exclusive) [m^2/s], HTHS at 150 C min [Pa*s])``.
 "40-light-winter" is the 0W-40 / 5W-40 / 10W-40 HTHS minimum (3.5 mPa s); 15W/20W/25W-40 and
 monograde 40 use 3.7 mPa s. J300 sets no upper HTHS limit and no KV40 limit."""
@@ -328,7 +341,7 @@ def vogel_from_datasheet(
 
     Notes
     -----
-    Method recommended in notes ``bearings.md`` 5.3 [DERIVED]. Mixing low-shear (KV) and
+    Mixing low-shear (KV) and
     high-shear (HTHS) anchors gives a curve that is low-shear at 40 C and high-shear at 150 C;
     at bearing temperatures (100..150 C) it is close to the high-shear value. Without HTHS
     the curve is low-shear throughout (optimistic for VI-improved multigrades).
@@ -386,7 +399,7 @@ def j300_grade(grade: str) -> J300Grade:
     Notes
     -----
     SAE J300 (2015-01), "Engine Oil Viscosity Classification", high-temperature table
-    [FOUND, notes ``bearings.md`` 5.1]. Winter (W) limits are low-temperature limits and do
+    Winter (W) limits are low-temperature limits and do
     not enter; only the 40 grade's HTHS minimum depends on them.
     """
     m = re.fullmatch(r"\s*(?:SAE\s*)?(?:(\d+)\s*W\s*-?\s*)?(\d+)\s*", grade, flags=re.IGNORECASE)

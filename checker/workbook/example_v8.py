@@ -51,8 +51,9 @@ away from their own throws. The crank then leaves no first-order free force or m
 Torsional model
 ---------------
 Throw station inertias: the point-mass estimate of each throw's CrankMass rows (sum m rho^2)
-x 1.227 for the parts' own inertia and the journals (the ratio of the seed I4's station
-inertia, less its rod, to the point-mass estimate of its CrankMass rows), plus both rods,
+x 1.227 for the parts' own inertia and the journals (the ratio of the station inertia of
+Bell's example I4 (Ricardo 2013), less its rod, to the point-mass estimate of its CrankMass
+rows), plus both rods,
 m_b r^2 + m_rec r^2/2 each (the mean inertia of the reciprocating parts, Ker Wilson). The
 rubber stiffness is Den Hartog tuned to the first mode of the chain without the ring
 (372.3 Hz): J_eq = 0.0317 kg m^2 (modal inertia at the nose), mu = 0.0065/0.0317 = 0.205,
