@@ -32,6 +32,9 @@ _RC = {
     "font.family": "DejaVu Sans",
     "font.size": 7.5,
     "axes.titlesize": 7.5,
+    # a fixed title height: matplotlib otherwise measures every tick label of the axes to
+    # lift the title over top-side ticks (which no figure has): about 15 % of drawing time
+    "axes.titley": 1.0,
     "axes.labelsize": 7.5,
     "xtick.labelsize": 6.5,
     "ytick.labelsize": 6.5,
