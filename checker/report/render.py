@@ -143,7 +143,7 @@ def _collapse_constant_column(b: dict, header: str = "judged by") -> dict:
     if len(vals) != 1 or len(plain_rows) < 3:
         return b
     v = vals.pop()
-    if len(plain_rows) != len(b["rows"]):  # marked rows keep their own text
+    if len(plain_rows) != len(b["rows"]):  # marked rows keep their own text (said once)
         rows = [row[:k] + ["-"] + row[k + 1:] if "not-judged" not in (c or "") else row
                 for row, c in zip(b["rows"], css)]
         return dict(b, rows=rows, caption=(b.get("caption") or "").rstrip(".")
@@ -156,6 +156,32 @@ def _collapse_constant_column(b: dict, header: str = "judged by") -> dict:
         scale = sum(b["widths"]) / max(sum(w), 1e-9)
         out["widths"] = [round(x * scale, 1) for x in w]
     return out
+
+
+def _collapse_marked_reason(b: dict, header: str = "judged by") -> dict:
+    """The marked rows of a judged-worst-case table (points the rules do not judge) giving
+    one to three reasons, each repeated ("not judged: outside the operating envelope", two or
+    three lines in every such row), say "not judged" (numbered when there are several
+    reasons); the caption gives each reason once. The same words, a shorter table."""
+    cols = b.get("columns") or []
+    css = b.get("row_css") or []
+    if header not in cols or len(css) != len(b.get("rows") or []):
+        return b
+    k = cols.index(header)
+    short = "not judged"
+    marked = [i for i, c in enumerate(css) if "not-judged" in (c or "")
+              and len(b["rows"][i]) > k and str(b["rows"][i][k]).startswith(short + ":")]
+    reasons = list(dict.fromkeys(str(b["rows"][i][k]) for i in marked))
+    if len(marked) < 2 or len(reasons) > 3 or len(reasons) == len(marked):
+        return b
+    rows = [list(row) for row in b["rows"]]
+    for i in marked:
+        n = reasons.index(str(rows[i][k]))
+        rows[i][k] = short if len(reasons) == 1 else f"{short} ({n + 1})"
+    said = reasons[0] if len(reasons) == 1 else "; ".join(
+        f"({n + 1}) {r}" for n, r in enumerate(reasons))
+    return dict(b, rows=rows, caption=(b.get("caption") or "").rstrip(".")
+                + f". Marked rows: {said}.")
 
 
 def _data_text(data, sheets: set[str]) -> str:
@@ -186,7 +212,7 @@ def _split_details(sections: list[dict]) -> tuple[list[dict], list[dict]]:
                 if why:
                     b = dict(b, detail=True, sheet=b.get("sheet") or f"{s['id']} {n_table}")
                 else:
-                    b = _collapse_constant_column(b)
+                    b = _collapse_marked_reason(_collapse_constant_column(b))
             if b["type"] == "table" and b.get("detail"):
                 sheet = results_book.sheet_name(b.get("sheet") or f"{s['id']} table")
                 extra.append({"sheet": sheet, "title": b.get("caption", ""),
