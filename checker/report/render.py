@@ -162,7 +162,8 @@ def _collapse_marked_reason(b: dict, header: str = "judged by") -> dict:
     """The marked rows of a judged-worst-case table (points the rules do not judge) giving
     one to three reasons, each repeated ("not judged: outside the operating envelope", two or
     three lines in every such row), say "not judged" (numbered when there are several
-    reasons); the caption gives each reason once. The same words, a shorter table."""
+    reasons); a note under the caption (``note``) gives each reason once. The same words,
+    a shorter table."""
     cols = b.get("columns") or []
     css = b.get("row_css") or []
     if header not in cols or len(css) != len(b.get("rows") or []):
@@ -180,8 +181,7 @@ def _collapse_marked_reason(b: dict, header: str = "judged by") -> dict:
         rows[i][k] = short if len(reasons) == 1 else f"{short} ({n + 1})"
     said = reasons[0] if len(reasons) == 1 else "; ".join(
         f"({n + 1}) {r}" for n, r in enumerate(reasons))
-    return dict(b, rows=rows, caption=(b.get("caption") or "").rstrip(".")
-                + f". Marked rows: {said}.")
+    return dict(b, rows=rows, note=f"Marked rows: {said}.")
 
 
 def _data_text(data, sheets: set[str]) -> str:
