@@ -8,8 +8,9 @@ written by ``checker template``) it measures, each in a fresh process, ``--runs`
 * ``checker check`` whole process (process start to exit, output to a file);
 * ``checker report`` whole process (process start to PDF written);
 * a stage-timing run of the same report: imports, analysis, PDF engine import (overlapping
-  the figure drawing in worker processes), figures, results workbook, HTML, PDF layout, PDF
-  write: wall time and processor time per stage.
+  the figure drawing in worker processes), figures, HTML, PDF layout, results workbook (written
+  by a forked process during the layout: its wall time is the wait after the layout, its
+  processor time the child's), PDF write: wall time and processor time per stage.
 
 It prints the medians, the page count and the targets of issue 25 (I4 report <= 8 s, stretch
 5 s; check <= 1.5 s). On a machine shared with other work, compare processor times: the wall
@@ -84,6 +85,7 @@ def main() -> None:
     ap.add_argument("--engines", default="i4,i6")
     args = ap.parse_args()
     py = sys.executable
+    load0 = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
     out: dict[str, dict] = {}
     with tempfile.TemporaryDirectory() as d:
         for eng in args.engines.split(","):
@@ -91,10 +93,11 @@ def main() -> None:
             subprocess.run([py, "-m", "checker.cli", "template", str(wb), "--engine", eng,
                             "--force"], env=_env(), check=True, capture_output=True)
             pdf = Path(d) / f"{eng}.pdf"
-            check, report, stage_runs, report_cpu = [], [], [], []
+            check, report, stage_runs, report_cpu, check_cpu = [], [], [], [], []
             for _ in range(args.runs):
                 check.append(_timed([py, "-m", "checker.cli", "check", str(wb), "-o",
                                      str(Path(d) / "out.txt")]))
+                check_cpu.append(CPU[-1])
                 report.append(_timed([py, "-m", "checker.cli", "report", str(wb), "-o",
                                       str(pdf), "--quiet"]))
                 report_cpu.append(CPU[-1])
@@ -105,12 +108,16 @@ def main() -> None:
             out[eng] = {
                 "check": statistics.median(check), "report": statistics.median(report),
                 "report_cpu": statistics.median(report_cpu),
+                "check_cpu": statistics.median(check_cpu),
                 "pages": stage_runs[0]["pages"],
                 "wall": {s: statistics.median(x["wall"][s] for x in stage_runs) for s in stages},
                 "cpu": {s: statistics.median(x["cpu"][s] for x in stage_runs) for s in stages},
             }
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
-    print(f"median of {args.runs} runs; load average {load:.1f} on {os.cpu_count()} cores\n")
+    print(f"median of {args.runs} runs; load average {load0:.1f} at the start, {load:.1f} at"
+          f" the end, on {os.cpu_count()} cores. cpu: processor time (user + system) of the"
+          " process and its child processes (figure workers, results workbook), the number"
+          " to compare on a shared machine\n")
     print("| stage | " + " | ".join(f"{e} wall [s] | {e} cpu [s]" for e in out) + " |")
     # processor time is the number to compare on a shared machine (the wall time of a stage
     # grows with the load); the sum of the stages' processor times is the report's work
@@ -118,6 +125,10 @@ def main() -> None:
     for s in next(iter(out.values()))["wall"]:
         print(f"| {s} | " + " | ".join(f"{v['wall'][s]:.2f} | {v['cpu'][s]:.2f}"
                                        for v in out.values()) + " |")
+    print("| whole process (`checker report`) | " + " | ".join(
+        f"{v['report']:.2f} | {v['report_cpu']:.2f}" for v in out.values()) + " |")
+    print("| whole process (`checker check`) | " + " | ".join(
+        f"{v['check']:.2f} | {v['check_cpu']:.2f}" for v in out.values()) + " |")
     print()
     for e, v in out.items():
         tgt = TARGETS.get(e)

@@ -32,6 +32,10 @@ _RC = {
     "font.family": "DejaVu Sans",
     "font.size": 7.5,
     "axes.titlesize": 7.5,
+    # a fixed title height: matplotlib otherwise measures every tick label of the axes to
+    # lift the title over top-side tick labels (none but a polar plot's 0°: :func:`to_image`
+    # gives polar axes the automatic height back): about 15 % of the drawing time
+    "axes.titley": 1.0,
     "axes.labelsize": 7.5,
     "xtick.labelsize": 6.5,
     "ytick.labelsize": 6.5,
@@ -177,6 +181,9 @@ def to_image(fig, dpi: float = PNG_DPI) -> Png:
         drawn.append(s)
         return orig(self, gc, x, y, s, prop, angle, ismath, mtext)
 
+    for ax in fig.axes:
+        if ax.name == "polar" and hasattr(ax, "_autotitlepos"):
+            ax._autotitlepos = True  # the title lifted over the 0° label (see _RC titley)
     fig.set_dpi(dpi)
     fig.patch.set_facecolor("white")
     canvas = FigureCanvasAgg(fig)

@@ -4,8 +4,8 @@ day).
 
 :func:`build_report` runs the stages and times them (``Report.stages``, shown by
 ``benchmarks/bench_report.py``): figures are drawn in forked workers while this process
-imports the PDF engine and writes the results workbook; then the HTML, the PDF layout and the
-PDF file.
+imports the PDF engine; then the HTML and the PDF layout, while a forked process writes the
+results workbook; then the PDF file.
 """
 
 from __future__ import annotations
@@ -143,7 +143,7 @@ def _collapse_constant_column(b: dict, header: str = "judged by") -> dict:
     if len(vals) != 1 or len(plain_rows) < 3:
         return b
     v = vals.pop()
-    if len(plain_rows) != len(b["rows"]):  # marked rows keep their own text
+    if len(plain_rows) != len(b["rows"]):  # marked rows keep their own text (said once)
         rows = [row[:k] + ["-"] + row[k + 1:] if "not-judged" not in (c or "") else row
                 for row, c in zip(b["rows"], css)]
         return dict(b, rows=rows, caption=(b.get("caption") or "").rstrip(".")
@@ -156,6 +156,32 @@ def _collapse_constant_column(b: dict, header: str = "judged by") -> dict:
         scale = sum(b["widths"]) / max(sum(w), 1e-9)
         out["widths"] = [round(x * scale, 1) for x in w]
     return out
+
+
+def _collapse_marked_reason(b: dict, header: str = "judged by") -> dict:
+    """The marked rows of a judged-worst-case table (points the rules do not judge) giving
+    one to three reasons, each repeated ("not judged: outside the operating envelope", two or
+    three lines in every such row), say "not judged" (numbered when there are several
+    reasons); a note under the caption (``note``) gives each reason once. The same words,
+    a shorter table."""
+    cols = b.get("columns") or []
+    css = b.get("row_css") or []
+    if header not in cols or len(css) != len(b.get("rows") or []):
+        return b
+    k = cols.index(header)
+    short = "not judged"
+    marked = [i for i, c in enumerate(css) if "not-judged" in (c or "")
+              and len(b["rows"][i]) > k and str(b["rows"][i][k]).startswith(short + ":")]
+    reasons = list(dict.fromkeys(str(b["rows"][i][k]) for i in marked))
+    if len(marked) < 2 or len(reasons) > 3 or len(reasons) == len(marked):
+        return b
+    rows = [list(row) for row in b["rows"]]
+    for i in marked:
+        n = reasons.index(str(rows[i][k]))
+        rows[i][k] = short if len(reasons) == 1 else f"{short} ({n + 1})"
+    said = reasons[0] if len(reasons) == 1 else "; ".join(
+        f"({n + 1}) {r}" for n, r in enumerate(reasons))
+    return dict(b, rows=rows, note=f"Marked rows: {said}.")
 
 
 def _data_text(data, sheets: set[str]) -> str:
@@ -186,7 +212,7 @@ def _split_details(sections: list[dict]) -> tuple[list[dict], list[dict]]:
                 if why:
                     b = dict(b, detail=True, sheet=b.get("sheet") or f"{s['id']} {n_table}")
                 else:
-                    b = _collapse_constant_column(b)
+                    b = _collapse_marked_reason(_collapse_constant_column(b))
             if b["type"] == "table" and b.get("detail"):
                 sheet = results_book.sheet_name(b.get("sheet") or f"{s['id']} table")
                 extra.append({"sheet": sheet, "title": b.get("caption", ""),
@@ -380,12 +406,27 @@ def _weasyprint():
     return weasyprint
 
 
+def _html_class(wp):
+    """WeasyPrint's ``HTML`` with the report's own user-agent stylesheet
+    (``templates/report_ua.css``: the HTML5 defaults of the elements the template uses, the
+    same pages in less layout time). ``_ua_stylesheets`` is WeasyPrint's hook for it (62..70);
+    should a later version not call it, its own stylesheet applies and only speed differs."""
+
+    ua = wp.CSS(string=(templates_dir() / "report_ua.css").read_text(encoding="utf-8"))
+
+    class HTML(wp.HTML):
+        def _ua_stylesheets(self, *args, **kwargs):
+            return [ua]
+
+    return HTML
+
+
 def render_pdf(html: str, res: CheckResult, attachments: list[tuple[str, bytes, str]] = ()
                ) -> bytes:
     """The report as PDF bytes (same input -> same bytes on the same day); ``attachments``:
     ``(name, bytes, description)`` embedded files."""
     wp = _weasyprint()
-    doc = wp.HTML(string=html, base_url=str(templates_dir())).render()
+    doc = _html_class(wp)(string=html, base_url=str(templates_dir())).render()
     return _write(wp, doc, html, attachments)
 
 
@@ -447,8 +488,7 @@ def build_report(res: CheckResult, progress: Progress | None = None,
     sections, extra = _split_details(_plain_sections(sections))
     extra += _extra_sheets(res)
     say("Writing the results workbook")
-    book = results_book.build(res, extra)
-    clock.stage("results workbook")
+    book_job = _Background(results_book.build, res, extra)  # written while the PDF is laid out
     from .results_book import sheet_names
 
     sheets = sheet_names(res, extra)
@@ -466,12 +506,15 @@ def build_report(res: CheckResult, progress: Progress | None = None,
     logger.addHandler(handler)
     logger.setLevel(logging.INFO)
     try:
-        doc = wp.HTML(string=html, base_url=str(templates_dir()),
+        doc = _html_class(wp)(string=html, base_url=str(templates_dir()),
                       url_fetcher=_fetcher(wp, figures)).render()
     finally:
         logger.removeHandler(handler)
         logger.setLevel(old_level)
     clock.stage("PDF layout")
+    children = _children_cpu()
+    book = book_job.result()
+    clock.stage("results workbook", extra_cpu=_children_cpu() - children)
     say(f"Writing the PDF ({len(doc.pages)} pages)")
     pdf = _write(wp, doc, html, [(results_book.ATTACHMENT_NAME, book,
                                   "Every computed quantity, the rule results and the plot"
@@ -479,6 +522,46 @@ def build_report(res: CheckResult, progress: Progress | None = None,
     clock.stage("PDF write")
     return Report(pdf, standalone_html(html, figures) if want_html else "", book,
                   len(doc.pages), clock.wall, clock.cpu, doc)
+
+
+_BG_CALL: tuple | None = None
+
+
+def _bg_call():
+    fn, args = _BG_CALL
+    return fn(*args)
+
+
+class _Background:
+    """``fn(*args)`` computed in a forked process while this one goes on (the PDF layout uses
+    one core; the results workbook takes the other); in this process where fork is
+    unavailable or with one core. :meth:`result` waits for the value. An interrupt (Ctrl-C)
+    reaches the forked process too (same process group) and ends it."""
+
+    def __init__(self, fn, *args):
+        import multiprocessing as mp
+        import os
+
+        global _BG_CALL
+        self.fn, self.args, self.pool, self.future = fn, args, None, None
+        if (os.cpu_count() or 1) < 2 or "fork" not in mp.get_all_start_methods():
+            return
+        from concurrent.futures import ProcessPoolExecutor
+
+        _BG_CALL = (fn, args)
+        try:
+            self.pool = ProcessPoolExecutor(1, mp_context=mp.get_context("fork"))
+            self.future = self.pool.submit(_bg_call)
+        finally:
+            _BG_CALL = None
+
+    def result(self):
+        if self.pool is None:
+            return self.fn(*self.args)
+        try:
+            return self.future.result()
+        finally:
+            self.pool.shutdown()
 
 
 def _children_cpu() -> float:

@@ -1,0 +1,102 @@
+"""The parts of the report renderer that make it faster must not change what it shows: the
+report's own user-agent stylesheet lays out the template's elements exactly as WeasyPrint's
+HTML5 stylesheet does, the results workbook written in a forked process is the one written
+in this process, and a worst-case table's repeated not-judged reason is said once."""
+
+from __future__ import annotations
+
+import pytest
+
+from checker.report import render
+
+SNIPPET = """<!DOCTYPE html><html><head><meta charset="utf-8"><title>t</title>
+<style>{css}</style></head><body>
+<div class="running-footer">file · sha256 · checker</div>
+<section class="cover"><h1 class="doc-title">Title</h1><p class="engine">Engine</p>
+<table class="meta doc-control"><colgroup><col style="width:15%"><col style="width:85%">
+</colgroup><tr><th>Project</th><td>Example <span class="mono">abc</span></td></tr></table>
+<p class="verdict-line"><span class="verdict fail">FAIL</span></p>
+<p class="counts">1 failed<br>next line</p><p class="small">plain <b>bold</b> after</p>
+</section>
+<nav class="toc"><h2 class="toc-title">Contents</h2><ul><li><a href="#s">Section</a></li>
+</ul></nav>
+<section id="s" class="chapter flow"><div class="keep-together"><h2>Section</h2>
+<p class="sec-intro">Intro text long enough to wrap over more than one line of the page
+width, with some more words here and there to make it so.</p></div>
+<h3>Heading</h3><div class="keep-together"><table class="data"><caption>Caption
+<span class="caption-note">note</span></caption><colgroup><col style="width:50%">
+<col style="width:50%"></colgroup><thead><tr><th>a</th><th>b</th></tr></thead>
+<tbody><tr class="not-judged"><td>1</td><td>2</td></tr></tbody></table></div>
+<ul class="small"><li>item one</li><li>item two</li></ul>
+<figure><figcaption>Figure caption <span class="data-ref">Data</span></figcaption>
+</figure></section></body></html>"""
+
+
+def _layout(cls, html: str) -> list[tuple]:
+    doc = cls(string=html, base_url=str(render.templates_dir())).render()
+    out = []
+
+    def walk(box, page):
+        out.append((page, type(box).__name__, round(box.position_x, 3),
+                    round(box.position_y, 3), round(box.width or 0, 3),
+                    round(box.height or 0, 3) if isinstance(box.height, float) else 0,
+                    getattr(box, "text", None)))
+        for child in getattr(box, "children", ()) or ():
+            walk(child, page)
+
+    for k, page in enumerate(doc.pages):
+        walk(page._page_box, k)
+    return out
+
+
+def test_own_user_agent_stylesheet_lays_out_like_weasyprints():
+    wp = render._weasyprint()
+    css = (render.templates_dir() / "report.css").read_text(encoding="utf-8")
+    html = SNIPPET.replace("{css}", css)
+    stock = _layout(wp.HTML, html)
+    own = _layout(render._html_class(wp), html)
+    assert len(stock) > 50
+    assert own == stock
+
+
+def test_background_gives_the_same_value_as_a_direct_call():
+    job = render._Background(sorted, [3, 1, 2])
+    assert job.result() == [1, 2, 3]
+
+
+def test_background_passes_an_error_on():
+    job = render._Background(int, "not a number")
+    with pytest.raises(ValueError):
+        job.result()
+
+
+def _table(reasons: list[str]) -> dict:
+    rows = [["pin 1", "1.5", "FAT-001"]]
+    css = [""]
+    for r in reasons:
+        rows.append(["pin 1", "1.4", r])
+        css.append("not-judged")
+    return {"type": "table", "caption": "Worst cases.", "columns": ["item", "SF", "judged by"],
+            "rows": rows, "row_css": css}
+
+
+def test_one_repeated_reason_is_said_once():
+    b = render._collapse_marked_reason(_table(["not judged: outside the envelope"] * 3))
+    assert [r[2] for r in b["rows"]] == ["FAT-001"] + ["not judged"] * 3
+    assert b["note"] == "Marked rows: not judged: outside the envelope."
+    assert b["caption"] == "Worst cases."
+
+
+def test_several_reasons_are_numbered():
+    b = render._collapse_marked_reason(_table(["not judged: a", "not judged: b",
+                                               "not judged: a"]))
+    assert [r[2] for r in b["rows"]][1:] == ["not judged (1)", "not judged (2)",
+                                             "not judged (1)"]
+    assert b["note"] == "Marked rows: (1) not judged: a; (2) not judged: b."
+
+
+def test_reasons_said_once_each_stay_in_their_rows():
+    t = _table(["not judged: a", "not judged: b"])
+    assert render._collapse_marked_reason(t) is t
+    t = _table(["not judged: a"])
+    assert render._collapse_marked_reason(t) is t
