@@ -18,13 +18,13 @@ from typing import Any
 
 import numpy as np
 
+from .display import case_text
 from .results import caveats_of
 
 IMEP_TOLERANCE = 0.02
 """Largest accepted relative miss of a synthesized trace's IMEP against its target (2 %);
 above it, the miss is a model-validity caveat."""
 
-CASE_TEXT = {"full": "full load", "no": "no load", "part": "part load"}
 
 
 def _rpm_ranges(rpm: np.ndarray) -> str:
@@ -57,14 +57,14 @@ def imep_caveats(cycle: Any) -> list[dict[str, Any]]:
         word = "above" if dev[k] > 0 else "below"
         out.append({
             "kind": "model validity", "severity": "high",
-            "text": (f"{CASE_TEXT.get(case, case).capitalize()}: the synthesized cylinder"
+            "text": (f"{case_text(case).capitalize()}: the synthesized cylinder"
                      f" pressure misses its IMEP target by up to {abs(dev[k]) * 100:.0f} %"
                      f" ({imep[ci, k] / 1e5:.2f} bar {word} {target[ci, k] / 1e5:.2f} bar at"
                      f" {rpm[k]:.0f} rpm; {int(bad.sum())} of {int(ok.sum())} judged speeds,"
                      f" {_rpm_ranges(rpm[bad])}): the given peak pressure and the"
                      " IMEP target (brake torque + friction) cannot both be met by the synthesis"
                      " there, and every"
-                     f" {CASE_TEXT.get(case, case)} result at those speeds rests on that"
+                     f" {case_text(case)} result at those speeds rests on that"
                      " trace (give measured traces or check the peak pressure)."),
             "rules": [], "case": case, "speeds_rpm": [float(x) for x in rpm[bad]],
             "worst_deviation": float(dev[k])})

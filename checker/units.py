@@ -26,6 +26,9 @@ import sys
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+RPM = 2.0 * math.pi / 60.0
+"""One revolution per minute in rad/s (speeds are rad/s inside checker)."""
+
 if TYPE_CHECKING:
     import pint
 

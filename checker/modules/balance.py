@@ -36,8 +36,8 @@ from ..results.balance import (
     FreeOrderDetail,
     InternalMomentDetail,
 )
+from ..units import RPM
 
-RPM = 2.0 * np.pi / 60.0
 MAX_ORDER = bal.DEFAULT_MAX_ORDER
 ORDERS = tuple(str(n) for n in range(1, MAX_ORDER + 1))
 

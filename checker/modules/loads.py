@@ -13,8 +13,8 @@ from ..calc.specific_load import peak_specific_load
 from ..engine import Bearing, Engine
 from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
 from ..results.loads import BearingLoadDetail, Cycle, CycleDetail, SpecificLoadDetail
+from ..units import RPM
 
-RPM = 2.0 * np.pi / 60.0
 CASES = ("full", "no")
 """Load cases swept: full load and no load (Bell, Ricardo 2013: 'at full load and no load across the
 speed range'). Part-load data are read and shown but not swept."""

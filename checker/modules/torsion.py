@@ -105,9 +105,9 @@ from ..results.torsion import (
     TVModelData,
     TwistDetail,
 )
+from ..units import RPM
 from .joints import POINTS
 
-RPM = 2.0 * np.pi / 60.0
 CASES = ("full", "no")
 MAX_ORDER = exc.DEFAULT_MAX_ORDER
 """Highest harmonic order (24; benchmarks/bench_tv.py: <= 0.03 % on the nose amplitude)."""

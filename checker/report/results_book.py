@@ -13,7 +13,7 @@ import re
 import numpy as np
 
 from ..api import CheckResult
-from ..display import unit_text
+from ..display import case_text, unit_text
 
 ATTACHMENT_NAME = "results.xlsx"
 
@@ -22,7 +22,6 @@ DEFAULT_DISPLAY = {"Pa": "MPa", "m": "mm", "rad": "deg", "N*m": "N*m", "W/m**3":
                    "": "", "-": ""}
 """Display unit of a quantity's SI unit when no rule names one."""
 
-CASE_TEXT = {"full": "full load", "no": "no load", "part": "part load"}
 
 
 SHEET_CHARS = 31
@@ -79,7 +78,7 @@ def _coord(dim: str, label) -> object:
     if dim == "speed":
         return round(float(label) * 60 / (2 * np.pi), 3)
     if dim == "case":
-        return CASE_TEXT.get(str(label), str(label))
+        return case_text(str(label))
     return label if isinstance(label, (int, float, str)) else str(label)
 
 

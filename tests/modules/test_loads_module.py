@@ -7,7 +7,8 @@ import pytest
 
 from checker import api
 from checker.engine import load_engine
-from checker.modules.loads import RPM, build_cycle
+from checker.modules.loads import build_cycle
+from checker.units import RPM
 from tests.helpers import edited, example_path, set_param
 
 
