@@ -35,6 +35,7 @@ import os
 import sys
 import tempfile
 import time
+from collections import OrderedDict
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -51,8 +52,12 @@ _WORKER: dict[str, Any] = {}  # per worker process: base workbook, targets, grap
 
 #: Seconds to wait for a Dask scheduler before saying it cannot be reached.
 DASK_CONNECT_TIMEOUT = 8
-#: Variants per task (a worker evaluates a chunk in one call).
-CHUNK = 1
+#: Most variants per task (a worker checks a chunk together: :func:`evaluate_chunk`). Chunks
+#: shrink towards the end of a study (:func:`plan_chunks`), so no worker waits long for the
+#: last one.
+CHUNK = 8
+#: Arrays a worker's calculation cache keeps between chunks (:class:`CalcCache`), bytes.
+CACHE_BYTES = 192 * 2**20
 LOCK_NAME = ".checker-study.lock"
 
 
@@ -119,8 +124,59 @@ class StudyRun:
 def _setup(base, targets, select, ignore, fail_on) -> None:
     if _WORKER.get("sha") != base.sha256 or _WORKER.get("targets") != targets:
         _WORKER.clear()
-        _WORKER.update(sha=base.sha256, base=base, targets=targets, cache={},
+        _WORKER.update(sha=base.sha256, base=base, targets=targets, cache=CalcCache(),
                        select=select, ignore=ignore, fail_on=fail_on)
+
+
+def _nbytes(obj: Any, seen: set, depth: int = 0) -> int:
+    """Bytes of the NumPy arrays reachable from ``obj`` (dicts, lists, tuples, dataclass-like
+    objects), each array counted once: the size of a cached calculation's outputs."""
+    if id(obj) in seen or depth > 8:
+        return 0
+    seen.add(id(obj))
+    import numpy as np
+
+    if isinstance(obj, np.ndarray):
+        return obj.nbytes
+    if isinstance(obj, dict):
+        return sum(_nbytes(v, seen, depth + 1) for v in obj.values())
+    if isinstance(obj, (list, tuple)):
+        return sum(_nbytes(v, seen, depth + 1) for v in obj)
+    d = getattr(obj, "__dict__", None)
+    return _nbytes(d, seen, depth + 1) if isinstance(d, dict) else 0
+
+
+class CalcCache(OrderedDict):
+    """A worker's calculation cache (:func:`checker.graph.run` ``cache``), least recently used
+    first out: after each chunk it is trimmed to :data:`CACHE_BYTES` of arrays.
+
+    What variants share (the loads of a clearance study, the torsional model of an oil study)
+    is read by every variant and so stays; the outputs of a Latin-hypercube variant (about
+    70 MB for the example I4 with every rule) are not read again and leave. Without the bound
+    a worker kept every variant's quantities: about 1.8 GB after 20 variants."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.sizes: dict[str, int] = {}
+
+    def get(self, key, default=None):  # type: ignore[override]
+        if key in self:
+            self.move_to_end(key)
+            return self[key]
+        return default
+
+    def trim(self, limit: int) -> None:
+        """Drop the least recently used entries until the arrays held are at most ``limit``
+        bytes (an entry alone larger than ``limit`` is dropped too)."""
+        for k in self:
+            if k not in self.sizes:
+                self.sizes[k] = _nbytes(self[k], set())
+        total = sum(self.sizes[k] for k in self)
+        while self and total > limit:
+            k, _ = self.popitem(last=False)
+            total -= self.sizes.pop(k, 0)
+        for k in [k for k in self.sizes if k not in self]:
+            del self.sizes[k]
 
 
 def _where(variant: Variant, targets: list[Target], cell: str) -> str:
@@ -137,53 +193,105 @@ def _where(variant: Variant, targets: list[Target], cell: str) -> str:
             + ", ".join(f"'{t.param.name}'" for t in own) + ")")
 
 
-def _evaluate(variant: Variant, key: str) -> dict:
-    """Check one variant in this worker; never raises for a variant's own bad input."""
-    from .. import api
+def _table():
+    from ..ruletable import load_rules
+
+    if "table" not in _WORKER:
+        _WORKER["table"] = load_rules(None)
+    return _WORKER["table"]
+
+
+def _record(variant: Variant, key: str) -> dict[str, Any]:
+    return {"id": key, "index": variant.index, "name": variant.name,
+            "values": [[k, v] for k, v in variant.values]}
+
+
+def _input_error(rec: dict, variant: Variant, exc: InputErrors) -> dict:
+    errs = []
+    for e in exc.errors:
+        cell = getattr(e, "where", "")
+        errs.append(f"{_where(variant, _WORKER['targets'], str(cell))}: {e}")
+    rec.update(status="input error", errors=errs, results=[])
+    return rec
+
+
+def _build(variant: Variant):
+    """The variant's engine (InputErrors for its bad values, workbook limit overrides
+    included)."""
     from ..engine import build_engine
-    from ..ruletable import RuleTable, load_rules, override_problems
+    from ..ruletable import override_problems
     from ..workbook.loader import convert_raw
 
     w = _WORKER
-    t0 = time.perf_counter()
-    rec: dict[str, Any] = {"id": key, "index": variant.index, "name": variant.name,
-                           "values": [[k, v] for k, v in variant.values]}
-    try:
-        raw = apply_variant(w["base"], w["targets"], dict(variant.values))
-        data = convert_raw(raw, raise_errors=False)
-        table = w.get("table") or load_rules(None)
-        w["table"] = table
-        resolved: dict[str, Any] = {}
+    table = _table()
+    raw = apply_variant(w["base"], w["targets"], dict(variant.values))
+    return build_engine(convert_raw(raw, raise_errors=False),
+                        lambda ovs: override_problems(table, ovs)[2])
 
-        def _ovr(ovs):
-            resolved["r"], resolved["a"], errs = override_problems(table, ovs)
-            return errs
 
-        engine = build_engine(data, _ovr)
-        res = api.check(engine, rules=RuleTable(resolved["r"], table.files, resolved["a"]),
-                        select=w["select"], ignore=w["ignore"], fail_on=w["fail_on"],
-                        cache=w["cache"])
-    except InputErrors as exc:
-        errs = []
-        for e in exc.errors:
-            cell = getattr(e, "where", "")
-            errs.append(f"{_where(variant, w['targets'], str(cell))}: {e}")
-        rec.update(status="input error", errors=errs, results=[])
-        return rec
+def _finish(rec: dict, res, seconds: float) -> dict:
     rec.update(status="nothing checked" if res.nothing_checked else "checked",
                verdict=res.verdict, complete=res.complete, errors=[],
                warnings=[str(x) for x in getattr(res.engine, "warnings", ())],
                results=[r.as_dict() for r in res.results])
-    rec["seconds"] = round(time.perf_counter() - t0, 3)
+    rec["seconds"] = round(seconds, 3)
     return rec
 
 
-def evaluate_chunk(items: list[tuple[Variant, str]]) -> list[dict]:
-    """Check a chunk of variants (``(variant, id)`` pairs) in this worker, one record each.
+def _evaluate(variant: Variant, key: str) -> dict:
+    """Check one variant in this worker; never raises for a variant's own bad input."""
+    from .. import api
 
-    The unit of work a worker takes; a batched evaluation of several variants at once
-    replaces the loop here without changing the engines or the callers."""
-    return [_evaluate(v, k) for v, k in items]
+    w = _WORKER
+    t0 = time.perf_counter()
+    rec = _record(variant, key)
+    try:
+        engine = _build(variant)
+        res = api.check(engine, rules=_table(), select=w["select"], ignore=w["ignore"],
+                        fail_on=w["fail_on"], cache=w["cache"])
+    except InputErrors as exc:
+        return _input_error(rec, variant, exc)
+    return _finish(rec, res, time.perf_counter() - t0)
+
+
+def evaluate_chunk(items: list[tuple[Variant, str]]) -> list[dict]:
+    """Check a chunk of variants (``(variant, id)`` pairs) in this worker, one record each,
+    in the order given.
+
+    The chunk's valid variants are checked together by :func:`checker.api.check_batch` (their
+    film orbits in one kernel call per model; the same results as one by one, tests); a
+    variant with bad values gets its input-error record. A record's ``seconds`` is its share
+    of the chunk's time."""
+    from .. import api
+
+    w = _WORKER
+    try:
+        if len(items) == 1:
+            return [_evaluate(*items[0])]
+        t0 = time.perf_counter()
+        out: list[dict | None] = [None] * len(items)
+        ok: list[tuple[int, dict, Any]] = []
+        for i, (v, k) in enumerate(items):
+            rec = _record(v, k)
+            try:
+                ok.append((i, rec, _build(v)))
+            except InputErrors as exc:
+                out[i] = _input_error(rec, v, exc)
+        if ok:
+            try:
+                results = api.check_batch([e for _, _, e in ok], rules=_table(),
+                                          select=w["select"], ignore=w["ignore"],
+                                          fail_on=w["fail_on"], cache=w["cache"])
+            except InputErrors:  # not expected (checked when built): each its own message
+                return [_evaluate(v, k) for v, k in items]
+            share = (time.perf_counter() - t0) / len(items)
+            for (i, rec, _), res in zip(ok, results):
+                out[i] = _finish(rec, res, share)
+        return [r for r in out if r is not None]
+    finally:
+        cache = w.get("cache")
+        if isinstance(cache, CalcCache):
+            cache.trim(CACHE_BYTES)
 
 
 def _init_local_worker(setup_args) -> None:
@@ -416,9 +524,18 @@ class _Sink:
             self.bar.close()
 
 
-def _chunks(todo: list[tuple[Variant, str]], size: int) -> Iterator[list]:
-    for i in range(0, len(todo), size):
-        yield todo[i:i + size]
+def plan_chunks(todo: list, workers: int, most: int | None = None) -> list[list]:
+    """``todo`` in consecutive chunks, largest first (guided self-scheduling: each chunk a
+    third of the remaining variants' share per worker, at most ``most`` = :data:`CHUNK`, at
+    least 1): big chunks batch more variants, the last ones are single variants, so the
+    workers finish together."""
+    most = CHUNK if most is None else most
+    out, i = [], 0
+    while i < len(todo):
+        size = max(1, min(most, -(-(len(todo) - i) // (3 * max(1, workers)))))
+        out.append(todo[i:i + size])
+        i += size
+    return out
 
 
 def run_plan(plan: StudyPlan, out_dir: str | Path, workers: int | None = None,
@@ -442,17 +559,16 @@ def run_plan(plan: StudyPlan, out_dir: str | Path, workers: int | None = None,
     engine_name = "dask" if dask else "local"
     try:
         if todo:
-            chunks = list(_chunks(todo, CHUNK))
             if dask:
                 own = client is None
                 eng = client or connect_dask(dask, workers)
                 try:
-                    _run_dask(eng, plan.setup_args, chunks, sink)
+                    _run_dask(eng, plan.setup_args, todo, sink)
                 finally:
                     if own:
                         eng.close()
             else:
-                _run_local(plan.setup_args, chunks, n_local, sink)
+                _run_local(plan.setup_args, plan_chunks(todo, n_local), n_local, sink)
     finally:
         sink.close()
     return StudyRun(st, plan.base_path, plan.base.sha256, plan.variants, plan.targets,
@@ -645,11 +761,12 @@ def connect_dask(address: str, workers: int | None = None) -> DaskEngine:
     return DaskEngine(client, None, address)
 
 
-def _run_dask(eng: DaskEngine, setup_args, chunks: list[list], sink) -> None:
+def _run_dask(eng: DaskEngine, setup_args, todo: list, sink) -> None:
     from distributed import as_completed
 
     client = eng.client
     n = max(1, len(client.scheduler_info().get("workers", {})) or 1)
+    chunks = plan_chunks(todo, n)
     base_f = client.scatter(setup_args[0], broadcast=True)
     queue = iter(chunks)
     live: set = set()
