@@ -104,3 +104,48 @@ def test_chunks_cover_the_study_in_order_and_shrink(n, workers):
     sizes = [len(c) for c in ch]
     assert sizes == sorted(sizes, reverse=True) and max(sizes) <= study_run.CHUNK
     assert sizes[-1] == 1
+
+
+JOINTS = """[study]
+name = "nose torque"
+design = "one-at-a-time"
+select = ["JNT-001"]
+
+[[parameter]]
+sheet = "Joints"
+row = "crank nose"
+column = "tightening torque"
+unit = "N m"
+values = [300, 330]
+"""
+
+
+def _cells(path) -> list[tuple]:
+    import openpyxl
+
+    return [tuple(r) for r in openpyxl.load_workbook(path, read_only=True)["results"]
+            .iter_rows(values_only=True)]
+
+
+def test_xlsx_written_alongside_the_pdf_equals_the_plain_one(film_study, tmp_path):
+    from checker.study.results import write_tables
+
+    d, wb, _ = film_study
+    st = tmp_path / "j.toml"
+    st.write_text(JOINTS, encoding="utf-8")
+    run = run_study(load_study(st), wb, tmp_path / "out", workers=1)
+    plain = write_tables(run, tmp_path / "plain")
+    seen = []
+    both = write_tables(run, tmp_path / "both", alongside=lambda: seen.append(1))
+    assert seen == [1] and [p.split("/")[-1] for p in both] == ["results.parquet",
+                                                               "results.xlsx"]
+    assert _cells(tmp_path / "both" / "results.xlsx") == _cells(plain[1])
+    assert len(_cells(plain[1])) == 1 + 3  # header, baseline and two torques
+
+    def broken() -> None:
+        raise ValueError("no PDF")
+
+    with pytest.raises(ValueError, match="no PDF"):  # the tables are kept all the same
+        write_tables(run, tmp_path / "broken", alongside=broken)
+    assert _cells(tmp_path / "broken" / "results.xlsx") == _cells(plain[1])
+    assert not [p for p in (tmp_path / "broken").iterdir() if p.name.endswith(".tmp")]
