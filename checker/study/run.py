@@ -9,14 +9,17 @@ Execution engines (no home-made scheduling):
 * ``dask``: the same task on a Dask distributed cluster (``distributed.Client``, futures,
   ``as_completed``): a scheduler address, or ``"local"`` for a :class:`LocalCluster`.
 
-A task is a chunk (a list) of variants, evaluated by :func:`evaluate_chunk` in one call, so a
-batched evaluation can later take the whole chunk at once. Only a few chunks per worker are
-queued at a time: memory does not grow with the number of variants, and an interruption
-has little to cancel.
+A task is a chunk (a list) of variants, checked together by :func:`evaluate_chunk`
+(:func:`checker.api.check_batch`: the film orbits of the chunk in one kernel call per model);
+chunks are largest first and single variants at the end (:func:`plan_chunks`), so the workers
+finish together. Only a few chunks per worker are queued at a time, and a worker's
+calculation cache is bounded (:class:`CalcCache`): memory does not grow with the number of
+variants, and an interruption has little to cancel.
 
 Each finished variant is written at once to ``<out>/variants/<id>.json`` (atomic rename of a
-uniquely named temporary file), so an interrupted study keeps what finished and a re-run
-skips it (resume). Records are read back from disk when needed, never all held in memory.
+uniquely named temporary file; by the local worker that checked it, by the study process for
+Dask), so an interrupted study keeps what finished and a re-run skips it (resume).
+Records are read back from disk when needed, never all held in memory.
 A variant with bad values is reported with the study line and the workbook cell and the
 study goes on (fail-soft).
 
@@ -315,8 +318,31 @@ def _die_with_parent() -> None:
         pass
 
 
-def _local_chunk(items) -> list[dict]:
-    return evaluate_chunk(items)
+def _local_chunk(items, folder: Path) -> list[dict]:
+    """A local worker's task: the chunk's records written to ``folder`` here (atomic), only
+    their ids returned: the messages back to the study process stay a few bytes, so a worker
+    ended in the middle of one (an interruption) never leaves half a message behind."""
+    out = []
+    for rec in evaluate_chunk(items):
+        with _sigterm_held():  # the study ending its workers waits until the record is whole
+            _write_record(folder, rec)
+        out.append({"id": rec["id"], "written": True})
+    return out
+
+
+@contextmanager
+def _sigterm_held() -> Iterator[None]:
+    """SIGTERM blocked while inside (POSIX); delivered when the block ends."""
+    import signal
+
+    if not hasattr(signal, "pthread_sigmask"):
+        yield
+        return
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGTERM})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
 
 
 def _dask_chunk(base, targets, sel, ign, fo, items) -> list[dict]:
@@ -511,7 +537,8 @@ class _Sink:
         self.t0 = time.monotonic()
 
     def __call__(self, rec: dict) -> None:
-        _write_record(self.folder, rec)
+        if not rec.get("written"):  # else a local worker wrote it
+            _write_record(self.folder, rec)
         self.count += 1
         if self.bar is not None:
             self.bar.update(1)
@@ -549,6 +576,11 @@ def run_plan(plan: StudyPlan, out_dir: str | Path, workers: int | None = None,
     folder = out / "variants"
     st = plan.study
     done = {k for k in plan.keys if (folder / f"{k}.json").is_file()}
+    for tmp in folder.glob(".*.tmp") if folder.is_dir() else ():  # a killed writer's (we
+        try:  # hold the folder's lock: nobody else writes here)
+            tmp.unlink()
+        except OSError:
+            pass
     todo = [(v, k) for v, k in zip(plan.variants, plan.keys) if k not in done]
     n_local = max(1, min(workers or os.cpu_count() or 1, max(len(todo), 1)))
     say(f"study '{st.name}': {len(plan.variants)} variants ({st.design}), {len(done)} already"
@@ -638,7 +670,7 @@ def _run_local(setup_args, chunks: list[list], n: int, sink) -> None:
                 ch = next(queue, None)
                 if ch is None:
                     return
-                pending.add(ex.submit(_local_chunk, ch))
+                pending.add(ex.submit(_local_chunk, ch, sink.folder))
 
         fill()
         while pending:
