@@ -257,14 +257,30 @@ def _evaluate(variant: Variant, key: str) -> dict:
     return _finish(rec, res, time.perf_counter() - t0)
 
 
+def _films_batched(engine) -> bool:
+    """Whether the study's rule selection needs a film calculation that
+    :func:`checker.api.check_batch` batches (else batching only adds its planning)."""
+    if "batched" not in _WORKER:
+        from .. import api, graph
+        from ..ruletable import select_rules
+
+        w = _WORKER
+        wanted = {r.quantity for r in select_rules(_table(), w["select"], w["ignore"])}
+        wanted |= {n for q in list(wanted) for _, n in graph.QUANTITIES[q].compare}
+        order = graph.plan(engine, wanted)
+        w["batched"] = any(c in order for c, _, _ in api._BATCHED_FILMS)
+    return _WORKER["batched"]
+
+
 def evaluate_chunk(items: list[tuple[Variant, str]]) -> list[dict]:
     """Check a chunk of variants (``(variant, id)`` pairs) in this worker, one record each,
     in the order given.
 
     The chunk's valid variants are checked together by :func:`checker.api.check_batch` (their
-    film orbits in one kernel call per model; the same results as one by one, tests); a
-    variant with bad values gets its input-error record. A record's ``seconds`` is its share
-    of the chunk's time."""
+    film orbits in one kernel call per model; the same results as one by one, tests) when
+    the rule selection needs film orbits, else one by one (e.g. a joints study: batching
+    would only add its planning); a variant with bad values gets its input-error record.
+    A record's ``seconds`` is its own check's time, or its share of a batch's."""
     from .. import api
 
     w = _WORKER
@@ -280,7 +296,19 @@ def evaluate_chunk(items: list[tuple[Variant, str]]) -> list[dict]:
                 ok.append((i, rec, _build(v)))
             except InputErrors as exc:
                 out[i] = _input_error(rec, v, exc)
-        if ok:
+        if len(ok) == 1 or (ok and not _films_batched(ok[0][2])):
+            # nothing to batch (no film orbits in the selection): one by one, as cheap
+            t1 = time.perf_counter()
+            for i, rec, engine in ok:
+                try:
+                    res = api.check(engine, rules=_table(), select=w["select"],
+                                    ignore=w["ignore"], fail_on=w["fail_on"], cache=w["cache"])
+                except InputErrors as exc:
+                    out[i] = _input_error(rec, items[i][0], exc)
+                    continue
+                out[i] = _finish(rec, res, time.perf_counter() - t1)
+                t1 = time.perf_counter()
+        elif ok:
             try:
                 results = api.check_batch([e for _, _, e in ok], rules=_table(),
                                           select=w["select"], ignore=w["ignore"],
