@@ -802,8 +802,16 @@ def connect_dask(address: str, workers: int | None = None) -> DaskEngine:
     if address == "local":
         import logging
 
+        import dask
+
         try:
-            with _sigint_ignored():  # the workers inherit it: a Ctrl-C is for this process
+            # Dask sets MALLOC_TRIM_THRESHOLD_=65536 in its workers' environment: glibc then
+            # maps and unmaps every large NumPy temporary (the orbit kernel's), which made a
+            # variant take 1.6x the CPU of a local worker (most of it system time); the
+            # workers keep glibc's default here
+            with _sigint_ignored(), dask.config.set(
+                    {"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
+                # the workers inherit SIG_IGN: a Ctrl-C is for this process
                 cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1,
                                        threads_per_worker=1, processes=True,
                                        dashboard_address=None,

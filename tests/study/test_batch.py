@@ -149,3 +149,17 @@ def test_xlsx_written_alongside_the_pdf_equals_the_plain_one(film_study, tmp_pat
         write_tables(run, tmp_path / "broken", alongside=broken)
     assert _cells(tmp_path / "broken" / "results.xlsx") == _cells(plain[1])
     assert not [p for p in (tmp_path / "broken").iterdir() if p.name.endswith(".tmp")]
+
+
+def test_local_cluster_workers_keep_the_default_malloc_trim():
+    pytest.importorskip("distributed")
+    import os
+
+    from checker.study.run import connect_dask
+
+    eng = connect_dask("local", 1)
+    try:
+        seen = eng.client.run(lambda: os.environ.get("MALLOC_TRIM_THRESHOLD_"))
+    finally:
+        eng.close()
+    assert seen and all(v == os.environ.get("MALLOC_TRIM_THRESHOLD_") for v in seen.values())
