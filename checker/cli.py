@@ -439,16 +439,20 @@ def study(workbook, study_file, out_dir, workers, dask_address, no_pdf, progress
             with output_lock(out_dir):
                 run = run_plan(plan, out_dir, workers=workers, dask=dask_address,
                                progress=show, say=say, client=engine)
-                say("writing results.parquet and results.xlsx")
-                written = write_tables(run, out_dir, say=say)
-                if not no_pdf:
+                pdfs: list[str] = []
+
+                def draw() -> None:  # while another process writes results.xlsx
                     from .study.report import render
                     from .study.results import report_frame
 
                     say("drawing the study report")
                     html, pdf = render(run, report_frame(out_dir, run))
                     _atomic_write(Path(out_dir) / "study.pdf", pdf)
-                    written.append(str(Path(out_dir) / "study.pdf"))
+                    pdfs.append(str(Path(out_dir) / "study.pdf"))
+
+                say("writing results.parquet and results.xlsx")
+                written = write_tables(run, out_dir, say=say,
+                                       alongside=None if no_pdf else draw) + pdfs
         except UsageProblem as exc:
             raise click.UsageError(str(exc)) from None
         except Exception as exc:  # noqa: BLE001 - reported without traceback

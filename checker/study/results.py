@@ -254,11 +254,91 @@ def _tmp(out, name: str) -> str:
     return tmp
 
 
-def write_tables(run: StudyRun, out_dir, say=None) -> list[str]:
+def _write_xlsx(parquet_path, names: list[str], tmp: str) -> None:
+    """results.xlsx (to ``tmp``) from results.parquet, in pieces (openpyxl write-only rows)."""
+    import pyarrow.parquet as pq
+    from openpyxl import Workbook
+
+    pf = pq.ParquetFile(parquet_path)
+    wb = Workbook(write_only=True)
+    ws = wb.create_sheet("results")
+    ws.append(names)
+    for batch in pf.iter_batches(batch_size=20_000):
+        cols = [batch.column(i).to_pylist() for i in range(batch.num_columns)]
+        for row in zip(*cols):
+            ws.append([None if isinstance(v, float) and v != v else v for v in row])
+    wb.save(tmp)
+
+
+def _xlsx_child(parquet_path, names: list[str], tmp: str, conn) -> None:
+    """Body of the process that writes results.xlsx beside other work: "" or the error."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent ends it on an interruption
+    try:
+        _write_xlsx(parquet_path, names, tmp)
+        conn.send("")
+    except BaseException as exc:  # noqa: BLE001 - reported by the parent
+        conn.send(f"{type(exc).__name__}: {exc}")
+    finally:
+        conn.close()
+
+
+def _xlsx_alongside(parquet_path, names: list[str], tmp: str,
+                    alongside) -> Exception | None:
+    """Write results.xlsx in a forked process while ``alongside()`` runs here (the study PDF):
+    the two take about the same time, and a study's workers are idle by now. Without fork
+    (not Linux) one after the other. An error of ``alongside`` is returned once results.xlsx
+    is written (the tables are kept, as when they were written first); an interruption
+    ends the other process at once."""
+    import multiprocessing as mp
+    import sys
+
+    if not sys.platform.startswith("linux"):
+        _write_xlsx(parquet_path, names, tmp)
+        try:
+            alongside()
+        except Exception as exc:  # noqa: BLE001 - raised by the caller after the tables
+            return exc
+        return None
+    ctx = mp.get_context("fork")
+    here, there = ctx.Pipe(duplex=False)
+    child = ctx.Process(target=_xlsx_child, args=(parquet_path, names, tmp, there),
+                        daemon=True)
+    child.start()
+    there.close()
+    failed: Exception | None = None
+    try:
+        try:
+            alongside()
+        except Exception as exc:  # noqa: BLE001 - raised by the caller after the tables
+            failed = exc
+        error = here.recv() if here.poll(None) else "no answer"
+        child.join()
+    except BaseException:
+        if child.is_alive():
+            child.terminate()
+        child.join(timeout=3)
+        if child.is_alive():
+            child.kill()
+            child.join()
+        raise
+    finally:
+        here.close()
+    if error:
+        raise RuntimeError(f"results.xlsx could not be written ({error})")
+    return failed
+
+
+def write_tables(run: StudyRun, out_dir, say=None, alongside=None) -> list[str]:
     """results.parquet and results.xlsx (atomic, unique temporary names); returns the paths
     written. Both are written in pieces (parquet row groups, openpyxl write-only rows), so
     a large study's table is never all in memory. A table longer than an Excel sheet is
-    kept in results.parquet only (``say`` tells why)."""
+    kept in results.parquet only (``say`` tells why).
+
+    ``alongside``: work to do once results.parquet is written (the study PDF, which reads
+    it), done while another process writes results.xlsx; it runs exactly once, also when no
+    results.xlsx is written."""
     import os
     from pathlib import Path
 
@@ -287,24 +367,23 @@ def write_tables(run: StudyRun, out_dir, say=None) -> list[str]:
         if say:
             say(f"results.xlsx not written: {pf.metadata.num_rows:,} rows exceed an Excel"
                 f" sheet ({EXCEL_ROWS:,}); results.parquet holds them all")
+        if alongside is not None:
+            alongside()
         return written
-    from openpyxl import Workbook
-
     tmp = _tmp(out, "results.xlsx")
+    failed = None
     try:
-        wb = Workbook(write_only=True)
-        ws = wb.create_sheet("results")
-        ws.append(schema.names)
-        for batch in pf.iter_batches(batch_size=20_000):
-            cols = [batch.column(i).to_pylist() for i in range(batch.num_columns)]
-            for row in zip(*cols):
-                ws.append([None if isinstance(v, float) and v != v else v for v in row])
-        wb.save(tmp)
+        if alongside is None:
+            _write_xlsx(out / "results.parquet", schema.names, tmp)
+        else:
+            failed = _xlsx_alongside(out / "results.parquet", schema.names, tmp, alongside)
         os.replace(tmp, out / "results.xlsx")
     finally:
         if os.path.exists(tmp):
             os.unlink(tmp)
     written.append(str(out / "results.xlsx"))
+    if failed is not None:
+        raise failed
     return written
 
 

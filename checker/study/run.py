@@ -9,14 +9,17 @@ Execution engines (no home-made scheduling):
 * ``dask``: the same task on a Dask distributed cluster (``distributed.Client``, futures,
   ``as_completed``): a scheduler address, or ``"local"`` for a :class:`LocalCluster`.
 
-A task is a chunk (a list) of variants, evaluated by :func:`evaluate_chunk` in one call, so a
-batched evaluation can later take the whole chunk at once. Only a few chunks per worker are
-queued at a time: memory does not grow with the number of variants, and an interruption
-has little to cancel.
+A task is a chunk (a list) of variants, checked together by :func:`evaluate_chunk`
+(:func:`checker.api.check_batch`: the film orbits of the chunk in one kernel call per model);
+chunks are largest first and single variants at the end (:func:`plan_chunks`), so the workers
+finish together. Only a few chunks per worker are queued at a time, and a worker's
+calculation cache is bounded (:class:`CalcCache`): memory does not grow with the number of
+variants, and an interruption has little to cancel.
 
 Each finished variant is written at once to ``<out>/variants/<id>.json`` (atomic rename of a
-uniquely named temporary file), so an interrupted study keeps what finished and a re-run
-skips it (resume). Records are read back from disk when needed, never all held in memory.
+uniquely named temporary file; by the local worker that checked it, by the study process for
+Dask), so an interrupted study keeps what finished and a re-run skips it (resume).
+Records are read back from disk when needed, never all held in memory.
 A variant with bad values is reported with the study line and the workbook cell and the
 study goes on (fail-soft).
 
@@ -35,6 +38,7 @@ import os
 import sys
 import tempfile
 import time
+from collections import OrderedDict
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -51,8 +55,12 @@ _WORKER: dict[str, Any] = {}  # per worker process: base workbook, targets, grap
 
 #: Seconds to wait for a Dask scheduler before saying it cannot be reached.
 DASK_CONNECT_TIMEOUT = 8
-#: Variants per task (a worker evaluates a chunk in one call).
-CHUNK = 1
+#: Most variants per task (a worker checks a chunk together: :func:`evaluate_chunk`). Chunks
+#: shrink towards the end of a study (:func:`plan_chunks`), so no worker waits long for the
+#: last one.
+CHUNK = 8
+#: Arrays a worker's calculation cache keeps between chunks (:class:`CalcCache`), bytes.
+CACHE_BYTES = 192 * 2**20
 LOCK_NAME = ".checker-study.lock"
 
 
@@ -119,8 +127,59 @@ class StudyRun:
 def _setup(base, targets, select, ignore, fail_on) -> None:
     if _WORKER.get("sha") != base.sha256 or _WORKER.get("targets") != targets:
         _WORKER.clear()
-        _WORKER.update(sha=base.sha256, base=base, targets=targets, cache={},
+        _WORKER.update(sha=base.sha256, base=base, targets=targets, cache=CalcCache(),
                        select=select, ignore=ignore, fail_on=fail_on)
+
+
+def _nbytes(obj: Any, seen: set, depth: int = 0) -> int:
+    """Bytes of the NumPy arrays reachable from ``obj`` (dicts, lists, tuples, dataclass-like
+    objects), each array counted once: the size of a cached calculation's outputs."""
+    if id(obj) in seen or depth > 8:
+        return 0
+    seen.add(id(obj))
+    import numpy as np
+
+    if isinstance(obj, np.ndarray):
+        return obj.nbytes
+    if isinstance(obj, dict):
+        return sum(_nbytes(v, seen, depth + 1) for v in obj.values())
+    if isinstance(obj, (list, tuple)):
+        return sum(_nbytes(v, seen, depth + 1) for v in obj)
+    d = getattr(obj, "__dict__", None)
+    return _nbytes(d, seen, depth + 1) if isinstance(d, dict) else 0
+
+
+class CalcCache(OrderedDict):
+    """A worker's calculation cache (:func:`checker.graph.run` ``cache``), least recently used
+    first out: after each chunk it is trimmed to :data:`CACHE_BYTES` of arrays.
+
+    What variants share (the loads of a clearance study, the torsional model of an oil study)
+    is read by every variant and so stays; the outputs of a Latin-hypercube variant (about
+    70 MB for the example I4 with every rule) are not read again and leave. Without the bound
+    a worker kept every variant's quantities: about 1.8 GB after 20 variants."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.sizes: dict[str, int] = {}
+
+    def get(self, key, default=None):  # type: ignore[override]
+        if key in self:
+            self.move_to_end(key)
+            return self[key]
+        return default
+
+    def trim(self, limit: int) -> None:
+        """Drop the least recently used entries until the arrays held are at most ``limit``
+        bytes (an entry alone larger than ``limit`` is dropped too)."""
+        for k in self:
+            if k not in self.sizes:
+                self.sizes[k] = _nbytes(self[k], set())
+        total = sum(self.sizes[k] for k in self)
+        while self and total > limit:
+            k, _ = self.popitem(last=False)
+            total -= self.sizes.pop(k, 0)
+        for k in [k for k in self.sizes if k not in self]:
+            del self.sizes[k]
 
 
 def _where(variant: Variant, targets: list[Target], cell: str) -> str:
@@ -137,53 +196,133 @@ def _where(variant: Variant, targets: list[Target], cell: str) -> str:
             + ", ".join(f"'{t.param.name}'" for t in own) + ")")
 
 
-def _evaluate(variant: Variant, key: str) -> dict:
-    """Check one variant in this worker; never raises for a variant's own bad input."""
-    from .. import api
+def _table():
+    from ..ruletable import load_rules
+
+    if "table" not in _WORKER:
+        _WORKER["table"] = load_rules(None)
+    return _WORKER["table"]
+
+
+def _record(variant: Variant, key: str) -> dict[str, Any]:
+    return {"id": key, "index": variant.index, "name": variant.name,
+            "values": [[k, v] for k, v in variant.values]}
+
+
+def _input_error(rec: dict, variant: Variant, exc: InputErrors) -> dict:
+    errs = []
+    for e in exc.errors:
+        cell = getattr(e, "where", "")
+        errs.append(f"{_where(variant, _WORKER['targets'], str(cell))}: {e}")
+    rec.update(status="input error", errors=errs, results=[])
+    return rec
+
+
+def _build(variant: Variant):
+    """The variant's engine (InputErrors for its bad values, workbook limit overrides
+    included)."""
     from ..engine import build_engine
-    from ..ruletable import RuleTable, load_rules, override_problems
+    from ..ruletable import override_problems
     from ..workbook.loader import convert_raw
 
     w = _WORKER
-    t0 = time.perf_counter()
-    rec: dict[str, Any] = {"id": key, "index": variant.index, "name": variant.name,
-                           "values": [[k, v] for k, v in variant.values]}
-    try:
-        raw = apply_variant(w["base"], w["targets"], dict(variant.values))
-        data = convert_raw(raw, raise_errors=False)
-        table = w.get("table") or load_rules(None)
-        w["table"] = table
-        resolved: dict[str, Any] = {}
+    table = _table()
+    raw = apply_variant(w["base"], w["targets"], dict(variant.values))
+    return build_engine(convert_raw(raw, raise_errors=False),
+                        lambda ovs: override_problems(table, ovs)[2])
 
-        def _ovr(ovs):
-            resolved["r"], resolved["a"], errs = override_problems(table, ovs)
-            return errs
 
-        engine = build_engine(data, _ovr)
-        res = api.check(engine, rules=RuleTable(resolved["r"], table.files, resolved["a"]),
-                        select=w["select"], ignore=w["ignore"], fail_on=w["fail_on"],
-                        cache=w["cache"])
-    except InputErrors as exc:
-        errs = []
-        for e in exc.errors:
-            cell = getattr(e, "where", "")
-            errs.append(f"{_where(variant, w['targets'], str(cell))}: {e}")
-        rec.update(status="input error", errors=errs, results=[])
-        return rec
+def _finish(rec: dict, res, seconds: float) -> dict:
     rec.update(status="nothing checked" if res.nothing_checked else "checked",
                verdict=res.verdict, complete=res.complete, errors=[],
                warnings=[str(x) for x in getattr(res.engine, "warnings", ())],
                results=[r.as_dict() for r in res.results])
-    rec["seconds"] = round(time.perf_counter() - t0, 3)
+    rec["seconds"] = round(seconds, 3)
     return rec
 
 
-def evaluate_chunk(items: list[tuple[Variant, str]]) -> list[dict]:
-    """Check a chunk of variants (``(variant, id)`` pairs) in this worker, one record each.
+def _evaluate(variant: Variant, key: str) -> dict:
+    """Check one variant in this worker; never raises for a variant's own bad input."""
+    from .. import api
 
-    The unit of work a worker takes; a batched evaluation of several variants at once
-    replaces the loop here without changing the engines or the callers."""
-    return [_evaluate(v, k) for v, k in items]
+    w = _WORKER
+    t0 = time.perf_counter()
+    rec = _record(variant, key)
+    try:
+        engine = _build(variant)
+        res = api.check(engine, rules=_table(), select=w["select"], ignore=w["ignore"],
+                        fail_on=w["fail_on"], cache=w["cache"])
+    except InputErrors as exc:
+        return _input_error(rec, variant, exc)
+    return _finish(rec, res, time.perf_counter() - t0)
+
+
+def _films_batched(engine) -> bool:
+    """Whether the study's rule selection needs a film calculation that
+    :func:`checker.api.check_batch` batches (else batching only adds its planning)."""
+    if "batched" not in _WORKER:
+        from .. import api, graph
+        from ..ruletable import select_rules
+
+        w = _WORKER
+        wanted = {r.quantity for r in select_rules(_table(), w["select"], w["ignore"])}
+        wanted |= {n for q in list(wanted) for _, n in graph.QUANTITIES[q].compare}
+        order = graph.plan(engine, wanted)
+        w["batched"] = any(c in order for c, _, _ in api._BATCHED_FILMS)
+    return _WORKER["batched"]
+
+
+def evaluate_chunk(items: list[tuple[Variant, str]]) -> list[dict]:
+    """Check a chunk of variants (``(variant, id)`` pairs) in this worker, one record each,
+    in the order given.
+
+    The chunk's valid variants are checked together by :func:`checker.api.check_batch` (their
+    film orbits in one kernel call per model; the same results as one by one, tests) when
+    the rule selection needs film orbits, else one by one (e.g. a joints study: batching
+    would only add its planning); a variant with bad values gets its input-error record.
+    A record's ``seconds`` is its own check's time, or its share of a batch's."""
+    from .. import api
+
+    w = _WORKER
+    try:
+        if len(items) == 1:
+            return [_evaluate(*items[0])]
+        t0 = time.perf_counter()
+        out: list[dict | None] = [None] * len(items)
+        ok: list[tuple[int, dict, Any]] = []
+        for i, (v, k) in enumerate(items):
+            rec = _record(v, k)
+            try:
+                ok.append((i, rec, _build(v)))
+            except InputErrors as exc:
+                out[i] = _input_error(rec, v, exc)
+        if len(ok) == 1 or (ok and not _films_batched(ok[0][2])):
+            # nothing to batch (no film orbits in the selection): one by one, as cheap
+            t1 = time.perf_counter()
+            for i, rec, engine in ok:
+                try:
+                    res = api.check(engine, rules=_table(), select=w["select"],
+                                    ignore=w["ignore"], fail_on=w["fail_on"], cache=w["cache"])
+                except InputErrors as exc:
+                    out[i] = _input_error(rec, items[i][0], exc)
+                    continue
+                out[i] = _finish(rec, res, time.perf_counter() - t1)
+                t1 = time.perf_counter()
+        elif ok:
+            try:
+                results = api.check_batch([e for _, _, e in ok], rules=_table(),
+                                          select=w["select"], ignore=w["ignore"],
+                                          fail_on=w["fail_on"], cache=w["cache"])
+            except InputErrors:  # not expected (checked when built): each its own message
+                return [_evaluate(v, k) for v, k in items]
+            share = (time.perf_counter() - t0) / len(items)
+            for (i, rec, _), res in zip(ok, results):
+                out[i] = _finish(rec, res, share)
+        return [r for r in out if r is not None]
+    finally:
+        cache = w.get("cache")
+        if isinstance(cache, CalcCache):
+            cache.trim(CACHE_BYTES)
 
 
 def _init_local_worker(setup_args) -> None:
@@ -207,8 +346,31 @@ def _die_with_parent() -> None:
         pass
 
 
-def _local_chunk(items) -> list[dict]:
-    return evaluate_chunk(items)
+def _local_chunk(items, folder: Path) -> list[dict]:
+    """A local worker's task: the chunk's records written to ``folder`` here (atomic), only
+    their ids returned: the messages back to the study process stay a few bytes, so a worker
+    ended in the middle of one (an interruption) never leaves half a message behind."""
+    out = []
+    for rec in evaluate_chunk(items):
+        with _sigterm_held():  # the study ending its workers waits until the record is whole
+            _write_record(folder, rec)
+        out.append({"id": rec["id"], "written": True})
+    return out
+
+
+@contextmanager
+def _sigterm_held() -> Iterator[None]:
+    """SIGTERM blocked while inside (POSIX); delivered when the block ends."""
+    import signal
+
+    if not hasattr(signal, "pthread_sigmask"):
+        yield
+        return
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGTERM})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
 
 
 def _dask_chunk(base, targets, sel, ign, fo, items) -> list[dict]:
@@ -403,7 +565,8 @@ class _Sink:
         self.t0 = time.monotonic()
 
     def __call__(self, rec: dict) -> None:
-        _write_record(self.folder, rec)
+        if not rec.get("written"):  # else a local worker wrote it
+            _write_record(self.folder, rec)
         self.count += 1
         if self.bar is not None:
             self.bar.update(1)
@@ -416,9 +579,18 @@ class _Sink:
             self.bar.close()
 
 
-def _chunks(todo: list[tuple[Variant, str]], size: int) -> Iterator[list]:
-    for i in range(0, len(todo), size):
-        yield todo[i:i + size]
+def plan_chunks(todo: list, workers: int, most: int | None = None) -> list[list]:
+    """``todo`` in consecutive chunks, largest first (guided self-scheduling: each chunk a
+    third of the remaining variants' share per worker, at most ``most`` = :data:`CHUNK`, at
+    least 1): big chunks batch more variants, the last ones are single variants, so the
+    workers finish together."""
+    most = CHUNK if most is None else most
+    out, i = [], 0
+    while i < len(todo):
+        size = max(1, min(most, -(-(len(todo) - i) // (3 * max(1, workers)))))
+        out.append(todo[i:i + size])
+        i += size
+    return out
 
 
 def run_plan(plan: StudyPlan, out_dir: str | Path, workers: int | None = None,
@@ -432,6 +604,11 @@ def run_plan(plan: StudyPlan, out_dir: str | Path, workers: int | None = None,
     folder = out / "variants"
     st = plan.study
     done = {k for k in plan.keys if (folder / f"{k}.json").is_file()}
+    for tmp in folder.glob(".*.tmp") if folder.is_dir() else ():  # a killed writer's (we
+        try:  # hold the folder's lock: nobody else writes here)
+            tmp.unlink()
+        except OSError:
+            pass
     todo = [(v, k) for v, k in zip(plan.variants, plan.keys) if k not in done]
     n_local = max(1, min(workers or os.cpu_count() or 1, max(len(todo), 1)))
     say(f"study '{st.name}': {len(plan.variants)} variants ({st.design}), {len(done)} already"
@@ -442,17 +619,16 @@ def run_plan(plan: StudyPlan, out_dir: str | Path, workers: int | None = None,
     engine_name = "dask" if dask else "local"
     try:
         if todo:
-            chunks = list(_chunks(todo, CHUNK))
             if dask:
                 own = client is None
                 eng = client or connect_dask(dask, workers)
                 try:
-                    _run_dask(eng, plan.setup_args, chunks, sink)
+                    _run_dask(eng, plan.setup_args, todo, sink)
                 finally:
                     if own:
                         eng.close()
             else:
-                _run_local(plan.setup_args, chunks, n_local, sink)
+                _run_local(plan.setup_args, plan_chunks(todo, n_local), n_local, sink)
     finally:
         sink.close()
     return StudyRun(st, plan.base_path, plan.base.sha256, plan.variants, plan.targets,
@@ -522,7 +698,7 @@ def _run_local(setup_args, chunks: list[list], n: int, sink) -> None:
                 ch = next(queue, None)
                 if ch is None:
                     return
-                pending.add(ex.submit(_local_chunk, ch))
+                pending.add(ex.submit(_local_chunk, ch, sink.folder))
 
         fill()
         while pending:
@@ -626,8 +802,16 @@ def connect_dask(address: str, workers: int | None = None) -> DaskEngine:
     if address == "local":
         import logging
 
+        import dask
+
         try:
-            with _sigint_ignored():  # the workers inherit it: a Ctrl-C is for this process
+            # Dask sets MALLOC_TRIM_THRESHOLD_=65536 in its workers' environment: glibc then
+            # maps and unmaps every large NumPy temporary (the orbit kernel's), which made a
+            # variant take 1.6x the CPU of a local worker (most of it system time); the
+            # workers keep glibc's default here
+            with _sigint_ignored(), dask.config.set(
+                    {"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
+                # the workers inherit SIG_IGN: a Ctrl-C is for this process
                 cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1,
                                        threads_per_worker=1, processes=True,
                                        dashboard_address=None,
@@ -645,11 +829,12 @@ def connect_dask(address: str, workers: int | None = None) -> DaskEngine:
     return DaskEngine(client, None, address)
 
 
-def _run_dask(eng: DaskEngine, setup_args, chunks: list[list], sink) -> None:
+def _run_dask(eng: DaskEngine, setup_args, todo: list, sink) -> None:
     from distributed import as_completed
 
     client = eng.client
     n = max(1, len(client.scheduler_info().get("workers", {})) or 1)
+    chunks = plan_chunks(todo, n)
     base_f = client.scatter(setup_args[0], broadcast=True)
     queue = iter(chunks)
     live: set = set()
