@@ -108,3 +108,29 @@ def unwritable_folder() -> Path | None:
     os.close(fd)  # pragma: no cover - a writable /sys/fs
     os.unlink(tmp)
     return None
+
+
+def stub_section_images(monkeypatch, modules=None) -> None:
+    """Section figures drawn (the plotting code runs) but not encoded: every report section
+    module's ``to_image`` returns an empty image with no drawn texts. ``modules``: the
+    section modules' short names (``"loads"``...); ``None`` = every registered section."""
+    import importlib
+
+    from checker.report import plots
+    from checker.report.sections import SECTIONS, load_sections
+
+    def fake(fig):
+        plots.plt.close(fig)
+        png = plots.Png(b"")
+        png.texts = []
+        return png
+
+    if modules is None:
+        load_sections()
+        names = [SECTIONS[m].__module__ for m in SECTIONS]
+    else:
+        names = [f"checker.report.section_{m}" for m in modules]
+    for name in names:
+        mod = importlib.import_module(name)
+        if hasattr(mod, "to_image"):
+            monkeypatch.setattr(mod, "to_image", fake)

@@ -20,24 +20,14 @@ from checker.graph import QUANTITIES, Quantity, QuantitySpec
 from checker.report import judged as jd
 from checker.report import plots
 from checker.ruletable import Rule, evaluate_rule
-from tests.helpers import example_path
+from tests.helpers import example_path, stub_section_images
 
 RPM = 2 * np.pi / 60
 SECTION_MODULES = ("loads", "bearings", "torsion", "fatigue", "joints", "flywheel")
 
 
 def _stub_svg(monkeypatch) -> None:
-    import importlib
-
-    def fake(fig):
-        plots.plt.close(fig)
-        png = plots.Png(b"")
-        png.texts = []
-        return png
-
-    for m in SECTION_MODULES:
-        mod = importlib.import_module(f"checker.report.section_{m}")
-        monkeypatch.setattr(mod, "to_image", fake)
+    stub_section_images(monkeypatch, SECTION_MODULES)
 
 
 def _sections(res, monkeypatch) -> dict[str, dict]:

@@ -10,30 +10,14 @@ from __future__ import annotations
 import pytest
 
 from checker import api
-from checker.report import plots
-from checker.report.sections import SECTIONS, load_sections, modules_with_sections
+from checker.report.sections import SECTIONS, modules_with_sections
 from checker.workbook.example import example_content, write_workbook
 from checker.workbook.example_i6 import i6_content
 from checker.workbook.example_v8 import v8_content
+from tests.helpers import stub_section_images
 
 CONTENT = {"i4": example_content, "i6": lambda: i6_content(damper_ring=True),
            "v8": v8_content}
-
-
-def _stub_images(monkeypatch) -> None:
-    import importlib
-
-    def fake(fig):
-        plots.plt.close(fig)
-        png = plots.Png(b"")
-        png.texts = []
-        return png
-
-    load_sections()
-    for m in SECTIONS:
-        mod = importlib.import_module(SECTIONS[m].__module__)
-        if hasattr(mod, "to_image"):
-            monkeypatch.setattr(mod, "to_image", fake)
 
 
 @pytest.mark.parametrize("engine", ["i4", "i6", "v8"])
@@ -44,7 +28,7 @@ def test_every_section_renders_from_typed_details(engine, tmp_path, monkeypatch)
     for name, q in res.outcome.quantities.items():
         if q.spec.detail is not None:
             assert q.detail is None or isinstance(q.detail, q.spec.detail), name
-    _stub_images(monkeypatch)
+    stub_section_images(monkeypatch)
     shown = modules_with_sections(res)
     assert set(shown) >= {"loads", "bearings", "torsion", "joints", "fatigue"}
     for m in shown:

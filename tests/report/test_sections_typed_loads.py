@@ -10,12 +10,11 @@ import numpy as np
 import pytest
 
 from checker import api
-from checker.report import plots
 from checker.report.sections import fmt
 from checker.results.balance import BalanceDetail, FreeOrderDetail
 from checker.results.flywheel import FlywheelDetail
 from checker.results.loads import BearingLoadDetail, CycleDetail, SpecificLoadDetail
-from tests.helpers import example_path
+from tests.helpers import example_path, stub_section_images
 
 SECTIONS = ("loads", "flywheel", "balance")
 FAMILY = ("loads.", "bearing.peak_specific_load", "flywheel.", "balance.")
@@ -29,16 +28,10 @@ def i4(tmp_path_factory):
 def _render(res, monkeypatch) -> dict[str, dict]:
     import importlib
 
-    def fake(fig):
-        plots.plt.close(fig)
-        png = plots.Png(b"")
-        png.texts = []
-        return png
-
+    stub_section_images(monkeypatch, SECTIONS)
     out = {}
     for m in SECTIONS:
         mod = importlib.import_module(f"checker.report.section_{m}")
-        monkeypatch.setattr(mod, "to_image", fake)
         out[m] = getattr(mod, f"{m}_section")(res)
     return out
 
