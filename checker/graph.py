@@ -286,6 +286,25 @@ def input_keys(engine: Engine, order: Iterable[str]) -> dict[str, str]:
     return keys
 
 
+def nbytes(obj: Any, seen: set | None = None, depth: int = 0) -> int:
+    """Bytes of the NumPy arrays reachable from ``obj`` (dicts, lists, tuples, objects with
+    attributes such as quantities and their typed details), each array counted once: the
+    memory a cached calculation result holds (the caches of studies and remedies are bounded
+    by it). Declared types (``QuantitySpec.detail``) hold no data and count nothing."""
+    seen = set() if seen is None else seen
+    if id(obj) in seen or depth > 8:
+        return 0
+    seen.add(id(obj))
+    if isinstance(obj, np.ndarray):
+        return int(obj.nbytes)
+    if isinstance(obj, dict):
+        return sum(nbytes(v, seen, depth + 1) for v in obj.values())
+    if isinstance(obj, (list, tuple)):
+        return sum(nbytes(v, seen, depth + 1) for v in obj)
+    d = getattr(obj, "__dict__", None)
+    return nbytes(d, seen, depth + 1) if isinstance(d, dict) else 0
+
+
 @dataclass
 class RunOutcome:
     quantities: dict[str, Quantity]

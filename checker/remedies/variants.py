@@ -136,35 +136,18 @@ class Evaluator:
 
     def _evict(self) -> None:
         """Drop the oldest variant results beyond :attr:`keep_bytes`."""
+        from .. import graph
+
         extra = [k for k in self.cache if k not in self._pinned]
         for k in extra:
             if k not in self._sizes:
-                self._sizes[k] = _nbytes(self.cache[k])
+                self._sizes[k] = graph.nbytes(self.cache[k])
         total = sum(self._sizes[k] for k in extra)
         for k in extra:
             if total <= self.keep_bytes:
                 break
             total -= self._sizes.pop(k)
             del self.cache[k]
-
-
-def _nbytes(obj: Any, seen: set | None = None) -> int:
-    """Memory of the arrays held by a cached calculation result (quantities, their extras)."""
-    import numpy as np
-
-    seen = set() if seen is None else seen
-    if id(obj) in seen:
-        return 0
-    seen.add(id(obj))
-    if isinstance(obj, np.ndarray):
-        return int(obj.nbytes)
-    if isinstance(obj, dict):
-        return sum(_nbytes(v, seen) for v in obj.values())
-    if isinstance(obj, (list, tuple)):
-        return sum(_nbytes(v, seen) for v in obj)
-    if hasattr(obj, "__dataclass_fields__"):
-        return sum(_nbytes(getattr(obj, f), seen) for f in obj.__dataclass_fields__)
-    return 0
 
 
 def find(res: Any, rule: str, item: str):

@@ -131,24 +131,6 @@ def _setup(base, targets, select, ignore, fail_on) -> None:
                        select=select, ignore=ignore, fail_on=fail_on)
 
 
-def _nbytes(obj: Any, seen: set, depth: int = 0) -> int:
-    """Bytes of the NumPy arrays reachable from ``obj`` (dicts, lists, tuples, dataclass-like
-    objects), each array counted once: the size of a cached calculation's outputs."""
-    if id(obj) in seen or depth > 8:
-        return 0
-    seen.add(id(obj))
-    import numpy as np
-
-    if isinstance(obj, np.ndarray):
-        return obj.nbytes
-    if isinstance(obj, dict):
-        return sum(_nbytes(v, seen, depth + 1) for v in obj.values())
-    if isinstance(obj, (list, tuple)):
-        return sum(_nbytes(v, seen, depth + 1) for v in obj)
-    d = getattr(obj, "__dict__", None)
-    return _nbytes(d, seen, depth + 1) if isinstance(d, dict) else 0
-
-
 class CalcCache(OrderedDict):
     """A worker's calculation cache (:func:`checker.graph.run` ``cache``), least recently used
     first out: after each chunk it is trimmed to :data:`CACHE_BYTES` of arrays.
@@ -171,9 +153,11 @@ class CalcCache(OrderedDict):
     def trim(self, limit: int) -> None:
         """Drop the least recently used entries until the arrays held are at most ``limit``
         bytes (an entry alone larger than ``limit`` is dropped too)."""
+        from .. import graph
+
         for k in self:
             if k not in self.sizes:
-                self.sizes[k] = _nbytes(self[k], set())
+                self.sizes[k] = graph.nbytes(self[k])
         total = sum(self.sizes[k] for k in self)
         while self and total > limit:
             k, _ = self.popitem(last=False)
