@@ -18,6 +18,7 @@ import numpy as np
 from . import __version__, graph
 from .engine import Engine, load_engine
 from .results import assumptions_of
+from .results.loads import cycle_of
 from .ruletable import (
     Rule,
     RuleResult,
@@ -271,11 +272,8 @@ def _mark_overrides(results: list[RuleResult], table: RuleTable) -> None:
 def _apply_envelope(outcome: graph.RunOutcome) -> None:
     """Restrict rules on (case, speed) quantities to the engine's operating envelope (full load
     only within its data range; see :func:`checker.modules.loads.build_cycle`)."""
-    cyc_q = outcome.quantities.get("loads.cycle")
-    if cyc_q is None:
-        return
-    cyc = cyc_q.detail.cycle
-    env = getattr(cyc, "envelope", None)
+    cyc = cycle_of(outcome.quantities)
+    env = None if cyc is None else cyc.envelope
     if env is None or env.all():
         return
     for q in outcome.quantities.values():

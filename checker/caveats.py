@@ -20,6 +20,7 @@ import numpy as np
 
 from .display import case_text
 from .results import caveats_of
+from .results.loads import cycle_of
 
 IMEP_TOLERANCE = 0.02
 """Largest accepted relative miss of a synthesized trace's IMEP against its target (2 %);
@@ -87,8 +88,8 @@ def collect(outcome: Any) -> list[dict[str, Any]]:
         q = outcome.quantities[name]
         for c in caveats_of(q):
             add(c)
-    cyc_q = outcome.quantities.get("loads.cycle")
-    if cyc_q is not None and getattr(cyc_q.detail, "cycle", None) is not None:
-        for c in imep_caveats(cyc_q.detail.cycle):
+    cyc = cycle_of(outcome.quantities)
+    if cyc is not None:
+        for c in imep_caveats(cyc):
             add(c)
     return out

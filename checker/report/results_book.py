@@ -14,6 +14,7 @@ import numpy as np
 
 from ..api import CheckResult
 from ..display import case_text, unit_text
+from ..results.loads import cycle_of
 
 ATTACHMENT_NAME = "results.xlsx"
 
@@ -146,7 +147,7 @@ def _cycle_rows(q) -> list[list]:
     """Below the peak pressure of ``loads.cycle``: the IMEP of the trace used, the IMEP target
     it was calibrated to (brake torque + friction), which trace was used, and the traces
     themselves (bar over the cycle angle, one column per load case and speed)."""
-    cyc = getattr(q.detail, "cycle", None)
+    cyc = cycle_of({q.name: q})
     if cyc is None:
         return []
     speeds = [_coord("speed", s) for s in cyc.speeds]

@@ -14,6 +14,7 @@ import re
 
 from ..api import CheckResult
 from ..results import caveats_of
+from ..results.loads import cycle_of
 from ..ruletable import RuleResult
 
 MECHANISMS: dict[str, str] = {
@@ -158,9 +159,8 @@ def _imep_miss(res: CheckResult) -> str:
 
     from . import judged as jd
 
-    q = res.outcome.quantities.get("loads.cycle")
-    cyc = getattr(q.detail, "cycle", None) if q is not None else None
-    if cyc is None or not hasattr(cyc, "imep"):
+    cyc = cycle_of(res.outcome.quantities)
+    if cyc is None:
         return ""
     ref = res.outcome.quantities.get("bearing.peak_specific_load")
     n = np.asarray(cyc.speeds).size

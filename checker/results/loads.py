@@ -40,6 +40,13 @@ class CycleDetail(Detail):
     cycle: Cycle  # the swept operating points and pressure traces
 
 
+def cycle_of(quantities: dict) -> Cycle | None:
+    """The cycle of a run's ``loads.cycle`` quantity (``quantities``: name -> Quantity), or
+    None when the loads did not run."""
+    q = quantities.get("loads.cycle")
+    return None if q is None or q.detail is None else q.detail.cycle
+
+
 @dataclass(frozen=True, kw_only=True)
 class BearingLoadDetail(Detail):
     """Detail of ``loads.bearing_load``: load components and speeds over the cycle of every
