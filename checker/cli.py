@@ -35,6 +35,7 @@ STEP_WORDS = {
     "specific_load": "the specific bearing loads",
     "bearing_heat_balance": "the oil-film temperatures (bearing heat balance)",
     "film_pressure": "the peak oil-film pressures",
+    "film_pressure_short": "the peak oil-film pressures (short-bearing theory)",
     "moft": "the minimum oil film thickness",
     "moft_short": "the minimum oil film thickness (short-bearing theory)",
     "moft_finite": "the minimum oil film thickness (finite-length bearing)",

@@ -419,24 +419,16 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
 
 
 @calculation("film_pressure", "bearing_performance",
-             provides=("bearing.peak_film_pressure", "bearing.peak_film_pressure_short"),
-             needs=("loads.bearing_load", "bearing.moft_short", "bearing.moft_finite"),
-             reads=("bearings",))
+             provides=("bearing.peak_film_pressure",),
+             needs=("loads.bearing_load", "bearing.moft_finite"), reads=("bearings",))
 def film_pressure(engine: Engine, inputs: dict) -> dict[str, Quantity]:
-    """Peak oil-film pressure along the orbits of the film-thickness calculation: the
-    short-bearing pressure field (Ocvirk) and the finite-length film (Reynolds map)."""
+    """Peak oil-film pressure of the finite-length film (Reynolds map) along the orbits of the
+    finite-length film-thickness calculation."""
     bl = inputs["loads.bearing_load"]
-    short = inputs["bearing.moft_short"]
     fin = inputs["bearing.moft_finite"]
     names = bl.coords["item"]
     bearings = {b.name: b for b in engine.bearings}
     nb, nc, ns = bl.values.shape
-    p_short = np.full((nb, nc, ns), np.nan)
-    th_short = np.full((nb, nc, ns), np.nan)
-    sx = short.detail
-    if sx.p_max is not None:
-        p_short[:] = sx.p_max
-        th_short[:] = sx.theta_p_max
     p_fin = np.full((nb, nc, ns), np.nan)
     th_fin = np.full((nb, nc, ns), np.nan)
     orb = fin.detail.orbit
@@ -456,20 +448,33 @@ def film_pressure(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         mu = mu[rows][..., None] if mu.ndim == 3 else mu
         p_fin[rows], th_fin[rows] = fp.peak_film_pressure_finite(
             lx, ly, orb.eps_x, orb.eps_y, orb.theta, dia, length, clear, mu, full)
-    missing_s = dict(short.missing)
-    missing_f = dict(fin.missing)
-    attrs = _limit_attrs(engine, bl, "max_film_pressure")
     detail_f = FilmPressureDetail(
         theta_p_max=th_fin, film_temperature=fin.detail.film_temperature,
         model_text="finite-length Reynolds film (mobility map) along the finite-length orbit")
+    return {"bearing.peak_film_pressure": Quantity(
+        PEAK_PRESSURE, p_fin, bl.coords, _limit_attrs(engine, bl, "max_film_pressure"),
+        dict(fin.missing), dict(fin.findings), detail=detail_f)}
+
+
+@calculation("film_pressure_short", "bearing_performance",
+             provides=("bearing.peak_film_pressure_short",),
+             needs=("loads.bearing_load", "bearing.moft_short"), reads=("bearings",))
+def film_pressure_short(engine: Engine, inputs: dict) -> dict[str, Quantity]:
+    """Peak oil-film pressure of the short-bearing (Ocvirk) pressure field along the orbits of
+    the short-bearing film-thickness calculation (shown beside the finite-length value; a
+    variant judged on margins alone does not compute it)."""
+    bl = inputs["loads.bearing_load"]
+    short = inputs["bearing.moft_short"]
+    nb, nc, ns = bl.values.shape
+    p_short = np.full((nb, nc, ns), np.nan)
+    th_short = np.full((nb, nc, ns), np.nan)
+    sx = short.detail
+    if sx.p_max is not None:
+        p_short[:] = sx.p_max
+        th_short[:] = sx.theta_p_max
     detail_s = FilmPressureDetail(
         theta_p_max=th_short, film_temperature=short.detail.film_temperature,
         model_text="short-bearing (Ocvirk) pressure along the short-bearing orbit")
-    return {
-        "bearing.peak_film_pressure": Quantity(PEAK_PRESSURE, p_fin, bl.coords, attrs,
-                                               missing_f, dict(fin.findings),
-                                               detail=detail_f),
-        "bearing.peak_film_pressure_short": Quantity(PEAK_PRESSURE_SHORT, p_short, bl.coords,
-                                                     attrs, missing_s, dict(short.findings),
-                                                     detail=detail_s),
-    }
+    return {"bearing.peak_film_pressure_short": Quantity(
+        PEAK_PRESSURE_SHORT, p_short, bl.coords, _limit_attrs(engine, bl, "max_film_pressure"),
+        dict(short.missing), dict(short.findings), detail=detail_s)}

@@ -562,7 +562,10 @@ def _side_effects(jobs: list[_Job], ev: Evaluator, nominal, pack: bool = True) -
         for j, x in v:
             ch.update(j.binding.changes(x))
         changes.append(ch)
-    results = ev.evaluate_variants(changes, select=None)
+    # the rules that have results at nominal: a rule that applies to no item of this engine
+    # (e.g. the sputter-lining film guideline without sputter linings) has none in a variant
+    # either, and would only cost its calculations
+    results = ev.evaluate_variants(changes, select=sorted({r.rule for r in nominal.results}))
     by_first = {id(js[0]): js for _, js in groups}
     for v, res in zip(variants, results):
         if not hasattr(res, "results"):
