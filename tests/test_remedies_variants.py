@@ -59,3 +59,31 @@ def test_batched_variants_equal_cold_checks(i4):
     ev1 = Evaluator(base, table, select=["BRG-003", "BRG-004"], batch=1)
     for a, b in zip(got[:-1], ev1.evaluate_variants(changes[:-1])):
         assert to_json(a, timings=False) == to_json(b, timings=False)
+
+
+def test_helper_processes_give_the_same_results(i4):
+    """Variants shared with a forked helper process: the rule results of each are those of
+    this process alone (the helper returns them without the calculated quantities)."""
+    base = read_raw_workbook(i4)
+    table = load_rules()
+    sel = ["BRG-003", "BRG-004", "JNT"]
+    clear = bind(base, "Bearings", (_field("Bearings", "clearance"),), "um", ("M2",), ())
+    assert not isinstance(clear, str)
+    c0 = clear.nominal[0]
+    changes = [clear.changes(c0 * f) for f in (0.8, 0.9, 1.1, 1.2)] + [clear.changes(-1.0)]
+    alone = Evaluator(base, table, select=sel)
+    api.check(i4, select=sel, cache=alone.cache)
+    want = alone.evaluate_variants(changes)
+    shared = Evaluator(base, table, select=sel)
+    api.check(i4, select=sel, cache=shared.cache)
+    shared.start_workers(2)
+    try:
+        assert shared.workers == 2
+        got = shared.evaluate_variants(changes)
+        again = shared.evaluate_variants(changes[:2])  # the same helper meets them again
+    finally:
+        shared.release()
+    assert shared.workers == 1 and shared.evaluations == len(changes) + 2
+    assert isinstance(got[-1], InputErrors)
+    for a, b in zip(want[:-1] + want[:2], got[:-1] + again):
+        assert [r.as_dict() for r in a.results] == [r.as_dict() for r in b.results]

@@ -22,15 +22,19 @@ from ..errors import UsageProblem
 
 def attach(res, remedies: bool = False, corners: bool = False, levers_file: str | None = None,
            cache: dict | None = None, select: list[str] | None = None,
-           ignore: list[str] | None = None, rules: Any = None) -> None:
+           ignore: list[str] | None = None, rules: Any = None,
+           workers: int | None = None) -> None:
     """Compute remedies and/or corners for the check ``res`` and store them on it
     (``res.remedies``, ``res.corners``; per result ``what_it_takes`` and ``worst_corner``).
+
+    The variants are checked in this process and ``workers - 1`` forked helper processes
+    (default: one process per core, at most 4; ``workers=1``: this process alone); the
+    answers do not depend on it.
 
     Needs the check's workbook file (variants change its cells in memory). Raises
     :class:`checker.errors.InputErrors` for a bad Tolerances sheet and
     :class:`checker.errors.RuleFileError` for a bad lever file.
     """
-    from ..levers import load_levers, merge
     from ..ruletable import RuleTable, load_rules
     from ..workbook.loader import read_raw_workbook
     from .variants import Evaluator
@@ -45,6 +49,21 @@ def attach(res, remedies: bool = False, corners: bool = False, levers_file: str 
     base = read_raw_workbook(src)
     ev = Evaluator(base, table, select=select, ignore=ignore, fail_on=res.fail_on,
                    cache=cache if cache is not None else {})
+    tols = None
+    if corners:
+        from .corners import read_tolerances
+
+        tols = read_tolerances(base)  # a bad Tolerances sheet: an input error before any work
+    ev.start_workers(workers)
+    try:
+        _attach(res, ev, table, remedies, tols, levers_file)
+    finally:
+        ev.release()
+
+
+def _attach(res, ev, table, remedies: bool, tols, levers_file: str | None) -> None:
+    from ..levers import load_levers, merge
+
     if remedies:
         from .solve import find_remedies
 
@@ -64,12 +83,11 @@ def attach(res, remedies: bool = False, corners: bool = False, levers_file: str 
         res.remedies = {"results": out, "levers": levers,
                         "evaluations": ev.evaluations - n0,
                         "seconds": time.perf_counter() - t0}
-    if corners:
+    if tols is not None:
         from ..display import with_unit
-        from .corners import evaluate_corners, read_tolerances
+        from .corners import evaluate_corners
 
         t0 = time.perf_counter()
-        tols = read_tolerances(base)
         n0 = ev.evaluations
         out_c = evaluate_corners(res, ev, tols)
         by_c = {(c.rule, c.item): c for c in out_c}
@@ -83,7 +101,6 @@ def attach(res, remedies: bool = False, corners: bool = False, levers_file: str 
         res.corners = {"results": out_c, "tolerances": tols,
                        "evaluations": ev.evaluations - n0,
                        "seconds": time.perf_counter() - t0}
-    ev.release()
 
 
 def corners_fail(res) -> bool:

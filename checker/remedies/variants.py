@@ -43,6 +43,9 @@ class Evaluator:
     cache: dict = field(default_factory=dict)
     evaluations: int = 0
     seconds: float = 0.0
+    """Time spent checking variants in this process [s]."""
+    wall: float = 0.0
+    """Time of the calls shared with helper processes [s]."""
     keep_bytes: int = 512 * 2**20
     """Memory of the calculation results of variants kept in the cache beyond the check's own
     (the oldest are dropped first: the bearing loads hold about 30 MB, a film calculation of
@@ -51,8 +54,12 @@ class Evaluator:
     batch: int = 8
     """Variants checked together (:func:`checker.api.check_batch`: their film orbits in one
     kernel call); bounded because each variant's films stay in memory until the batch ends."""
+    workers: int = 1
+    """Processes that check variants: this one and ``workers - 1`` forked helpers
+    (:meth:`start_workers`); a call with several variants is shared among them."""
     _pinned: set | None = None
     _sizes: dict = field(default_factory=dict)
+    _pool: Any = None
 
     def evaluate_variants(self, changes: list[Changes], select: list[str] | None = None
                           ) -> list[Any]:
@@ -62,7 +69,85 @@ class Evaluator:
         :class:`InputErrors` of a variant whose values are not a valid workbook (outside a
         field's valid range, a cross-sheet check). ``select`` restricts the rules (rule id
         prefixes); the check's own ``ignore`` always applies.
+
+        With helper processes (:meth:`start_workers`) the variants are shared among them and
+        this process; a variant goes to the process chosen by a digest of its cell changes,
+        so a variant checked again (a remedy's answer checked for its side effects) meets the
+        calculation cache that saw it first. A variant checked by a helper comes back with
+        its rule results, without its calculated quantities. The numbers are the same in
+        every process (each variant's check equals a cold check).
         """
+        import time
+
+        if self._pool is None or len(changes) < 2:
+            return self._evaluate_here(changes, select)
+        t0 = time.perf_counter()
+        n = self.workers
+        share: list[list[int]] = [[] for _ in range(n)]
+        for i, ch in enumerate(changes):
+            share[_digest(ch) % n].append(i)
+        # even the shares out (the surplus of the fullest goes to the emptiest)
+        while True:
+            big = max(range(n), key=lambda k: len(share[k]))
+            small = min(range(n), key=lambda k: len(share[k]))
+            if len(share[big]) - len(share[small]) <= 1:
+                break
+            share[small].append(share[big].pop())
+        futures = [(idx, self._pool.submit(_helper_evaluate, [changes[i] for i in idx], select))
+                   for idx in share[1:] if idx]
+        out: list[Any] = [None] * len(changes)
+        for i, r in zip(share[0], self._evaluate_here([changes[i] for i in share[0]], select)):
+            out[i] = r
+        for idx, fut in futures:
+            try:
+                got, n_eval = fut.result()
+            except Exception:  # noqa: BLE001 - a helper that died: check its share here
+                got, n_eval = self._evaluate_here([changes[i] for i in idx], select), 0
+            self.evaluations += n_eval
+            for i, r in zip(idx, got):
+                if hasattr(r, "results"):
+                    r.table = self.table
+                out[i] = r
+        self.wall += time.perf_counter() - t0
+        return out
+
+    def start_workers(self, workers: int | None = None) -> None:
+        """Fork ``workers - 1`` helper processes (default: one per core, at most 4 in all)
+        that check variants with a copy of this process's calculation cache as it is now
+        (the nominal check's); nothing where fork is unavailable or with one core."""
+        import multiprocessing as mp
+        import os
+
+        global _HELPER
+        n = workers if workers is not None else min(len(os.sched_getaffinity(0))
+                                                    if hasattr(os, "sched_getaffinity")
+                                                    else (os.cpu_count() or 1), 4)
+        if n < 2 or "fork" not in mp.get_all_start_methods() or self._pool is not None:
+            return
+        from concurrent.futures import ProcessPoolExecutor
+
+        if self._pinned is None:
+            self._pinned = set(self.cache)
+        self.workers = n
+        _HELPER = self
+        self._pool = ProcessPoolExecutor(n - 1, mp_context=mp.get_context("fork"),
+                                         initializer=_helper_start)
+        # fork them now, with this cache (a later fork would copy more)
+        for f in [self._pool.submit(_helper_ping) for _ in range(n - 1)]:
+            f.result()
+
+    def stop_workers(self) -> None:
+        """End the helper processes."""
+        global _HELPER
+        if self._pool is not None:
+            self._pool.shutdown(wait=True, cancel_futures=True)
+            self._pool = None
+        self.workers = 1
+        _HELPER = None
+
+    def _evaluate_here(self, changes: list[Changes], select: list[str] | None = None
+                       ) -> list[Any]:
+        """:meth:`evaluate_variants` in this process."""
         import time
 
         from .. import api
@@ -124,11 +209,12 @@ class Evaluator:
 
 
     def release(self) -> None:
-        """Drop the variants' results from the cache (the check's own stay) and empty the
-        film memo: hundreds of megabytes the report need not carry (its worker processes are
-        forked from this one)."""
+        """End the helper processes, drop the variants' results from the cache (the check's
+        own stay) and empty the film memo: hundreds of megabytes the report need not carry
+        (its worker processes are forked from this one)."""
         from ..modules import film_memo
 
+        self.stop_workers()
         for k in [k for k in self.cache if self._pinned is not None and k not in self._pinned]:
             del self.cache[k]
         self._sizes.clear()
@@ -148,6 +234,48 @@ class Evaluator:
                 break
             total -= self._sizes.pop(k)
             del self.cache[k]
+
+
+_HELPER: Evaluator | None = None
+"""The evaluator of this process while it has helper processes (they inherit it by fork)."""
+
+
+def _helper_start() -> None:
+    """In a helper process: the interrupt is the parent's to handle (the helper is ended by
+    :meth:`Evaluator.stop_workers` or with the parent's process group)."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
+def _helper_ping() -> bool:
+    return _HELPER is not None
+
+
+def _helper_evaluate(changes: list[Changes], select: list[str] | None) -> tuple[list, int]:
+    """In a helper process: check the variants with the inherited evaluator (its own cache
+    grows from the parent's) and return their rule results without the calculated
+    quantities (they stay in this process's cache), and the number of evaluations."""
+    import dataclasses
+
+    ev = _HELPER
+    assert ev is not None
+    n0 = ev.evaluations
+    out = ev._evaluate_here(changes, select)
+    slim = []
+    for r in out:
+        if hasattr(r, "results"):
+            r = dataclasses.replace(r, table=None,
+                                    outcome=dataclasses.replace(r.outcome, quantities={}))
+        slim.append(r)
+    return slim, ev.evaluations - n0
+
+
+def _digest(ch: Changes) -> int:
+    """A stable number for a variant's cell changes (the process that checks it)."""
+    import zlib
+
+    return zlib.crc32(repr(sorted(ch.items(), key=repr)).encode())
 
 
 def find(res: Any, rule: str, item: str):
