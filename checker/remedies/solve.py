@@ -505,12 +505,10 @@ def _run(jobs: list[_Job], ev: Evaluator, pack: bool = True) -> None:
                 cells = v[0][0].binding.cells
                 sel |= {j.rule for j in active if j.binding.cells == cells}
             sels[k] = sels[k] | sel
-        results: list[Any] = [None] * len(changes)
-        for sel in dict.fromkeys(sels):
-            ks = [k for k in range(len(changes)) if sels[k] == sel]
-            for k, r in zip(ks, ev.evaluate_variants([changes[k] for k in ks],
-                                                     select=sorted(sel))):
-                results[k] = r
+        # the round's variants in one call, on the union of their rules: a rule a variant
+        # does not move costs no calculation (the cache), and the film orbits of all the
+        # round's variants are solved together (and shared among the helper processes)
+        results: list[Any] = ev.evaluate_variants(changes, select=sorted(set().union(*sels)))
         # a packed variant that is not a valid workbook (one job's trial value outside a
         # field's range): its requests checked alone, so the others' values still count
         alone: dict[tuple[int, str], Any] = {}
