@@ -288,7 +288,7 @@ def shared_pins_text(engine: Engine) -> list[str]:
 @calculation("bearing_loads", "loads", provides=("loads.bearing_load",),
              needs=("loads.cycle",),
              reads=("params", "cylinders", "crank_mass", "bearings.name", "bearings.type",
-                    "bearings.index", "bearings.lining", "bearings.diameter", "bearings.length"))
+                    "bearings.index", "bearings.lining"))
 def bearing_loads(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Big-end loads (rod frame) and main bearing loads (block frame, statically determinate)."""
     _required(engine, ("piston_mass", "rod_mass", "rod_com", "rod_inertia"))
@@ -308,7 +308,7 @@ def bearing_loads(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         rod_length=p["rod_length"], piston_mass=p["piston_mass"], rod_mass=p["rod_mass"],
         rod_cg_from_big_end=p["rod_com"], rod_inertia=p["rod_inertia"], firing_angle=firing,
         bank_angle=bank, **engine.offsets)
-    names, fx, fy, wj, wb, dia, length = [], [], [], [], [], [], []
+    names, fx, fy, wj, wb = [], [], [], [], []
     missing: dict[tuple, list[str]] = {}
     attrs = {}
     C, S, N = cyc.pressure.shape
@@ -370,11 +370,8 @@ def bearing_loads(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     for n in order:
         b = bearings[n]
         attrs[n] = {"type": b.type, "lining": (b.lining or "").lower() or None}
-        dia.append(b.diameter)
-        length.append(b.length)
     detail = BearingLoadDetail(
         theta=cyc.theta, fx=fx, fy=fy, omega_journal=stacked(wj), omega_bearing=stacked(wb),
-        diameter=np.array(dia), length=np.array(length),
         frames={n: ("con-rod frame" if bearings[n].type == "big end" else "block frame")
                 for n in order},
         torque=loads.torque, big_end_crank=loads.big_end_crank,
@@ -397,13 +394,19 @@ def specific_load(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     if not bl.coords["item"]:
         raise MissingInputs(["Bearings: no bearings given (sheet Bearings)"])
     ex: BearingLoadDetail = bl.detail
+    # diameter and width from the engine, not from the loads: a width variant (remedies,
+    # tolerance corners, studies) then leaves the bearing loads and what needs them cached
+    bearings = {b.name: b for b in engine.bearings}
+    names = bl.coords["item"]
+    dia = np.array([bearings[n].diameter for n in names])
+    length = np.array([bearings[n].length for n in names])
     ok = np.isfinite(bl.values)
     val = np.full(bl.values.shape, np.nan)
     theta_max = np.full(bl.values.shape, np.nan)
     rows = np.where(ok.all(axis=(1, 2)))[0]
     if rows.size:
         psl = peak_specific_load(ex.fx[rows], ex.fy[rows], ex.theta,
-                                 ex.diameter[rows, None, None], ex.length[rows, None, None])
+                                 dia[rows, None, None], length[rows, None, None])
         val[rows] = psl.specific_load
         theta_max[rows] = psl.theta
     return {"bearing.peak_specific_load": Quantity(

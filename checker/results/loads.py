@@ -58,8 +58,6 @@ class BearingLoadDetail(Detail):
     fy: np.ndarray  # [N] (B, C, S, N) force of the journal on the bearing, frame y
     omega_journal: np.ndarray  # [rad/s] (B, C, S, N) journal speed in the bearing's frame
     omega_bearing: np.ndarray  # [rad/s] (B, C, S, N) bearing speed in its frame (0)
-    diameter: np.ndarray  # [m] (B,) bearing diameter (object array: None = not given)
-    length: np.ndarray  # [m] (B,) effective bearing length (None = not given)
     frames: dict[str, str]  # bearing name -> its frame in words ("con-rod frame", ...)
     torque: np.ndarray  # [N m] (C, S, T, N) gas + inertia torque of each cylinder
     big_end_crank: Vector2  # [N] (C, S, T, N) force of each rod on its pin, crank frame

@@ -77,7 +77,7 @@ def test_a_changed_detail_changes_the_section(i4, monkeypatch):
 def test_a_missing_field_fails_where_the_detail_is_made():
     with pytest.raises(TypeError, match="fx"):
         BearingLoadDetail(theta=np.zeros(3), fy=np.zeros(3), omega_journal=np.zeros(3),
-                          omega_bearing=np.zeros(3), diameter=np.zeros(1), length=np.zeros(1),
-                          frames={}, torque=np.zeros(3), big_end_crank=None)
+                          omega_bearing=np.zeros(3), frames={}, torque=np.zeros(3),
+                          big_end_crank=None)
     with pytest.raises(TypeError):
         BalanceDetail(orders=np.arange(1, 3), omega=1.0)  # the masses missing
