@@ -171,7 +171,9 @@ def _feed(engine: Engine, b: Bearing) -> tuple[str, list[str]]:
              needs=("loads.bearing_load",), reads=("bearings", "oil", "params.stroke"))
 def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Oil flow, friction and effective film temperature of every bearing by a heat balance
-    iterated with the viscosity-temperature law (short-bearing orbits at each iterate)."""
+    iterated with the viscosity-temperature law (short-bearing orbits at each iterate).
+    Bearings whose balance was solved before with the same inputs (variants moving other
+    bearings) are taken from :mod:`checker.modules.heat_memo`, bit for bit."""
     bl = inputs["loads.bearing_load"]
     names = bl.coords["item"]
     if not names:
