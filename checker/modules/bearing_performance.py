@@ -14,6 +14,7 @@ from ..calc import viscosity as vs
 from ..engine import Bearing, Engine
 from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
 from ..results.bearings import FilmPressureDetail, HeatBalanceDetail
+from . import heat_memo
 from .bearings import oil_fit
 from .loads import CASES
 
@@ -170,7 +171,9 @@ def _feed(engine: Engine, b: Bearing) -> tuple[str, list[str]]:
              needs=("loads.bearing_load",), reads=("bearings", "oil", "params.stroke"))
 def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Oil flow, friction and effective film temperature of every bearing by a heat balance
-    iterated with the viscosity-temperature law (short-bearing orbits at each iterate)."""
+    iterated with the viscosity-temperature law (short-bearing orbits at each iterate).
+    Bearings whose balance was solved before with the same inputs (variants moving other
+    bearings) are taken from :mod:`checker.modules.heat_memo`, bit for bit."""
     bl = inputs["loads.bearing_load"]
     names = bl.coords["item"]
     if not names:
@@ -204,26 +207,12 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     stroke = engine.params.get("stroke")
 
     rows = np.where(ok)[0]
-    shape = (rows.size, nc, ns)
     out = {k: np.full((nb, nc, ns), np.nan) for k in (
         "t", "p", "p_peak", "torque", "torque_peak", "qs", "qf")}
     findings: dict[tuple, list[str]] = {}
     info: dict = {}
     if rows.size:
-        sel = [bearings[names[i]] for i in rows]
-        col = (slice(None), None, None)
-        dia = np.array([b.diameter for b in sel])[col]
-        length = np.array([b.length for b in sel])[col]
-        clear = np.array([b.clearance for b in sel])[col]
-        full = np.array([b.groove == "full" for b in sel])[col]
         n_steps = STEPS_PER_CYCLE
-        fx_s = _resample(ex.fx[rows], n_steps)
-        fy_s = _resample(ex.fy[rows], n_steps)
-        wj_full = np.broadcast_to(ex.omega_journal[rows], ex.fx[rows].shape)
-        wb_full = np.broadcast_to(ex.omega_bearing[rows], ex.fx[rows].shape)
-        wj_s, wb_s = _resample(wj_full, n_steps), _resample(wb_full, n_steps)
-        bdim = tuple(np.broadcast_to(a, shape) for a in (dia, length, clear, full))
-        warm: dict = {}
 
         def feed_kwargs(b: Bearing) -> dict:
             """The feed of one bearing as arguments of :func:`bp.cycle_mean_feed_flow`."""
@@ -244,99 +233,146 @@ def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                         rho, speeds[None, :], r_out, r_main)
             return kw
 
-        fed = [(a, b, feed_kwargs(b)) for a, b in enumerate(sel)
-               if feeds[b.name] != "none" and int(rows[a]) not in feed_missing]
+        # feed of each fed bearing (by index into names)
+        kws = {int(i): feed_kwargs(bearings[names[i]]) for i in rows
+               if feeds[names[i]] != "none" and int(i) not in feed_missing}
 
-        def feed_flow(eps_x, eps_y, mu):
-            """Cycle-mean pressure-fed flow [m^3/s] of every selected bearing, (B, C, S)."""
-            q = np.zeros(shape)
-            for a, b, kw in fed:
-                q[a] = bp.cycle_mean_feed_flow(eps_x[a], eps_y[a], mu[a], p_supply, b.diameter,
-                                               b.length, b.clearance, **kw)
-            return q
+        def solve(sub: np.ndarray) -> dict[str, np.ndarray]:
+            """The heat balance of the bearing rows ``sub`` (indices into ``names``) solved
+            together: per row, case and speed."""
+            sel = [bearings[names[i]] for i in sub]
+            shape = (sub.size, nc, ns)
+            col = (slice(None), None, None)
+            dia = np.array([b.diameter for b in sel])[col]
+            length = np.array([b.length for b in sel])[col]
+            clear = np.array([b.clearance for b in sel])[col]
+            full = np.array([b.groove == "full" for b in sel])[col]
+            fx_s = _resample(ex.fx[sub], n_steps)
+            fy_s = _resample(ex.fy[sub], n_steps)
+            wj_full = np.broadcast_to(ex.omega_journal[sub], ex.fx[sub].shape)
+            wb_full = np.broadcast_to(ex.omega_bearing[sub], ex.fx[sub].shape)
+            wj_s, wb_s = _resample(wj_full, n_steps), _resample(wb_full, n_steps)
+            bdim = tuple(np.broadcast_to(a, shape) for a in (dia, length, clear, full))
+            warm: dict = {}
+            count = np.zeros(shape, dtype=np.int64)  # evaluations of each point
+            fed = [(a, b, kws[int(sub[a])]) for a, b in enumerate(sel) if int(sub[a]) in kws]
 
-        def start_estimate(ts):
-            """First film temperature (:func:`bp.start_temperature`), feed at eps 0."""
-            mu0 = fit.viscosity(ts)
-            z0 = np.zeros(shape + (1,))
-            rho_cp = vs.oil_density(ts, dens15) * bp.oil_specific_heat(ts, dens15)
-            return bp.start_temperature(ts, wj_s, wb_s, dia, length, clear,
-                                        feed_flow(z0, z0, mu0) * mu0, rho_cp, heat_to_oil,
-                                        fit.viscosity)
+            def feed_flow(eps_x, eps_y, mu):
+                """Cycle-mean pressure-fed flow [m^3/s] of every selected bearing, (B, C, S)."""
+                q = np.zeros(shape)
+                for a, b, kw in fed:
+                    q[a] = bp.cycle_mean_feed_flow(eps_x[a], eps_y[a], mu[a], p_supply,
+                                                   b.diameter, b.length, b.clearance, **kw)
+                return q
 
-        load_shape = ex.fx[rows].shape
+            def start_estimate(ts):
+                """First film temperature (:func:`bp.start_temperature`), feed at eps 0."""
+                mu0 = fit.viscosity(ts)
+                z0 = np.zeros(shape + (1,))
+                rho_cp = vs.oil_density(ts, dens15) * bp.oil_specific_heat(ts, dens15)
+                return bp.start_temperature(ts, wj_s, wb_s, dia, length, clear,
+                                            feed_flow(z0, z0, mu0) * mu0, rho_cp, heat_to_oil,
+                                            fit.viscosity)
 
-        def evaluate(t, active=None):
-            """Every point (``active`` None) or only the points still iterating: their
-            orbits are solved again, the others keep the orbit of their last evaluation."""
-            mu = fit.viscosity(t)
-            if active is None:
-                res = ob.solve_orbit(
-                    ex.fy[rows], ex.fx[rows], ex.omega_journal[rows],
-                    ex.omega_bearing[rows], speeds[None, None, :], *bdim[:3], mu,
-                    model="closed_form", full_groove=bdim[3], steps_per_cycle=n_steps,
-                    eps0_x=warm.get("x"),
-                    eps0_y=warm.get("y"), squeeze_velocity=True)
-            else:
-                def sub(a):
-                    return np.broadcast_to(a, load_shape)[active]
+            load_shape = ex.fx[sub].shape
 
-                part = ob.solve_orbit(
-                    sub(ex.fy[rows]), sub(ex.fx[rows]), sub(ex.omega_journal[rows]),
-                    sub(ex.omega_bearing[rows]), np.broadcast_to(speeds, shape)[active],
-                    *(a[active] for a in bdim[:3]), mu[active], model="closed_form",
-                    full_groove=bdim[3][active], steps_per_cycle=n_steps,
-                    eps0_x=warm["x"][active], eps0_y=warm["y"][active],
-                    squeeze_velocity=True)
-                res = _merge_orbits(warm["res"], part, active)
-            warm["x"], warm["y"], warm["res"] = res.eps_x[..., 0], res.eps_y[..., 0], res
-            mu4 = mu[..., None]
-            lx, ly = fy_s, fx_s  # orbit frame: X along the loads' y axis
-            vx, vy = res.vs_x, res.vs_y  # mobility.squeeze_velocity along the orbit
-            torque, power = bp.film_losses(res.eps_x, res.eps_y, lx, ly, vx, vy, wj_s, wb_s,
-                                           dia[..., None], length[..., None], clear[..., None],
-                                           mu4)
-            qs = bp.short_bearing_side_flow(vx, vy, dia[..., None], length[..., None],
-                                            clear[..., None]).mean(axis=-1)
-            qf = feed_flow(res.eps_x, res.eps_y, mu)
-            rho_cp = vs.oil_density(t, dens15) * bp.oil_specific_heat(t, dens15)
-            state = {"orbit": res, "torque": -torque.mean(axis=-1),
-                     "torque_peak": (-torque).max(axis=-1), "power": power.mean(axis=-1),
-                     "power_peak": power.max(axis=-1), "qs": qs, "qf": qf}
-            return power.mean(axis=-1), qs, qf, rho_cp, state
+            def evaluate(t, active=None):
+                """Every point (``active`` None) or only the points still iterating: their
+                orbits are solved again, the others keep the orbit of their last evaluation."""
+                mu = fit.viscosity(t)
+                if active is None:
+                    count[...] += 1
+                    res = ob.solve_orbit(
+                        ex.fy[sub], ex.fx[sub], ex.omega_journal[sub],
+                        ex.omega_bearing[sub], speeds[None, None, :], *bdim[:3], mu,
+                        model="closed_form", full_groove=bdim[3], steps_per_cycle=n_steps,
+                        eps0_x=warm.get("x"),
+                        eps0_y=warm.get("y"), squeeze_velocity=True)
+                else:
+                    count[active] += 1
 
-        ts = np.full(shape, float(t_supply))
-        try:
+                    def part_of(a):
+                        return np.broadcast_to(a, load_shape)[active]
+
+                    part = ob.solve_orbit(
+                        part_of(ex.fy[sub]), part_of(ex.fx[sub]),
+                        part_of(ex.omega_journal[sub]), part_of(ex.omega_bearing[sub]),
+                        np.broadcast_to(speeds, shape)[active],
+                        *(a[active] for a in bdim[:3]), mu[active], model="closed_form",
+                        full_groove=bdim[3][active], steps_per_cycle=n_steps,
+                        eps0_x=warm["x"][active], eps0_y=warm["y"][active],
+                        squeeze_velocity=True)
+                    res = _merge_orbits(warm["res"], part, active)
+                warm["x"], warm["y"], warm["res"] = res.eps_x[..., 0], res.eps_y[..., 0], res
+                mu4 = mu[..., None]
+                lx, ly = fy_s, fx_s  # orbit frame: X along the loads' y axis
+                vx, vy = res.vs_x, res.vs_y  # mobility.squeeze_velocity along the orbit
+                torque, power = bp.film_losses(res.eps_x, res.eps_y, lx, ly, vx, vy, wj_s,
+                                               wb_s, dia[..., None], length[..., None],
+                                               clear[..., None], mu4)
+                qs = bp.short_bearing_side_flow(vx, vy, dia[..., None], length[..., None],
+                                                clear[..., None]).mean(axis=-1)
+                qf = feed_flow(res.eps_x, res.eps_y, mu)
+                rho_cp = vs.oil_density(t, dens15) * bp.oil_specific_heat(t, dens15)
+                state = {"orbit": res, "torque": -torque.mean(axis=-1),
+                         "torque_peak": (-torque).max(axis=-1), "power": power.mean(axis=-1),
+                         "power_peak": power.max(axis=-1), "qs": qs, "qf": qf}
+                return power.mean(axis=-1), qs, qf, rho_cp, state
+
+            ts = np.full(shape, float(t_supply))
             hb = bp.solve_heat_balance(evaluate, ts, fit.viscosity, heat_to_oil=heat_to_oil,
                                        tol=HEAT_BALANCE_TOL,
                                        max_evaluations=HEAT_BALANCE_MAX_EVALUATIONS,
                                        t_start=start_estimate(ts), partial=True)
+            st = hb.state
+            res = st["orbit"]
+            return {"t": hb.temperature, "converged": hb.converged, "change": hb.change,
+                    "evaluations": count, "p": st["power"], "p_peak": st["power_peak"],
+                    "torque": st["torque"], "torque_peak": st["torque_peak"], "qs": st["qs"],
+                    "qf": st["qf"], "collapse": res.collapse, "orbit_converged": res.converged,
+                    "message": res.message}
+
+        # every input of a row's balance besides its loads (heat_memo's key)
+        common = repr((HEAT_BALANCE_TOL, HEAT_BALANCE_MAX_EVALUATIONS, n_steps, fit,
+                       float(t_supply), p_supply, dens15, heat_to_oil, (nc, ns),
+                       speeds.tolist())).encode()
+        facts, scalars = [], []
+        for i in rows:
+            b = bearings[names[i]]
+            geo = (float(b.diameter), float(b.length), float(b.clearance), b.groove == "full")
+            kw = kws.get(int(i))
+            fb = [common, repr(geo).encode(), repr(kw is not None).encode()]
+            for k, v in sorted((kw or {}).items()):
+                if isinstance(v, np.ndarray):
+                    fb.append(f"{k}|{v.dtype}|{v.shape}|".encode() + v.tobytes())
+                else:
+                    fb.append(f"{k}|{v!r}".encode())
+            facts.append(b"\x00".join(fb))
+            scalars.append(geo)
+        try:
+            hb = heat_memo.balance(rows, facts, np.array(scalars, dtype=float),
+                                   {k: getattr(ex, k) for k in
+                                    ("fx", "fy", "omega_journal", "omega_bearing")}, solve)
         except ValueError as exc:
             raise MissingInputs([f"bearing heat balance: {exc}"]) from None
-        st = hb.state
-        res = st["orbit"]
-        out["t"][rows] = hb.temperature
-        out["p"][rows] = st["power"]
-        out["p_peak"][rows] = st["power_peak"]
-        out["torque"][rows] = st["torque"]
-        out["torque_peak"][rows] = st["torque_peak"]
-        out["qs"][rows] = st["qs"]
-        out["qf"][rows] = st["qf"]
-        for a, ci, si in np.argwhere(~hb.converged):
+        evaluations = int(hb["evaluations"].max())
+        for k in ("t", "p", "p_peak", "torque", "torque_peak", "qs", "qf"):
+            out[k][rows] = hb[k]
+        for a, ci, si in np.argwhere(~hb["converged"]):
             rpm = speeds[si] * 30 / np.pi
             findings.setdefault((int(rows[a]), int(ci), int(si)), []).append(
                 f"heat balance not converged at {rpm:.0f} rpm ({CASES[ci]} load) after"
-                f" {hb.evaluations} orbit evaluations: last change"
-                f" {hb.change[a, ci, si]:.2g} K > {HEAT_BALANCE_TOL} K")
-        for a, ci, si in np.argwhere(res.collapse | ~res.converged):
+                f" {evaluations} orbit evaluations: last change"
+                f" {hb['change'][a, ci, si]:.2g} K > {HEAT_BALANCE_TOL} K")
+        for a, ci, si in np.argwhere(hb["collapse"] | ~hb["orbit_converged"]):
             rpm = speeds[si] * 30 / np.pi
             findings.setdefault((int(rows[a]), int(ci), int(si)), []).append(
-                f"short-bearing orbit at the film temperature: {res.message[a, ci, si]}"
+                f"short-bearing orbit at the film temperature: {hb['message'][a, ci, si]}"
                 f" at {rpm:.0f} rpm ({CASES[ci]} load)")
-        extrap = fit.is_extrapolated(hb.temperature)
-        info = {"evaluations": hb.evaluations, "change_max": float(np.max(hb.change)),
+        extrap = fit.is_extrapolated(hb["t"])
+        info = {"evaluations": evaluations, "change_max": float(np.max(hb["change"])),
                 "extrapolated": bool(np.any(extrap)),
-                "t_range": (float(np.min(hb.temperature)), float(np.max(hb.temperature)))}
+                "t_range": (float(np.min(hb["t"])), float(np.max(hb["t"])))}
     # not converged, not periodic or collapsed: the balance cannot be trusted there
     bad_t = np.zeros((nb, nc, ns), dtype=bool)
     for (i, ci, si), texts in findings.items():

@@ -210,15 +210,16 @@ class Evaluator:
 
     def release(self) -> None:
         """End the helper processes, drop the variants' results from the cache (the check's
-        own stay) and empty the film memo: hundreds of megabytes the report need not carry
-        (its worker processes are forked from this one)."""
-        from ..modules import film_memo
+        own stay) and empty the film and heat-balance memos: hundreds of megabytes the report
+        need not carry (its worker processes are forked from this one)."""
+        from ..modules import film_memo, heat_memo
 
         self.stop_workers()
         for k in [k for k in self.cache if self._pinned is not None and k not in self._pinned]:
             del self.cache[k]
         self._sizes.clear()
         film_memo.clear()
+        heat_memo.clear()
 
     def _evict(self) -> None:
         """Drop the oldest variant results beyond :attr:`keep_bytes`."""
