@@ -229,48 +229,166 @@ def _margins(res) -> dict[tuple[str, str], float]:
             if r.margin is not None and r.status != "not_evaluated"}
 
 
+class _Packer:
+    """Evaluations of results at points of the tolerance box, packed into few variants.
+
+    A request ``(result, point)`` (``point``: tolerance index -> box coordinate, absent =
+    today's value) needs a variant equal to the point on the tolerances that can move the
+    result (:func:`checker.remedies.influence.affecting`); the other tolerances are free, so
+    requests of results that no common tolerance moves share a variant (a main bearing's
+    clearance at its min with a big end's clearance at its min). Every variant is a check of
+    the workbook on the rules of the requests it serves, so each result read from it is the
+    result of a direct evaluation at its point (its calculations have the same inputs there:
+    the calculation cache would return them). Variants already evaluated serve later requests
+    they fit, today's check among them."""
+
+    def __init__(self, ev: Evaluator, tols: list[Tolerance], affects: dict, nominal) -> None:
+        self.ev, self.tols, self.affects = ev, tols, affects
+        self.done: list[tuple[dict[int, float], set[str] | None, Any]] = [({}, None, nominal)]
+
+    def _need(self, key, point: dict[int, float]) -> dict[int, float | None]:
+        return {i: point.get(i) for i in self.affects[key]}
+
+    def _serving(self, key, need) -> Any:
+        for pt, rules, res in self.done:
+            if (rules is None or key[0] in rules) and all(pt.get(i) == u
+                                                          for i, u in need.items()):
+                return res
+        return _NONE
+
+    def ask(self, requests: list[tuple[tuple[str, str], dict[int, float]]]) -> list[Any]:
+        """The check (or InputErrors) that serves each request."""
+        out: list[Any] = [_NONE] * len(requests)
+        packs: list[tuple[dict[int, float | None], set[str], list[int]]] = []
+        for n, (key, point) in enumerate(requests):
+            need = self._need(key, point)
+            hit = self._serving(key, need)
+            if hit is not _NONE:
+                out[n] = hit
+                continue
+            for c, rules, ns in packs:
+                if all(c.get(i, u) == u for i, u in need.items()):
+                    c.update(need)
+                    rules.add(key[0])
+                    ns.append(n)
+                    break
+            else:
+                packs.append((dict(need), {key[0]}, [n]))
+        got = self._run([({i: u for i, u in c.items() if u is not None}, rules)
+                         for c, rules, _ in packs])
+        for (_, _, ns), res in zip(packs, got):
+            if isinstance(res, InputErrors) and len({tuple(sorted(self._need(
+                    requests[n][0], requests[n][1]).items())) for n in ns}) > 1:
+                # a packed variant is not a valid workbook: its requests one by one
+                alone = self._run([({i: u for i, u in self._need(*requests[n]).items()
+                                     if u is not None}, {requests[n][0][0]}) for n in ns])
+                for n, r in zip(ns, alone):
+                    out[n] = r
+                continue
+            for n in ns:
+                out[n] = res
+        return out
+
+    def _run(self, variants: list[tuple[dict[int, float], set[str]]]) -> list[Any]:
+        out: list[Any] = [None] * len(variants)
+        by_sel: dict[tuple[str, ...], list[int]] = {}
+        for k, (_, rules) in enumerate(variants):
+            by_sel.setdefault(tuple(sorted(rules)), []).append(k)
+        for sel, idx in by_sel.items():
+            res = self.ev.evaluate_variants([_changes(self.tols, variants[k][0]) for k in idx],
+                                            select=list(sel))
+            for k, r in zip(idx, res):
+                out[k] = r
+                self.done.append((variants[k][0], set(sel), r))
+        return out
+
+    def margins(self, requests) -> list[float | None]:
+        return [_margins(r).get(key) for (key, _), r in zip(requests, self.ask(requests))]
+
+
+_NONE = object()
+
+
+def _corners(idx, fixed: dict[int, float] | None = None) -> list[dict[int, float]]:
+    return [{**dict(zip(idx, c)), **(fixed or {})}
+            for c in itertools.product((0.0, 1.0), repeat=len(idx))]
+
+
 def evaluate_corners(nominal, ev: Evaluator, tols: list[Tolerance]) -> list[CornerResult]:
     """Each evaluated result of ``nominal`` judged at its worst tolerance corner."""
+    from .influence import affecting
+
     base_m = _margins(nominal)
     results = {(r.rule, r.item): r for r in nominal.results
                if r.margin is not None and r.status != "not_evaluated"}
     if not tols:
         return []
-    # 1. one at a time (all selected rules)
-    oat_points = [{i: 0.0} for i in range(len(tols))] + [{i: 1.0} for i in range(len(tols))]
-    known: dict[tuple, Any] = {}  # every evaluated point: its check (reused at the end)
+    affects = affecting(nominal, ev, tols)
+    pk = _Packer(ev, tols, affects, nominal)
 
-    def run(points: list[dict], select=None) -> list:
-        out_r = ev.evaluate_variants([_changes(tols, u) for u in points], select=select)
-        for u, r in zip(points, out_r):
-            known.setdefault(tuple(sorted(u.items())), r)
-        return out_r
+    def eps(key) -> float:
+        return 1e-9 * max(1.0, abs(base_m[key]))
 
-    oat = run(oat_points)
-    oat_m = [_margins(r) for r in oat]
-    n = len(tols)
-    affects: dict[tuple[str, str], list[int]] = {}
-    effect: dict[tuple[tuple[str, str], int], float] = {}
-    worse_end: dict[tuple[tuple[str, str], int], float] = {}
-    for key, m0 in base_m.items():
-        for i in range(n):
-            lo, hi = oat_m[i].get(key), oat_m[n + i].get(key)
+    # 1. the corners of the tolerances that can move each result (one at a time for a
+    #    result more than FULL_K tolerances can move: the ranking needs it)
+    small = sorted((k for k in results if 0 < len(affects[k]) <= FULL_K),
+                   key=lambda k: -len(affects[k]))
+    big = [k for k in results if len(affects[k]) > FULL_K]
+    reqs = [(k, u) for k in big for i in affects[k] for u in ({i: 0.0}, {i: 1.0})]
+    reqs += [(k, u) for k in small for u in _corners(affects[k])]
+    got = dict(zip(((k, tuple(sorted(u.items()))) for k, u in reqs), pk.margins(reqs)))
+    used: dict[tuple[str, str], tuple[int, ...]] = {}  # the tolerances that do move it
+    worst0: dict[tuple[str, str], tuple[float, dict]] = {}
+    for k in small:
+        s = affects[k]
+        ms = {c: got[(k, c)] for c in (tuple(sorted(u.items())) for u in _corners(s))}
+        ms = {c: m for c, m in ms.items() if m is not None}
+        if not ms:
+            continue
+        moves = []
+        for i in s:
+            for c, m in ms.items():
+                flip = tuple((j, 1.0 - u if j == i else u) for j, u in c)
+                if flip in ms and abs(ms[flip] - m) > eps(k):
+                    moves.append(i)
+                    break
+        used[k] = tuple(moves)
+        if not moves:
+            continue
+        best: tuple[float, dict] | None = None
+        for u in _corners(used[k]):  # the first worst in the order of the corners
+            m = min((m for c, m in ms.items() if all(dict(c)[i] == u[i] for i in u)),
+                    default=None)
+            if m is not None and (best is None or m < best[0]):
+                best = (m, u)
+        if best is not None:
+            worst0[k] = best
+    effect: dict[tuple, float] = {}
+    worse_end: dict[tuple, float] = {}
+    for k in big:
+        m0 = base_m[k]
+        moves = []
+        for i in affects[k]:
+            lo, hi = got[(k, ((i, 0.0),))], got[(k, ((i, 1.0),))]
             if lo is None or hi is None:
                 continue
             d = max(abs(lo - m0), abs(hi - m0))
-            if d > 1e-9 * max(1.0, abs(m0)):
-                affects.setdefault(key, []).append(i)
-                effect[(key, i)] = d
-                worse_end[(key, i)] = 0.0 if lo < hi else 1.0
-    # 2. corners per group of results with the same tolerances
+            if d > eps(k):
+                moves.append(i)
+                effect[(k, i)] = d
+                worse_end[(k, i)] = 0.0 if lo < hi else 1.0
+        used[k] = tuple(moves)
+    # 2. for those: all 2^k corners of the tolerances that move them for k <= FULL_K, else
+    #    the 2^FULL_K corners of the FULL_K most influential (one at a time), the others at
+    #    their worse end
+    designs: dict[tuple[str, str], tuple[str, list[dict]]] = {}
     groups: dict[tuple[int, ...], list[tuple[str, str]]] = {}
-    for key, idx in affects.items():
-        groups.setdefault(tuple(sorted(idx)), []).append(key)
-    out: dict[tuple[str, str], CornerResult] = {}
+    for k in big:
+        if used[k]:
+            groups.setdefault(used[k], []).append(k)
     for idx, keys in groups.items():
+        full, fixed = list(idx), {}
         design = f"all {2 ** len(idx)} corners of {len(idx)} tolerances"
-        full = list(idx)
-        fixed: dict[int, float] = {}
         if len(idx) > FULL_K:
             score = {i: sum(effect.get((k, i), 0.0) for k in keys) for i in idx}
             full = sorted(idx, key=lambda i: -score[i])[:FULL_K]
@@ -280,82 +398,55 @@ def evaluate_corners(nominal, ev: Evaluator, tols: list[Tolerance]) -> list[Corn
                     fixed[i] = 1.0 if sum(ends) * 2 >= len(ends) else 0.0
             design = (f"2^{FULL_K} corners of the {FULL_K} most influential of {len(idx)}"
                       " tolerances (one-at-a-time ranking), the others at their worse end")
-        corners = [dict(zip(full, c), **fixed) for c in itertools.product((0.0, 1.0),
-                                                                          repeat=len(full))]
-        if len(idx) == 1:
-            cm = [oat_m[idx[0]], oat_m[n + idx[0]]]
-        else:
-            sel = sorted({k[0] for k in keys})
-            cm = [_margins(r) for r in run(corners, select=sel)]
-        for key in keys:
-            ms = [(m.get(key), c) for m, c in zip(cm, corners) if m.get(key) is not None]
-            if not ms:
-                continue
-            m_w, c_w = min(ms, key=lambda t: t[0])
-            r = results[key]
-            cr = CornerResult(key[0], key[1], r.status, r.value, r.margin, unit=r.unit,
-                              severity=r.severity, design=design,
-                              tolerances=[tols[i].name for i in idx])
-            cr.worst_margin = m_w
-            cr._u = dict(c_w)
-            out[key] = cr
-    # 3. is the worst point inside the box? face midpoints at each worst corner
-    probes: list[tuple[tuple[str, str], int, dict]] = []
-    for key, cr in out.items():
-        for i in cr._u:
-            u = dict(cr._u)
-            u[i] = 0.5
-            probes.append((key, i, u))
-    uniq: dict[tuple, int] = {}
-    pts: list[dict] = []
-    rules_at: list[set[str]] = []
-    for key, _, u in probes:
-        k = tuple(sorted(u.items()))
-        if k not in uniq:
-            uniq[k] = len(pts)
-            pts.append(u)
-            rules_at.append(set())
-        rules_at[uniq[k]].add(key[0])
-    sel = sorted({k[0] for k in out})
-    # each probe checked on the rules of the results probed there (one call per selection)
-    pm: list[dict] = [{} for _ in pts]
-    by_sel: dict[tuple[str, ...], list[int]] = {}
-    for i, rs in enumerate(rules_at):
-        by_sel.setdefault(tuple(sorted(rs)), []).append(i)
-    for rs, idx in by_sel.items():
-        for i, r in zip(idx, run([pts[i] for i in idx], select=list(rs))):
-            pm[i] = _margins(r)
+        for k in keys:
+            designs[k] = (design, _corners(full, fixed))
+    reqs = [(k, u) for k, (_, cs) in designs.items() for u in cs]
+    for (k, u), m in zip(reqs, pk.margins(reqs)):
+        if m is not None and (k not in worst0 or m < worst0[k][0]):
+            worst0[k] = (m, u)
+    out: dict[tuple[str, str], CornerResult] = {}
+    for k, (m, u) in worst0.items():
+        r = results[k]
+        idx = used[k]
+        design = designs[k][0] if k in designs else f"all {2 ** len(idx)} corners of" \
+            f" {len(idx)} tolerances"
+        cr = CornerResult(k[0], k[1], r.status, r.value, r.margin, unit=r.unit,
+                          severity=r.severity, design=design,
+                          tolerances=[tols[i].name for i in idx])
+        cr.worst_margin = m
+        cr._u = dict(u)
+        out[k] = cr
+    # 3. is the worst point inside the box? face midpoints at each worst corner (with the
+    #    worst corner itself where tolerances that do not move the result were at an end)
+    again = [(k, cr._u) for k, cr in out.items() if k in small and used[k] != affects[k]]
+    probes = [(k, i, {**cr._u, i: 0.5}) for k, cr in out.items() for i in cr._u]
+    ms = pk.margins(again + [(k, u) for k, _, u in probes])
+    for (k, _), m in zip(again, ms):
+        if m is not None:
+            out[k].worst_margin = m
     refine: dict[tuple[str, str], list[int]] = {}
-    for key, i, u in probes:
-        m = pm[uniq[tuple(sorted(u.items()))]].get(key)
-        cr = out[key]
-        if m is not None and m < cr.worst_margin - 1e-9 * max(1.0, abs(cr.worst_margin)):
-            refine.setdefault(key, []).append(i)
+    for (k, i, u), m in zip(probes, ms[len(again):]):
+        cr = out[k]
+        if m is not None and m < cr.worst_margin - eps(k):
+            refine.setdefault(k, []).append(i)
             if m < cr.worst_margin:
                 cr.worst_margin, cr._u = m, u
                 cr.inside = True
-        if base_m[key] < cr.worst_margin:
-            cr.worst_margin, cr._u, cr.inside = base_m[key], {}, True
-    for key, dims in refine.items():
-        cr = out[key]
+        if base_m[k] < cr.worst_margin:
+            cr.worst_margin, cr._u, cr.inside = base_m[k], {}, True
+    for k, dims in refine.items():
         for i in dims:
-            _golden(cr, key, i, run)
-    # values and statuses at the worst point (one evaluation per distinct point)
-    pts2: dict[tuple, dict] = {}
-    for cr in out.values():
-        pts2.setdefault(tuple(sorted(cr._u.items())), cr._u)
-    need = {k: u for k, u in pts2.items() if k != () and k not in known}
-    run(list(need.values()), select=sel)
-    for key, cr in out.items():
-        pk = tuple(sorted(cr._u.items()))
-        r = find(nominal, *key) if pk == () else find(known.get(pk), *key)
-        if r is None:
-            r = find(run([cr._u], select=[key[0]])[0], *key)
-        if r is not None:
-            cr.worst_value, cr.worst_margin, cr.worst_status = r.value, r.margin, r.status
+            _golden(out[k], k, i, lambda pts, select, _k=k: pk.ask([(_k, u) for u in pts]))
+    # values and statuses at the worst point (direct evaluations, mostly done already)
+    keys = list(out)
+    for k, r in zip(keys, pk.ask([(k, out[k]._u) for k in keys])):
+        cr = out[k]
+        f = find(r, *k)
+        if f is not None:
+            cr.worst_value, cr.worst_margin, cr.worst_status = f.value, f.margin, f.status
         cr.corner = [tols[i].end_text(u) for i, u in sorted(cr._u.items())] or [
             "nominal (the worst point is today's value)"]
-    for key, r in results.items():  # results no tolerance affects: worst = nominal
+    for key, r in results.items():  # results no tolerance moves: worst = nominal
         if key not in out:
             out[key] = CornerResult(key[0], key[1], r.status, r.value, r.margin, r.value,
                                     r.margin, r.status, ["unaffected by the tolerances"],
