@@ -32,6 +32,9 @@ from ..workbook.schema import SHEETS
 from .variants import Binding, Evaluator, bind, find
 
 FULL_K = 6
+MERGE_SLACK = 0.05
+"""Seconds of calculations a variant's own rules do not need that it may run to be checked
+in the same batch as others (:class:`_Packer`)."""
 GOLDEN_STEPS = 8
 TIGHTENING_FACTOR = "tightening factor"
 
@@ -242,9 +245,10 @@ class _Packer:
     the calculation cache would return them). Variants already evaluated serve later requests
     they fit, today's check among them."""
 
-    def __init__(self, ev: Evaluator, tols: list[Tolerance], affects: dict, nominal) -> None:
-        self.ev, self.tols, self.affects = ev, tols, affects
+    def __init__(self, ev: Evaluator, tols: list[Tolerance], infl, nominal) -> None:
+        self.ev, self.tols, self.infl, self.affects = ev, tols, infl, infl.affects
         self.done: list[tuple[dict[int, float], set[str] | None, Any]] = [({}, None, nominal)]
+        self.computed: set[tuple] = set()  # calculations of the variants checked so far
 
     def _need(self, key, point: dict[int, float]) -> dict[int, float | None]:
         return {i: point.get(i) for i in self.affects[key]}
@@ -260,7 +264,9 @@ class _Packer:
         """The check (or InputErrors) that serves each request."""
         out: list[Any] = [_NONE] * len(requests)
         packs: list[tuple[dict[int, float | None], set[str], list[int]]] = []
-        for n, (key, point) in enumerate(requests):
+        # first fit, the requests that fix the most tolerances first
+        for n in sorted(range(len(requests)), key=lambda n: -len(self.affects[requests[n][0]])):
+            key, point = requests[n]
             need = self._need(key, point)
             hit = self._serving(key, need)
             if hit is not _NONE:
@@ -290,14 +296,40 @@ class _Packer:
         return out
 
     def _run(self, variants: list[tuple[dict[int, float], set[str]]]) -> list[Any]:
+        """Check the variants in few batches (their film orbits in one kernel call): a
+        variant joins a batch, checked on the rules of all its variants, unless that runs
+        calculations its own rules do not need (by today's times, beyond
+        :data:`MERGE_SLACK`)."""
+        infl = self.infl
+        batches: list[tuple[set[str], list[int], set[tuple] | None]] = []
+        for k in sorted(range(len(variants)), key=lambda k: -len(variants[k][1])):
+            v, rules = variants[k]
+            own = infl.calc_keys(v, rules)
+            for b, (sel, ks, keys) in enumerate(batches):
+                union = sel | rules
+                new: set[tuple] | None = set()
+                for j in ks + [k]:
+                    c = infl.calc_keys(variants[j][0], union)
+                    if c is None or new is None:
+                        new = None
+                        break
+                    new |= c
+                if (new is not None and keys is not None and own is not None
+                        and infl.cost(new, self.computed) <= infl.cost(keys, self.computed)
+                        + infl.cost(own, self.computed) + MERGE_SLACK):
+                    batches[b] = (union, ks + [k], new)
+                    break
+            else:
+                batches.append((set(rules), [k], own))
         out: list[Any] = [None] * len(variants)
-        by_sel: dict[tuple[str, ...], list[int]] = {}
-        for k, (_, rules) in enumerate(variants):
-            by_sel.setdefault(tuple(sorted(rules)), []).append(k)
-        for sel, idx in by_sel.items():
-            res = self.ev.evaluate_variants([_changes(self.tols, variants[k][0]) for k in idx],
-                                            select=list(sel))
-            for k, r in zip(idx, res):
+        for sel, ks, keys in batches:
+            import os
+            if os.environ.get("CORNERS_DEBUG"):
+                print("   run", [variants[k][0] for k in ks], sorted(sel))
+            res = self.ev.evaluate_variants([_changes(self.tols, variants[k][0]) for k in ks],
+                                            select=sorted(sel))
+            self.computed |= keys or set()
+            for k, r in zip(ks, res):
                 out[k] = r
                 self.done.append((variants[k][0], set(sel), r))
         return out
@@ -323,8 +355,9 @@ def evaluate_corners(nominal, ev: Evaluator, tols: list[Tolerance]) -> list[Corn
                if r.margin is not None and r.status != "not_evaluated"}
     if not tols:
         return []
-    affects = affecting(nominal, ev, tols)
-    pk = _Packer(ev, tols, affects, nominal)
+    infl = affecting(nominal, ev, tols)
+    affects = infl.affects
+    pk = _Packer(ev, tols, infl, nominal)
 
     def eps(key) -> float:
         return 1e-9 * max(1.0, abs(base_m[key]))

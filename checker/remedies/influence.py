@@ -26,6 +26,7 @@ tolerance affect every result: the corners then simply evaluate more.
 from __future__ import annotations
 
 import dataclasses
+from dataclasses import dataclass, field
 from typing import Any
 
 ALL = "all"
@@ -99,9 +100,11 @@ def _reads(calc: Any, entry: str) -> bool:
                for r in calc.reads)
 
 
-def affected_quantities(engines: list[Any], changes: dict[str, Any]) -> dict[str, Any]:
+def affected_quantities(engines: list[Any], changes: dict[str, Any],
+                        calcs: set[str] | None = None) -> dict[str, Any]:
     """Quantity -> ``ALL`` or the frozenset of item names it may change for, given the
-    ``changes`` of :func:`engine_changes` between ``engines[0]`` (today's) and the others."""
+    ``changes`` of :func:`engine_changes` between ``engines[0]`` (today's) and the others.
+    ``calcs`` (a set) receives the names of the affected calculations."""
     from .. import graph
 
     e0 = engines[0]
@@ -157,13 +160,53 @@ def affected_quantities(engines: list[Any], changes: dict[str, Any]) -> dict[str
                 state = ALL
         if state is None:
             continue
+        if calcs is not None:
+            calcs.add(c)
         for q in calc.provides:
             spec = graph.QUANTITIES[q]
             qstate[q] = state if "item" in spec.dims else ALL
     return qstate
 
 
-def affecting(nominal: Any, ev: Any, tols: list[Any]) -> dict[tuple[str, str], tuple[int, ...]]:
+@dataclass
+class Influence:
+    """Which tolerances can move which results, and what a variant recomputes."""
+
+    affects: dict[tuple[str, str], tuple[int, ...]]
+    """Per evaluated result (rule, item): the indices of the tolerances that can move it."""
+    tol_calcs: list[set[str] | None] = field(default_factory=list)
+    """Per tolerance: the calculations it changes (None: unknown, every one)."""
+    rule_calcs: dict[str, set[str]] = field(default_factory=dict)
+    """Per rule id: the calculations its result needs."""
+
+    calc_cost: dict[str, float] = field(default_factory=dict)
+    """Per calculation: its seconds in today's check (its module's time shared among the
+    module's calculations that ran); 0 when unknown."""
+
+    def calc_keys(self, point: dict[int, Any], rules: set[str]) -> set[tuple] | None:
+        """The calculations a variant at ``point`` (tolerance index -> box coordinate,
+        absent = today's value) runs for ``rules``, each with the values of the tolerances
+        that reach it (the same pair = the same cached result); today's are left out
+        (today's check holds them). None: unknown."""
+        need: set[str] = set()
+        for r in rules:
+            c = self.rule_calcs.get(r)
+            if c is None:
+                return None
+            need |= c
+        out: set[tuple] = set()
+        for c in need:
+            k = tuple((i, u) for i, u in sorted(point.items())
+                      if u is not None and (self.tol_calcs[i] is None or c in self.tol_calcs[i]))
+            if k:
+                out.add((c, k))
+        return out
+
+    def cost(self, keys: set[tuple], done: set[tuple] = frozenset()) -> float:
+        return sum(self.calc_cost.get(c, 0.0) for c, k in keys if (c, k) not in done)
+
+
+def affecting(nominal: Any, ev: Any, tols: list[Any]) -> Influence:
     """Per evaluated result ``(rule, item)`` of ``nominal``: the indices of the tolerances
     that can move it (all of them where the structure cannot tell)."""
     from .. import graph
@@ -178,8 +221,9 @@ def affecting(nominal: Any, ev: Any, tols: list[Any]) -> dict[tuple[str, str], t
         e0 = build_engine(convert_raw(base, raise_errors=False))
         quantity = {r.id: r.quantity for r in ev.table.rules}
     except Exception:  # noqa: BLE001 - no workbook (a test double): every tolerance counts
-        return {k: every for k in keys}
+        return Influence({k: every for k in keys})
     per_tol: list[dict[str, Any] | None] = []
+    tol_calcs: list[set[str] | None] = []
     for t in tols:
         try:
             engines = [e0]
@@ -192,10 +236,16 @@ def affecting(nominal: Any, ev: Any, tols: list[Any]) -> dict[tuple[str, str], t
                     raise ValueError("not visible")
                 changes = _merge(changes, ch)
                 engines.append(e1)
-            per_tol.append(affected_quantities(engines, changes) if changes else None)
+            if not changes:
+                raise ValueError("no visible change")
+            calcs: set[str] = set()
+            per_tol.append(affected_quantities(engines, changes, calcs))
+            tol_calcs.append(calcs)
         except Exception:  # noqa: BLE001 - unknown: conservative
             per_tol.append(None)
+            tol_calcs.append(None)
     out: dict[tuple[str, str], tuple[int, ...]] = {}
+    rule_calcs: dict[str, set[str]] = {}
     for key in keys:
         q = quantity.get(key[0])
         if q is None or q not in graph.QUANTITIES:
@@ -203,6 +253,11 @@ def affecting(nominal: Any, ev: Any, tols: list[Any]) -> dict[tuple[str, str], t
             continue
         dims = graph.QUANTITIES[q].dims
         deps = [q] + (["loads.cycle"] if "case" in dims and "speed" in dims else [])
+        if key[0] not in rule_calcs:
+            try:
+                rule_calcs[key[0]] = set(graph.plan(e0, deps))
+            except Exception:  # noqa: BLE001 - unknown cost: no entry
+                pass
         idx = []
         for i, st in enumerate(per_tol):
             if st is None:
@@ -214,4 +269,12 @@ def affecting(nominal: Any, ev: Any, tols: list[Any]) -> dict[tuple[str, str], t
                     idx.append(i)
                     break
         out[key] = tuple(idx)
-    return out
+    cost: dict[str, float] = {}
+    outcome = getattr(nominal, "outcome", None)
+    if outcome is not None:
+        ran = [c for c in outcome.ran if c not in outcome.reused]
+        for c in ran:
+            m = graph.CALCULATIONS[c].module
+            cost[c] = outcome.timings.get(m, 0.0) / sum(
+                graph.CALCULATIONS[x].module == m for x in ran)
+    return Influence(out, tol_calcs, rule_calcs, cost)
