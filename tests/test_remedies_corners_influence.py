@@ -1,0 +1,207 @@
+"""The tolerance corners from the structure (checker.remedies.influence) and packed variants.
+
+* The worst corners, values and statuses on the I4, I6 and V8 templates are those of the
+  earlier algorithm (one at a time over every rule, then 2^k corners per group, one variant per
+  corner), stored from it in ``test_remedies_corners_expected.json``, with fewer evaluations.
+* The structure never misses an influence: on the I4 each tolerance at each end of its range,
+  checked directly, leaves every result it is said not to move bitwise unchanged.
+* Item classes: a bearing's clearance leaves the results of the bearings of the other type
+  bitwise unchanged (the calculations of ``ITEMWISE``) on the three templates; an engine-level
+  sum of every bearing is moved by every row.
+* Packing: results of disjoint tolerances share variants; a result that the structure lets a
+  tolerance move but whose margin is the same at every corner is reported unaffected.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from checker import api, graph
+from checker.engine import build_engine
+from checker.remedies import influence
+from checker.remedies.corners import Tolerance, evaluate_corners, read_tolerances
+from checker.remedies.variants import Evaluator
+from checker.ruletable import load_rules
+from checker.workbook.loader import convert_raw, read_raw_workbook
+
+EXPECTED = json.loads((Path(__file__).with_name("test_remedies_corners_expected.json"))
+                      .read_text(encoding="utf-8"))
+
+
+def _template(path: Path, which: str) -> Path:
+    from checker.workbook.example import example_content, write_workbook
+    from checker.workbook.example_i6 import i6_content
+    from checker.workbook.example_v8 import v8_content
+
+    content = {"i4": example_content, "i6": lambda: i6_content(damper_ring=True),
+               "v8": v8_content}[which]()
+    write_workbook(path, content)
+    return path
+
+
+@pytest.fixture(scope="module")
+def i4(tmp_path_factory):
+    p = _template(tmp_path_factory.mktemp("i4") / "i4.xlsx", "i4")
+    ev = Evaluator(read_raw_workbook(p), load_rules())
+    nom = api.check(p, cache=ev.cache)
+    return p, ev, nom, read_tolerances(ev.base)
+
+
+@pytest.mark.parametrize("which", ["i4", "i6", "v8"])
+def test_templates_equal_the_one_at_a_time_algorithm(tmp_path, which):
+    p = _template(tmp_path / f"{which}.xlsx", which)
+    ev = Evaluator(read_raw_workbook(p), load_rules())
+    nom = api.check(p, cache=ev.cache)
+    out = evaluate_corners(nom, ev, read_tolerances(ev.base))
+    want = EXPECTED[which]
+    got = [c.as_dict() for c in out]
+    assert [(d["rule"], d["item"]) for d in got] == [(d["rule"], d["item"])
+                                                      for d in want["results"]]
+    for g, w in zip(got, want["results"]):
+        assert g == w, (g["rule"], g["item"])
+    assert ev.evaluations < want["evaluations_before"]
+
+
+def test_structure_never_misses_an_influence(i4):
+    """Each tolerance alone at each end, checked directly: every result it cannot move (by
+    the structure) keeps its value and margin bitwise."""
+    _, ev, nom, tols = i4
+    infl = influence.affecting(nom, ev, tols)
+    base = {(r.rule, r.item): r for r in nom.results}
+    points = [(i, u) for i in range(len(tols)) for u in (0.0, 1.0)]
+    res = ev.evaluate_variants([tols[i].binding.changes(tols[i].value(u)) for i, u in points])
+    unmoved = 0
+    for (i, _), r in zip(points, res):
+        for x in r.results:
+            key = (x.rule, x.item)
+            if key in infl.affects and i not in infl.affects[key]:
+                assert x.value == base[key].value and x.margin == base[key].margin, (key, i)
+                unmoved += 1
+    assert unmoved > 100
+    # and the structure is not blind: a main bearing's clearance cannot move a big end's
+    # film, the peak pressure moves the films, the oil-hole strength only the fatigue
+    names = [t.name for t in tols]
+    main = names.index("Bearings radial clearance (type = main)")
+    big = names.index("Bearings radial clearance (type = big end)")
+    film = {k: v for k, v in infl.affects.items() if k[0] == "BRG-003"}
+    assert film and all((main in v) == k[1].startswith("M") for k, v in film.items())
+    assert all((big in v) == k[1].startswith("BE") for k, v in film.items())
+    fat = names.index("Fatigue Pin oil hole fatigue strength")
+    assert {k[0][:3] for k, v in infl.affects.items() if fat in v} == {"FAT"}
+
+
+@pytest.mark.parametrize("which", ["i4", "i6", "v8"])
+def test_clearance_moves_only_its_bearing_type(tmp_path, which):
+    p = _template(tmp_path / f"{which}.xlsx", which)
+    e0 = build_engine(convert_raw(read_raw_workbook(p), raise_errors=False))
+    wanted = sorted({q for c in influence.ITEMWISE for q in graph.CALCULATIONS[c].provides})
+    o0 = graph.run(e0, wanted)
+    kinds = {b.type for b in e0.bearings}
+    assert len(kinds) == 2
+    # every bearing of one type, then the first bearing of the other type alone
+    for k, first_only in zip(sorted(kinds), (False, True)):
+        rows = [i for i, b in enumerate(e0.bearings) if b.type == k][: 1 if first_only else None]
+        bs = tuple(dataclasses.replace(b, clearance=b.clearance * 1.2) if i in rows else b
+                   for i, b in enumerate(e0.bearings))
+        e1 = dataclasses.replace(e0, bearings=bs)
+        o1 = graph.run(e1, wanted)
+        ch = influence.engine_changes(e0, e1)
+        assert ch == {"bearings.clearance": set(rows)}
+        state = influence.affected_quantities([e0, e1], ch)
+        moved = {b.name for b in e0.bearings if b.type == k}
+        for q in wanted:
+            a, b = o0.quantities.get(q), o1.quantities.get(q)
+            if a is None:
+                continue
+            if "item" not in a.spec.dims:
+                assert state[q] is influence.ALL
+                continue
+            assert state[q] == moved
+            d = a.spec.dims.index("item")
+            for j, item in enumerate(a.coords["item"]):
+                if item not in moved:
+                    assert np.array_equal(np.take(a.values, j, axis=d),
+                                          np.take(b.values, j, axis=d), equal_nan=True), (
+                        q, item)
+
+
+def test_engine_level_sum_and_other_families(i4):
+    _, ev, nom, tols = i4
+    e0 = build_engine(convert_raw(ev.base, raise_errors=False))
+    state = influence.affected_quantities([e0, e0], {"bearings.clearance": {0}})
+    assert state["engine.bearing_friction_power"] is influence.ALL
+    assert state["bearing.moft"] == {b.name for b in e0.bearings if b.type == "main"}
+    assert not any(q.startswith(("joint.", "tv.", "fatigue.")) for q in state)
+    # a field no calculation takes item by item: every item
+    state = influence.affected_quantities([e0, e0], {"bearings.diameter": {0}})
+    assert state["bearing.moft"] is influence.ALL
+
+
+# --------------------------------------------------------------- packing (closed forms)
+@dataclasses.dataclass
+class _R:
+    rule: str
+    item: str
+    value: float
+    margin: float
+    status: str
+    unit: str = ""
+    severity: str = "error"
+
+
+class _Res:
+    def __init__(self, results):
+        self.results = results
+
+
+class _Bind:
+    def __init__(self, k):
+        self.k = k
+
+    def changes(self, v):
+        return {("S", self.k, 1): v}
+
+
+class _Ev:
+    """Three results: A = 1 - x (x in [0, 1], nominal 0.5), B = 1 - 0.5 y, C = 1 (the
+    structure says x may move it)."""
+
+    def __init__(self):
+        self.evaluations = 0
+        self.variants: list[dict] = []
+
+    def evaluate_variants(self, changes, select=None):
+        out = []
+        for ch in changes:
+            x, y = ch.get(("S", 0, 1), 0.5), ch.get(("S", 1, 1), 0.5)
+            out.append(_Res([_R("TST-A", "a", 1 - x, 1 - x, "pass"),
+                             _R("TST-B", "b", 1 - 0.5 * y, 1 - 0.5 * y, "pass"),
+                             _R("TST-C", "c", 1.0, 1.0, "pass")]))
+            self.evaluations += 1
+            self.variants.append(ch)
+        return out
+
+
+def test_disjoint_tolerances_share_variants(monkeypatch):
+    tols = [Tolerance("x", "T!A3", _Bind(0), 0.0, 1.0, 0.5),
+            Tolerance("y", "T!A4", _Bind(1), 0.0, 1.0, 0.5)]
+    ev = _Ev()
+    nominal = ev.evaluate_variants([{}])[0]
+    ev.evaluations = 0
+    affects = {("TST-A", "a"): (0,), ("TST-B", "b"): (1,), ("TST-C", "c"): (0,)}
+    monkeypatch.setattr(influence, "affecting",
+                        lambda nom, e, t: influence.Influence(affects))
+    c = {(r.rule, r.item): r for r in evaluate_corners(nominal, ev, tols)}
+    a, b = c[("TST-A", "a")], c[("TST-B", "b")]
+    assert a.worst_value == 0.0 and a.corner == [tols[0].end_text(1.0)]
+    assert b.worst_value == 0.5 and b.corner == [tols[1].end_text(1.0)]
+    assert not a.inside and not b.inside
+    assert c[("TST-C", "c")].corner == ["unaffected by the tolerances"]
+    # 2 variants for both corners of x and of y, 1 for both face midpoints
+    assert ev.evaluations == 3
+    assert {("S", 0, 1), ("S", 1, 1)} <= set(ev.variants[1])
