@@ -205,3 +205,28 @@ def test_disjoint_tolerances_share_variants(monkeypatch):
     # 2 variants for both corners of x and of y, 1 for both face midpoints
     assert ev.evaluations == 3
     assert {("S", 0, 1), ("S", 1, 1)} <= set(ev.variants[1])
+
+
+class _EvBoth(_Ev):
+    """As :class:`_Ev`, but x and y both at their max is not a valid workbook."""
+
+    def evaluate_variants(self, changes, select=None):
+        from checker.errors import InputError, InputErrors
+
+        out = super().evaluate_variants(changes, select)
+        return [InputErrors([InputError("variant", "x and y")]) if ch.get(("S", 0, 1)) == 1.0
+                and ch.get(("S", 1, 1)) == 1.0 else r for ch, r in zip(changes, out)]
+
+
+def test_a_packed_variant_that_is_not_valid_is_split(monkeypatch):
+    tols = [Tolerance("x", "T!A3", _Bind(0), 0.0, 1.0, 0.5),
+            Tolerance("y", "T!A4", _Bind(1), 0.0, 1.0, 0.5)]
+    ev = _EvBoth()
+    nominal = ev.evaluate_variants([{}])[0]
+    affects = {("TST-A", "a"): (0,), ("TST-B", "b"): (1,), ("TST-C", "c"): ()}
+    monkeypatch.setattr(influence, "affecting",
+                        lambda nom, e, t: influence.Influence(affects))
+    c = {(r.rule, r.item): r for r in evaluate_corners(nominal, ev, tols)}
+    # each alone at its max is valid: the worst corners are found as without packing
+    assert c[("TST-A", "a")].worst_value == 0.0
+    assert c[("TST-B", "b")].worst_value == 0.5

@@ -4,17 +4,32 @@ The workbook's ``Tolerances`` sheet declares ranges of inputs (bearing clearance
 temperature, tightening torque and friction or VDI 2230's tightening factor, peak pressure,
 material minimum strength): ``sheet | row | column | min | max | unit``; blank min or max =
 today's value; unit ``% of nominal`` = deviations in percent. Each result is judged at the
-worst corner of the tolerances that affect it:
+worst corner of the tolerances that move it:
 
-1. one at a time: each tolerance at its min and at its max alone (all rules): a tolerance
-   affects a result when its margin moves, and the size of the move ranks the tolerances;
-2. the corners: all 2^k corners of the k tolerances affecting a group of results for
-   k <= :data:`FULL_K`; beyond, the 2^FULL_K corners of the FULL_K most influential ones with
-   the others at their worse end found in step 1 (the design is stated with the result);
-3. the worst point is not inside the box: at each result's worst corner every tolerance is
+0. which tolerances can move which result is read from the calculation graph, without
+   evaluating (:mod:`checker.remedies.influence`: the inputs a tolerance changes, the
+   calculations that read them and everything downstream, the rule's quantity; a bearing's
+   clearance moves only the bearings of its type); where the structure cannot tell, every
+   tolerance can;
+1. the corners: all 2^k corners of the k tolerances that can move a result, for
+   k <= :data:`FULL_K`; the tolerances that do move it are those whose flip between two
+   corners changes its margin (a result no tolerance moves is "unaffected"). For more than
+   FULL_K tolerances, each one at its min and at its max alone first (one at a time: which
+   move it, and by how much), then the 2^FULL_K corners of the FULL_K most influential with
+   the others at their worse end (the design is stated with the result);
+2. the worst point is not inside the box: at each result's worst corner every tolerance is
    set back to its middle (the face midpoint); where that is worse than the corner the
    response is not monotonic and the worst point along it is refined (golden section); the
-   nominal point itself is also compared.
+   nominal point itself is also compared;
+3. the value and status at the worst point, read from the evaluation there.
+
+Every evaluation is a check of the workbook at a point of the box, and every point a result
+needs is evaluated directly: a result's point fixes the tolerances that can move it (those
+that do not move it at today's value), so points of results that no common tolerance moves
+share one variant (the corners of the main bearings' films with those of the big ends', each
+clearance at its own end). A variant is checked on the rules of the results it serves; the
+variants of a step are checked in batches (:class:`_Packer`). On the I4 template the 55
+evaluations of one at a time over every rule followed by one variant per corner became 19.
 
 The verdict uses the worst point: a result that passes at nominal and fails there fails.
 """
@@ -255,8 +270,8 @@ class _Packer:
 
     def _serving(self, key, need) -> Any:
         for pt, rules, res in self.done:
-            if (rules is None or key[0] in rules) and all(pt.get(i) == u
-                                                          for i, u in need.items()):
+            if (rules is None or key[0] in rules) and not isinstance(res, InputErrors) and all(
+                    pt.get(i) == u for i, u in need.items()):
                 return res
         return _NONE
 
@@ -283,13 +298,18 @@ class _Packer:
         got = self._run([({i: u for i, u in c.items() if u is not None}, rules)
                          for c, rules, _ in packs])
         for (_, _, ns), res in zip(packs, got):
-            if isinstance(res, InputErrors) and len({tuple(sorted(self._need(
-                    requests[n][0], requests[n][1]).items())) for n in ns}) > 1:
-                # a packed variant is not a valid workbook: its requests one by one
-                alone = self._run([({i: u for i, u in self._need(*requests[n]).items()
-                                     if u is not None}, {requests[n][0][0]}) for n in ns])
-                for n, r in zip(ns, alone):
-                    out[n] = r
+            by_need: dict[tuple, list[int]] = {}
+            for n in ns:
+                need = self._need(*requests[n])
+                by_need.setdefault(tuple((i, u) for i, u in sorted(need.items())
+                                         if u is not None), []).append(n)
+            if isinstance(res, InputErrors) and len(by_need) > 1:
+                # a packed variant is not a valid workbook: each point of it alone
+                alone = self._run([(dict(k), {requests[n][0][0] for n in v})
+                                   for k, v in by_need.items()])
+                for v, r in zip(by_need.values(), alone):
+                    for n in v:
+                        out[n] = r
                 continue
             for n in ns:
                 out[n] = res
@@ -323,9 +343,6 @@ class _Packer:
                 batches.append((set(rules), [k], own))
         out: list[Any] = [None] * len(variants)
         for sel, ks, keys in batches:
-            import os
-            if os.environ.get("CORNERS_DEBUG"):
-                print("   run", [variants[k][0] for k in ks], sorted(sel))
             res = self.ev.evaluate_variants([_changes(self.tols, variants[k][0]) for k in ks],
                                             select=sorted(sel))
             self.computed |= keys or set()
