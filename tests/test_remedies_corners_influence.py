@@ -230,3 +230,31 @@ def test_a_packed_variant_that_is_not_valid_is_split(monkeypatch):
     # each alone at its max is valid: the worst corners are found as without packing
     assert c[("TST-A", "a")].worst_value == 0.0
     assert c[("TST-B", "b")].worst_value == 0.5
+
+
+class _EvSum:
+    """One result, margin 1 - sum_i w_i x_i over seven tolerances (x_i in [0, 1])."""
+
+    W = (0.7, 0.6, 0.5, 0.4, 0.3, 0.2, 0.01)
+
+    def __init__(self):
+        self.evaluations = 0
+
+    def evaluate_variants(self, changes, select=None):
+        out = []
+        for ch in changes:
+            m = 1 - sum(w * ch.get(("S", i, 1), 0.5) for i, w in enumerate(self.W))
+            out.append(_Res([_R("TST-S", "s", m, m, "pass" if m >= 0 else "fail")]))
+            self.evaluations += 1
+        return out
+
+
+def test_more_tolerances_than_full_k_are_ranked_one_at_a_time():
+    tols = [Tolerance(f"t{i}", f"T!A{i + 3}", _Bind(i), 0.0, 1.0, 0.5) for i in range(7)]
+    ev = _EvSum()
+    nominal = ev.evaluate_variants([{}])[0]
+    (c,) = evaluate_corners(nominal, ev, tols)
+    assert c.design.startswith("2^6 corners of the 6 most influential of 7")
+    assert c.corner == [t.end_text(1.0) for t in tols]  # the least influential at its worse end
+    assert c.worst_value == pytest.approx(1 - sum(_EvSum.W))
+    assert c.worst_status == "fail" and not c.inside
