@@ -258,3 +258,7 @@ def test_more_tolerances_than_full_k_are_ranked_one_at_a_time():
     assert c.corner == [t.end_text(1.0) for t in tols]  # the least influential at its worse end
     assert c.worst_value == pytest.approx(1 - sum(_EvSum.W))
     assert c.worst_status == "fail" and not c.inside
+
+
+def test_itemwise_names_registered_calculations():
+    assert set(influence.ITEMWISE) <= set(graph.CALCULATIONS)

@@ -35,7 +35,7 @@ ALL = "all"
 ITEMWISE: dict[str, tuple[str, str, frozenset[str]]] = {
     name: ("bearings", "type", frozenset({"clearance"}))
     for name in ("moft", "moft_short", "moft_finite", "bearing_heat_balance", "film_pressure",
-                 "specific_load")
+                 "film_pressure_short", "specific_load")
 }
 """Calculation -> (engine part, class field, fields): a change of those fields of some rows of
 the part moves only the items of the same class of the calculation's quantities over items;
