@@ -91,7 +91,10 @@ def _short_tolerance(t) -> str:
     name = t.name
     if name.startswith(t.binding.sheet + " "):
         name = name[len(t.binding.sheet) + 1:]
-    return re.sub(r"\(([^()=]*?) = ([^()]*)\)", r"(\2)", name)
+    name = re.sub(r"\(([^()=]*?) = ([^()]*)\)", r"(\2)", name).replace(" (all)", "")
+    if len(name) > 1 and name[0].isupper() and name[1].islower():
+        name = name[0].lower() + name[1:]  # "Oil supply temperature" in a list
+    return name
 
 
 def corner_text(corner: list[str], tolerances: list) -> str:
@@ -203,6 +206,11 @@ def _remedy_rows(groups: list[dict], names: dict[str, str]) -> tuple[list, list]
     return rows, css
 
 
+def _cell(rm, v: Any) -> Any:
+    """A lever value for the workbook: the JSON's number, a choice as its text."""
+    return v if isinstance(v, (int, float)) else rm.value_text(v)
+
+
 def _remedies_sheet(rem: dict) -> dict:
     """Every result and lever with every number of the JSON ``remedies``."""
     def num(v):
@@ -213,12 +221,13 @@ def _remedies_sheet(rem: dict) -> dict:
         for rm in x.remedies:
             d = rm.as_dict()
             rows.append([x.rule, x.item, x.status, d["name"], d["input"], d["unit"],
-                         rm.value_text(rm.nominal), rm.value_text() if rm.found else "",
+                         _cell(rm, d["nominal"]), _cell(rm, d["value"]) if rm.found else "",
                          num(d["change"]), num(d["change_percent"]),
                          num(d["margin_at_value"]), d["reason"] or "", num(d["best_margin"]),
                          "; ".join(f"{e['rule']} {e['item']} {e['from']} → {e['to']}"
-                                   + (f" ({with_unit(e['value'], e.get('unit'))})"
-                                      if e.get("value") is not None else "")
+                                   + (f" ({e['value']:.6g} {e.get('unit') or ''})".replace(
+                                       " )", ")") if isinstance(e.get("value"), (int, float))
+                                      else "")
                                    for e in rm.side_effects),
                          " ".join(x.conflicts)])
         if not x.remedies:
@@ -296,7 +305,7 @@ def _corners_sheet(cor: dict) -> dict:
     rows = [[c.rule, c.item, c.unit, n(c.nominal_value), n(c.nominal_margin),
              _status(c.nominal_status), n(c.worst_value), n(c.worst_margin),
              _status(c.worst_status), "; ".join(c.corner) or "no tolerance affects it",
-             "yes" if c.inside else "", c.design] for c in cor["results"]]
+             "yes" if c.inside else "no", c.design] for c in cor["results"]]
     return {"type": "table", "detail": True, "sheet": CORNERS_SHEET,
             "caption": "Every result at nominal values and at its worst tolerance corner:"
             " value, margin, status, the corner (with the end values) and the corners tried",
@@ -387,8 +396,9 @@ def remedies_section(res: CheckResult) -> dict:
             blocks.append({"type": "table", "caption": "Tolerances (workbook sheet Tolerances)",
                            "columns": ["tolerance", "cells", "min", "today", "max", "source"],
                            "rows": [[_short_tolerance(t), _cells(t.binding.labels),
-                                     with_unit(t.low, t.unit), with_unit(t.nominal, t.unit),
-                                     with_unit(t.high, t.unit), t.source or "-"]
+                                     with_unit(t.low, t.unit, sig=6),
+                                     with_unit(t.nominal, t.unit, sig=6),
+                                     with_unit(t.high, t.unit, sig=6), t.source or "-"]
                                     for t in tols],
                            "widths": [19, 15, 9, 9, 9, 39]})
         groups = _corner_groups(cor["results"], tols)
