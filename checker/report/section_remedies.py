@@ -400,7 +400,7 @@ def remedies_section(res: CheckResult) -> dict:
                                      with_unit(t.nominal, t.unit, sig=6),
                                      with_unit(t.high, t.unit, sig=6), t.source or "-"]
                                     for t in tols],
-                           "widths": [19, 15, 9, 9, 9, 39]})
+                           "widths": [19, 15, 10, 10, 10, 36]})
         groups = _corner_groups(cor["results"], tols)
         rows, css = [], []
         for g in groups:
