@@ -255,6 +255,8 @@ def _bounds(lv) -> str:
                 vals.append(", ".join(f"{k} {v:g}" for k, v in c.items()))
             else:
                 vals.append(f"{c:g}" if isinstance(c, (int, float)) else str(c))
+        if len(vals) > 6:  # the remedy names the choice it takes
+            return f"{vals[0]}, {vals[1]} … {vals[-1]} ({len(vals)} choices)"
         return ", ".join(vals)
     if lv.limits is not None:
         return f"{lv.limits[0]:g}..{lv.limits[1]:g} {lv.unit}".strip()
