@@ -3,6 +3,9 @@
 Failures first, then warnings, results that could not be evaluated, and passes; within each
 group one item's results sit together; a finding repeated on several items (the same rule,
 value, limit and case, e.g. four identical big-end bearings) is one row naming every item.
+With ``--remedies`` / ``--corners`` a failure's note adds what it takes to pass (the smallest
+change and the other results it changes) and its worst tolerance corner; results with the same
+answers stay one row.
 """
 
 from __future__ import annotations
@@ -64,7 +67,7 @@ def kind(r: RuleResult) -> str:
 def _note(r: RuleResult) -> str:
     """The note under a row: why a result is not evaluated or an internal error, or the
     first finding of a failed result (passes carry their findings in the module section).
-    What it takes to pass and the worst tolerance corner follow (:func:`_extra_text`)."""
+    What it takes to pass and the worst tolerance corner follow (:class:`_Extras`)."""
     if r.status == "not_evaluated":
         # the computed value of a rule without its limit is shown in the module section
         return re.sub(r" \(computed, not judged: [^)]*\)$", "", r.message)
