@@ -3,6 +3,9 @@
 Failures first, then warnings, results that could not be evaluated, and passes; within each
 group one item's results sit together; a finding repeated on several items (the same rule,
 value, limit and case, e.g. four identical big-end bearings) is one row naming every item.
+With ``--remedies`` / ``--corners`` a failure's note adds what it takes to pass (the smallest
+change and the other results it changes) and its worst tolerance corner; results with the same
+answers stay one row.
 """
 
 from __future__ import annotations
@@ -63,22 +66,81 @@ def kind(r: RuleResult) -> str:
 
 def _note(r: RuleResult) -> str:
     """The note under a row: why a result is not evaluated or an internal error, or the
-    first finding of a failed result (passes carry their findings in the module section)."""
+    first finding of a failed result (passes carry their findings in the module section).
+    What it takes to pass and the worst tolerance corner follow (:class:`_Extras`)."""
     if r.status == "not_evaluated":
         # the computed value of a rule without its limit is shown in the module section
         return re.sub(r" \(computed, not judged: [^)]*\)$", "", r.message)
     if r.internal_error:
         return r.message
-    # --remedies / --corners (checker.remedies): what it takes to pass, the worst corner
-    extra = " ".join(x for x in (r.what_it_takes and r.what_it_takes + ".", r.worst_corner
-                                 and "At the tolerance corners: " + r.worst_corner + ".")
-                     if x and r.status != "pass")
     if not r.findings or r.status == "pass":
-        return extra
+        return ""
     first = r.findings[0]
     more = len(r.findings) - 1
     return first + (f" (and {more} more finding{'s' if more > 1 else ''} in the module"
-                    " section)" if more else "") + (" " + extra if extra else "")
+                    " section)" if more else "")
+
+
+class _Extras:
+    """--remedies / --corners (:mod:`checker.remedies`): per result what it takes to pass
+    and the worst tolerance corner, as page 1 says them; results with the same answers
+    (four identical big ends) share a row, which names its own items once."""
+
+    def __init__(self, res: CheckResult):
+        rem, cor = getattr(res, "remedies", None), getattr(res, "corners", None)
+        self.rem = {(x.rule, x.item): x for x in (rem or {}).get("results", [])}
+        self.cor = {(c.rule, c.item): c for c in (cor or {}).get("results", [])}
+        self.tols = (cor or {}).get("tolerances", [])
+
+    def key(self, r: RuleResult) -> tuple:
+        """What the extra text of ``r`` depends on (equal keys: one row)."""
+        if r.status == "pass":
+            return ()
+        from .section_remedies import _signature, corner_text
+
+        x = self.rem.get((r.rule, r.item))
+        c = self.cor.get((r.rule, r.item))
+        ck = None
+        if c is not None and c.tolerances and c.worst_value is not None:
+            ck = (c.worst_value, c.worst_status, corner_text(c.corner, self.tols), c.inside)
+        return (_signature(x) if x is not None else r.what_it_takes,
+                ck if c is not None else r.worst_corner)
+
+    def text(self, results: list[RuleResult]) -> str:
+        """``To pass: ... At the tolerance corners: ...`` for a row of ``results``."""
+        r = results[0]
+        if r.status == "pass":
+            return ""
+        from ..display import with_unit
+        from .section_remedies import corner_text, effects_text
+
+        mine = {(x.rule, x.item) for x in results}
+        parts = []
+        x = self.rem.get((r.rule, r.item))
+        if x is None:
+            parts.append(r.what_it_takes)
+        elif not x.remedies:
+            parts.append("What it takes to pass: no design lever is listed for this rule")
+        elif x.status != "pass":
+            b = x.best()
+            if b is None:
+                txt = "no lever of the table passes it within its bounds"
+            else:
+                fx = effects_text(b.side_effects, mine, sep=", ")
+                txt = b.text() + (f"; side effects {fx}" if fx else
+                                  "; no other result changes")
+            if x.conflicts:
+                txt += (". " + x.conflicts[0].split(" (")[0]
+                        + ": see 'What it takes to pass'")
+            parts.append("To pass: " + txt)
+        c = self.cor.get((r.rule, r.item))
+        if c is None:
+            parts.append(r.worst_corner and "At the tolerance corners: " + r.worst_corner)
+        elif c.tolerances and c.worst_value is not None:
+            parts.append(f"At the tolerance corners: {with_unit(c.worst_value, r.unit)}"
+                         f" {c.worst_status} at {corner_text(c.corner, self.tols)}"
+                         + (" (inside the box)" if c.inside else ""))
+        return " ".join(p + "." for p in parts if p)
 
 
 _CELL = re.compile(r"\b[A-Za-z][A-Za-z0-9_]*![A-Z]{1,3}[0-9]+\b")
@@ -106,6 +168,7 @@ def rows(res: CheckResult, results: list[RuleResult] | None = None) -> list[Row]
         item_order.setdefault(r.item, len(item_order))
     merged: dict[tuple, Row] = {}
     cells: dict[tuple, list[list[str]]] = {}
+    extras = _Extras(res)
     for r in results:
         k = kind(r)
         value = "-" if r.value is None else r.value_text
@@ -116,7 +179,7 @@ def rows(res: CheckResult, results: list[RuleResult] | None = None) -> list[Row]
             # items (one cell each) is one row
             pattern = _CELL.sub("\x00", note).replace(r.item, "\x01") if r.item else note
             value, case = "-", ""
-        key = (k, r.rule, case, value, r.limit, pattern, r.override)
+        key = (k, r.rule, case, value, r.limit, pattern, r.override, extras.key(r))
         row = merged.get(key)
         cells.setdefault(key, []).append(_CELL.findall(note))
         if row is None:
@@ -133,6 +196,10 @@ def rows(res: CheckResult, results: list[RuleResult] | None = None) -> list[Row]
                 refs = [c[j] for c in cells[key] if len(c) > j]
                 text = text.replace("\x00", _cell_span(refs), 1)
             row.note = text
+    for row in merged.values():
+        extra = extras.text(row.results)
+        if extra:
+            row.note = (row.note + " " + extra) if row.note else extra
     order = {g[0]: i for i, g in enumerate(GROUPS)}
     out = sorted(merged.values(), key=lambda x: (order[x.kind], item_order.get(x.items[0], 0),
                                                  x.rule, x.case))
