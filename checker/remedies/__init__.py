@@ -27,9 +27,11 @@ def attach(res, remedies: bool = False, corners: bool = False, levers_file: str 
     """Compute remedies and/or corners for the check ``res`` and store them on it
     (``res.remedies``, ``res.corners``; per result ``what_it_takes`` and ``worst_corner``).
 
-    The variants are checked in this process and ``workers - 1`` forked helper processes
-    (default: one process per core, at most 4; ``workers=1``: this process alone); the
-    answers do not depend on it.
+    The remedies' variants are checked in this process and ``workers - 1`` forked helper
+    processes (default: one process per core, at most 4; ``workers=1``: this process alone);
+    the answers do not depend on it. The corners are checked in this process: their variants
+    share calculations (the loads and torsion at one peak pressure) that separate processes
+    would each compute again, and on the I4 two processes took longer than one.
 
     Needs the check's workbook file (variants change its cells in memory). Raises
     :class:`checker.errors.InputErrors` for a bad Tolerances sheet and
@@ -54,7 +56,8 @@ def attach(res, remedies: bool = False, corners: bool = False, levers_file: str 
         from .corners import read_tolerances
 
         tols = read_tolerances(base)  # a bad Tolerances sheet: an input error before any work
-    ev.start_workers(workers)
+    if remedies:
+        ev.start_workers(workers)
     try:
         _attach(res, ev, table, remedies, tols, levers_file)
     finally:
@@ -83,6 +86,7 @@ def _attach(res, ev, table, remedies: bool, tols, levers_file: str | None) -> No
         res.remedies = {"results": out, "levers": levers,
                         "evaluations": ev.evaluations - n0,
                         "seconds": time.perf_counter() - t0}
+        ev.stop_workers()
     if tols is not None:
         from ..display import with_unit
         from .corners import evaluate_corners
