@@ -87,3 +87,30 @@ def test_helper_processes_give_the_same_results(i4):
     assert isinstance(got[-1], InputErrors)
     for a, b in zip(want[:-1] + want[:2], got[:-1] + again):
         assert [r.as_dict() for r in a.results] == [r.as_dict() for r in b.results]
+
+
+def test_groups_shared_with_a_helper_equal_one_process(i4):
+    """Groups of variants (each on its own rules) spread over a helper process: the same rule
+    results as one process, in the order asked."""
+    base = read_raw_workbook(i4)
+    table = load_rules()
+    clear = bind(base, "Bearings", (_field("Bearings", "clearance"),), "um", ("M3",), ())
+    torque = bind(base, "Joints", (_field("Joints", "tightening_torque"),), "N m",
+                  ("crank nose",), ())
+    assert not isinstance(clear, str) and not isinstance(torque, str)
+    groups = [([clear.changes(clear.nominal[0] * f) for f in (0.9, 1.1)], ["BRG-003"]),
+              ([torque.changes(torque.nominal[0] * f) for f in (0.8, 0.9, 1.1)], ["JNT"]),
+              ([clear.changes(clear.nominal[0] * 0.8)], ["BRG-004"])]
+    alone = Evaluator(base, table)
+    want = alone.evaluate_groups(groups)
+    shared = Evaluator(base, table)
+    shared.start_workers(2)
+    try:
+        got = shared.evaluate_groups(groups)
+    finally:
+        shared.release()
+    assert shared.evaluations == alone.evaluations == 6
+    assert [len(g) for g in got] == [2, 3, 1]
+    for a, b in zip(want, got):
+        for x, y in zip(a, b):
+            assert [r.as_dict() for r in x.results] == [r.as_dict() for r in y.results]

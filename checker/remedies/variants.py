@@ -111,6 +111,41 @@ class Evaluator:
         self.wall += time.perf_counter() - t0
         return out
 
+    def evaluate_groups(self, groups: list[tuple[list[Changes], list[str] | None]]
+                        ) -> list[list[Any]]:
+        """:meth:`evaluate_variants` of several groups ``(changes, select)`` (e.g. the
+        variants of one round of root finding, grouped by the rules they are checked on).
+        With helper processes each group is checked whole in one process (the groups, the
+        largest first, to the process with the fewest variants so far): the variants of one
+        group share their calculations (the torsion of a damper group, the loads of a peak
+        pressure) in that process's cache."""
+        if self._pool is None or len(groups) < 2:
+            return [self.evaluate_variants(ch, sel) for ch, sel in groups]
+        n = self.workers
+        load = [0] * n
+        mine: list[list[int]] = [[] for _ in range(n)]
+        for g in sorted(range(len(groups)), key=lambda g: (-len(groups[g][0]), g)):
+            k = min(range(n), key=lambda k: (load[k], k))
+            mine[k].append(g)
+            load[k] += len(groups[g][0])
+        futures = [(gs, self._pool.submit(_helper_groups, [groups[g] for g in gs]))
+                   for gs in mine[1:] if gs]
+        out: list[list[Any]] = [[] for _ in groups]
+        for g in mine[0]:
+            out[g] = self._evaluate_here(*groups[g])
+        for gs, fut in futures:
+            try:
+                got, n_eval = fut.result()
+            except Exception:  # noqa: BLE001 - a helper that died: check its groups here
+                got, n_eval = [self._evaluate_here(*groups[g]) for g in gs], 0
+            self.evaluations += n_eval
+            for g, res in zip(gs, got):
+                for r in res:
+                    if hasattr(r, "results"):
+                        r.table = self.table
+                out[g] = res
+        return out
+
     def start_workers(self, workers: int | None = None) -> None:
         """Fork ``workers - 1`` helper processes (default: one per core, at most 4 in all)
         that check variants with a copy of this process's calculation cache as it is now
@@ -270,6 +305,17 @@ def _helper_evaluate(changes: list[Changes], select: list[str] | None) -> tuple[
                                     outcome=dataclasses.replace(r.outcome, quantities={}))
         slim.append(r)
     return slim, ev.evaluations - n0
+
+
+def _helper_groups(groups: list[tuple[list[Changes], list[str] | None]]
+                   ) -> tuple[list[list], int]:
+    """In a helper process: :func:`_helper_evaluate` of each group."""
+    out, n = [], 0
+    for changes, select in groups:
+        res, k = _helper_evaluate(changes, select)
+        out.append(res)
+        n += k
+    return out, n
 
 
 def _digest(ch: Changes) -> int:
