@@ -28,6 +28,7 @@ from checker.remedies.corners import Tolerance, evaluate_corners, read_tolerance
 from checker.remedies.variants import Evaluator
 from checker.ruletable import load_rules
 from checker.workbook.loader import convert_raw, read_raw_workbook
+from tests.test_remedies_corners import _R, _Bind, _Res  # the closed-form test doubles
 
 EXPECTED = json.loads((Path(__file__).with_name("test_remedies_corners_expected.json"))
                       .read_text(encoding="utf-8"))
@@ -143,30 +144,6 @@ def test_engine_level_sum_and_other_families(i4):
 
 
 # --------------------------------------------------------------- packing (closed forms)
-@dataclasses.dataclass
-class _R:
-    rule: str
-    item: str
-    value: float
-    margin: float
-    status: str
-    unit: str = ""
-    severity: str = "error"
-
-
-class _Res:
-    def __init__(self, results):
-        self.results = results
-
-
-class _Bind:
-    def __init__(self, k):
-        self.k = k
-
-    def changes(self, v):
-        return {("S", self.k, 1): v}
-
-
 class _Ev:
     """Three results: A = 1 - x (x in [0, 1], nominal 0.5), B = 1 - 0.5 y, C = 1 (the
     structure says x may move it)."""

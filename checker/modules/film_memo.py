@@ -38,18 +38,47 @@ _SCALARS = ("speed", "d", "length", "c", "mu", "full")
 _LINK_RTOL = 1e-6
 """Relative tolerance of the link test (the kernel shares orbits equal to about 1e-10)."""
 
-_memo: OrderedDict[str, dict] = OrderedDict()
-_bytes = 0
-stats = {"hits": 0, "solved": 0}
+class RowMemo(OrderedDict):
+    """Per-row results by key, least recently used first out beyond ``max_bytes`` (``size``
+    gives an entry's bytes); ``stats`` counts rows taken from it and rows solved. Used by this
+    module and :mod:`checker.modules.heat_memo`."""
+
+    def __init__(self, max_bytes: int, size: Callable[[dict], int]):
+        super().__init__()
+        self.max_bytes, self.size, self.bytes = max_bytes, size, 0
+        self.stats = {"hits": 0, "solved": 0}
+
+    def reset(self) -> None:
+        """Empty it and its counts."""
+        self.clear()
+        self.bytes = 0
+        self.stats.update(hits=0, solved=0)
+
+    def store(self, key: str, entry: dict) -> None:
+        """Keep ``entry`` (unless already there or larger than the bound), dropping the
+        oldest entries beyond the bound."""
+        size = self.size(entry)
+        if key in self or size > self.max_bytes:
+            return
+        self[key] = entry
+        self.bytes += size
+        while self.bytes > self.max_bytes and self:
+            _, old = self.popitem(last=False)
+            self.bytes -= self.size(old)
+
+
+def _array_bytes(entry: dict) -> int:
+    return sum(v.nbytes for v in entry.values() if isinstance(v, np.ndarray))
+
+
+_memo = RowMemo(MAX_BYTES, _array_bytes)
+stats = _memo.stats
 """Rows taken from the memo and rows solved by the kernel since the last :func:`clear`."""
 
 
 def clear() -> None:
     """Empty the memo."""
-    global _bytes
-    _memo.clear()
-    _bytes = 0
-    stats.update(hits=0, solved=0)
+    _memo.reset()
 
 
 _LOADS = ("fy", "fx", "omega_journal", "omega_bearing")
@@ -135,18 +164,6 @@ _FIELDS = ("h_min", "eps_max", "theta_h_min", "p_max", "theta_p_max", "collapse"
            "n_cycles", "message", "eps_x", "eps_y")
 
 
-def _store(key: str, entry: dict) -> None:
-    global _bytes
-    size = sum(v.nbytes for v in entry.values() if isinstance(v, np.ndarray))
-    if key in _memo or size > MAX_BYTES:
-        return
-    _memo[key] = entry
-    _bytes += size
-    while _bytes > MAX_BYTES and _memo:
-        _, old = _memo.popitem(last=False)
-        _bytes -= sum(v.nbytes for v in old.values() if isinstance(v, np.ndarray))
-
-
 def orbits(preps: list[dict], model: str, kernel: Callable[[list[dict], str], None],
            tag: str = "") -> None:
     """Fill ``p["res"]`` of every prepared engine like ``kernel(preps, model)`` does, solving
@@ -196,7 +213,7 @@ def orbits(preps: list[dict], model: str, kernel: Callable[[list[dict], str], No
             if a in pos:
                 e = {f: (None if fresh[f] is None else fresh[f][pos[a]].copy()) for f in _FIELDS}
                 e["theta"] = fresh["theta"]
-                _store(key, e)
+                _memo.store(key, e)
                 stats["solved"] += 1
             else:
                 e = got[a]

@@ -35,7 +35,6 @@ The memo holds copies of the per-row results (a few kB per bearing), at most :da
 from __future__ import annotations
 
 import hashlib
-from collections import OrderedDict
 from collections.abc import Callable
 
 import numpy as np
@@ -49,20 +48,6 @@ template, 2 x 61 points, is about 20 kB)."""
 _LINK_RTOL = 1e-6
 """Relative tolerance of the link test (the kernel shares orbits equal to about 1e-10)."""
 
-_memo: OrderedDict[str, dict] = OrderedDict()
-_bytes = 0
-stats = {"hits": 0, "solved": 0}
-"""Bearing rows taken from the memo and rows solved since the last :func:`clear`."""
-
-
-def clear() -> None:
-    """Empty the memo."""
-    global _bytes
-    _memo.clear()
-    _bytes = 0
-    stats.update(hits=0, solved=0)
-
-
 def _size(entry: dict) -> int:
     n = 0
     for v in entry.values():
@@ -72,16 +57,14 @@ def _size(entry: dict) -> int:
     return n
 
 
-def _store(key: str, entry: dict) -> None:
-    global _bytes
-    size = _size(entry)
-    if key in _memo or size > MAX_BYTES:
-        return
-    _memo[key] = entry
-    _bytes += size
-    while _bytes > MAX_BYTES and _memo:
-        _, old = _memo.popitem(last=False)
-        _bytes -= _size(old)
+_memo = film_memo.RowMemo(MAX_BYTES, _size)
+stats = _memo.stats
+"""Bearing rows taken from the memo and rows solved since the last :func:`clear`."""
+
+
+def clear() -> None:
+    """Empty the memo."""
+    _memo.reset()
 
 
 def _links(rows: np.ndarray, scalars: np.ndarray, feats: np.ndarray) -> list[list[int]]:
@@ -158,7 +141,7 @@ def balance(rows: np.ndarray, facts: list[bytes], scalars: np.ndarray, loads: di
     if not got:  # nothing to reuse: the cold solution
         fresh = solve(rows)
         for a in range(n_rows):
-            _store(keys[a], {k: v[a].copy() for k, v in fresh.items()})
+            _memo.store(keys[a], {k: v[a].copy() for k, v in fresh.items()})
         stats["solved"] += n_rows
         return fresh
     fresh = {}
@@ -174,7 +157,7 @@ def balance(rows: np.ndarray, facts: list[bytes], scalars: np.ndarray, loads: di
     for a in range(n_rows):
         if a in pos:
             e = {k: v[pos[a]].copy() for k, v in fresh.items()}
-            _store(keys[a], e)
+            _memo.store(keys[a], e)
         else:
             e = got[a]
             if keys[a] in _memo:

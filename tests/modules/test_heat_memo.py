@@ -153,7 +153,7 @@ def test_clear_and_memory_bound(i4, nominal):
     film_memo.clear()
     heat_memo.clear()
     api.check(nominal)
-    assert heat_memo.stats["solved"] == 9 and 0 < heat_memo._bytes <= heat_memo.MAX_BYTES
+    assert heat_memo.stats["solved"] == 9 and 0 < heat_memo._memo.bytes <= heat_memo.MAX_BYTES
     heat_memo.clear()
-    assert heat_memo._bytes == 0 and not heat_memo._memo
+    assert heat_memo._memo.bytes == 0 and not heat_memo._memo
     assert heat_memo.stats == {"hits": 0, "solved": 0}
