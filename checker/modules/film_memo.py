@@ -54,6 +54,20 @@ class RowMemo(OrderedDict):
         self.bytes = 0
         self.stats.update(hits=0, solved=0)
 
+    def to_solve(self, keys: list[str], links: list[list[int]]) -> set[int]:
+        """The rows whose key is not kept, with every earlier row linked to one of them
+        (``links[a]``: the rows before ``a`` whose orbits the kernel might share with its
+        own), so that the kernel sees the same sharing as in a cold evaluation."""
+        todo = {a for a, k in enumerate(keys) if k not in self}
+        grow = list(todo)
+        while grow:
+            a = grow.pop()
+            for b in links[a]:
+                if b not in todo:
+                    todo.add(b)
+                    grow.append(b)
+        return todo
+
     def store(self, key: str, entry: dict) -> None:
         """Keep ``entry`` (unless already there or larger than the bound), dropping the
         oldest entries beyond the bound."""
@@ -184,14 +198,7 @@ def orbits(preps: list[dict], model: str, kernel: Callable[[list[dict], str], No
             for b in links[a]:
                 h.update(digests[b])
             keys.append(h.hexdigest())
-        todo = {a for a in range(n_rows) if keys[a] not in _memo}
-        grow = list(todo)
-        while grow:  # solve with every earlier row linked to a solved row
-            a = grow.pop()
-            for b in links[a]:
-                if b not in todo:
-                    todo.add(b)
-                    grow.append(b)
+        todo = _memo.to_solve(keys, links)
         plan.append((keys, sorted(todo), per))
     # the memo's entries this call uses, taken before storing new ones (which may evict)
     hits = [{a: _memo[k] for a, k in enumerate(keys) if a not in set(todo)}

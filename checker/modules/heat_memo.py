@@ -128,14 +128,7 @@ def balance(rows: np.ndarray, facts: list[bytes], scalars: np.ndarray, loads: di
         for b in links[a]:
             h.update(keys[b].encode())
         keys.append(h.hexdigest())
-    todo = {a for a in range(n_rows) if keys[a] not in _memo}
-    grow = list(todo)
-    while grow:  # solved with every earlier row linked to a solved row
-        a = grow.pop()
-        for b in links[a]:
-            if b not in todo:
-                todo.add(b)
-                grow.append(b)
+    todo = _memo.to_solve(keys, links)
     order = sorted(todo)
     got = {a: _memo[keys[a]] for a in range(n_rows) if a not in todo}
     if not got:  # nothing to reuse: the cold solution
