@@ -44,8 +44,6 @@ class Evaluator:
     evaluations: int = 0
     seconds: float = 0.0
     """Time spent checking variants in this process [s]."""
-    wall: float = 0.0
-    """Time of the calls shared with helper processes [s]."""
     keep_bytes: int = 512 * 2**20
     """Memory of the calculation results of variants kept in the cache beyond the check's own
     (the oldest are dropped first: the bearing loads hold about 30 MB, a film calculation of
@@ -77,11 +75,8 @@ class Evaluator:
         its rule results, without its calculated quantities. The numbers are the same in
         every process (each variant's check equals a cold check).
         """
-        import time
-
         if self._pool is None or len(changes) < 2:
             return self._evaluate_here(changes, select)
-        t0 = time.perf_counter()
         n = self.workers
         share: list[list[int]] = [[] for _ in range(n)]
         for i, ch in enumerate(changes):
@@ -108,7 +103,6 @@ class Evaluator:
                 if hasattr(r, "results"):
                     r.table = self.table
                 out[i] = r
-        self.wall += time.perf_counter() - t0
         return out
 
     def evaluate_groups(self, groups: list[tuple[list[Changes], list[str] | None]]
