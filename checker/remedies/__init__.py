@@ -29,9 +29,11 @@ def attach(res, remedies: bool = False, corners: bool = False, levers_file: str 
 
     The remedies' variants are checked in this process and ``workers - 1`` forked helper
     processes (default: one process per core, at most 4; ``workers=1``: this process alone);
-    the answers do not depend on it. The corners are checked in this process: their variants
-    share calculations (the loads and torsion at one peak pressure) that separate processes
-    would each compute again, and on the I4 two processes took longer than one.
+    the answers do not depend on it. The corners are checked in one process (their variants
+    share calculations, the loads and torsion at one peak pressure, that separate processes
+    would each compute again: on the I4 two processes took longer than one): with remedies
+    and more than one process, a forked process of their own that works while the remedies
+    are searched; else this process.
 
     Needs the check's workbook file (variants change its cells in memory). Raises
     :class:`checker.errors.InputErrors` for a bad Tolerances sheet and
@@ -56,15 +58,37 @@ def attach(res, remedies: bool = False, corners: bool = False, levers_file: str 
         from .corners import read_tolerances
 
         tols = read_tolerances(base)  # a bad Tolerances sheet: an input error before any work
+    corner_job = None
     if remedies:
+        if tols is not None and ev.processes(workers) > 1:
+            from ..forked import Forked
+
+            # the corners in a forked process of their own while the remedies are searched
+            # (forked first: it does not inherit the remedies' helpers); the root finding's
+            # rounds leave cores idle that the corners fill
+            corner_job = Forked(_corners_here, res, ev, tols)
         ev.start_workers(workers)
     try:
-        _attach(res, ev, table, remedies, tols, levers_file)
+        _attach(res, ev, table, remedies, tols, levers_file, corner_job)
     finally:
+        if corner_job is not None:
+            corner_job.close()
         ev.release()
 
 
-def _attach(res, ev, table, remedies: bool, tols, levers_file: str | None) -> None:
+def _corners_here(res, ev, tols) -> tuple[list, int, float]:
+    """The corners of ``res`` checked with ``ev`` in this process: (results, evaluations,
+    seconds)."""
+    from .corners import evaluate_corners
+
+    t0 = time.perf_counter()
+    n0 = ev.evaluations
+    out = evaluate_corners(res, ev, tols)
+    return out, ev.evaluations - n0, time.perf_counter() - t0
+
+
+def _attach(res, ev, table, remedies: bool, tols, levers_file: str | None,
+            corner_job=None) -> None:
     from ..levers import load_levers, merge
 
     if remedies:
@@ -89,11 +113,9 @@ def _attach(res, ev, table, remedies: bool, tols, levers_file: str | None) -> No
         ev.stop_workers()
     if tols is not None:
         from ..display import with_unit
-        from .corners import evaluate_corners
 
-        t0 = time.perf_counter()
-        n0 = ev.evaluations
-        out_c = evaluate_corners(res, ev, tols)
+        out_c, n_eval, seconds = (corner_job.result() if corner_job is not None
+                                  else _corners_here(res, ev, tols))
         by_c = {(c.rule, c.item): c for c in out_c}
         for r in res.results:
             c = by_c.get((r.rule, r.item))
@@ -102,9 +124,8 @@ def _attach(res, ev, table, remedies: bool, tols, levers_file: str | None) -> No
                                   + ", ".join(c.corner) + f": {c.worst_status}"
                                   if c.worst_value is not None else "")
         res.json_extras = add_to_json
-        res.corners = {"results": out_c, "tolerances": tols,
-                       "evaluations": ev.evaluations - n0,
-                       "seconds": time.perf_counter() - t0}
+        res.corners = {"results": out_c, "tolerances": tols, "evaluations": n_eval,
+                       "seconds": seconds}
 
 
 def corners_fail(res) -> bool:

@@ -145,13 +145,10 @@ class Evaluator:
         that check variants with a copy of this process's calculation cache as it is now
         (the nominal check's); nothing where fork is unavailable or with one core."""
         import multiprocessing as mp
-        import os
 
         global _HELPER
-        n = workers if workers is not None else min(len(os.sched_getaffinity(0))
-                                                    if hasattr(os, "sched_getaffinity")
-                                                    else (os.cpu_count() or 1), 4)
-        if n < 2 or "fork" not in mp.get_all_start_methods() or self._pool is not None:
+        n = self.processes(workers)
+        if n < 2 or self._pool is not None:
             return
         from concurrent.futures import ProcessPoolExecutor
 
@@ -164,6 +161,20 @@ class Evaluator:
         # fork them now, with this cache (a later fork would copy more)
         for f in [self._pool.submit(_helper_ping) for _ in range(n - 1)]:
             f.result()
+
+    @staticmethod
+    def processes(workers: int | None = None) -> int:
+        """Processes that :meth:`start_workers` would use: ``workers``, by default one per
+        core and at most 4; 1 where fork is unavailable."""
+        import multiprocessing as mp
+        import os
+
+        if "fork" not in mp.get_all_start_methods():
+            return 1
+        if workers is not None:
+            return max(int(workers), 1)
+        return min(len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity")
+                   else (os.cpu_count() or 1), 4)
 
     def stop_workers(self) -> None:
         """End the helper processes."""

@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 
 from .. import __version__
 from ..api import CheckResult
+from ..forked import Forked
 from ..resources import templates_dir
 from . import results_book, review, summary
 from .sections import SectionJob
@@ -488,7 +489,7 @@ def build_report(res: CheckResult, progress: Progress | None = None,
     sections, extra = _split_details(_plain_sections(sections))
     extra += _extra_sheets(res)
     say("Writing the results workbook")
-    book_job = _Background(results_book.build, res, extra)  # written while the PDF is laid out
+    book_job = Forked(results_book.build, res, extra)  # written while the PDF is laid out
     from .results_book import sheet_names
 
     sheets = sheet_names(res, extra)
@@ -522,46 +523,6 @@ def build_report(res: CheckResult, progress: Progress | None = None,
     clock.stage("PDF write")
     return Report(pdf, standalone_html(html, figures) if want_html else "", book,
                   len(doc.pages), clock.wall, clock.cpu, doc)
-
-
-_BG_CALL: tuple | None = None
-
-
-def _bg_call():
-    fn, args = _BG_CALL
-    return fn(*args)
-
-
-class _Background:
-    """``fn(*args)`` computed in a forked process while this one goes on (the PDF layout uses
-    one core; the results workbook takes the other); in this process where fork is
-    unavailable or with one core. :meth:`result` waits for the value. An interrupt (Ctrl-C)
-    reaches the forked process too (same process group) and ends it."""
-
-    def __init__(self, fn, *args):
-        import multiprocessing as mp
-        import os
-
-        global _BG_CALL
-        self.fn, self.args, self.pool, self.future = fn, args, None, None
-        if (os.cpu_count() or 1) < 2 or "fork" not in mp.get_all_start_methods():
-            return
-        from concurrent.futures import ProcessPoolExecutor
-
-        _BG_CALL = (fn, args)
-        try:
-            self.pool = ProcessPoolExecutor(1, mp_context=mp.get_context("fork"))
-            self.future = self.pool.submit(_bg_call)
-        finally:
-            _BG_CALL = None
-
-    def result(self):
-        if self.pool is None:
-            return self.fn(*self.args)
-        try:
-            return self.future.result()
-        finally:
-            self.pool.shutdown()
 
 
 def _children_cpu() -> float:

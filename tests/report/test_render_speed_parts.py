@@ -5,8 +5,6 @@ in this process, and a worst-case table's repeated not-judged reason is said onc
 
 from __future__ import annotations
 
-import pytest
-
 from checker.report import render
 
 SNIPPET = """<!DOCTYPE html><html><head><meta charset="utf-8"><title>t</title>
@@ -57,17 +55,6 @@ def test_own_user_agent_stylesheet_lays_out_like_weasyprints():
     own = _layout(render._html_class(wp), html)
     assert len(stock) > 50
     assert own == stock
-
-
-def test_background_gives_the_same_value_as_a_direct_call():
-    job = render._Background(sorted, [3, 1, 2])
-    assert job.result() == [1, 2, 3]
-
-
-def test_background_passes_an_error_on():
-    job = render._Background(int, "not a number")
-    with pytest.raises(ValueError):
-        job.result()
 
 
 def _table(reasons: list[str]) -> dict:

@@ -1,0 +1,77 @@
+"""One call computed in a forked process while this process goes on.
+
+Used where two pieces of work of one command are independent and each would leave a core idle:
+the results workbook written while the PDF is laid out (:mod:`checker.report.render`), the
+tolerance corners checked while the remedies are searched (:mod:`checker.remedies`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+_CALL: tuple | None = None
+"""The call of the process being forked (inherited by fork: nothing is pickled on the way
+in; the value comes back pickled)."""
+
+
+def _start() -> None:
+    """In the forked process: an interrupt (Ctrl-C reaches the whole process group) ends it at
+    once; the parent handles the interrupt."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
+def _call():
+    fn, args = _CALL
+    return fn(*args)
+
+
+class Forked:
+    """``fn(*args)`` computed in a forked process while this one goes on; in this process
+    (when :meth:`result` is asked) where fork is unavailable, with one core or with
+    ``fork=False``. :meth:`result` waits for the value (or raises the call's exception);
+    :meth:`close` ends the process without waiting for the value."""
+
+    def __init__(self, fn: Callable[..., Any], *args: Any, fork: bool = True):
+        import multiprocessing as mp
+        import os
+
+        global _CALL
+        self.fn, self.args, self.pool, self.future = fn, args, None, None
+        if (not fork or (os.cpu_count() or 1) < 2
+                or "fork" not in mp.get_all_start_methods()):
+            return
+        from concurrent.futures import ProcessPoolExecutor
+
+        _CALL = (fn, args)
+        try:
+            self.pool = ProcessPoolExecutor(1, mp_context=mp.get_context("fork"),
+                                            initializer=_start)
+            self.future = self.pool.submit(_call)  # forks now, with _CALL set
+        finally:
+            _CALL = None
+
+    @property
+    def forked(self) -> bool:
+        """True when the call runs in a forked process."""
+        return self.pool is not None
+
+    def result(self) -> Any:
+        if self.pool is None:
+            return self.fn(*self.args)
+        try:
+            return self.future.result()
+        finally:
+            self.close()
+
+    def close(self) -> None:
+        """End the forked process (at once if it is still working)."""
+        if self.pool is None:
+            return
+        pool, self.pool = self.pool, None
+        if not self.future.done():
+            for p in list(getattr(pool, "_processes", {}).values()):
+                p.terminate()
+        pool.shutdown(wait=True, cancel_futures=True)
