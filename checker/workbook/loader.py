@@ -585,6 +585,64 @@ def read_raw_workbook(path: str | Path) -> RawWorkbook:
     return RawWorkbook(str(p), sha, sheetnames, raws, tuple(reader.errors), tuple(present))
 
 
+def _convert_sheet(reader: _Reader, name: str, spec: Sheet, sheet: SheetCells,
+                   data: WorkbookData) -> None:
+    reader.merged(name, sheet)
+    if spec.shape == "parameters":
+        reader.parameters(spec, sheet, data)
+    else:
+        reader.table(spec, sheet, data)
+
+
+@dataclass
+class _SheetPart:
+    """One sheet converted on its own: what it adds to a :class:`WorkbookData` and to the
+    reader's problems (in the order a whole-workbook conversion adds them)."""
+
+    cells: SheetCells  # kept: the memo's key is its identity
+    data: WorkbookData
+    errors: list[InputError]
+    warnings: list[InputError]
+
+    def copy_to(self, reader: _Reader, data: WorkbookData) -> None:
+        part = self.data
+        for name, params in part.params.items():
+            data.params[name] = dict(params)
+        for name, rows in part.tables.items():
+            data.tables[name] = [{k: list(v) if isinstance(v, list) else v
+                                  for k, v in rec.items()} for rec in rows]
+        data.where.update(part.where)
+        data.units.update(part.units)
+        data.assumptions.extend(part.assumptions)
+        for e in self.errors:
+            reader.err(e.where, e.message)
+        reader.warnings.extend(self.warnings)
+
+
+_SHEET_MEMO: dict[tuple[str, str, int], _SheetPart] = {}
+_SHEET_MEMO_SIZE = 64
+"""Sheets kept converted (:func:`_converted_sheet`): a study's or the remedies' variants change
+one sheet of the workbook (:meth:`RawWorkbook.with_values` keeps the others as they are)."""
+
+
+def _converted_sheet(path: str, name: str, spec: Sheet, sheet: SheetCells) -> _SheetPart:
+    """The conversion of one sheet, from the memo when the same cells (the same object) were
+    converted before; a fresh conversion otherwise."""
+    key = (path, name, id(sheet))
+    got = _SHEET_MEMO.get(key)
+    if got is not None and got.cells is sheet:
+        _SHEET_MEMO[key] = _SHEET_MEMO.pop(key)  # most recently used last
+        return got
+    reader = _Reader(Path(path))
+    part = WorkbookData(path=path, sha256="")
+    _convert_sheet(reader, name, spec, sheet, part)
+    got = _SheetPart(sheet, part, reader.errors, reader.warnings)
+    _SHEET_MEMO[key] = got
+    while len(_SHEET_MEMO) > _SHEET_MEMO_SIZE:
+        del _SHEET_MEMO[next(iter(_SHEET_MEMO))]
+    return got
+
+
 def convert_raw(raw: RawWorkbook, raise_errors: bool = True) -> WorkbookData:
     """Convert the cells of a :class:`RawWorkbook` to SI (every problem with its cell)."""
     reader = _Reader(Path(raw.path))
@@ -599,11 +657,10 @@ def convert_raw(raw: RawWorkbook, raise_errors: bool = True) -> WorkbookData:
         sheet = raw.sheets.get(name)
         if sheet is None:
             continue
-        reader.merged(name, sheet)
-        if spec.shape == "parameters":
-            reader.parameters(spec, sheet, data)
+        if raw.problems:  # (a sheet's conversion asks whether a cell has an error already)
+            _convert_sheet(reader, name, spec, sheet, data)
         else:
-            reader.table(spec, sheet, data)
+            _converted_sheet(raw.path, name, spec, sheet).copy_to(reader, data)
     for name, spec in SHEETS.items():
         if spec.shape == "parameters" and name not in data.params:
             data.params[name] = {f.attr: None for f in spec.fields}
