@@ -69,75 +69,54 @@ class Evaluator:
         prefixes); the check's own ``ignore`` always applies.
 
         With helper processes (:meth:`start_workers`) the variants are shared among them and
-        this process; a variant goes to the process chosen by a digest of its cell changes,
-        so a variant checked again (a remedy's answer checked for its side effects) meets the
-        calculation cache that saw it first. A variant checked by a helper comes back with
+        this process (:meth:`evaluate_groups`). A variant checked by a helper comes back with
         its rule results, without its calculated quantities. The numbers are the same in
         every process (each variant's check equals a cold check).
         """
         if self._pool is None or len(changes) < 2:
             return self._evaluate_here(changes, select)
-        n = self.workers
-        share: list[list[int]] = [[] for _ in range(n)]
-        for i, ch in enumerate(changes):
-            share[_digest(ch) % n].append(i)
-        # even the shares out (the surplus of the fullest goes to the emptiest)
-        while True:
-            big = max(range(n), key=lambda k: len(share[k]))
-            small = min(range(n), key=lambda k: len(share[k]))
-            if len(share[big]) - len(share[small]) <= 1:
-                break
-            share[small].append(share[big].pop())
-        futures = [(idx, self._pool.submit(_helper_evaluate, [changes[i] for i in idx], select))
-                   for idx in share[1:] if idx]
-        out: list[Any] = [None] * len(changes)
-        for i, r in zip(share[0], self._evaluate_here([changes[i] for i in share[0]], select)):
-            out[i] = r
-        for idx, fut in futures:
-            try:
-                got, n_eval = fut.result()
-            except Exception:  # noqa: BLE001 - a helper that died: check its share here
-                got, n_eval = self._evaluate_here([changes[i] for i in idx], select), 0
-            self.evaluations += n_eval
-            for i, r in zip(idx, got):
-                if hasattr(r, "results"):
-                    r.table = self.table
-                out[i] = r
-        return out
+        return self.evaluate_groups([(changes, select)])[0]
 
     def evaluate_groups(self, groups: list[tuple[list[Changes], list[str] | None]]
                         ) -> list[list[Any]]:
         """:meth:`evaluate_variants` of several groups ``(changes, select)`` (e.g. the
         variants of one round of root finding, grouped by the rules they are checked on).
-        With helper processes each group is checked whole in one process (the groups, the
-        largest first, to the process with the fewest variants so far): the variants of one
-        group share their calculations (the torsion of a damper group, the loads of a peak
-        pressure) in that process's cache."""
-        if self._pool is None or len(groups) < 2:
-            return [self.evaluate_variants(ch, sel) for ch, sel in groups]
-        n = self.workers
-        load = [0] * n
-        mine: list[list[int]] = [[] for _ in range(n)]
-        for g in sorted(range(len(groups)), key=lambda g: (-len(groups[g][0]), g)):
-            k = min(range(n), key=lambda k: (load[k], k))
-            mine[k].append(g)
-            load[k] += len(groups[g][0])
-        futures = [(gs, self._pool.submit(_helper_groups, [groups[g] for g in gs]))
-                   for gs in mine[1:] if gs]
-        out: list[list[Any]] = [[] for _ in groups]
-        for g in mine[0]:
-            out[g] = self._evaluate_here(*groups[g])
-        for gs, fut in futures:
+
+        With helper processes the groups are cut into tasks of a few variants (about
+        :data:`TASKS_PER_PROCESS` tasks per process, at most :attr:`batch` variants each: the
+        variants of a task have their film orbits solved in one kernel call), the largest
+        first. The helpers take the tasks in that order as they become free, and this process
+        takes the last ones that no helper has started, so that the processes end together
+        whatever each task costs (an oil variant moves every bearing's film, a fillet variant
+        only the fatigue)."""
+        if self._pool is None or sum(len(ch) for ch, _ in groups) < 2:
+            return [self._evaluate_here(ch, sel) for ch, sel in groups]
+        total = sum(len(ch) for ch, _ in groups)
+        size = max(1, min(self.batch, -(-total // (TASKS_PER_PROCESS * self.workers))))
+        tasks = [(g, start, ch[start:start + size], sel) for g, (ch, sel) in enumerate(groups)
+                 for start in range(0, len(ch), size)]
+        tasks.sort(key=lambda t: -len(t[2]))  # stable: the order of the groups otherwise
+        futures = [self._pool.submit(_helper_evaluate, t[2], t[3]) for t in tasks]
+        got: list[list[Any] | None] = [None] * len(tasks)
+        for k in range(len(tasks) - 1, -1, -1):
+            if not futures[k].cancel():  # a helper has it (and every task before it)
+                break
+            got[k] = self._evaluate_here(tasks[k][2], tasks[k][3])
+        for k, fut in enumerate(futures):
+            if got[k] is not None:
+                continue
             try:
-                got, n_eval = fut.result()
-            except Exception:  # noqa: BLE001 - a helper that died: check its groups here
-                got, n_eval = [self._evaluate_here(*groups[g]) for g in gs], 0
+                res, n_eval = fut.result()
+            except Exception:  # noqa: BLE001 - a helper that died: check its task here
+                res, n_eval = self._evaluate_here(tasks[k][2], tasks[k][3]), 0
             self.evaluations += n_eval
-            for g, res in zip(gs, got):
-                for r in res:
-                    if hasattr(r, "results"):
-                        r.table = self.table
-                out[g] = res
+            for r in res:
+                if hasattr(r, "results"):
+                    r.table = self.table
+            got[k] = res
+        out: list[list[Any]] = [[None] * len(ch) for ch, _ in groups]
+        for (g, start, ch, _), res in zip(tasks, got):
+            out[g][start:start + len(ch)] = res
         return out
 
     def start_workers(self, workers: int | None = None) -> None:
@@ -277,6 +256,11 @@ class Evaluator:
             del self.cache[k]
 
 
+TASKS_PER_PROCESS = 3
+"""Tasks per process of a call with helper processes (:meth:`Evaluator.evaluate_groups`):
+enough that the processes end together, few enough that the variants of a task share their
+film orbits' kernel call."""
+
 _HELPER: Evaluator | None = None
 """The evaluator of this process while it has helper processes (they inherit it by fork)."""
 
@@ -310,24 +294,6 @@ def _helper_evaluate(changes: list[Changes], select: list[str] | None) -> tuple[
                                     outcome=dataclasses.replace(r.outcome, quantities={}))
         slim.append(r)
     return slim, ev.evaluations - n0
-
-
-def _helper_groups(groups: list[tuple[list[Changes], list[str] | None]]
-                   ) -> tuple[list[list], int]:
-    """In a helper process: :func:`_helper_evaluate` of each group."""
-    out, n = [], 0
-    for changes, select in groups:
-        res, k = _helper_evaluate(changes, select)
-        out.append(res)
-        n += k
-    return out, n
-
-
-def _digest(ch: Changes) -> int:
-    """A stable number for a variant's cell changes (the process that checks it)."""
-    import zlib
-
-    return zlib.crc32(repr(sorted(ch.items(), key=repr)).encode())
 
 
 def find(res: Any, rule: str, item: str):
