@@ -333,8 +333,8 @@ class _Problem:
         if model in ("reynolds_map", "reynolds"):
             from checker.calc import reynolds_map as rm
 
-            mob, _, _, tid = rm.stack_tables(lod)  # ValueError outside the map's L/D range
-            self.shared["map_mobility"] = mob
+            # ValueError outside the map's L/D range
+            self.shared["map_table"], tid = rm.stack_kernel_tables(lod)
             if model == "reynolds":
                 self.shared["solver_grid"] = solver_grid
                 self.shared["solver_groove"] = solver_groove
@@ -367,9 +367,20 @@ def _make_rate(model: str, bear: dict, shared: dict | None = None):
     if model == "closed_form":
 
         def rate(z, fk, uc, iwb, sel=None):
+            # fk M + iwb z, M = s^1.5 (s - i (4/pi) w.imag): real arithmetic on the parts
             w = z * uc
-            s = np.maximum(1.0 - w.real, _S_MIN)
-            return fk * (s * np.sqrt(s) * (s - 1j * _C4PI * w.imag)) + iwb * z
+            s = np.subtract(1.0, w.real)
+            np.maximum(s, _S_MIN, out=s)
+            g = np.sqrt(s)
+            np.multiply(s, g, out=g)
+            m = np.empty(w.shape, dtype=complex)
+            np.multiply(g, s, out=m.real)
+            wi = np.multiply(w.imag, -_C4PI, out=s)
+            np.multiply(g, wi, out=m.imag)
+            r = fk * m  # (not in place: NumPy's in-place complex product of one element
+            p = iwb * z  # is rounded differently)
+            np.add(r, p, out=r)
+            return r
 
         return rate
 
@@ -392,19 +403,23 @@ def _make_rate(model: str, bear: dict, shared: dict | None = None):
     if model == "reynolds_map":
         from checker.calc import reynolds_map as rm
 
-        mob = shared["map_mobility"]
-        tid = bear["tid"]
+        tab = shared["map_table"]
+        tid = bear["tid"] if bear["tid"].any() else None  # None: one table
 
         def rate(z, fk, uc, iwb, sel=None):
-            t = tid if sel is None else tid[sel]
-            return fk * rm.map_kernel(z * uc, mob, t) + iwb * z
+            t = tid if sel is None or tid is None else tid[sel]
+            m = rm.map_kernel(z * uc, None, t, tab)
+            r = fk * m  # (not in place: NumPy's in-place complex product of one element
+            p = iwb * z  # is rounded differently)
+            np.add(r, p, out=r)
+            return r
 
         return rate
     if model == "reynolds":
         from checker.calc import reynolds as ry
         from checker.calc import reynolds_map as rm
 
-        mob = shared["map_mobility"]
+        tab = shared["map_table"]
         tid = bear["tid"]
         lod_all = bear["lod"]
         grid = shared.get("solver_grid") or ry.DEFAULT_GRID
@@ -416,7 +431,7 @@ def _make_rate(model: str, bear: dict, shared: dict | None = None):
             w = clip(z * uc)
             aw = np.abs(w)
             w = np.where(aw > ry.EPS_MAX, w * (ry.EPS_MAX / np.maximum(aw, ry.EPS_MAX)), w)
-            guess = rm.map_kernel(w, mob, t)  # initial squeeze direction from the map
+            guess = rm.map_kernel(w, None, t, tab)  # initial squeeze direction from the map
             alpha0 = np.angle(guess) - np.angle(w)  # M is along V_s: alpha = arg M + chi
             m = np.empty(w.shape, dtype=complex)
             phi = np.angle(z)  # eccentricity direction in the caller's frame
