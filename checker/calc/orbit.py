@@ -222,6 +222,40 @@ def _resample_periodic(a: np.ndarray, n_out: int) -> np.ndarray:
     return a[..., i0] * (1.0 - t) + a[..., i1] * t
 
 
+def _resample_nodes(a: np.ndarray, n_out: int, out: np.ndarray) -> None:
+    """:func:`_resample_periodic` of the rows of ``a`` (B, N), written transposed into
+    ``out`` (n_out, B) (the node-major layout of the RK nodes; a real or imaginary part of a
+    complex array). Same numbers: ``a_i0 (1 - t) + a_i1 t``, and ``a_i0`` itself where
+    ``t = 0``."""
+    n_in = a.shape[-1]
+    at = np.ascontiguousarray(a.T)
+    if n_in == n_out:
+        out[...] = at
+        return
+    if n_in == 1:
+        out[...] = at
+        return
+    if n_in % n_out == 0:
+        out[...] = at[:: n_in // n_out]
+        return
+    pos = np.arange(n_out) * (n_in / n_out)
+    i0 = np.floor(pos).astype(np.intp)
+    t = pos - i0
+    i0 %= n_in
+    i1 = (i0 + 1) % n_in
+    on = t == 0.0
+    out[on] = at[i0[on]]
+    k = np.flatnonzero(~on)
+    if k.size:
+        tk = t[k][:, None]
+        v = at[i0[k]]
+        v *= 1.0 - tk
+        u = at[i1[k]]
+        u *= tk
+        v += u
+        out[k] = v
+
+
 class _Problem:
     """Batch arrays on the RK node grid (node-major, shape (2n, B)) and per-bearing data."""
 
@@ -265,7 +299,8 @@ class _Problem:
         if np.prod(shp) > 0:  # checked before broadcasting (same verdict, less work)
             for name, val in (("load", fx), ("load", fy), ("omega_journal", wj),
                               ("omega_bearing", wb)):
-                if not np.all(np.isfinite(val)):
+                # a finite sum has finite terms (one pass, no temporary)
+                if not (np.isfinite(np.sum(val)) or np.all(np.isfinite(val))):
                     raise ValueError(f"{name} must be finite")
         fx = np.broadcast_to(fx, shp).reshape(-1, n_pts)
         fy = np.broadcast_to(fy, shp).reshape(-1, n_pts)
@@ -314,8 +349,12 @@ class _Problem:
             iwb = np.zeros((2 * n, fx.shape[0]), dtype=complex)
             iwb.imag = w.T
         else:
-            f = np.ascontiguousarray(_resample_periodic(fx + 1j * fy, 2 * n).T)
-            iwb = 1j * np.ascontiguousarray(_resample_periodic(w, 2 * n).T)
+            # periodic linear resampling (_resample_periodic) of the real parts
+            f = np.empty((2 * n, fx.shape[0]), dtype=complex)
+            _resample_nodes(fx, 2 * n, f.real)
+            _resample_nodes(fy, 2 * n, f.imag)
+            iwb = np.zeros((2 * n, fx.shape[0]), dtype=complex)
+            _resample_nodes(w, 2 * n, iwb.imag)
         iwb *= 0.5 / sp
         fa = np.abs(f)
         uc = np.conj(f)
@@ -774,7 +813,7 @@ def _shared_rows(fx, fy, w, scalars, grooved, group, p: int):
     o = p * np.argmax(mag, axis=1)  # canonical start point (a step point)
     sf = np.sqrt(mag.max(axis=1))
     sf[sf == 0.0] = 1.0
-    sw = np.abs(w).max(axis=1)
+    sw = np.maximum(w.max(axis=1), -w.min(axis=1))  # max |w|
     sw[sw == 0.0] = 1.0
     probe = (o[:, None] + np.arange(0, n_pts, max(1, n_pts // 16))[None, :]) % n_pts
     scal = [_mantissa_key(a) for a in scalars] + [
@@ -784,9 +823,10 @@ def _shared_rows(fx, fy, w, scalars, grooved, group, p: int):
         [np.stack(scal, axis=1), _quantize(fx[rows[:, None], probe], sf[:, None]),
          _quantize(fy[rows[:, None], probe], sf[:, None]),
          _quantize(w[rows[:, None], probe], sw[:, None])], axis=1))
-    first: dict[bytes, int] = {}
-    rep = np.array([first.setdefault(r.tobytes(), i) for i, r in enumerate(key)],
-                   dtype=np.intp)
+    # the first row with the same key (np.unique's indices are first occurrences)
+    _, first, inv = np.unique(key.view(np.dtype((np.void, key.shape[1] * key.itemsize)))
+                              .reshape(-1), return_index=True, return_inverse=True)
+    rep = first[inv.reshape(-1)].astype(np.intp)
     dup = np.flatnonzero(rep != rows)
     if dup.size:  # verify every point: the loads and whirl are the shifted sequence
         r = rep[dup]
@@ -795,7 +835,11 @@ def _shared_rows(fx, fy, w, scalars, grooved, group, p: int):
         for s in sorted(set(d_shift.tolist())):  # a few distinct shifts: whole rows rolled
             m = np.flatnonzero(d_shift == s)
             for arr, sc in ((fx, sf), (fy, sf), (w, sw)):
-                dev = np.abs(arr[dup[m]] - np.roll(arr[r[m]], int(s), axis=1)).max(axis=1)
+                dev = arr[dup[m]]  # minus the representative's row rolled by s
+                ref = arr[r[m]]
+                dev[:, s:] -= ref[:, :n_pts - s]
+                dev[:, :s] -= ref[:, n_pts - s:]
+                dev = np.abs(dev, out=dev).max(axis=1)
                 ok[m] &= dev <= 1e-10 * sc[r[m]]
         rep[dup[~ok]] = dup[~ok]
     shift = ((o - o[rep]) // p) % (n_pts // p)
