@@ -538,8 +538,9 @@ def map_kernel(w: np.ndarray, mob_flat: np.ndarray, offset: np.ndarray | None,
     """Map mobility in the load frame times (L/D)**2 (complex); ``w`` may lie slightly
     outside the unit disk (RK stages): the wall distance is floored at 1e-7.
 
-    Same arithmetic as :func:`_coords` and :func:`_bilinear`, fused with in-place operations
-    (this is the inner loop of the finite-length orbits). ``offset``: flat offset of each
+    Same arithmetic as :func:`_coords` (with ``|w|`` by ``np.abs``) and :func:`_bilinear`,
+    fused with in-place operations (this is the inner loop of the finite-length orbits; the
+    tests compare it bit for bit with the unfused formulas). ``offset``: flat offset of each
     entry's table (:func:`stack_tables`), or None (every entry in the first table).
     ``table``: :func:`kernel_table` of ``mob_flat`` (built here when not given; pass it when
     the same table is used again)."""
