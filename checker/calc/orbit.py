@@ -506,7 +506,11 @@ def _load_at(fk3, iw3, t: float):
         f = fk3[1] + s * (fk3[2] - fk3[1])
         w = iw3[1] + s * (iw3[2] - iw3[1])
     fa = np.abs(f)
-    uc = np.where(fa > 0.0, np.conj(f) / np.where(fa > 0.0, fa, 1.0), 1.0)
+    pos = fa > 0.0
+    if pos.all():  # the common case: the same numbers without the masks
+        uc = np.conj(f) / fa
+    else:
+        uc = np.where(pos, np.conj(f) / np.where(pos, fa, 1.0), 1.0)
     return f, uc, w
 
 
@@ -558,7 +562,8 @@ def _ros2_steps(rate, z, fk3, iw3, sel, h, nsub):
         k2 = ((w22 * v.real - w12 * v.imag) + 1j * (-w21 * v.real + w11 * v.imag)) / det
         z = z + hs * (1.5 * k1 + 0.5 * k2)
         za = np.abs(z)
-        z = np.where(za > EPS_CAP, z * (EPS_CAP / np.maximum(za, EPS_CAP)), z)
+        if (za > EPS_CAP).any():  # (clamp only when needed: same numbers)
+            z = np.where(za > EPS_CAP, z * (EPS_CAP / np.maximum(za, EPS_CAP)), z)
     return z, r_start, lam_h
 
 
@@ -581,7 +586,8 @@ def _rk4_steps(rate, z, fk3, iw3, h, nsub, sel=None):
         k4 = rate(z + hs * k3, *p1, sel)
         z = z + (hs / 6.0) * (k1 + 2.0 * (k2 + k3) + k4)
         za = np.abs(z)
-        z = np.where(za > EPS_CAP, z * (EPS_CAP / np.maximum(za, EPS_CAP)), z)
+        if (za > EPS_CAP).any():  # (clamp only when needed: same numbers)
+            z = np.where(za > EPS_CAP, z * (EPS_CAP / np.maximum(za, EPS_CAP)), z)
     return z
 
 
