@@ -135,6 +135,7 @@ _ROS2_LAMBDA_H = 4.0  # largest lambda * h of one ROS2 sub-step
 _MAX_RK4_SUBSTEPS = 8  # moderately stiff steps: up to this many RK4 sub-steps, else ROS2
 _ROS2_BASE_SUBSTEPS = 2  # ROS2 sub-steps per step for "butenschoen"
 _BT_MAX_STEP = np.radians(1.0)  # "butenschoen": largest internal step
+_ONE, _S_MIN_0D, _MINUS_C4PI_0D = np.array(1.0), np.array(_S_MIN), np.array(-_C4PI)  # 0-d
 
 
 @dataclass(frozen=True)
@@ -408,13 +409,13 @@ def _make_rate(model: str, bear: dict, shared: dict | None = None):
         def rate(z, fk, uc, iwb, sel=None):
             # fk M + iwb z, M = s^1.5 (s - i (4/pi) w.imag): real arithmetic on the parts
             w = z * uc
-            s = np.subtract(1.0, w.real)
-            np.maximum(s, _S_MIN, out=s)
+            s = np.subtract(_ONE, w.real)
+            np.maximum(s, _S_MIN_0D, out=s)
             g = np.sqrt(s)
             np.multiply(s, g, out=g)
             m = np.empty(w.shape, dtype=complex)
             np.multiply(g, s, out=m.real)
-            wi = np.multiply(w.imag, -_C4PI, out=s)
+            wi = np.multiply(w.imag, _MINUS_C4PI_0D, out=s)
             np.multiply(g, wi, out=m.imag)
             r = fk * m  # (not in place: NumPy's in-place complex product of one element
             p = iwb * z  # is rounded differently)
@@ -628,6 +629,10 @@ def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: 
     # steps where the closed-form stiffness estimate (s <= 2) can exceed the limit somewhere
     stiff_possible = (np.ones(n, dtype=bool) if map_stiff or not lam.size
                       else lam.max(axis=1) * 2.0**1.5 > stiff_limit)
+    # the scalars of the step loop as 0-d arrays: the same numbers, faster NumPy calls
+    c_one, c_two, c_h, c_hh, c_h6, c_15h, c_lim, c_keep, c_frac, c_cap = (
+        np.array(float(v)) for v in (1.0, 2.0, h, hh, h6, 1.5 * h, stiff_limit,
+                                     1.0 - _TRAVEL_FRAC, _TRAVEL_FRAC, EPS_CAP))
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         for j in range(n):
             a, m, b = 2 * j, 2 * j + 1, (2 * j + 2) % (2 * n)
@@ -654,14 +659,14 @@ def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: 
             else:
                 k1 = rate(z, fk[a], uc[a], iwb[a])
                 kh[j] = k1
-                k2 = rate(z + hh * k1, fk[m], uc[m], iwb[m])
-                k3 = rate(z + hh * k2, fk[m], uc[m], iwb[m])
-                k4 = rate(z + h * k3, fk[b], uc[b], iwb[b])
+                k2 = rate(z + c_hh * k1, fk[m], uc[m], iwb[m])
+                k3 = rate(z + c_hh * k2, fk[m], uc[m], iwb[m])
+                k4 = rate(z + c_h * k3, fk[b], uc[b], iwb[b])
                 k2 += k3
-                k2 *= 2.0
+                k2 *= c_two
                 k2 += k1
                 k2 += k4
-                k2 *= h6
+                k2 *= c_h6
                 znew = k2
                 znew += z
                 za = np.abs(znew)
@@ -672,14 +677,14 @@ def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: 
                 if stiff_possible[j]:
                     # (1) closed-form stiffness estimate 2.5/pi |f|max h s^1.5,
                     # s = 1 - zeta + travel
-                    s = np.minimum(1.0 - (z * uc[a]).real + h * np.abs(k1), 2.0)
+                    s = np.minimum(c_one - (z * uc[a]).real + c_h * np.abs(k1), c_two)
                     lh = lam[j] * (s * np.sqrt(s))
                     if map_stiff:
                         # finite length: Jacobian ~ p |f M| / s for M ~ s^p; p = 2.5 for the
                         # short bearing, 1.5 for the (locally long) finite-length film near
                         # the wall
-                        lh = np.maximum(lh, (1.5 * h) * np.abs(k1 - iwb[a] * z) / s)
-                    flag |= lh > stiff_limit
+                        lh = np.maximum(lh, c_15h * np.abs(k1 - iwb[a] * z) / s)
+                    flag |= lh > c_lim
                 if flag.any():
                     idx = np.flatnonzero(flag)
                     travel = (za[idx] - za0[idx]) / (_TRAVEL_FRAC * (1.0 - za0[idx]))
@@ -716,7 +721,7 @@ def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: 
                         za[io] = EPS_CAP
                 z = znew
                 za0 = za
-                thr = np.minimum(za0 * (1.0 - _TRAVEL_FRAC) + _TRAVEL_FRAC, EPS_CAP)
+                thr = np.minimum(za0 * c_keep + c_frac, c_cap)
                 continue
             over = za > EPS_CAP
             if over.any():

@@ -454,6 +454,12 @@ def table_for(l_over_d: float) -> MapTable:
 _SX = _FINE_NT + 1  # row stride of the padded tables
 _CX = (_FINE_NX - 1) / _XF_END
 _CT = float(_FINE_NT - 1)
+# map_kernel's scalars as 0-d float64 arrays (the same numbers; NumPy calls with them are
+# ~0.3 us faster than with Python floats): 1, wall-distance floor, tiny, b, 2, 2 b, column
+# and row scales
+_K = tuple(np.array(v) for v in (1.0, _S_MIN, _TINY, _LIN_Q, 2.0, 2.0 * _LIN_Q, _CT,
+                                 0.5 * _CX))
+_K_SX = np.array(_SX, dtype=np.intp)
 
 
 def _coords(w: np.ndarray):
@@ -550,32 +556,32 @@ def map_kernel(w: np.ndarray, mob_flat: np.ndarray, offset: np.ndarray | None,
         shape = w.shape
         off = None if offset is None else np.broadcast_to(offset, shape).reshape(-1)
         return map_kernel(w.reshape(-1), mob_flat, off, table).reshape(shape)
-    mul, add, sub = np.multiply, np.add, np.subtract
+    mul, add, sub = np.multiply, np.add, np.subtract  # scalars as 0-d arrays (_K): faster
     e = np.abs(w)
-    d = sub(1.0, e)
-    np.maximum(d, _S_MIN, out=d)
+    d = sub(_K[0], e)
+    np.maximum(d, _K[1], out=d)
     d2 = mul(d, d)
     ld2 = np.log(d2)
     q = sub(e, w.real)
-    add(e, _TINY, e)
+    add(e, _K[2], e)
     np.divide(q, e, q)
     t = add(d2, q, e)
     np.log(t, t)
     sub(t, ld2, t)
-    mul(q, _LIN_Q, q)
+    mul(q, _K[3], q)
     add(t, q, t)
-    add(d2, 2.0, d2)  # denominator
+    add(d2, _K[4], d2)  # denominator
     np.log(d2, d2)
     sub(d2, ld2, d2)
-    add(d2, 2.0 * _LIN_Q, d2)
+    add(d2, _K[5], d2)
     np.divide(t, d2, t)
-    mul(t, _CT, t)
-    mul(ld2, 0.5 * _CX, ld2)  # fractional row
+    mul(t, _K[6], t)
+    mul(ld2, _K[7], ld2)  # fractional row
     i0 = ld2.astype(np.intp)
     it = t.astype(np.intp)
     sub(ld2, i0, ld2)
     sub(t, it, t)
-    mul(i0, _SX, i0)
+    mul(i0, _K_SX, i0)
     add(i0, it, i0)
     if offset is not None:
         add(i0, offset, i0)
