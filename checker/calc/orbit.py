@@ -496,17 +496,20 @@ def _make_rate(model: str, bear: dict, shared: dict | None = None):
     return rate
 
 
-def _load_at(fk3, iw3, t: float):
+def _load_at(fk3, iw3, t: float, diff=None):
     """Load (complex), its unit conjugate and the whirl term at fraction ``t`` of a step,
-    linear between the step's start, middle and end samples ``fk3``/``iw3``."""
+    linear between the step's start, middle and end samples ``fk3``/``iw3``. ``diff``: the
+    differences of consecutive samples (:func:`_step_diffs`), when already computed."""
+    if diff is None:
+        diff = _step_diffs(fk3, iw3)
     if t <= 0.5:
-        s = 2.0 * t
-        f = fk3[0] + s * (fk3[1] - fk3[0])
-        w = iw3[0] + s * (iw3[1] - iw3[0])
+        s = np.array(2.0 * t)
+        f = fk3[0] + s * diff[0]
+        w = iw3[0] + s * diff[2]
     else:
-        s = 2.0 * t - 1.0
-        f = fk3[1] + s * (fk3[2] - fk3[1])
-        w = iw3[1] + s * (iw3[2] - iw3[1])
+        s = np.array(2.0 * t - 1.0)
+        f = fk3[1] + s * diff[1]
+        w = iw3[1] + s * diff[3]
     fa = np.abs(f)
     pos = fa > 0.0
     if pos.all():  # the common case: the same numbers without the masks
@@ -514,6 +517,11 @@ def _load_at(fk3, iw3, t: float):
     else:
         uc = np.where(pos, np.conj(f) / np.where(pos, fa, 1.0), 1.0)
     return f, uc, w
+
+
+def _step_diffs(fk3, iw3):
+    """Differences of the consecutive load and whirl samples of a step (for :func:`_load_at`)."""
+    return fk3[1] - fk3[0], fk3[2] - fk3[1], iw3[1] - iw3[0], iw3[2] - iw3[1]
 
 
 def _ros2_steps(rate, z, fk3, iw3, sel, h, nsub):
@@ -530,8 +538,10 @@ def _ros2_steps(rate, z, fk3, iw3, sel, h, nsub):
     Returns ``(z_new, rate_at_start, max lambda*h per sub-step)``.
     """
 
+    diff = _step_diffs(fk3, iw3)
+
     def at(t):
-        return _load_at(fk3, iw3, t)
+        return _load_at(fk3, iw3, t, diff)
 
     hs = h / nsub
     gh = _ROS2_GAMMA * hs
@@ -573,8 +583,10 @@ def _rk4_steps(rate, z, fk3, iw3, h, nsub, sel=None):
     """Advance ``z`` over one step of length ``h`` with ``nsub`` classical RK4 sub-steps
     (loads piecewise-linear between the three nodes of the step)."""
 
+    diff = _step_diffs(fk3, iw3)
+
     def at(t):
-        return _load_at(fk3, iw3, t)
+        return _load_at(fk3, iw3, t, diff)
 
     hs = h / nsub
     # z + hs/6 (k1 + 2 (k2 + k3) + k4); scalars as 0-d arrays (same numbers, faster calls)
