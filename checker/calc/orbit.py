@@ -421,6 +421,7 @@ def _make_rate(model: str, bear: dict, shared: dict | None = None):
             r = fk * m  # (not in place: NumPy's in-place complex product of one element
             p = iwb * z  # is rounded differently)
             np.add(r, p, out=r)
+            rate.last = (w, p)  # load-frame eccentricity and whirl term, for the caller
             return r
 
         return rate
@@ -449,10 +450,12 @@ def _make_rate(model: str, bear: dict, shared: dict | None = None):
 
         def rate(z, fk, uc, iwb, sel=None):
             t = tid if sel is None or tid is None else tid[sel]
-            m = rm.map_kernel(z * uc, None, t, tab)
+            w = z * uc
+            m = rm.map_kernel(w, None, t, tab)
             r = fk * m  # (not in place: NumPy's in-place complex product of one element
             p = iwb * z  # is rounded differently)
             np.add(r, p, out=r)
+            rate.last = (w, p)  # load-frame eccentricity and whirl term, for the caller
             return r
 
         return rate
@@ -637,6 +640,7 @@ def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: 
     fk, uc, iwb, lam = arr["fk"], arr["uc"], arr["iwb"], arr["lam"]
     rate = _make_rate(prob.model, prob.bear, prob.shared)
     map_stiff = prob.model in ("reynolds_map", "reynolds")
+    reuse = prob.model in ("closed_form", "reynolds_map")  # rates that keep rate.last
     implicit = prob.model == "butenschoen"
     nbase = _ROS2_BASE_SUBSTEPS
     zh = np.empty((n, z.size), dtype=complex)
@@ -677,6 +681,8 @@ def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: 
                         za[g] = np.abs(znew[g])
             else:
                 k1 = rate(z, fk[a], uc[a], iwb[a])
+                # z uc[a] and iwb[a] z as the rate computed them, or computed again
+                w1, p1 = rate.last if reuse else (None, None)
                 kh[j] = k1
                 k2 = rate(z + c_hh * k1, fk[m], uc[m], iwb[m])
                 k3 = rate(z + c_hh * k2, fk[m], uc[m], iwb[m])
@@ -695,13 +701,17 @@ def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: 
                 if stiff_possible[j]:
                     # (1) closed-form stiffness estimate 2.5/pi |f|max h s^1.5,
                     # s = 1 - zeta + travel
-                    s = np.minimum(c_one - (z * uc[a]).real + c_h * np.abs(k1), c_two)
+                    if w1 is None:
+                        w1 = z * uc[a]
+                    s = np.minimum(c_one - w1.real + c_h * np.abs(k1), c_two)
                     lh = lam[j] * (s * np.sqrt(s))
                     if map_stiff:
                         # finite length: Jacobian ~ p |f M| / s for M ~ s^p; p = 2.5 for the
                         # short bearing, 1.5 for the (locally long) finite-length film near
                         # the wall
-                        lh = np.maximum(lh, c_15h * np.abs(k1 - iwb[a] * z) / s)
+                        if p1 is None:
+                            p1 = iwb[a] * z
+                        lh = np.maximum(lh, c_15h * np.abs(k1 - p1) / s)
                     flag |= lh > c_lim
                 if flag.any():
                     idx = np.flatnonzero(flag)
