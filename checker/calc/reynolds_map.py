@@ -637,8 +637,8 @@ def mobility_map(zeta: ArrayLike, kappa: ArrayLike, l_over_d: ArrayLike
     z, k, lod = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (zeta, kappa,
                                                                            l_over_d)))
     pf.check_in_disk(z, k)
-    mob, _, _, off = stack_tables(lod)
-    m = map_kernel(z + 1j * k, mob, off) / lod**2
+    tab, off = stack_kernel_tables(lod)
+    m = map_kernel(z + 1j * k, None, off, tab) / lod**2
     return m.real, m.imag
 
 
