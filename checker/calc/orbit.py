@@ -135,6 +135,8 @@ _ROS2_LAMBDA_H = 4.0  # largest lambda * h of one ROS2 sub-step
 _MAX_RK4_SUBSTEPS = 8  # moderately stiff steps: up to this many RK4 sub-steps, else ROS2
 _ROS2_BASE_SUBSTEPS = 2  # ROS2 sub-steps per step for "butenschoen"
 _BT_MAX_STEP = np.radians(1.0)  # "butenschoen": largest internal step
+_ONE, _TWO, _S_MIN_0D, _MINUS_C4PI_0D, _CAP = (np.array(v) for v in (  # as 0-d arrays
+    1.0, 2.0, _S_MIN, -_C4PI, EPS_CAP))
 
 
 @dataclass(frozen=True)
@@ -222,6 +224,40 @@ def _resample_periodic(a: np.ndarray, n_out: int) -> np.ndarray:
     return a[..., i0] * (1.0 - t) + a[..., i1] * t
 
 
+def _resample_nodes(a: np.ndarray, n_out: int, out: np.ndarray) -> None:
+    """:func:`_resample_periodic` of the rows of ``a`` (B, N), written transposed into
+    ``out`` (n_out, B) (the node-major layout of the RK nodes; a real or imaginary part of a
+    complex array). Same numbers: ``a_i0 (1 - t) + a_i1 t``, and ``a_i0`` itself where
+    ``t = 0``."""
+    n_in = a.shape[-1]
+    at = np.ascontiguousarray(a.T)
+    if n_in == n_out:
+        out[...] = at
+        return
+    if n_in == 1:
+        out[...] = at
+        return
+    if n_in % n_out == 0:
+        out[...] = at[:: n_in // n_out]
+        return
+    pos = np.arange(n_out) * (n_in / n_out)
+    i0 = np.floor(pos).astype(np.intp)
+    t = pos - i0
+    i0 %= n_in
+    i1 = (i0 + 1) % n_in
+    on = t == 0.0
+    out[on] = at[i0[on]]
+    k = np.flatnonzero(~on)
+    if k.size:
+        tk = t[k][:, None]
+        v = at[i0[k]]
+        v *= 1.0 - tk
+        u = at[i1[k]]
+        u *= tk
+        v += u
+        out[k] = v
+
+
 class _Problem:
     """Batch arrays on the RK node grid (node-major, shape (2n, B)) and per-bearing data."""
 
@@ -265,7 +301,8 @@ class _Problem:
         if np.prod(shp) > 0:  # checked before broadcasting (same verdict, less work)
             for name, val in (("load", fx), ("load", fy), ("omega_journal", wj),
                               ("omega_bearing", wb)):
-                if not np.all(np.isfinite(val)):
+                # a finite sum has finite terms (one pass, no temporary)
+                if not (np.isfinite(np.sum(val)) or np.all(np.isfinite(val))):
                     raise ValueError(f"{name} must be finite")
         fx = np.broadcast_to(fx, shp).reshape(-1, n_pts)
         fy = np.broadcast_to(fy, shp).reshape(-1, n_pts)
@@ -314,8 +351,12 @@ class _Problem:
             iwb = np.zeros((2 * n, fx.shape[0]), dtype=complex)
             iwb.imag = w.T
         else:
-            f = np.ascontiguousarray(_resample_periodic(fx + 1j * fy, 2 * n).T)
-            iwb = 1j * np.ascontiguousarray(_resample_periodic(w, 2 * n).T)
+            # periodic linear resampling (_resample_periodic) of the real parts
+            f = np.empty((2 * n, fx.shape[0]), dtype=complex)
+            _resample_nodes(fx, 2 * n, f.real)
+            _resample_nodes(fy, 2 * n, f.imag)
+            iwb = np.zeros((2 * n, fx.shape[0]), dtype=complex)
+            _resample_nodes(w, 2 * n, iwb.imag)
         iwb *= 0.5 / sp
         fa = np.abs(f)
         uc = np.conj(f)
@@ -333,8 +374,8 @@ class _Problem:
         if model in ("reynolds_map", "reynolds"):
             from checker.calc import reynolds_map as rm
 
-            mob, _, _, tid = rm.stack_tables(lod)  # ValueError outside the map's L/D range
-            self.shared["map_mobility"] = mob
+            # ValueError outside the map's L/D range
+            self.shared["map_table"], tid = rm.stack_kernel_tables(lod)
             if model == "reynolds":
                 self.shared["solver_grid"] = solver_grid
                 self.shared["solver_groove"] = solver_groove
@@ -367,9 +408,21 @@ def _make_rate(model: str, bear: dict, shared: dict | None = None):
     if model == "closed_form":
 
         def rate(z, fk, uc, iwb, sel=None):
+            # fk M + iwb z, M = s^1.5 (s - i (4/pi) w.imag): real arithmetic on the parts
             w = z * uc
-            s = np.maximum(1.0 - w.real, _S_MIN)
-            return fk * (s * np.sqrt(s) * (s - 1j * _C4PI * w.imag)) + iwb * z
+            s = np.subtract(_ONE, w.real)
+            np.maximum(s, _S_MIN_0D, out=s)
+            g = np.sqrt(s)
+            np.multiply(s, g, out=g)
+            m = np.empty(w.shape, dtype=complex)
+            np.multiply(g, s, out=m.real)
+            wi = np.multiply(w.imag, _MINUS_C4PI_0D, out=s)
+            np.multiply(g, wi, out=m.imag)
+            r = fk * m  # (not in place: NumPy's in-place complex product of one element
+            p = iwb * z  # is rounded differently)
+            np.add(r, p, out=r)
+            rate.last = (w, p)  # load-frame eccentricity and whirl term, for the caller
+            return r
 
         return rate
 
@@ -392,19 +445,25 @@ def _make_rate(model: str, bear: dict, shared: dict | None = None):
     if model == "reynolds_map":
         from checker.calc import reynolds_map as rm
 
-        mob = shared["map_mobility"]
-        tid = bear["tid"]
+        tab = shared["map_table"]
+        tid = bear["tid"] if bear["tid"].any() else None  # None: one table
 
         def rate(z, fk, uc, iwb, sel=None):
-            t = tid if sel is None else tid[sel]
-            return fk * rm.map_kernel(z * uc, mob, t) + iwb * z
+            t = tid if sel is None or tid is None else tid[sel]
+            w = z * uc
+            m = rm.map_kernel(w, None, t, tab)
+            r = fk * m  # (not in place: NumPy's in-place complex product of one element
+            p = iwb * z  # is rounded differently)
+            np.add(r, p, out=r)
+            rate.last = (w, p)  # load-frame eccentricity and whirl term, for the caller
+            return r
 
         return rate
     if model == "reynolds":
         from checker.calc import reynolds as ry
         from checker.calc import reynolds_map as rm
 
-        mob = shared["map_mobility"]
+        tab = shared["map_table"]
         tid = bear["tid"]
         lod_all = bear["lod"]
         grid = shared.get("solver_grid") or ry.DEFAULT_GRID
@@ -416,7 +475,7 @@ def _make_rate(model: str, bear: dict, shared: dict | None = None):
             w = clip(z * uc)
             aw = np.abs(w)
             w = np.where(aw > ry.EPS_MAX, w * (ry.EPS_MAX / np.maximum(aw, ry.EPS_MAX)), w)
-            guess = rm.map_kernel(w, mob, t)  # initial squeeze direction from the map
+            guess = rm.map_kernel(w, None, t, tab)  # initial squeeze direction from the map
             alpha0 = np.angle(guess) - np.angle(w)  # M is along V_s: alpha = arg M + chi
             m = np.empty(w.shape, dtype=complex)
             phi = np.angle(z)  # eccentricity direction in the caller's frame
@@ -440,20 +499,32 @@ def _make_rate(model: str, bear: dict, shared: dict | None = None):
     return rate
 
 
-def _load_at(fk3, iw3, t: float):
+def _load_at(fk3, iw3, t: float, diff=None):
     """Load (complex), its unit conjugate and the whirl term at fraction ``t`` of a step,
-    linear between the step's start, middle and end samples ``fk3``/``iw3``."""
+    linear between the step's start, middle and end samples ``fk3``/``iw3``. ``diff``: the
+    differences of consecutive samples (:func:`_step_diffs`), when already computed."""
+    if diff is None:
+        diff = _step_diffs(fk3, iw3)
     if t <= 0.5:
-        s = 2.0 * t
-        f = fk3[0] + s * (fk3[1] - fk3[0])
-        w = iw3[0] + s * (iw3[1] - iw3[0])
+        s = np.array(2.0 * t)
+        f = fk3[0] + s * diff[0]
+        w = iw3[0] + s * diff[2]
     else:
-        s = 2.0 * t - 1.0
-        f = fk3[1] + s * (fk3[2] - fk3[1])
-        w = iw3[1] + s * (iw3[2] - iw3[1])
+        s = np.array(2.0 * t - 1.0)
+        f = fk3[1] + s * diff[1]
+        w = iw3[1] + s * diff[3]
     fa = np.abs(f)
-    uc = np.where(fa > 0.0, np.conj(f) / np.where(fa > 0.0, fa, 1.0), 1.0)
+    pos = fa > 0.0
+    if pos.all():  # the common case: the same numbers without the masks
+        uc = np.conj(f) / fa
+    else:
+        uc = np.where(pos, np.conj(f) / np.where(pos, fa, 1.0), 1.0)
     return f, uc, w
+
+
+def _step_diffs(fk3, iw3):
+    """Differences of the consecutive load and whirl samples of a step (for :func:`_load_at`)."""
+    return fk3[1] - fk3[0], fk3[2] - fk3[1], iw3[1] - iw3[0], iw3[2] - iw3[1]
 
 
 def _ros2_steps(rate, z, fk3, iw3, sel, h, nsub):
@@ -470,8 +541,10 @@ def _ros2_steps(rate, z, fk3, iw3, sel, h, nsub):
     Returns ``(z_new, rate_at_start, max lambda*h per sub-step)``.
     """
 
+    diff = _step_diffs(fk3, iw3)
+
     def at(t):
-        return _load_at(fk3, iw3, t)
+        return _load_at(fk3, iw3, t, diff)
 
     hs = h / nsub
     gh = _ROS2_GAMMA * hs
@@ -504,7 +577,8 @@ def _ros2_steps(rate, z, fk3, iw3, sel, h, nsub):
         k2 = ((w22 * v.real - w12 * v.imag) + 1j * (-w21 * v.real + w11 * v.imag)) / det
         z = z + hs * (1.5 * k1 + 0.5 * k2)
         za = np.abs(z)
-        z = np.where(za > EPS_CAP, z * (EPS_CAP / np.maximum(za, EPS_CAP)), z)
+        if (za > EPS_CAP).any():  # (clamp only when needed: same numbers)
+            z = np.where(za > EPS_CAP, z * (EPS_CAP / np.maximum(za, EPS_CAP)), z)
     return z, r_start, lam_h
 
 
@@ -512,22 +586,31 @@ def _rk4_steps(rate, z, fk3, iw3, h, nsub, sel=None):
     """Advance ``z`` over one step of length ``h`` with ``nsub`` classical RK4 sub-steps
     (loads piecewise-linear between the three nodes of the step)."""
 
+    diff = _step_diffs(fk3, iw3)
+
     def at(t):
-        return _load_at(fk3, iw3, t)
+        return _load_at(fk3, iw3, t, diff)
 
     hs = h / nsub
+    # z + hs/6 (k1 + 2 (k2 + k3) + k4); scalars as 0-d arrays (same numbers, faster calls)
+    c_half, c_hs, c_h6 = np.array(0.5 * hs), np.array(hs), np.array(hs / 6.0)
     p1 = at(0.0)
     for k in range(nsub):
         p0 = p1
         pm = at((k + 0.5) / nsub)
         p1 = at((k + 1.0) / nsub)
         k1 = rate(z, *p0, sel)
-        k2 = rate(z + 0.5 * hs * k1, *pm, sel)
-        k3 = rate(z + 0.5 * hs * k2, *pm, sel)
-        k4 = rate(z + hs * k3, *p1, sel)
-        z = z + (hs / 6.0) * (k1 + 2.0 * (k2 + k3) + k4)
+        k2 = rate(z + c_half * k1, *pm, sel)
+        k3 = rate(z + c_half * k2, *pm, sel)
+        k4 = rate(z + c_hs * k3, *p1, sel)
+        np.add(k2, k3, k2)
+        np.multiply(_TWO, k2, k2)
+        np.add(k1, k2, k2)
+        np.add(k2, k4, k2)
+        z = z + np.multiply(c_h6, k2, k2)
         za = np.abs(z)
-        z = np.where(za > EPS_CAP, z * (EPS_CAP / np.maximum(za, EPS_CAP)), z)
+        if (za > _CAP).any():  # (clamp only when needed: same numbers)
+            z = np.where(za > EPS_CAP, z * (EPS_CAP / np.maximum(za, EPS_CAP)), z)
     return z
 
 
@@ -557,6 +640,7 @@ def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: 
     fk, uc, iwb, lam = arr["fk"], arr["uc"], arr["iwb"], arr["lam"]
     rate = _make_rate(prob.model, prob.bear, prob.shared)
     map_stiff = prob.model in ("reynolds_map", "reynolds")
+    reuse = prob.model in ("closed_form", "reynolds_map")  # rates that keep rate.last
     implicit = prob.model == "butenschoen"
     nbase = _ROS2_BASE_SUBSTEPS
     zh = np.empty((n, z.size), dtype=complex)
@@ -568,6 +652,10 @@ def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: 
     # steps where the closed-form stiffness estimate (s <= 2) can exceed the limit somewhere
     stiff_possible = (np.ones(n, dtype=bool) if map_stiff or not lam.size
                       else lam.max(axis=1) * 2.0**1.5 > stiff_limit)
+    # the scalars of the step loop as 0-d arrays: the same numbers, faster NumPy calls
+    c_one, c_two, c_h, c_hh, c_h6, c_15h, c_lim, c_keep, c_frac, c_cap = (
+        np.array(float(v)) for v in (1.0, 2.0, h, hh, h6, 1.5 * h, stiff_limit,
+                                     1.0 - _TRAVEL_FRAC, _TRAVEL_FRAC, EPS_CAP))
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         for j in range(n):
             a, m, b = 2 * j, 2 * j + 1, (2 * j + 2) % (2 * n)
@@ -593,17 +681,18 @@ def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: 
                         za[g] = np.abs(znew[g])
             else:
                 k1 = rate(z, fk[a], uc[a], iwb[a])
+                # z uc[a] and iwb[a] z as the rate computed them, or computed again
+                w1, p1 = rate.last if reuse else (None, None)
                 kh[j] = k1
-                k2 = rate(z + hh * k1, fk[m], uc[m], iwb[m])
-                k3 = rate(z + hh * k2, fk[m], uc[m], iwb[m])
-                k4 = rate(z + h * k3, fk[b], uc[b], iwb[b])
-                k2 += k3
-                k2 *= 2.0
-                k2 += k1
-                k2 += k4
-                k2 *= h6
-                znew = k2
-                znew += z
+                k2 = rate(z + c_hh * k1, fk[m], uc[m], iwb[m])
+                k3 = rate(z + c_hh * k2, fk[m], uc[m], iwb[m])
+                k4 = rate(z + c_h * k3, fk[b], uc[b], iwb[b])
+                np.add(k2, k3, k2)
+                np.multiply(k2, c_two, k2)
+                np.add(k2, k1, k2)
+                np.add(k2, k4, k2)
+                np.multiply(k2, c_h6, k2)
+                znew = np.add(k2, z, k2)
                 za = np.abs(znew)
                 # (2) travel: the step closes more than _TRAVEL_FRAC of the film gap
                 # (za - za0 > F (1 - za0); the threshold also catches |eps| > EPS_CAP)
@@ -612,14 +701,18 @@ def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: 
                 if stiff_possible[j]:
                     # (1) closed-form stiffness estimate 2.5/pi |f|max h s^1.5,
                     # s = 1 - zeta + travel
-                    s = np.minimum(1.0 - (z * uc[a]).real + h * np.abs(k1), 2.0)
+                    if w1 is None:
+                        w1 = z * uc[a]
+                    s = np.minimum(c_one - w1.real + c_h * np.abs(k1), c_two)
                     lh = lam[j] * (s * np.sqrt(s))
                     if map_stiff:
                         # finite length: Jacobian ~ p |f M| / s for M ~ s^p; p = 2.5 for the
                         # short bearing, 1.5 for the (locally long) finite-length film near
                         # the wall
-                        lh = np.maximum(lh, (1.5 * h) * np.abs(k1 - iwb[a] * z) / s)
-                    flag |= lh > stiff_limit
+                        if p1 is None:
+                            p1 = iwb[a] * z
+                        lh = np.maximum(lh, c_15h * np.abs(k1 - p1) / s)
+                    flag |= lh > c_lim
                 if flag.any():
                     idx = np.flatnonzero(flag)
                     travel = (za[idx] - za0[idx]) / (_TRAVEL_FRAC * (1.0 - za0[idx]))
@@ -656,7 +749,7 @@ def _run_cycle(prob: _Problem, z: np.ndarray, stiff_limit: float, max_substeps: 
                         za[io] = EPS_CAP
                 z = znew
                 za0 = za
-                thr = np.minimum(za0 * (1.0 - _TRAVEL_FRAC) + _TRAVEL_FRAC, EPS_CAP)
+                thr = np.minimum(za0 * c_keep + c_frac, c_cap)
                 continue
             over = za > EPS_CAP
             if over.any():
@@ -759,7 +852,7 @@ def _shared_rows(fx, fy, w, scalars, grooved, group, p: int):
     o = p * np.argmax(mag, axis=1)  # canonical start point (a step point)
     sf = np.sqrt(mag.max(axis=1))
     sf[sf == 0.0] = 1.0
-    sw = np.abs(w).max(axis=1)
+    sw = np.maximum(w.max(axis=1), -w.min(axis=1))  # max |w|
     sw[sw == 0.0] = 1.0
     probe = (o[:, None] + np.arange(0, n_pts, max(1, n_pts // 16))[None, :]) % n_pts
     scal = [_mantissa_key(a) for a in scalars] + [
@@ -769,9 +862,10 @@ def _shared_rows(fx, fy, w, scalars, grooved, group, p: int):
         [np.stack(scal, axis=1), _quantize(fx[rows[:, None], probe], sf[:, None]),
          _quantize(fy[rows[:, None], probe], sf[:, None]),
          _quantize(w[rows[:, None], probe], sw[:, None])], axis=1))
-    first: dict[bytes, int] = {}
-    rep = np.array([first.setdefault(r.tobytes(), i) for i, r in enumerate(key)],
-                   dtype=np.intp)
+    # the first row with the same key (np.unique's indices are first occurrences)
+    _, first, inv = np.unique(key.view(np.dtype((np.void, key.shape[1] * key.itemsize)))
+                              .reshape(-1), return_index=True, return_inverse=True)
+    rep = first[inv.reshape(-1)].astype(np.intp)
     dup = np.flatnonzero(rep != rows)
     if dup.size:  # verify every point: the loads and whirl are the shifted sequence
         r = rep[dup]
@@ -780,7 +874,11 @@ def _shared_rows(fx, fy, w, scalars, grooved, group, p: int):
         for s in sorted(set(d_shift.tolist())):  # a few distinct shifts: whole rows rolled
             m = np.flatnonzero(d_shift == s)
             for arr, sc in ((fx, sf), (fy, sf), (w, sw)):
-                dev = np.abs(arr[dup[m]] - np.roll(arr[r[m]], int(s), axis=1)).max(axis=1)
+                dev = arr[dup[m]]  # minus the representative's row rolled by s
+                ref = arr[r[m]]
+                dev[:, s:] -= ref[:, :n_pts - s]
+                dev[:, :s] -= ref[:, n_pts - s:]
+                dev = np.abs(dev, out=dev).max(axis=1)
                 ok[m] &= dev <= 1e-10 * sc[r[m]]
         rep[dup[~ok]] = dup[~ok]
     shift = ((o - o[rep]) // p) % (n_pts // p)

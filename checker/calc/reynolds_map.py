@@ -70,6 +70,8 @@ __all__ = [
     "table_for",
     "stack_tables",
     "map_kernel",
+    "kernel_table",
+    "stack_kernel_tables",
     "mobility_map",
     "film_kernels",
     "film_state_map",
@@ -452,6 +454,12 @@ def table_for(l_over_d: float) -> MapTable:
 _SX = _FINE_NT + 1  # row stride of the padded tables
 _CX = (_FINE_NX - 1) / _XF_END
 _CT = float(_FINE_NT - 1)
+# map_kernel's scalars as 0-d float64 arrays (the same numbers; NumPy calls with them are
+# ~0.3 us faster than with Python floats): 1, wall-distance floor, tiny, b, 2, 2 b, column
+# and row scales
+_K = tuple(np.array(v) for v in (1.0, _S_MIN, _TINY, _LIN_Q, 2.0, 2.0 * _LIN_Q, _CT,
+                                 0.5 * _CX))
+_K_SX = np.array(_SX, dtype=np.intp)
 
 
 def _coords(w: np.ndarray):
@@ -498,64 +506,105 @@ def stack_tables(l_over_d: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarr
             (inv * size).reshape(np.shape(l_over_d)))
 
 
-def map_kernel(w: np.ndarray, mob_flat: np.ndarray, offset: np.ndarray) -> np.ndarray:
+def kernel_table(mob_flat: np.ndarray) -> np.ndarray:
+    """Lookup table of :func:`map_kernel` from a flat (stacked, padded) mobility table: per
+    node ``i`` the pair ``mob_flat[i], mob_flat[i + 1] - mob_flat[i]`` (the ``a`` and
+    ``b - a`` of :func:`_bilinear`, the same numbers), interleaved so that a lookup reads one
+    cache line per table row. Built once per table (:func:`stack_kernel_tables`)."""
+    pairs = np.zeros((mob_flat.size, 2), dtype=complex)
+    pairs[:, 0] = mob_flat
+    np.subtract(mob_flat[1:], mob_flat[:-1], out=pairs[:-1, 1])
+    return pairs.reshape(-1)
+
+
+@functools.lru_cache(maxsize=16)
+def _kernel_table_for(l_over_d: float) -> np.ndarray:
+    return kernel_table(table_for(l_over_d).mobility.ravel())
+
+
+@functools.lru_cache(maxsize=2)
+def _stacked_kernel_tables(lods: tuple[float, ...]) -> np.ndarray:
+    tabs = [_kernel_table_for(v) for v in lods]
+    return tabs[0] if len(tabs) == 1 else np.concatenate(tabs)
+
+
+def stack_kernel_tables(l_over_d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Distinct width ratios -> the stacked :func:`kernel_table` of their mobility tables and
+    the flat node offset of each entry's table (as :func:`stack_tables`; the tables are kept
+    for the next call with the same ratios). Raises ValueError for a ratio outside the map's
+    range."""
+    u, inv = np.unique(np.round(np.asarray(l_over_d, dtype=float), 12), return_inverse=True)
+    size = table_for(float(u[0])).mobility.size  # checks the range
+    tab = _stacked_kernel_tables(tuple(float(v) for v in u))
+    return tab, (inv * size).reshape(np.shape(l_over_d))
+
+
+def map_kernel(w: np.ndarray, mob_flat: np.ndarray, offset: np.ndarray | None,
+               table: np.ndarray | None = None) -> np.ndarray:
     """Map mobility in the load frame times (L/D)**2 (complex); ``w`` may lie slightly
     outside the unit disk (RK stages): the wall distance is floored at 1e-7.
 
-    Same arithmetic as :func:`_coords` and :func:`_bilinear`, fused with in-place operations
-    (this is the inner loop of the finite-length orbits)."""
+    Same arithmetic as :func:`_coords` (with ``|w|`` by ``np.abs``) and :func:`_bilinear`,
+    fused with in-place operations (this is the inner loop of the finite-length orbits; the
+    tests compare it bit for bit with the unfused formulas). ``offset``: flat offset of each
+    entry's table (:func:`stack_tables`), or None (every entry in the first table).
+    ``table``: :func:`kernel_table` of ``mob_flat`` (built here when not given; pass it when
+    the same table is used again)."""
+    if table is None:
+        table = kernel_table(mob_flat)
     if w.ndim != 1:
         shape = w.shape
-        return map_kernel(w.reshape(-1), mob_flat, np.broadcast_to(offset, shape).reshape(-1)
-                      ).reshape(shape)
-    z = w.real
+        off = None if offset is None else np.broadcast_to(offset, shape).reshape(-1)
+        return map_kernel(w.reshape(-1), mob_flat, off, table).reshape(shape)
+    mul, add, sub = np.multiply, np.add, np.subtract  # scalars as 0-d arrays (_K): faster
     e = np.abs(w)
-    d = 1.0 - e
-    np.maximum(d, _S_MIN, out=d)
-    d2 = d * d
+    d = sub(_K[0], e)
+    np.maximum(d, _K[1], out=d)
+    d2 = mul(d, d)
     ld2 = np.log(d2)
-    q = e - z
-    q /= e + _TINY
-    t = d2 + q
-    np.log(t, out=t)
-    t -= ld2
-    q *= _LIN_Q
-    t += q
-    den = d2 + 2.0
-    np.log(den, out=den)
-    den -= ld2
-    den += 2.0 * _LIN_Q
-    t /= den
-    t *= _CT
-    ld2 *= 0.5 * _CX  # fractional row
+    q = sub(e, w.real)
+    add(e, _K[2], e)
+    np.divide(q, e, q)
+    t = add(d2, q, e)
+    np.log(t, t)
+    sub(t, ld2, t)
+    mul(q, _K[3], q)
+    add(t, q, t)
+    add(d2, _K[4], d2)  # denominator
+    np.log(d2, d2)
+    sub(d2, ld2, d2)
+    add(d2, _K[5], d2)
+    np.divide(t, d2, t)
+    mul(t, _K[6], t)
+    mul(ld2, _K[7], ld2)  # fractional row
     i0 = ld2.astype(np.intp)
     it = t.astype(np.intp)
-    ld2 -= i0
-    t -= it
-    i0 *= _SX
-    i0 += it
-    i0 += offset
-    a = mob_flat[i0]
-    b = mob_flat[i0 + 1]
-    b -= a
-    b *= t
-    a += b
-    i0 += _SX
-    c = mob_flat[i0]
-    b = mob_flat[i0 + 1]
-    b -= c
-    b *= t
-    c += b
-    c -= a
-    c *= ld2
-    a += c
-    g = np.sqrt(d)
-    g *= d
-    out = np.empty(w.shape, dtype=complex)
-    np.multiply(a.real, g, out=out.real)
-    g *= w.imag
-    np.multiply(a.imag, g, out=out.imag)
-    return out
+    sub(ld2, i0, ld2)
+    sub(t, it, t)
+    mul(i0, _K_SX, i0)
+    add(i0, it, i0)
+    if offset is not None:
+        add(i0, offset, i0)
+    add(i0, i0, i0)  # pairs (a, b - a) per node
+    a = table[i0]  # a + t (b - a): row i0
+    b = table[1:][i0]
+    mul(b, t, b)
+    add(a, b, a)
+    c = table[2 * _SX:][i0]  # the next row
+    b = table[2 * _SX + 1:][i0]
+    mul(b, t, b)
+    add(c, b, c)
+    sub(c, a, c)
+    mul(c, ld2, c)
+    add(a, c, a)
+    np.sqrt(d, d2)  # d**1.5 (d2 is free)
+    mul(d2, d, d2)
+    ar = a.real
+    mul(ar, d2, ar)
+    mul(d2, w.imag, d2)
+    ai = a.imag
+    mul(ai, d2, ai)
+    return a
 
 
 def mobility_map(zeta: ArrayLike, kappa: ArrayLike, l_over_d: ArrayLike
@@ -588,8 +637,8 @@ def mobility_map(zeta: ArrayLike, kappa: ArrayLike, l_over_d: ArrayLike
     z, k, lod = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (zeta, kappa,
                                                                            l_over_d)))
     pf.check_in_disk(z, k)
-    mob, _, _, off = stack_tables(lod)
-    m = map_kernel(z + 1j * k, mob, off) / lod**2
+    tab, off = stack_kernel_tables(lod)
+    m = map_kernel(z + 1j * k, None, off, tab) / lod**2
     return m.real, m.imag
 
 

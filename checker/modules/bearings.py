@@ -281,7 +281,9 @@ def _orbits(preps: list[dict], model: str) -> None:
 def _orbit_kernel(preps: list[dict], model: str) -> None:
     """One orbit kernel call for the prepared engines (same load-grid length); the result of
     each is stored in its ``res`` (arrays over its rows x cases x speeds)."""
-    cat = {k: np.concatenate([p["arg"][k] for p in preps]) for k in preps[0]["arg"]}
+    # one engine: its arrays as they are (solve_orbit does not modify its inputs)
+    cat = ({k: np.concatenate([p["arg"][k] for p in preps]) for k in preps[0]["arg"]}
+           if len(preps) > 1 else dict(preps[0]["arg"]))
     group = np.concatenate([np.full(p["arg"]["speed"].size, g) for g, p in enumerate(preps)])
     # orbit frame: X along the loads' y axis, Y along their x axis, so that angles are
     # positive in the direction of crank rotation in both (checker.calc.crank_forces)
