@@ -484,6 +484,20 @@ def _run(jobs: list[_Job], ev: Evaluator, pack: bool = True) -> None:
                 j.queue = []
         if not requests:
             return
+        # a request whose value alone is not a valid workbook (e.g. a width beyond the
+        # journal) is not packed with others: it would make their variant invalid too, and
+        # each of them would have to be checked again alone
+        invalid: list[tuple[_Job, Any]] = []
+        if pack:
+            per_lever: dict[str, int] = {}
+            for j, _ in requests:
+                per_lever[j.lever.id] = per_lever.get(j.lever.id, 0) + 1
+            for j, x in requests:
+                if j.lever.separable and per_lever[j.lever.id] > 1:
+                    if ev.input_errors(j.binding.changes(x)) is not None:
+                        invalid.append((j, x))
+            bad_ids = {(id(j), repr(x)) for j, x in invalid}
+            requests = [(j, x) for j, x in requests if (id(j), repr(x)) not in bad_ids]
         variants = _pack(requests, pack)
         changes, uniq, index = [], {}, []
         for v in variants:
@@ -527,6 +541,10 @@ def _run(jobs: list[_Job], ev: Evaluator, pack: bool = True) -> None:
                 alone[(id(j), repr(x))] = r
         got: dict[int, list] = {}
         seen: set[tuple[int, Any]] = set()
+        for j, x in invalid:  # not a valid workbook: no margin (as when checked alone)
+            if (id(j), repr(x)) not in seen:
+                seen.add((id(j), repr(x)))
+                got.setdefault(id(j), []).append((x, None))
         for v, k in zip(variants, index):
             for j, x in v:
                 res = alone.get((id(j), repr(x)), results[k])

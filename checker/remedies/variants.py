@@ -77,6 +77,20 @@ class Evaluator:
             return self._evaluate_here(changes, select)
         return self.evaluate_groups([(changes, select)])[0]
 
+    def input_errors(self, changes: Changes) -> InputErrors | None:
+        """The input errors of a variant (its cells converted and the engine built, nothing
+        calculated: a few milliseconds), or None for a valid workbook."""
+        from ..engine import build_engine
+        from ..workbook.loader import convert_raw
+
+        try:
+            build_engine(convert_raw(self.base.with_values(changes), raise_errors=False))
+        except InputErrors as exc:
+            return exc
+        except (ValueError, ArithmeticError):
+            return None  # a calculation's refusal shows when the variant is checked
+        return None
+
     def evaluate_groups(self, groups: list[tuple[list[Changes], list[str] | None]]
                         ) -> list[list[Any]]:
         """:meth:`evaluate_variants` of several groups ``(changes, select)`` (e.g. the
