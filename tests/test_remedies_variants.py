@@ -114,3 +114,35 @@ def test_groups_shared_with_a_helper_equal_one_process(i4):
     for a, b in zip(want, got):
         for x, y in zip(a, b):
             assert [r.as_dict() for r in x.results] == [r.as_dict() for r in y.results]
+
+
+def test_input_errors_of_a_variant_without_calculating(i4):
+    """A width beyond its journal is an invalid workbook, known from the cells alone (the
+    root finding then does not pack that trial value with other items' values)."""
+    base = read_raw_workbook(i4)
+    width = bind(base, "Bearings", (_field("Bearings", "length"),), "mm", ("BE1",), ())
+    assert not isinstance(width, str)
+    ev = Evaluator(base, load_rules())
+    assert ev.input_errors(width.changes(width.nominal[0] * 1.05)) is None
+    err = ev.input_errors(width.changes(width.nominal[0] * 10.0))
+    assert isinstance(err, InputErrors)
+    assert any(e.where.startswith("Bearings!") for e in err.errors)
+    assert ev.evaluations == 0 and not ev.cache
+
+
+def test_corners_in_their_own_process_equal_one_process(i4):
+    """With remedies and more than one process the corners are checked in a forked process
+    of their own: the same corners as in one process."""
+    from checker.remedies import attach
+
+    out = []
+    for workers in (1, 2):
+        cache: dict = {}
+        res = api.check(i4, select=["JNT"], cache=cache)
+        attach(res, remedies=True, corners=True, cache=cache, select=["JNT"],
+               workers=workers)
+        out.append(([c.as_dict() for c in res.corners["results"]],
+                    res.corners["evaluations"],
+                    [x.as_dict() for x in res.remedies["results"]]))
+    assert out[0] == out[1]
+    assert out[0][1] > 0 and any(c["worst"] for c in out[0][0])
