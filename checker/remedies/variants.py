@@ -80,16 +80,22 @@ class Evaluator:
     def input_errors(self, changes: Changes) -> InputErrors | None:
         """The input errors of a variant (its cells converted and the engine built, nothing
         calculated: a few milliseconds), or None for a valid workbook."""
+        built = self._build(changes)
+        return built if isinstance(built, InputErrors) else None
+
+    def _build(self, changes: Changes) -> Any:
+        """The engine of a variant, or the :class:`InputErrors` of one that is not a valid
+        workbook (including values a calculation refuses while the engine is built)."""
         from ..engine import build_engine
         from ..workbook.loader import convert_raw
 
         try:
-            build_engine(convert_raw(self.base.with_values(changes), raise_errors=False))
+            return build_engine(convert_raw(self.base.with_values(changes),
+                                            raise_errors=False))
         except InputErrors as exc:
             return exc
-        except (ValueError, ArithmeticError):
-            return None  # a calculation's refusal shows when the variant is checked
-        return None
+        except (ValueError, ArithmeticError) as exc:
+            return _refused(exc)
 
     def evaluate_groups(self, groups: list[tuple[list[Changes], list[str] | None]]
                         ) -> list[list[Any]]:
@@ -184,9 +190,7 @@ class Evaluator:
         import time
 
         from .. import api
-        from ..engine import Engine, build_engine
-        from ..errors import InputError
-        from ..workbook.loader import convert_raw
+        from ..engine import Engine
 
         out: list[Any] = []
         sel = self.select if select is None else select
@@ -196,21 +200,8 @@ class Evaluator:
         t0 = time.perf_counter()
         if self._pinned is None:
             self._pinned = set(self.cache)
-        def refused(exc: Exception) -> InputErrors:
-            # a calculation refused the variant's values (outside its validity range): the
-            # variant is not a valid design, like an input error
-            return InputErrors([InputError("variant", f"{type(exc).__name__}: {exc}")])
-
         for start in range(0, len(changes), self.batch):
-            built: list[Any] = []
-            for ch in changes[start:start + self.batch]:
-                try:
-                    built.append(build_engine(convert_raw(self.base.with_values(ch),
-                                                          raise_errors=False)))
-                except InputErrors as exc:
-                    built.append(exc)
-                except (ValueError, ArithmeticError) as exc:
-                    built.append(refused(exc))
+            built = [self._build(ch) for ch in changes[start:start + self.batch]]
             live = [e for e in built if isinstance(e, Engine)]
             done: list[Any] | None = None
             if len(live) > 1:
@@ -234,7 +225,7 @@ class Evaluator:
                                              ignore=self.ignore, fail_on=self.fail_on,
                                              cache=self.cache, compare=False))
                     except (ValueError, ArithmeticError) as exc:
-                        out.append(refused(exc))
+                        out.append(_refused(exc))
                 self.evaluations += 1
             self._evict()
         self.seconds += time.perf_counter() - t0
@@ -268,6 +259,14 @@ class Evaluator:
                 break
             total -= self._sizes.pop(k)
             del self.cache[k]
+
+
+def _refused(exc: Exception) -> InputErrors:
+    """A calculation refused the variant's values (outside its validity range): the variant
+    is not a valid design, like an input error."""
+    from ..errors import InputError
+
+    return InputErrors([InputError("variant", f"{type(exc).__name__}: {exc}")])
 
 
 TASKS_PER_PROCESS = 3

@@ -175,6 +175,14 @@ def _not_found_text(rms: list) -> str:
     return ". ".join(parts) + "."
 
 
+def _remedy_table(rows: list, css: list, caption: str, at: str) -> dict:
+    """A table of remedy rows (:func:`_remedy_rows`); ``at``: the heading of the value column
+    ("passes at", "fails at")."""
+    return {"type": "table", "css": "remedies", "caption": caption,
+            "columns": ["item", "lever", "today", at, "change", "other results that change"],
+            "rows": rows, "row_css": css, "widths": [11, 21, 10, 11, 18, 29]}
+
+
 def _remedy_rows(groups: list[dict], names: dict[str, str]) -> tuple[list, list]:
     """Rows of the what-it-takes table: a title row per rule, then per merged result its
     found levers (smallest change first) and one line for the levers that found none."""
@@ -350,12 +358,9 @@ def remedies_section(res: CheckResult) -> dict:
         near = remedy_groups([x for x in rem["results"] if x.status == "pass"])
         rows, css = _remedy_rows(fails, names)
         if rows:
-            blocks.append({"type": "table", "css": "remedies",
-                           "caption": "Failing results: the value at which each passes"
-                           " (smallest change first; page 1 names it)",
-                           "columns": ["item", "lever", "today", "passes at", "change",
-                                       "other results that change"],
-                           "rows": rows, "row_css": css, "widths": [11, 21, 10, 11, 18, 29]})
+            blocks.append(_remedy_table(rows, css, "Failing results: the value at which each"
+                                        " passes (smallest change first; page 1 names it)",
+                                        "passes at"))
         conflicts = list(dict.fromkeys(c for x in rem["results"] for c in x.conflicts))
         if conflicts:
             blocks.append({"type": "heading", "text": "Conflicts"})
@@ -364,12 +369,9 @@ def remedies_section(res: CheckResult) -> dict:
         still = [g for g in near if g not in moved]
         if moved:
             rows, css = _remedy_rows(moved, names)
-            blocks.append({"type": "table", "css": "remedies",
-                           "caption": "Passing results within 10 % of their limit: the value"
-                           " beyond which each fails",
-                           "columns": ["item", "lever", "today", "fails at", "change",
-                                       "other results that change"],
-                           "rows": rows, "row_css": css, "widths": [11, 21, 10, 11, 18, 29]})
+            blocks.append(_remedy_table(rows, css, "Passing results within 10 % of their"
+                                        " limit: the value beyond which each fails",
+                                        "fails at"))
         if still:
             blocks.append({"type": "text", "text": (
                 "Passing within 10 % of their limit, and no lever value within its bounds"
