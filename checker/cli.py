@@ -364,13 +364,20 @@ def report(workbook, rules, select, ignore, fail_on, output, html_out, results_o
     prog("Reading the workbook and running the analyses")
     cache: dict | None = {} if (remedies or corners) else None
     res = _run_check(workbook, rules, select, ignore, fail_on, prog, cache)
+    drawing = None
+    if remedies or corners:
+        from .report.render import start_drawing
+
+        # the figures drawn with the processor time the search leaves idle
+        drawing = start_drawing(res)
     _attach_extras(res, workbook, rules, select, ignore, remedies, corners, levers_file, cache,
                    prog)
     try:
         from .report.render import build_report
 
         rep = build_report(res, progress=prog, want_html=bool(html_out),
-                           results_file=Path(results_out).name if results_out else None)
+                           results_file=Path(results_out).name if results_out else None,
+                           drawing=drawing)
     except Exception as exc:  # noqa: BLE001
         prog.done()
         _fail(exc)

@@ -184,6 +184,8 @@ class _Job:
     done: bool = False
     queue: list[Any] = field(default_factory=list)
     cands: list[Any] = field(default_factory=list)  # discrete: choices still to try
+    twin: _Job | None = None  # the same result and lever in the other direction
+    held: list[Any] = field(default_factory=list)  # trial values waiting for the twin
 
     @property
     def key(self) -> str:
@@ -405,8 +407,9 @@ def _advance(job: _Job, evaluated: list[tuple[Any, float | None]]) -> None:
 def _reach(job: _Job, walked: list[tuple[float, float]], aim: float) -> float:
     """The next trial value before a passing one is known: the secant through the two
     evaluated points farthest from today (today included) extrapolated to the aimed margin,
-    by at most four times the last step; the step doubled when the margin did not move
-    towards the limit; never beyond the lever's bound."""
+    by at most four times the last step; when the margin did not move towards the limit, the
+    lever's bound after the first step, twice the distance from today after later ones; never
+    beyond the bound."""
     x0, xb = job.x0, job.xb
     (xp, mp), (xl, ml) = walked[-2], walked[-1]
     step = xl - xp
@@ -414,8 +417,13 @@ def _reach(job: _Job, walked: list[tuple[float, float]], aim: float) -> float:
     if toward and step != 0:
         x = xl + (aim - ml) * step / (ml - mp)
         x = xl + max(min((x - xl) / step, 4.0), 0.25) * step  # within 1/4..4 last steps
+    elif len(walked) == 2:
+        # the first step moved the margin away from the limit: the bound decides (a value
+        # between would pass only where the response turns back)
+        x = xb
     else:
-        x = xl + 2.0 * (xl - x0 if xl != x0 else (xb - x0) * FRACTIONS[0])
+        # past a best point (the response turns back): on at twice the distance
+        x = xl + 2.0 * (xl - x0)
     if (x - xb) * job.sign > 0:
         x = xb
     if job.want_pass and x != xb:
@@ -471,12 +479,44 @@ def _pack(requests: list[tuple[_Job, Any]], pack: bool = True
     return variants
 
 
+def _toward(job: _Job) -> bool | None:
+    """Did the job's first trial move the margin towards the limit (None: not yet known)?"""
+    own = [(x, m) for x, m in job.pts if m is not None
+           and (x - job.x0) * job.sign > 0] if job.x0 is not None else []
+    if not own or job.res.margin is None:
+        return None
+    x, m = min(own, key=lambda p: abs(p[0] - job.x0))
+    return (m - job.res.margin) * (1.0 if job.want_pass else -1.0) > 0
+
+
+def _hold_twins(jobs: list[_Job]) -> None:
+    """A lever tried in both directions (an 'either' lever, or a passing result): the
+    direction whose first trial moved the margin away from the limit waits while the other
+    one moved towards it, and is dropped when the other finds a value (the answer is the
+    value nearest to today, and a response that first moves away would have to turn back to
+    pass); it goes on when the other finds none."""
+    for j in jobs:
+        t = j.twin
+        if t is None or j.done or j.lever.discrete:
+            continue
+        if j.held and t.done:
+            if t.remedy.found:
+                j.done, j.held = True, []
+                j.remedy.reason = "the other direction passes nearer to today"
+            else:
+                j.queue, j.held = j.held, []
+        elif (j.queue and not t.done and j.bracket is None and _toward(j) is False
+              and _toward(t)):
+            j.held, j.queue = j.queue, []
+
+
 def _run(jobs: list[_Job], ev: Evaluator, pack: bool = True) -> None:
     """Rounds of evaluations until every job is done. Identical variants are evaluated once;
     a variant that moves one lever alone serves every job of that lever (its other results
     are in the same check), so the jobs of a global lever such as the oil temperature share
     their trial values."""
     while True:
+        _hold_twins(jobs)
         requests = []
         for j in jobs:
             if not j.done and j.queue:
@@ -681,6 +721,7 @@ def find_remedies(nominal, ev: Evaluator, levers: list[Lever], near: float = NEA
                 signs = [1, -1]
                 if lv.discrete:
                     continue
+            twin = None
             for s in signs:
                 rm = Remedy(lv, ", ".join(b.labels), b.nominal[0] if len(b.nominal) == 1
                             else dict(zip([f.label for f in b.fields], b.nominal)),
@@ -697,6 +738,9 @@ def find_remedies(nominal, ev: Evaluator, levers: list[Lever], near: float = NEA
                     job.queue, job.cands = cands[:1], cands[1:]
                 else:
                     _start(job, r.value, r.limit_values, r.check)
+                if twin is not None:
+                    job.twin, twin.twin = twin, job
+                twin = job
                 jobs.append(job)
                 rr.remedies.append(rm)
         out.append(rr)

@@ -24,7 +24,7 @@ from ..api import CheckResult
 from ..forked import Forked
 from ..resources import templates_dir
 from . import results_book, review, summary
-from .sections import SectionJob
+from .sections import SECTIONS, SectionJob, modules_with_sections
 
 WEASYPRINT_HELP = (
     "WeasyPrint could not load its system libraries (Pango). Install them, e.g. on Debian/"
@@ -474,17 +474,25 @@ class Report:
 
 
 def build_report(res: CheckResult, progress: Progress | None = None,
-                 results_file: str | None = None, want_html: bool = True) -> Report:
+                 results_file: str | None = None, want_html: bool = True,
+                 drawing: SectionJob | None = None) -> Report:
     """Figures, HTML, PDF layout and file, with the results workbook attached; the
-    standalone HTML (figures as data URIs) when ``want_html``."""
+    standalone HTML (figures as data URIs) when ``want_html``.
+
+    ``drawing``: the module sections already being drawn (:func:`start_drawing`, started
+    before the remedies' search); the sections it lacks (remedies and corners) are built
+    here."""
     say = progress or (lambda _text: None)
     clock = _Clock()
-    job = SectionJob(res, progress)  # workers draw while this process does the rest
+    # workers draw while this process does the rest
+    job = drawing if drawing is not None else SectionJob(res, progress)
     wp = _weasyprint()
     env = _environment()
     clock.stage("PDF engine import")
     children = _children_cpu()
     sections = job.result()
+    # the sections the job was started without (the remedies and corners, found after it)
+    sections += [SECTIONS[m](res) for m in modules_with_sections(res) if m not in job.mods]
     clock.stage("figures", extra_cpu=_children_cpu() - children)
     sections, extra = _split_details(_plain_sections(sections))
     extra += _extra_sheets(res)
@@ -523,6 +531,14 @@ def build_report(res: CheckResult, progress: Progress | None = None,
     clock.stage("PDF write")
     return Report(pdf, standalone_html(html, figures) if want_html else "", book,
                   len(doc.pages), clock.wall, clock.cpu, doc)
+
+
+def start_drawing(res: CheckResult, progress: Progress | None = None) -> SectionJob:
+    """The module sections of ``res`` drawn from now on in worker processes at the lowest
+    priority: started before the remedies' and corners' search, they take the processor time
+    that the search leaves idle (its rounds wait for their slowest variant) instead of
+    running after it. Give the job to :func:`build_report`."""
+    return SectionJob(res, progress, nice=19)
 
 
 def _children_cpu() -> float:

@@ -118,6 +118,17 @@ def _worker(module: str) -> dict:
     return _one(module, None)  # progress is told by the parent (it owns stderr)
 
 
+def _worker_start(nice: int) -> None:
+    """In a drawing process: lower its priority by ``nice``."""
+    import os
+
+    if nice:
+        try:
+            os.nice(nice)
+        except OSError:
+            pass
+
+
 SLOW_FIRST = ("torsion", "loads", "fatigue", "bearings")
 """Sections with the most figures, started first so that the workers stay busy."""
 
@@ -128,13 +139,18 @@ class SectionJob:
     :meth:`result` to wait. Sequential where fork is unavailable or with one core."""
 
     def __init__(self, res: CheckResult, progress: Callable[[str], None] | None = None,
-                 workers: int | None = None):
+                 workers: int | None = None, modules: list[str] | None = None,
+                 nice: int = 0):
+        """``modules``: the sections to build (default: every section of ``res``);
+        ``nice``: the workers' scheduling priority increment (``os.nice``): drawing started
+        before other work of the command (the remedies' search) takes only the processor time
+        that work leaves idle."""
         import multiprocessing as mp
         import os
 
         global _RESULT, _PROGRESS
         self.res = res
-        self.mods = modules_with_sections(res)
+        self.mods = modules_with_sections(res) if modules is None else list(modules)
         self.progress = progress
         self.pool = None
         self.futures: dict[str, object] = {}
@@ -146,7 +162,8 @@ class SectionJob:
 
         _RESULT, _PROGRESS = res, progress
         try:
-            self.pool = ProcessPoolExecutor(n, mp_context=mp.get_context("fork"))
+            self.pool = ProcessPoolExecutor(n, mp_context=mp.get_context("fork"),
+                                            initializer=_worker_start, initargs=(nice,))
             order = sorted(self.mods, key=lambda m: (m not in SLOW_FIRST,
                                                      SLOW_FIRST.index(m) if m in SLOW_FIRST
                                                      else 0))
