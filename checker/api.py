@@ -365,7 +365,8 @@ _BATCHED_FILMS = (("moft_short", "closed_form", "bearing.moft_short"),
 def check_batch(engines: list[Engine], rules: str | Path | RuleTable | None = None,
                 select: list[str] | None = None, ignore: list[str] | None = None,
                 fail_on: str = "error", cache: dict | None = None,
-                compare: bool = True) -> list[CheckResult]:
+                compare: bool = True,
+                selects: list[list[str] | None] | None = None) -> list[CheckResult]:
     """Check several engine variants together; the same results as :func:`check` one by one.
 
     The journal orbits of the film-thickness calculations (short-bearing and finite-length
@@ -385,6 +386,9 @@ def check_batch(engines: list[Engine], rules: str | Path | RuleTable | None = No
     cache : dict, optional
         Calculation cache kept across calls (a study's worker keeps one); a new one is used
         when not given.
+    selects : list, optional
+        Per engine, its own ``select`` (instead of ``select`` for all): variants checked on
+        different rules still share the kernel calls of their film orbits.
 
     Returns
     -------
@@ -393,6 +397,10 @@ def check_batch(engines: list[Engine], rules: str | Path | RuleTable | None = No
     """
     from .modules import bearings as m_bearings
 
+    sels = list(selects) if selects is not None else [select] * len(engines)
+    if len(sels) != len(engines):
+        raise ValueError("check_batch: one selection per engine")
+
     fail_on = parse_fail_on(fail_on)
     cache = {} if cache is None else cache
     base = rules if isinstance(rules, RuleTable) else load_rules(rules)
@@ -400,9 +408,9 @@ def check_batch(engines: list[Engine], rules: str | Path | RuleTable | None = No
     # 1. the loads (and what else the films need) of every variant, then the film orbits of
     #    all variants whose film calculation is not cached yet, one kernel call per model
     todo: dict[str, list[tuple[Engine, str]]] = {c: [] for c, _, _ in _BATCHED_FILMS}
-    for engine in engines:
+    for engine, sel in zip(engines, sels):
         table = apply_overrides(base, engine)
-        chosen = _select(table, select, ignore)
+        chosen = _select(table, sel, ignore)
         wanted = {r.quantity for r in chosen}
         if compare:
             wanted |= {n for r in chosen for _, n in graph.QUANTITIES[r.quantity].compare}
@@ -426,8 +434,8 @@ def check_batch(engines: list[Engine], rules: str | Path | RuleTable | None = No
             else:
                 cache[key] = ({qname: out}, {})
     # 2. every variant, its film quantities from the cache
-    return [check(engine, base, select, ignore, fail_on, cache=cache, compare=compare)
-            for engine in engines]
+    return [check(engine, base, sel, ignore, fail_on, cache=cache, compare=compare)
+            for engine, sel in zip(engines, sels)]
 
 
 def today() -> str:

@@ -76,3 +76,31 @@ def test_batched_film_orbits_are_one_kernel_call(base, monkeypatch):
     # film thickness (no heat balance selected): one short-bearing and one finite-length
     # orbit call for the three variants
     assert sorted(calls) == ["closed_form", "reynolds_map"]
+
+
+def test_each_engine_on_its_own_selection(base, monkeypatch):
+    """``selects``: variants checked on different rules in one batch give the results of
+    checking each on its own rules, and their film orbits are still one kernel call."""
+    from checker.calc import orbit
+
+    mains = [b for b in base.bearings if b.type == "main"]
+    engines = [_variant(base, main_clearance=0.9 * mains[0].clearance),
+               _variant(base, supply_c=95.0), base]
+    selects = [["BRG-003"], ["BRG-004", "JNT-001"], ["FAT"]]
+    calls = []
+    real = orbit.solve_orbit
+
+    def counting(*a, **k):
+        calls.append(k.get("model", "closed_form"))
+        return real(*a, **k)
+
+    monkeypatch.setattr(orbit, "solve_orbit", counting)
+    batched = api.check_batch(engines, selects=selects, compare=False)
+    assert calls == ["reynolds_map"]
+    monkeypatch.setattr(orbit, "solve_orbit", real)
+    for b, e, sel in zip(batched, engines, selects):
+        s = api.check(e, select=sel, compare=False)
+        assert to_json(b, timings=False) == to_json(s, timings=False)
+        assert b.results and all(any(r.rule.startswith(x) for x in sel) for r in b.results)
+    with pytest.raises(ValueError, match="one selection per engine"):
+        api.check_batch(engines, selects=[["BRG"]])

@@ -233,3 +233,41 @@ def test_nonlinear_levers_reach_the_window_in_few_evaluations(i4):
             assert -REL_TOL <= r.margin <= TOL, (rr.rule, rm.lever.id, r.margin)
             checked += 1
     assert checked >= 2
+
+
+def test_direction_moving_away_waits_for_the_other():
+    """A lever tried both ways: the direction whose first trial moved the margin away from
+    the limit waits while the other moved towards it; it is dropped when the other finds a
+    value and goes on (from where it stopped) when the other finds none."""
+    from types import SimpleNamespace
+
+    from checker.remedies.solve import Remedy, _hold_twins, _Job
+
+    lv = SimpleNamespace(id="clearance", separable=True, discrete=False)
+    res = SimpleNamespace(margin=-0.2)
+
+    def job(sign: int) -> _Job:
+        j = _Job(res, "BRG-003", "M1", lv, SimpleNamespace(cells=set()),
+                 Remedy(lv, "Bearings!F3", 30.0, direction=sign), sign, True)
+        j.x0, j.xb = 30.0, 30.0 + 10.0 * sign
+        return j
+
+    up, down = job(+1), job(-1)
+    up.twin, down.twin = down, up
+    up.pts, down.pts = [(31.25, -0.3)], [(28.75, -0.1)]  # up moves away, down towards
+    up.queue, down.queue = [40.0], [27.0]
+    _hold_twins([up, down])
+    assert up.queue == [] and up.held == [40.0] and down.queue == [27.0]
+    _hold_twins([up, down])  # still waiting while the other searches
+    assert up.held == [40.0] and not up.done
+    down.done = True  # no value: the waiting direction goes on
+    _hold_twins([up, down])
+    assert up.queue == [40.0] and up.held == [] and not up.done
+    up2, down2 = job(+1), job(-1)
+    up2.twin, down2.twin = down2, up2
+    up2.pts, down2.pts = [(31.25, -0.3)], [(28.75, -0.1)]
+    up2.queue, down2.queue = [40.0], [27.0]
+    _hold_twins([up2, down2])
+    down2.done, down2.remedy.found = True, True  # a value: the waiting direction is dropped
+    _hold_twins([up2, down2])
+    assert up2.done and not up2.remedy.found and up2.queue == []

@@ -628,7 +628,11 @@ def _side_effects(jobs: list[_Job], ev: Evaluator, nominal, pack: bool = True) -
     # the rules that have results at nominal: a rule that applies to no item of this engine
     # (e.g. the sputter-lining film guideline without sputter linings) has none in a variant
     # either, and would only cost its calculations
-    results = ev.evaluate_variants(changes, select=sorted({r.rule for r in nominal.results}))
+    # one variant per task: their films were computed in the search (cached), and what is
+    # left costs from milliseconds (a joint) to a second (a heat balance of every bearing),
+    # so the processes end together only when they share the variants one by one
+    results = ev.evaluate_variants(changes, select=sorted({r.rule for r in nominal.results}),
+                                   task_size=1)
     by_first = {id(js[0]): js for _, js in groups}
     for v, res in zip(variants, results):
         if not hasattr(res, "results"):

@@ -59,8 +59,8 @@ class Evaluator:
     _sizes: dict = field(default_factory=dict)
     _pool: Any = None
 
-    def evaluate_variants(self, changes: list[Changes], select: list[str] | None = None
-                          ) -> list[Any]:
+    def evaluate_variants(self, changes: list[Changes], select: list[str] | None = None,
+                          task_size: int | None = None) -> list[Any]:
         """Check every variant (cell changes on the base workbook).
 
         Returns per variant a :class:`checker.api.CheckResult`, or the
@@ -71,11 +71,12 @@ class Evaluator:
         With helper processes (:meth:`start_workers`) the variants are shared among them and
         this process (:meth:`evaluate_groups`). A variant checked by a helper comes back with
         its rule results, without its calculated quantities. The numbers are the same in
-        every process (each variant's check equals a cold check).
+        every process (each variant's check equals a cold check). ``task_size``: see
+        :meth:`evaluate_groups`.
         """
         if self._pool is None or len(changes) < 2:
-            return self._evaluate_here(changes, select)
-        return self.evaluate_groups([(changes, select)])[0]
+            return self._evaluate_here(changes, selects=[select] * len(changes))
+        return self.evaluate_groups([(changes, select)], task_size)[0]
 
     def input_errors(self, changes: Changes) -> InputErrors | None:
         """The input errors of a variant (its cells converted and the engine built, nothing
@@ -97,8 +98,8 @@ class Evaluator:
         except (ValueError, ArithmeticError) as exc:
             return _refused(exc)
 
-    def evaluate_groups(self, groups: list[tuple[list[Changes], list[str] | None]]
-                        ) -> list[list[Any]]:
+    def evaluate_groups(self, groups: list[tuple[list[Changes], list[str] | None]],
+                        task_size: int | None = None) -> list[list[Any]]:
         """:meth:`evaluate_variants` of several groups ``(changes, select)`` (e.g. the
         variants of one round of root finding, grouped by the rules they are checked on).
 
@@ -108,35 +109,49 @@ class Evaluator:
         first. The helpers take the tasks in that order as they become free, and this process
         takes the last ones that no helper has started, so that the processes end together
         whatever each task costs (an oil variant moves every bearing's film, a fillet variant
-        only the fatigue)."""
-        if self._pool is None or sum(len(ch) for ch, _ in groups) < 2:
-            return [self._evaluate_here(ch, sel) for ch, sel in groups]
-        total = sum(len(ch) for ch, _ in groups)
-        size = max(1, min(self.batch, -(-total // (TASKS_PER_PROCESS * self.workers))))
-        tasks = [(g, start, ch[start:start + size], sel) for g, (ch, sel) in enumerate(groups)
-                 for start in range(0, len(ch), size)]
-        tasks.sort(key=lambda t: -len(t[2]))  # stable: the order of the groups otherwise
-        futures = [self._pool.submit(_helper_evaluate, t[2], t[3]) for t in tasks]
+        only the fatigue). ``task_size``: variants per task instead (e.g. 1 for variants whose
+        films are already computed, where only the balance among the processes counts)."""
+        # every variant with its own selection, in the order of the groups: a task may hold
+        # variants of several groups (their film orbits still in one kernel call)
+        flat = [(g, i, c, sel) for g, (ch, sel) in enumerate(groups) for i, c in enumerate(ch)]
+        out: list[list[Any]] = [[None] * len(ch) for ch, _ in groups]
+        if self._pool is None or len(flat) < 2:
+            res = self._evaluate_here([c for _, _, c, _ in flat],
+                                      selects=[sel for _, _, _, sel in flat])
+            for (g, i, _, _), r in zip(flat, res):
+                out[g][i] = r
+            return out
+        size = task_size or max(1, min(self.batch,
+                                       -(-len(flat) // (TASKS_PER_PROCESS * self.workers))))
+        tasks = [flat[start:start + size] for start in range(0, len(flat), size)]
+        tasks.sort(key=lambda t: -len(t))  # stable: the order of the groups otherwise
+
+        def here(task):
+            return self._evaluate_here([c for _, _, c, _ in task],
+                                       selects=[sel for _, _, _, sel in task])
+
+        futures = [self._pool.submit(_helper_evaluate, [c for _, _, c, _ in t],
+                                     [sel for _, _, _, sel in t]) for t in tasks]
         got: list[list[Any] | None] = [None] * len(tasks)
         for k in range(len(tasks) - 1, -1, -1):
             if not futures[k].cancel():  # a helper has it (and every task before it)
                 break
-            got[k] = self._evaluate_here(tasks[k][2], tasks[k][3])
+            got[k] = here(tasks[k])
         for k, fut in enumerate(futures):
             if got[k] is not None:
                 continue
             try:
                 res, n_eval = fut.result()
             except Exception:  # noqa: BLE001 - a helper that died: check its task here
-                res, n_eval = self._evaluate_here(tasks[k][2], tasks[k][3]), 0
+                res, n_eval = here(tasks[k]), 0
             self.evaluations += n_eval
             for r in res:
                 if hasattr(r, "results"):
                     r.table = self.table
             got[k] = res
-        out: list[list[Any]] = [[None] * len(ch) for ch, _ in groups]
-        for (g, start, ch, _), res in zip(tasks, got):
-            out[g][start:start + len(ch)] = res
+        for task, res in zip(tasks, got):
+            for (g, i, _, _), r in zip(task, res):
+                out[g][i] = r
         return out
 
     def start_workers(self, workers: int | None = None) -> None:
@@ -184,37 +199,43 @@ class Evaluator:
         self.workers = 1
         _HELPER = None
 
-    def _evaluate_here(self, changes: list[Changes], select: list[str] | None = None
-                       ) -> list[Any]:
-        """:meth:`evaluate_variants` in this process."""
+    def _selection(self, select: list[str] | None) -> list[str] | None:
+        """A variant's rule selection within the check's own."""
+        sel = self.select if select is None else select
+        if sel is not None and self.select is not None:
+            sel = [s for s in sel if any(s.startswith(x) or x.startswith(s)
+                                         for x in self.select)]
+        return sel
+
+    def _evaluate_here(self, changes: list[Changes],
+                       selects: list[list[str] | None]) -> list[Any]:
+        """:meth:`evaluate_variants` in this process, each variant on its own selection."""
         import time
 
         from .. import api
         from ..engine import Engine
 
         out: list[Any] = []
-        sel = self.select if select is None else select
-        if sel is not None and self.select is not None:
-            sel = [s for s in sel if any(s.startswith(x) or x.startswith(s)
-                                         for x in self.select)]
         t0 = time.perf_counter()
         if self._pinned is None:
             self._pinned = set(self.cache)
         for start in range(0, len(changes), self.batch):
             built = [self._build(ch) for ch in changes[start:start + self.batch]]
-            live = [e for e in built if isinstance(e, Engine)]
+            sels = [self._selection(s) for s in selects[start:start + self.batch]]
+            live = [(e, s) for e, s in zip(built, sels) if isinstance(e, Engine)]
             done: list[Any] | None = None
             if len(live) > 1:
                 # the film orbits of the variants in one kernel call (same results as one by
                 # one); a variant a calculation refuses is then checked alone below
                 try:
-                    done = api.check_batch(live, rules=self.table, select=sel,
+                    done = api.check_batch([e for e, _ in live], rules=self.table,
+                                           selects=[s for _, s in live],
                                            ignore=self.ignore, fail_on=self.fail_on,
                                            cache=self.cache, compare=False)
                 except (ValueError, ArithmeticError):
                     done = None
             it = iter(done or ())
-            for e in built:
+            for e, sel in zip(built, sels):
                 if not isinstance(e, Engine):
                     out.append(e)
                 elif done is not None:
@@ -290,7 +311,8 @@ def _helper_ping() -> bool:
     return _HELPER is not None
 
 
-def _helper_evaluate(changes: list[Changes], select: list[str] | None) -> tuple[list, int]:
+def _helper_evaluate(changes: list[Changes], selects: list[list[str] | None]
+                     ) -> tuple[list, int]:
     """In a helper process: check the variants with the inherited evaluator (its own cache
     grows from the parent's) and return their rule results without the calculated
     quantities (they stay in this process's cache), and the number of evaluations."""
@@ -299,7 +321,7 @@ def _helper_evaluate(changes: list[Changes], select: list[str] | None) -> tuple[
     ev = _HELPER
     assert ev is not None
     n0 = ev.evaluations
-    out = ev._evaluate_here(changes, select)
+    out = ev._evaluate_here(changes, selects)
     slim = []
     for r in out:
         if hasattr(r, "results"):
