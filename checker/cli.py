@@ -369,7 +369,7 @@ def report(workbook, rules, select, ignore, fail_on, output, html_out, results_o
         from .report.render import start_drawing
 
         # the figures drawn with the processor time the search leaves idle
-        drawing = start_drawing(res)
+        drawing = start_drawing(res, prog)
     _attach_extras(res, workbook, rules, select, ignore, remedies, corners, levers_file, cache,
                    prog)
     try:
