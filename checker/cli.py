@@ -370,8 +370,13 @@ def report(workbook, rules, select, ignore, fail_on, output, html_out, results_o
 
         # the figures drawn with the processor time the search leaves idle
         drawing = start_drawing(res, prog)
-    _attach_extras(res, workbook, rules, select, ignore, remedies, corners, levers_file, cache,
-                   prog)
+    try:
+        _attach_extras(res, workbook, rules, select, ignore, remedies, corners, levers_file,
+                       cache, prog)
+    except BaseException:
+        if drawing is not None:  # a bad Tolerances sheet or lever file: no report to draw
+            drawing.close()
+        raise
     try:
         from .report.render import build_report
 

@@ -54,6 +54,9 @@ def _engine_run(engine: str, root: Path) -> dict:
         make(d / "engine.xlsx", d / f"{name}.xlsx")
         names.append(f"{name}.xlsx")
     out["compare"] = _run(["compare", "engine.xlsx", *names, "-o", "compare.pdf"], d)
+    if engine == "i4":  # the review pack with what it takes to pass and the corners
+        out["remedies"] = _run(["report", "engine.xlsx", "--remedies", "--corners", "-o",
+                                "remedies.pdf", "--results", "remedies.xlsx", "-q"], d)
     return out
 
 
@@ -100,6 +103,26 @@ def test_report_writes_pdf_and_results(runs, engine):
     wb.close()
     # nothing else was written next to the workbook (no temporary files left)
     assert not [p.name for p in r["dir"].iterdir() if p.name.startswith(".checker-")]
+
+
+def test_report_with_remedies_and_corners(runs):
+    """``checker report --remedies --corners`` on the I4 as a user runs it (its figures are
+    drawn while the remedies are searched): the verdict's exit code, page 1's lines, the
+    section, the results workbook's sheets."""
+    r = runs["i4"]
+    _ok(r["remedies"])
+    assert r["remedies"].returncode == 1  # the I4 fails some guidelines
+    pages = _pdf_pages(r["dir"] / "remedies.pdf")
+    plain = _pdf_pages(r["dir"] / "engine.pdf")
+    assert len(pages) > len(plain)
+    text = "".join(pages)
+    assert "To pass: " in text and "At the tolerance corners: " in text
+    assert "What it takes to pass; tolerance corners" in text
+    # every module's figures are there, as in the plain report (each says where its data is)
+    assert text.count("Data: ") == "".join(plain).count("Data: ") > 10
+    wb = openpyxl.load_workbook(r["dir"] / "remedies.xlsx", read_only=True)
+    assert {"Remedies", "Tolerance corners"} <= set(wb.sheetnames)
+    wb.close()
 
 
 @pytest.mark.parametrize("engine", ENGINES)

@@ -89,6 +89,24 @@ def test_bad_tolerance_rows_name_their_cells(tmp_path):
     assert "Tolerances!A5" in text
 
 
+def test_a_text_range_names_the_rows_unit(tmp_path):
+    """min and max take their unit from the row's unit column: the message says so (not
+    'dimensionless'); the command exits 2 with no report."""
+    from click.testing import CliRunner
+
+    from checker.cli import main
+
+    p = _workbook(tmp_path / "text.xlsx", [
+        ["Bearings", "M1", "radial clearance", "abc", 27, "um", ""]])
+    out = tmp_path / "r.pdf"
+    r = CliRunner().invoke(main, ["report", str(p), "--corners", "-o", str(out)])
+    assert r.exit_code == 2
+    assert "Tolerances!D3" in r.output
+    assert "expected a number in the row's unit (column 'unit'), found text 'abc'" in r.output
+    assert "dimensionless" not in r.output
+    assert not out.exists()
+
+
 # ------------------------------------------------- a response that is not monotonic (closed form)
 @dataclass
 class _R:

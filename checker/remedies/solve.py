@@ -423,7 +423,7 @@ def _reach(job: _Job, walked: list[tuple[float, float]], aim: float) -> float:
         x = xb
     else:
         # past a best point (the response turns back): on at twice the distance
-        x = xl + 2.0 * (xl - x0)
+        x = xl + 2.0 * (xl - x0 if xl != x0 else (xb - x0) * FRACTIONS[0])
     if (x - xb) * job.sign > 0:
         x = xb
     if job.want_pass and x != xb:

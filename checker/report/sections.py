@@ -188,6 +188,16 @@ class SectionJob:
         finally:
             self.pool.shutdown()
 
+    def close(self) -> None:
+        """End the drawing processes without waiting for the sections (the command failed
+        before it needed them)."""
+        if self.pool is None:
+            return
+        pool, self.pool = self.pool, None
+        for p in list(getattr(pool, "_processes", {}).values()):
+            p.terminate()
+        pool.shutdown(wait=True, cancel_futures=True)
+
 
 def param_table(caption: str, items: list[tuple[str, str]], pairs: int = 2) -> dict:
     """A compact inputs table: ``(parameter, value with unit)`` pairs, ``pairs`` per row

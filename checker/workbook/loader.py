@@ -121,6 +121,8 @@ def _number(value: Any) -> float | None:
 
 
 def _expected(f: Field) -> str:
+    if f.expected:
+        return f.expected
     if f.kind == "int":
         return "a whole number"
     if f.kind == "int_list":

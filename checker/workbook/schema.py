@@ -99,6 +99,9 @@ class Field:
     usual: Span | None = None
     aliases: tuple[tuple[str, str], ...] = ()
     ambiguous: tuple[tuple[str, tuple[str, ...]], ...] = ()
+    expected: str = ""
+    """What an error message says was expected, where the kind alone would mislead (a number
+    whose unit another column gives)."""
 
 
 @dataclass(frozen=True)
@@ -842,9 +845,11 @@ TOLERANCES = Sheet(
           note="Column (table sheet) or parameter name; on Joints also 'tightening factor'"
                " (VDI 2230 alpha_A = F_max/F_min: the preload range around today's torque)."),
         F("min", "low", "ratio", required=False,
-          note="Lowest value (blank = today's value), in 'unit'."),
+          note="Lowest value (blank = today's value), in 'unit'.",
+          expected="a number in the row's unit (column 'unit')"),
         F("max", "high", "ratio", required=False,
-          note="Highest value (blank = today's value), in 'unit'."),
+          note="Highest value (blank = today's value), in 'unit'.",
+          expected="a number in the row's unit (column 'unit')"),
         F("unit", "unit", "text", required=False,
           note="Unit of min and max (as a unit cell), or '% of nominal' for deviations from"
                " today's value in percent (e.g. -5 and 5)."),
