@@ -59,10 +59,11 @@ def test_batched_and_one_by_one_give_identical_results(base):
     assert not np.allclose(h[0], h[1], equal_nan=True)
 
 
-def test_batched_film_orbits_are_one_kernel_call(base, monkeypatch):
+def _count_kernel_calls(monkeypatch) -> list[str]:
+    """The mobility model of every orbit-kernel call from now on (in the list returned)."""
     from checker.calc import orbit
 
-    calls = []
+    calls: list[str] = []
     real = orbit.solve_orbit
 
     def counting(*a, **k):
@@ -70,6 +71,11 @@ def test_batched_film_orbits_are_one_kernel_call(base, monkeypatch):
         return real(*a, **k)
 
     monkeypatch.setattr(orbit, "solve_orbit", counting)
+    return calls
+
+
+def test_batched_film_orbits_are_one_kernel_call(base, monkeypatch):
+    calls = _count_kernel_calls(monkeypatch)
     mains = [b for b in base.bearings if b.type == "main"]
     engines = [_variant(base, main_clearance=f * mains[0].clearance) for f in (0.9, 1.0, 1.1)]
     api.check_batch(engines, select=["BRG-003", "BRG-004", "BRG-005", "BRG-006"])
@@ -81,23 +87,14 @@ def test_batched_film_orbits_are_one_kernel_call(base, monkeypatch):
 def test_each_engine_on_its_own_selection(base, monkeypatch):
     """``selects``: variants checked on different rules in one batch give the results of
     checking each on its own rules, and their film orbits are still one kernel call."""
-    from checker.calc import orbit
-
     mains = [b for b in base.bearings if b.type == "main"]
     engines = [_variant(base, main_clearance=0.9 * mains[0].clearance),
                _variant(base, supply_c=95.0), base]
     selects = [["BRG-003"], ["BRG-004", "JNT-001"], ["FAT"]]
-    calls = []
-    real = orbit.solve_orbit
-
-    def counting(*a, **k):
-        calls.append(k.get("model", "closed_form"))
-        return real(*a, **k)
-
-    monkeypatch.setattr(orbit, "solve_orbit", counting)
-    batched = api.check_batch(engines, selects=selects, compare=False)
+    with monkeypatch.context() as m:
+        calls = _count_kernel_calls(m)
+        batched = api.check_batch(engines, selects=selects, compare=False)
     assert calls == ["reynolds_map"]
-    monkeypatch.setattr(orbit, "solve_orbit", real)
     for b, e, sel in zip(batched, engines, selects):
         s = api.check(e, select=sel, compare=False)
         assert to_json(b, timings=False) == to_json(s, timings=False)
