@@ -71,7 +71,13 @@ class Forked:
         if self.pool is None:
             return
         pool, self.pool = self.pool, None
-        if not self.future.done():
-            for p in list(getattr(pool, "_processes", {}).values()):
-                p.terminate()
-        pool.shutdown(wait=True, cancel_futures=True)
+        end_pool(pool, terminate=not self.future.done())
+
+
+def end_pool(pool, terminate: bool = True) -> None:
+    """Shut a process pool down; with ``terminate``, its processes are ended at once instead
+    of finishing their work."""
+    if terminate:
+        for p in list(getattr(pool, "_processes", {}).values()):
+            p.terminate()
+    pool.shutdown(wait=True, cancel_futures=True)

@@ -74,8 +74,6 @@ class Evaluator:
         every process (each variant's check equals a cold check). ``task_size``: see
         :meth:`evaluate_groups`.
         """
-        if self._pool is None or len(changes) < 2:
-            return self._evaluate_here(changes, selects=[select] * len(changes))
         return self.evaluate_groups([(changes, select)], task_size)[0]
 
     def input_errors(self, changes: Changes) -> InputErrors | None:

@@ -193,10 +193,10 @@ class SectionJob:
         before it needed them)."""
         if self.pool is None:
             return
+        from ..forked import end_pool
+
         pool, self.pool = self.pool, None
-        for p in list(getattr(pool, "_processes", {}).values()):
-            p.terminate()
-        pool.shutdown(wait=True, cancel_futures=True)
+        end_pool(pool)
 
 
 def param_table(caption: str, items: list[tuple[str, str]], pairs: int = 2) -> dict:
