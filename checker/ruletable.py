@@ -390,6 +390,9 @@ class RuleResult:
     override: str = ""  # how the workbook's RuleOverrides changed the limit ("" if not)
     what_it_takes: str = ""  # smallest lever change that passes + side effects (--remedies)
     worst_corner: str = ""  # value and corner at the tolerance corners (--corners)
+    limit_missing: list[str] = field(default_factory=list)
+    """The workbook limit that is missing (texts naming its cells, as in ``missing``): a
+    result not evaluated for it stays so while those cells stay blank."""
 
     @property
     def value_text(self) -> str:
@@ -569,6 +572,7 @@ def _item_limit(rule: Rule, q: Quantity, item: str, attrs: dict, sel_i: list, fa
     dims = q.spec.dims
     lim = rule.limit
     why: list[str] = []
+    no_limit: list[str] = []
     limit_text = rule.limit_text()
     if rule.limit_by is not None:
         key = str(attrs.get(rule.limit_by) or "").lower()
@@ -592,8 +596,8 @@ def _item_limit(rule: Rule, q: Quantity, item: str, attrs: dict, sel_i: list, fa
         given = attrs.get("limit")
         n_lim = 2 if rule.check == "between" else 1
         if given is None or len(tuple(given)) != n_lim:
-            why = list(attrs.get("limit_missing") or [
-                f"no limit for '{item}' given in the workbook"])
+            no_limit = list(attrs.get("limit_missing") or [])
+            why = list(no_limit) or [f"no limit for '{item}' given in the workbook"]
             why += [m for m in _collect(q.missing, sel_i) if m not in why]
         else:
             lim = tuple(float(factor(float(x))) for x in given)
@@ -607,7 +611,7 @@ def _item_limit(rule: Rule, q: Quantity, item: str, attrs: dict, sel_i: list, fa
                 + (f" at {where_txt}" if where_txt else "") + ")")
     return lim, RuleResult(**base, item=item, status="not_evaluated", value=value,
                            limit=limit_text, limit_values=None, margin=None, case=where_txt,
-                           message=msg, missing=why)
+                           message=msg, missing=why, limit_missing=no_limit)
 
 
 def _nonfinite_result(rule: Rule, q: Quantity, item: str, sub: np.ndarray, sel_i: list,

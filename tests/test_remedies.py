@@ -271,3 +271,40 @@ def test_direction_moving_away_waits_for_the_other():
     down2.done, down2.remedy.found = True, True  # a value: the waiting direction is dropped
     _hold_twins([up2, down2])
     assert up2.done and not up2.remedy.found and up2.queue == []
+
+
+def test_side_effects_skip_rules_unjudged_for_a_blank_limit_no_variant_fills():
+    """A result not evaluated because its workbook limit is blank cannot change status at a
+    lever value that leaves those cells blank: its rule is not checked again for the side
+    effects (on the I4: the shell supplier's film temperature, pressure and flow limits, so
+    the heat balance of every bearing is not solved again for each oil answer). A variant
+    that fills a limit cell, or a reason that names no cell, keeps the rule."""
+    from types import SimpleNamespace
+
+    from checker.remedies.solve import _judgeable_rules
+
+    def r(rule, status, limit_missing=()):
+        return SimpleNamespace(rule=rule, status=status, limit_missing=list(limit_missing))
+
+    nominal = SimpleNamespace(results=[
+        r("BRG-003", "fail"),
+        r("BRG-007", "not_evaluated", ["Bearings!Q3: max film temperature of M1"]),
+        r("BRG-007", "not_evaluated", ["Bearings!Q4: max film temperature of M2"]),
+        r("BRG-009", "not_evaluated", ["Bearings!S3: min oil flow of M1"]),
+        r("FAT-003", "not_evaluated"),  # missing an input, not a limit: may change
+        r("FLY-001", "not_evaluated", ["Engine (parameter 'target')"]),  # no cell named
+    ])
+    oil = {("Oil", 4, 2): 90.0}
+    assert _judgeable_rules(nominal, [oil]) == ["BRG-003", "FAT-003", "FLY-001"]
+    fills = {("Bearings", 3, 19): 0.3}  # a (user's) lever on the flow limit cell S3
+    assert _judgeable_rules(nominal, [oil, fills]) == ["BRG-003", "BRG-009", "FAT-003",
+                                                       "FLY-001"]
+
+
+def test_unjudged_rules_of_the_template_name_their_blank_limit(i4):
+    res = api.check(i4)
+    unjudged = [x for x in res.results if x.rule in ("BRG-007", "BRG-008", "BRG-009")]
+    assert unjudged and all(x.status == "not_evaluated" for x in unjudged)
+    assert all(x.limit_missing and x.limit_missing[0].startswith("Bearings!")
+               for x in unjudged)
+    assert all(not x.limit_missing for x in res.results if x.status != "not_evaluated")

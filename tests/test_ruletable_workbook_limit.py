@@ -53,9 +53,10 @@ def test_workbook_limit_is_used_per_item_and_missing_is_not_evaluated():
     first, second = evaluate_rule(rule, q, None)
     assert first.status == "not_evaluated" and first.missing == [
         "Engine!B31: Free force limit, 1st order"]
+    assert first.limit_missing == first.missing  # not evaluated for its blank limit
     assert second.status == "pass" and second.value == pytest.approx(0.9)  # kN
     assert second.limit_values == [pytest.approx(1.0)] and "Engine!B32" in second.message
-    assert second.margin == pytest.approx(0.1)
+    assert second.margin == pytest.approx(0.1) and second.limit_missing == []
     q.item_attrs["order 2"]["limit"] = (800.0,)
     [_, second] = evaluate_rule(rule, q, None)
     assert second.status == "fail"

@@ -25,8 +25,11 @@ the levers that do not have it.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 from typing import Any
+
+from openpyxl.utils import get_column_letter
 
 from ..display import with_unit
 from ..levers import ITEM, Lever
@@ -625,13 +628,10 @@ def _side_effects(jobs: list[_Job], ev: Evaluator, nominal, pack: bool = True) -
         for j, x in v:
             ch.update(j.binding.changes(x))
         changes.append(ch)
-    # the rules that have results at nominal: a rule that applies to no item of this engine
-    # (e.g. the sputter-lining film guideline without sputter linings) has none in a variant
-    # either, and would only cost its calculations
     # one variant per task: their films were computed in the search (cached), and what is
     # left costs from milliseconds (a joint) to a second (a heat balance of every bearing),
     # so the processes end together only when they share the variants one by one
-    results = ev.evaluate_variants(changes, select=sorted({r.rule for r in nominal.results}),
+    results = ev.evaluate_variants(changes, select=_judgeable_rules(nominal, changes),
                                    task_size=1)
     by_first = {id(js[0]): js for _, js in groups}
     for v, res in zip(variants, results):
@@ -653,6 +653,31 @@ def _side_effects(jobs: list[_Job], ev: Evaluator, nominal, pack: bool = True) -
                                     "to": r.status, "value": None if r.value is None else
                                     float(f"{r.value:.6g}"), "unit": r.unit})
                 j.remedy.side_effects = eff
+
+
+_CELL = re.compile(r"([A-Za-z][A-Za-z0-9_]*)!([A-Z]{1,3})([0-9]+)")
+
+
+def _judgeable_rules(nominal, changes: list[dict]) -> list[str]:
+    """The rules whose results can change status in the variants ``changes``: those with
+    results at nominal (a rule that applies to no item of this engine, e.g. the
+    sputter-lining film guideline without sputter linings, has none in a variant either),
+    less those whose every result is not evaluated for a workbook limit left blank in cells
+    that no variant fills (e.g. the shell supplier's film temperature: not judged at any
+    lever value, so its heat balance of every bearing is not solved again for each answer
+    of the oil temperature)."""
+    moved = {f"{sh}!{get_column_letter(c)}{r}" for ch in changes for sh, r, c in ch}
+
+    def stays_unjudged(r) -> bool:
+        if r.status != "not_evaluated":
+            return False
+        for text in r.limit_missing:
+            cells = {f"{m[0]}!{m[1]}{m[2]}" for m in _CELL.findall(text)}
+            if cells and not cells & moved:
+                return True  # this limit stays missing: the result stays unjudged
+        return False
+
+    return sorted({r.rule for r in nominal.results if not stays_unjudged(r)})
 
 
 def _conflicts(out: list[ResultRemedies]) -> None:
