@@ -17,7 +17,8 @@ value in its allowed direction until the result's margin reaches zero:
 
 Jobs of separable levers (a result depends only on its own row, e.g. the clearance of one
 bearing) on different items share one evaluation per step. At each answer the check is run
-again with every selected rule: the other results whose status changes are its side effects.
+again with every selected rule whose status can change there: the other results whose status
+changes are its side effects.
 Results of one item that need one lever in opposite directions are a conflict, stated with
 the levers that do not have it.
 """
@@ -610,7 +611,8 @@ def _run(jobs: list[_Job], ev: Evaluator, pack: bool = True) -> None:
 
 
 def _side_effects(jobs: list[_Job], ev: Evaluator, nominal, pack: bool = True) -> None:
-    """Run the whole check at each answer: the results whose status changes."""
+    """Run the check again at each answer (:func:`_judgeable_rules`): the results whose
+    status changes."""
     base = {(r.rule, r.item): r.status for r in nominal.results}
     done = [j for j in jobs if j.remedy.found and not j.lever.discrete or
             (j.remedy.found and j.lever.discrete)]

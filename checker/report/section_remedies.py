@@ -351,8 +351,9 @@ def remedies_section(res: CheckResult) -> dict:
             " design lever listed for its rule was moved from today's value in its allowed"
             " direction until the margin reached zero (bracketed root finding; discrete"
             " levers: the first standard choice that passes); every value given was checked"
-            " by a direct evaluation (margin 0 to 0.1 %). At each value the whole check was"
-            " run again: the other results whose status changes are listed."
+            " by a direct evaluation (margin 0 to 0.1 %). At each value the check was run"
+            " again (every rule whose status can change there: a result not evaluated for a"
+            " blank limit stays so): the other results whose status changes are listed."
             f" {rem['evaluations']} evaluations. Results with the same answers share a row.")})
         fails = remedy_groups([x for x in rem["results"] if x.status != "pass"])
         near = remedy_groups([x for x in rem["results"] if x.status == "pass"])
