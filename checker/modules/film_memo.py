@@ -207,7 +207,10 @@ def orbits(preps: list[dict], model: str, kernel: Callable[[list[dict], str], No
     sub = []
     for p, (_keys, todo, per) in zip(preps, plan):
         if todo:
-            sub.append({"arg": _take(p["arg"], todo, per), "sel": p["sel"][todo],
+            # every row to solve (an oil variant, a new peak pressure): the arrays as they are
+            whole = len(todo) == p["sel"].size
+            sub.append({"arg": p["arg"] if whole else _take(p["arg"], todo, per),
+                        "sel": p["sel"] if whole else p["sel"][todo],
                         "shape": p["shape"], "res": None})
     if sub:
         kernel(sub, model)
