@@ -4,6 +4,9 @@ and without them.
 
     python benchmarks/bench_remedies.py [--runs 1] [--select JNT] [--report]
 
+With ``--report`` the plain report and the report with remedies and corners run one after the
+other ``--runs`` times (pairs), each pair's ratio printed with their median.
+
 Each run is a fresh process; the wall time and the children's processor time (user + system,
 ``os.wait4``) are reported, with the number of variant evaluations and their share. Target
 (issue 23): the report with remedies and corners within 2x the report without them. On a
@@ -55,15 +58,9 @@ def main() -> None:
         cases = [("check", []), ("check --remedies", ["--remedies"]),
                  ("check --corners", ["--corners"]),
                  ("check --remedies --corners", ["--remedies", "--corners"])]
-        if args.report:
-            cases += [("report", None), ("report --remedies --corners", None)]
         for name, extra in cases:
-            if name.startswith("report"):
-                cmd = exe + ["report", str(wb), "-o", str(Path(d) / "r.pdf"), "-q"] + sel + (
-                    ["--remedies", "--corners"] if "remedies" in name else [])
-            else:
-                cmd = exe + ["check", str(wb), "--format", "json", "-o",
-                             str(Path(d) / "r.json")] + sel + extra
+            cmd = exe + ["check", str(wb), "--format", "json", "-o",
+                         str(Path(d) / "r.json")] + sel + extra
             times = [_run(cmd) for _ in range(args.runs)]
             wall = statistics.median(t[0] for t in times)
             cpu = statistics.median(t[1] for t in times)
@@ -75,6 +72,25 @@ def main() -> None:
             rows.append((name, wall, cpu, evals))
             print(f"{name:32s} wall {wall:7.2f} s   cpu {cpu:7.2f} s   evaluations {evals}",
                   flush=True)
+        if args.report:
+            # the two reports one after the other, pair by pair: the machine's drift (here
+            # the plain report alone varies by 30 % from run to run) then moves both
+            plain = exe + ["report", str(wb), "-o", str(Path(d) / "r.pdf"), "-q"] + sel
+            pairs = []
+            for k in range(args.runs):
+                pairs.append((_run(plain), _run(plain + ["--remedies", "--corners"])))
+                (pw, _), (ww, _) = pairs[-1]
+                print(f"pair {k + 1}: report {pw:6.2f} s, with remedies and corners"
+                      f" {ww:6.2f} s: {ww / pw:.2f}x", flush=True)
+            for i, name in enumerate(("report", "report --remedies --corners")):
+                wall = statistics.median(p[i][0] for p in pairs)
+                cpu = statistics.median(p[i][1] for p in pairs)
+                rows.append((name, wall, cpu, ""))
+                print(f"{name:32s} wall {wall:7.2f} s   cpu {cpu:7.2f} s   (median of"
+                      f" {len(pairs)})", flush=True)
+            ratios = [p[1][0] / p[0][0] for p in pairs]
+            print(f"report ratio per pair: median {statistics.median(ratios):.2f}x,"
+                  f" range {min(ratios):.2f}-{max(ratios):.2f}x")
         base = {r[0]: r for r in rows}
         for a, b in (("check --remedies --corners", "check"),
                      ("report --remedies --corners", "report")):
