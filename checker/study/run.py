@@ -777,17 +777,43 @@ def _sigint_ignored() -> Iterator[None]:
         signal.signal(signal.SIGINT, old)
 
 
+class _InterruptedSyncNoise:
+    """Logging filter: drops the traceback that Dask's event loop logs when a Ctrl-C reaches a
+    blocking call (``distributed.utils.sync``) before its coroutine started: the ``cancel``
+    callback it then schedules reads its not yet assigned ``future`` and raises ``NameError``
+    in the loop thread, which tornado logs ("Exception in callback ... NameError: cannot
+    access free variable 'future'"; distributed 2026.8). The interruption itself is handled
+    (variants kept, exit 130); only that record is dropped, any other is logged."""
+
+    def filter(self, record) -> bool:
+        exc = record.exc_info[1] if record.exc_info else None
+        if not isinstance(exc, NameError) or "future" not in str(exc):
+            return True
+        tb = record.exc_info[2]
+        while tb is not None and tb.tb_next is not None:
+            tb = tb.tb_next
+        code = tb.tb_frame.f_code if tb is not None else None
+        return not (code is not None and code.co_name == "cancel"
+                    and code.co_filename.replace("\\", "/").endswith("distributed/utils.py"))
+
+
+_SYNC_NOISE = _InterruptedSyncNoise()
+
+
 def connect_dask(address: str, workers: int | None = None) -> DaskEngine:
     """Start a LocalCluster (``"local"``) or connect to the scheduler at ``address`` within
     :data:`DASK_CONNECT_TIMEOUT` s; :class:`DaskUnreachable` (one sentence) otherwise."""
+    import logging
+
     try:
         from distributed import Client, LocalCluster
     except ImportError:
         raise DaskUnreachable("--dask needs the Dask distributed package (pip install"
                               " 'dask[distributed]')") from None
+    tornado_log = logging.getLogger("tornado.application")
+    if _SYNC_NOISE not in tornado_log.filters:
+        tornado_log.addFilter(_SYNC_NOISE)
     if address == "local":
-        import logging
-
         import dask
 
         try:

@@ -164,3 +164,9 @@ def test_local_cluster_workers_keep_the_default_malloc_trim():
     finally:
         eng.close()
     assert seen and all(v == before for v in seen.values())
+    # the Ctrl-C noise of Dask's event loop is filtered where tornado logs it
+    import logging
+
+    from checker.study.run import _SYNC_NOISE
+
+    assert _SYNC_NOISE in logging.getLogger("tornado.application").filters
