@@ -58,6 +58,9 @@ def number(v: float | None, sig: int = SIG, distinct_from: float | None = None) 
 
 
 ROUND_OFF = 1e-9
+
+CELL_REF = re.compile(r"\b[A-Za-z][A-Za-z0-9_]*![A-Z]{1,3}[0-9]+\b")
+"""A workbook cell named in a message, ``Bearings!Q3``."""
 """Shown values smaller than this (in their display unit) are zero to round-off (the free
 moments of an inline 4 come out near 1e-13 N·m): shown as 0."""
 

@@ -26,13 +26,12 @@ the levers that do not have it.
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass, field
 from typing import Any
 
 from openpyxl.utils import get_column_letter
 
-from ..display import with_unit
+from ..display import CELL_REF, with_unit
 from ..levers import ITEM, Lever
 from ..ruletable import REL_TOL
 from .variants import Binding, Evaluator, bind, find
@@ -657,9 +656,6 @@ def _side_effects(jobs: list[_Job], ev: Evaluator, nominal, pack: bool = True) -
                 j.remedy.side_effects = eff
 
 
-_CELL = re.compile(r"([A-Za-z][A-Za-z0-9_]*)!([A-Z]{1,3})([0-9]+)")
-
-
 def _judgeable_rules(nominal, changes: list[dict]) -> list[str]:
     """The rules whose results can change status in the variants ``changes``: those with
     results at nominal (a rule that applies to no item of this engine, e.g. the
@@ -674,7 +670,7 @@ def _judgeable_rules(nominal, changes: list[dict]) -> list[str]:
         if r.status != "not_evaluated":
             return False
         for text in r.limit_missing:
-            cells = {f"{m[0]}!{m[1]}{m[2]}" for m in _CELL.findall(text)}
+            cells = set(CELL_REF.findall(text))
             if cells and not cells & moved:
                 return True  # this limit stays missing: the result stays unjudged
         return False

@@ -14,6 +14,7 @@ import re
 from dataclasses import dataclass, field
 
 from ..api import CheckResult
+from ..display import CELL_REF
 from ..ruletable import RuleResult
 
 GROUPS = (
@@ -143,7 +144,6 @@ class _Extras:
         return " ".join(p + "." for p in parts if p)
 
 
-_CELL = re.compile(r"\b[A-Za-z][A-Za-z0-9_]*![A-Z]{1,3}[0-9]+\b")
 
 
 def _cell_span(refs: list[str]) -> str:
@@ -177,11 +177,11 @@ def rows(res: CheckResult, results: list[RuleResult] | None = None) -> list[Row]
         if k == "not_evaluated":
             # shown with the missing inputs, not by value; the same missing input on several
             # items (one cell each) is one row
-            pattern = _CELL.sub("\x00", note).replace(r.item, "\x01") if r.item else note
+            pattern = CELL_REF.sub("\x00", note).replace(r.item, "\x01") if r.item else note
             value, case = "-", ""
         key = (k, r.rule, case, value, r.limit, pattern, r.override, extras.key(r))
         row = merged.get(key)
-        cells.setdefault(key, []).append(_CELL.findall(note))
+        cells.setdefault(key, []).append(CELL_REF.findall(note))
         if row is None:
             merged[key] = Row(k, r.rule, r.name, [r.item], case or "-", value, r.limit,
                               r.margin_text if r.status != "not_evaluated" else "-", note,
