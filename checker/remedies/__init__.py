@@ -39,6 +39,7 @@ def attach(res, remedies: bool = False, corners: bool = False, levers_file: str 
     :class:`checker.errors.InputErrors` for a bad Tolerances sheet and
     :class:`checker.errors.RuleFileError` for a bad lever file.
     """
+    from ..blas_threads import one_per_process
     from ..ruletable import RuleTable, load_rules
     from ..workbook.loader import read_raw_workbook
     from .variants import Evaluator
@@ -58,11 +59,19 @@ def attach(res, remedies: bool = False, corners: bool = False, levers_file: str 
         from .corners import read_tolerances
 
         tols = read_tolerances(base)  # a bad Tolerances sheet: an input error before any work
+    # helper processes, the corners' process and the report's drawing processes share the
+    # cores: one BLAS thread each
+    with one_per_process(ev.processes(workers) > 1):
+        _attach_all(res, ev, table, remedies, tols, levers_file, workers)
+
+
+def _attach_all(res, ev, table, remedies: bool, tols, levers_file: str | None,
+                workers: int | None) -> None:
+    from ..forked import Forked
+
     corner_job = None
     if remedies:
         if tols is not None and ev.processes(workers) > 1:
-            from ..forked import Forked
-
             # the corners in a forked process of their own while the remedies are searched
             # (forked first: it does not inherit the remedies' helpers); the root finding's
             # rounds leave cores idle that the corners fill
