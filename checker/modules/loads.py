@@ -63,6 +63,13 @@ def speed_sweep(engine: Engine) -> tuple[np.ndarray, list[str]]:
     ov = p.get("overspeed")
     if ov is not None and ov > speeds[-1] + 1e-9:
         speeds = np.append(speeds, ov)
+    sub = p.get("speed_subset")
+    if sub:
+        # screening speeds of a remedy search (checker.remedies.screening): the swept
+        # speeds among them (the whole sweep when none is)
+        keep = np.isin(np.round(speeds, 6), np.round(np.asarray(sub, dtype=float), 6))
+        if keep.any():
+            speeds = speeds[keep]
     return speeds, notes
 
 

@@ -34,6 +34,7 @@ from openpyxl.utils import get_column_letter
 from ..display import CELL_REF, with_unit
 from ..levers import ITEM, Lever
 from ..ruletable import REL_TOL
+from .screening import screenable, screening_speeds
 from .variants import Binding, Evaluator, bind, find
 
 NEAR = 0.10
@@ -189,6 +190,10 @@ class _Job:
     cands: list[Any] = field(default_factory=list)  # discrete: choices still to try
     twin: _Job | None = None  # the same result and lever in the other direction
     held: list[Any] = field(default_factory=list)  # trial values waiting for the twin
+    screen: bool = False  # trial values checked at the screening speeds (screening.py)
+    confirm: Any = None  # a value that passes there, being checked at every speed
+    full_x: set[str] = field(default_factory=set)  # values checked at every speed (repr)
+    full_res: dict[str, tuple] = field(default_factory=dict)  # value -> (items, packed, check)
 
     @property
     def key(self) -> str:
@@ -282,6 +287,10 @@ def _aim(job: _Job) -> float:
 
 
 def _accept(job: _Job, x: Any, m: float) -> None:
+    if job.screen and repr(x) not in job.full_x:
+        # passes at the screening speeds: checked at every speed before it is an answer
+        job.confirm, job.queue = x, [x]
+        return
     job.remedy.value, job.remedy.margin, job.remedy.found = x, m, True
     job.done = True
 
@@ -298,9 +307,28 @@ def _advance(job: _Job, evaluated: list[tuple[Any, float | None]]) -> None:
     points nearest to it until a value passes (doubling the step when the margin does not
     improve), then inverse quadratic interpolation / Illinois regula falsi in the bracket."""
     own = [p for p in evaluated if len(p) == 2]
-    shared = [(p[0], p[1]) for p in evaluated if len(p) == 3]
+    # points of other jobs; those checked at the screening speeds only for screened jobs
+    shared = [(p[0], p[1]) for p in evaluated if len(p) == 3 and (job.screen
+                                                                   or p[2] == "full")]
     if job.done:
         return
+    if job.confirm is not None:
+        # its check at every speed (its own, or an equal job's: the four big ends)
+        c = repr(job.confirm)
+        at = [p for p in own + shared if repr(p[0]) == c] if c in job.full_x else []
+        if not at:
+            return
+        x, m = at[0]
+        job.confirm = None
+        job.remedy.evaluations += len(own)
+        if (job.ok(m) if job.lever.discrete else _in_window(job, m)):
+            _accept(job, x, m)
+            return
+        # it does not pass at every speed (the result is worst at a speed outside the
+        # screening speeds there): the search goes on at every speed from this point
+        job.screen = False
+        job.pts, job.bracket, job.side = [], None, 0
+        own, shared = [], [(x, m)]
     if not job.lever.discrete and job.x0 is not None:
         # shared points count only on this job's side of today's value, within its bound
         shared = [(x, m) for x, m in shared if (x - job.x0) * job.sign > 0
@@ -451,10 +479,17 @@ def _iqi(job: _Job, lo: float, hi: float, aim: float = 0.0) -> float | None:
     return x if lo < x < hi and math.isfinite(x) else None
 
 
+def _mode(job: _Job) -> str:
+    """How the job's next trial value is checked: ``confirm`` (a value that passes at the
+    screening speeds, at every speed), ``screen`` (at the screening speeds) or ``full``."""
+    return "confirm" if job.confirm is not None else "screen" if job.screen else "full"
+
+
 def _pack(requests: list[tuple[_Job, Any]], pack: bool = True
           ) -> list[list[tuple[_Job, Any]]]:
-    """Variants: requests of one separable lever's jobs on different items share one;
-    others alone (``pack=False``: every request alone, the one-by-one path)."""
+    """Variants: requests of one separable lever's jobs on different items share one (when
+    they are checked the same way, :func:`_mode`); others alone (``pack=False``: every
+    request alone, the one-by-one path)."""
     if not pack:
         return [[r] for r in requests]
     variants: list[list[tuple[_Job, Any]]] = []
@@ -468,7 +503,7 @@ def _pack(requests: list[tuple[_Job, Any]], pack: bool = True
                 # one lever (a bearing's width leaves the other bearings' films alone, but
                 # the flywheel joint's slip depends on the bearings' friction)
                 if job.key in ks or (cs & job.binding.cells) or any(
-                        j.lever.id != job.lever.id for j, _ in v):
+                        j.lever.id != job.lever.id or _mode(j) != _mode(job) for j, _ in v):
                     continue
                 v.append((job, x))
                 ks.add(job.key)
@@ -513,11 +548,19 @@ def _hold_twins(jobs: list[_Job]) -> None:
             j.held, j.queue = j.queue, []
 
 
-def _run(jobs: list[_Job], ev: Evaluator, pack: bool = True) -> None:
+def _run(jobs: list[_Job], ev: Evaluator, pack: bool = True, nominal: Any = None,
+         speeds: tuple[float, ...] | None = None, screen_rules: frozenset = frozenset()
+         ) -> None:
     """Rounds of evaluations until every job is done. Identical variants are evaluated once;
     a variant that moves one lever alone serves every job of that lever (its other results
     are in the same check), so the jobs of a global lever such as the oil temperature share
-    their trial values."""
+    their trial values.
+
+    Screened jobs (``speeds``: the screening speeds, :mod:`checker.remedies.screening`) have
+    their trial values checked at those speeds when every rule of the variant is in
+    ``screen_rules``; a value that passes there is checked at every speed on every rule whose
+    status can change (:func:`_judgeable_rules` of ``nominal``), and that check gives its side
+    effects."""
     while True:
         _hold_twins(jobs)
         requests = []
@@ -547,7 +590,7 @@ def _run(jobs: list[_Job], ev: Evaluator, pack: bool = True) -> None:
             ch: dict = {}
             for j, x in v:
                 ch.update(j.binding.changes(x))
-            key = tuple(sorted(ch.items(), key=repr))
+            key = (_mode(v[0][0]) == "confirm",) + tuple(sorted(ch.items(), key=repr))
             if key not in uniq:
                 uniq[key] = len(changes)
                 changes.append(ch)
@@ -556,21 +599,32 @@ def _run(jobs: list[_Job], ev: Evaluator, pack: bool = True) -> None:
         # each variant is checked on its own jobs' rules (and those of the other jobs of the
         # same lever, which learn from it): a bearing variant does not run the torsion
         sels: list[frozenset] = [frozenset()] * len(changes)
+        screened = [True] * len(changes)
         for v, k in zip(variants, index):
+            if _mode(v[0][0]) == "confirm":
+                # at every speed, on every rule whose status can change: its side effects
+                sels[k] = frozenset(_judgeable_rules(nominal, [changes[k]]) if nominal
+                                    is not None else {j.rule for j, _ in v})
+                screened[k] = False
+                continue
             sel = {j.rule for j, _ in v}
             if len(v) == 1:
                 cells = v[0][0].binding.cells
                 sel |= {j.rule for j in active if j.binding.cells == cells}
             sels[k] = sels[k] | sel
+            screened[k] = screened[k] and all(_mode(j) == "screen" for j, _ in v)
+        for k in range(len(changes)):
+            screened[k] = bool(speeds) and screened[k] and sels[k] <= screen_rules
         # each variant on its own jobs' rules (one group per selection; the groups shared
         # among the helper processes): checked on the union of the round's rules, a damper
         # variant would also run the fatigue, the flywheel and the joint torques that the
         # torsion feeds (the I4: 6 s more in one process)
         results: list[Any] = [None] * len(changes)
-        groups = [[k for k in range(len(changes)) if sels[k] == sel]
-                  for sel in dict.fromkeys(sels)]
-        for ks, got in zip(groups, ev.evaluate_groups([([changes[k] for k in ks],
-                                                        sorted(sels[ks[0]])) for ks in groups])):
+        how = [(sels[k], screened[k]) for k in range(len(changes))]
+        groups = [[k for k in range(len(changes)) if how[k] == h] for h in dict.fromkeys(how)]
+        for ks, got in zip(groups, ev.evaluate_groups([
+                ([changes[k] for k in ks], sorted(sels[ks[0]]),
+                 speeds if screened[ks[0]] else None) for ks in groups])):
             for k, r in zip(ks, got):
                 results[k] = r
         # a packed variant that is not a valid workbook (one job's trial value outside a
@@ -591,6 +645,10 @@ def _run(jobs: list[_Job], ev: Evaluator, pack: bool = True) -> None:
         for v, k in zip(variants, index):
             for j, x in v:
                 res = alone.get((id(j), repr(x)), results[k])
+                if not screened[k]:
+                    j.full_x.add(repr(x))
+                    if _mode(j) == "confirm" and (id(j), repr(x)) not in alone:
+                        j.full_res[repr(x)] = ({i.item for i, _ in v}, len(v) > 1, res)
                 if (id(j), repr(x)) not in seen:
                     seen.add((id(j), repr(x)))
                     got.setdefault(id(j), []).append((x, _margin_of(res, j.rule, j.item)))
@@ -599,11 +657,15 @@ def _run(jobs: list[_Job], ev: Evaluator, pack: bool = True) -> None:
                 for j in active:  # the same lever's other jobs learn from this point
                     if j is j0 or j.lever.discrete or j.binding.cells != j0.binding.cells:
                         continue
-                    if (id(j), repr(x0)) in seen:
+                    if (id(j), repr(x0)) in seen or j.rule not in sels[k]:
                         continue
                     seen.add((id(j), repr(x0)))
+                    if not screened[k]:
+                        j.full_x.add(repr(x0))
+                        if _mode(j0) == "confirm" and _mode(j) == "confirm":
+                            j.full_res[repr(x0)] = ({j0.item}, False, res)
                     got.setdefault(id(j), []).append((x0, _margin_of(res, j.rule, j.item),
-                                                      "shared"))
+                                                      "screen" if screened[k] else "full"))
         for j in jobs:
             if id(j) in got:
                 _advance(j, got[id(j)])
@@ -613,8 +675,16 @@ def _side_effects(jobs: list[_Job], ev: Evaluator, nominal, pack: bool = True) -
     """Run the check again at each answer (:func:`_judgeable_rules`): the results whose
     status changes."""
     base = {(r.rule, r.item): r.status for r in nominal.results}
-    done = [j for j in jobs if j.remedy.found and not j.lever.discrete or
-            (j.remedy.found and j.lever.discrete)]
+    done = []
+    for j in jobs:
+        if not j.remedy.found:
+            continue
+        full = j.full_res.get(repr(j.remedy.value))
+        if full is not None and hasattr(full[2], "results"):
+            # checked at every speed on these rules when it was confirmed
+            j.remedy.side_effects = _effects(j, full[2], full[0], full[1], base)
+        else:
+            done.append(j)
     # one evaluation per distinct answer (the same cells at the same value)
     uniq: dict[tuple, list[_Job]] = {}
     for j in done:
@@ -641,19 +711,25 @@ def _side_effects(jobs: list[_Job], ev: Evaluator, nominal, pack: bool = True) -
         items = {j.item for j, _ in v if j.lever.separable}
         for j0, _ in v:
             for j in by_first[id(j0)]:
-                eff = []
-                for r in res.results:
-                    if (r.rule, r.item) == (j.rule, j.item):
-                        continue
-                    if j.lever.separable and len(v) > 1 and r.item in items and \
-                            r.item != j.item:
-                        continue
-                    was = base.get((r.rule, r.item))
-                    if was is not None and was != r.status:
-                        eff.append({"rule": r.rule, "item": r.item, "from": was,
-                                    "to": r.status, "value": None if r.value is None else
-                                    float(f"{r.value:.6g}"), "unit": r.unit})
-                j.remedy.side_effects = eff
+                j.remedy.side_effects = _effects(j, res, items, len(v) > 1, base)
+
+
+def _effects(j: _Job, res: Any, items: set[str], packed: bool, base: dict) -> list[dict]:
+    """The results of the check ``res`` at job ``j``'s answer whose status differs from
+    ``base`` (nominal statuses), other than its own; in a variant that ``packed`` the answers
+    of one separable lever on ``items``, the results of the other items are theirs."""
+    eff = []
+    for r in res.results:
+        if (r.rule, r.item) == (j.rule, j.item):
+            continue
+        if j.lever.separable and packed and r.item in items and r.item != j.item:
+            continue
+        was = base.get((r.rule, r.item))
+        if was is not None and was != r.status:
+            eff.append({"rule": r.rule, "item": r.item, "from": was, "to": r.status,
+                        "value": None if r.value is None else float(f"{r.value:.6g}"),
+                        "unit": r.unit})
+    return eff
 
 
 def _judgeable_rules(nominal, changes: list[dict]) -> list[str]:
@@ -771,7 +847,16 @@ def find_remedies(nominal, ev: Evaluator, levers: list[Lever], near: float = NEA
                 jobs.append(job)
                 rr.remedies.append(rm)
         out.append(rr)
-    _run(jobs, ev, pack)
+    # failing results of bearing rules: trial values at the screening speeds
+    rules = {r.id: r for r in getattr(nominal, "rules", ())}
+    screen_rules = frozenset(i for i, r in rules.items() if screenable(r, nominal))
+    cand = [j for j in jobs if j.want_pass and not j.done and j.rule in screen_rules]
+    speeds = screening_speeds(nominal, sorted({(j.rule, j.item) for j in cand})) if cand \
+        else None
+    if speeds:
+        for j in cand:
+            j.screen = True
+    _run(jobs, ev, pack, nominal, speeds, screen_rules)
     # both directions of an 'either' lever: keep the found one nearest to today
     for rr in out:
         keep: list[Remedy] = []

@@ -17,6 +17,7 @@ or their differences for a temperature).
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -60,7 +61,8 @@ class Evaluator:
     _pool: Any = None
 
     def evaluate_variants(self, changes: list[Changes], select: list[str] | None = None,
-                          task_size: int | None = None) -> list[Any]:
+                          task_size: int | None = None,
+                          speeds: tuple[float, ...] | None = None) -> list[Any]:
         """Check every variant (cell changes on the base workbook).
 
         Returns per variant a :class:`checker.api.CheckResult`, or the
@@ -72,9 +74,10 @@ class Evaluator:
         this process (:meth:`evaluate_groups`). A variant checked by a helper comes back with
         its rule results, without its calculated quantities. The numbers are the same in
         every process (each variant's check equals a cold check). ``task_size``: see
-        :meth:`evaluate_groups`.
+        :meth:`evaluate_groups`. ``speeds`` [rad/s]: check at these of the swept speeds only
+        (screening, :mod:`checker.remedies.screening`).
         """
-        return self.evaluate_groups([(changes, select)], task_size)[0]
+        return self.evaluate_groups([(changes, select, speeds)], task_size)[0]
 
     def input_errors(self, changes: Changes) -> InputErrors | None:
         """The input errors of a variant (its cells converted and the engine built, nothing
@@ -82,24 +85,30 @@ class Evaluator:
         built = self._build(changes)
         return built if isinstance(built, InputErrors) else None
 
-    def _build(self, changes: Changes) -> Any:
+    def _build(self, changes: Changes, speeds: tuple[float, ...] | None = None) -> Any:
         """The engine of a variant, or the :class:`InputErrors` of one that is not a valid
-        workbook (including values a calculation refuses while the engine is built)."""
-        from ..engine import build_engine
+        workbook (including values a calculation refuses while the engine is built);
+        ``speeds``: its sweep restricted to them (:func:`checker.modules.loads.speed_sweep`)."""
+        from ..engine import Params, build_engine
         from ..workbook.loader import convert_raw
 
         try:
-            return build_engine(convert_raw(self.base.with_values(changes),
-                                            raise_errors=False))
+            engine = build_engine(convert_raw(self.base.with_values(changes),
+                                              raise_errors=False))
         except InputErrors as exc:
             return exc
         except (ValueError, ArithmeticError) as exc:
             return _refused(exc)
+        if speeds:
+            engine = dataclasses.replace(engine, params=Params({**engine.params,
+                                                                "speed_subset": speeds}))
+        return engine
 
-    def evaluate_groups(self, groups: list[tuple[list[Changes], list[str] | None]],
-                        task_size: int | None = None) -> list[list[Any]]:
-        """:meth:`evaluate_variants` of several groups ``(changes, select)`` (e.g. the
-        variants of one round of root finding, grouped by the rules they are checked on).
+    def evaluate_groups(self, groups: list[tuple], task_size: int | None = None
+                        ) -> list[list[Any]]:
+        """:meth:`evaluate_variants` of several groups ``(changes, select)`` or ``(changes,
+        select, speeds)`` (e.g. the variants of one round of root finding, grouped by the
+        rules they are checked on).
 
         With helper processes the groups are cut into tasks of a few variants (about
         :data:`TASKS_PER_PROCESS` tasks per process, at most :attr:`batch` variants each: the
@@ -111,12 +120,18 @@ class Evaluator:
         films are already computed, where only the balance among the processes counts)."""
         # every variant with its own selection, in the order of the groups: a task may hold
         # variants of several groups (their film orbits still in one kernel call)
-        flat = [(g, i, c, sel) for g, (ch, sel) in enumerate(groups) for i, c in enumerate(ch)]
-        out: list[list[Any]] = [[None] * len(ch) for ch, _ in groups]
+        groups = [tuple(g) + (None,) * (3 - len(g)) for g in groups]
+        flat = [(g, i, c, sel, sp) for g, (ch, sel, sp) in enumerate(groups)
+                for i, c in enumerate(ch)]
+        out: list[list[Any]] = [[None] * len(g[0]) for g in groups]
+
+        def args(task):
+            return ([c for _, _, c, _, _ in task], [sel for _, _, _, sel, _ in task],
+                    [sp for _, _, _, _, sp in task])
+
         if self._pool is None or len(flat) < 2:
-            res = self._evaluate_here([c for _, _, c, _ in flat],
-                                      selects=[sel for _, _, _, sel in flat])
-            for (g, i, _, _), r in zip(flat, res):
+            res = self._evaluate_here(*args(flat))
+            for (g, i, _, _, _), r in zip(flat, res):
                 out[g][i] = r
             return out
         size = task_size or max(1, min(self.batch,
@@ -125,11 +140,9 @@ class Evaluator:
         tasks.sort(key=lambda t: -len(t))  # stable: the order of the groups otherwise
 
         def here(task):
-            return self._evaluate_here([c for _, _, c, _ in task],
-                                       selects=[sel for _, _, _, sel in task])
+            return self._evaluate_here(*args(task))
 
-        futures = [self._pool.submit(_helper_evaluate, [c for _, _, c, _ in t],
-                                     [sel for _, _, _, sel in t]) for t in tasks]
+        futures = [self._pool.submit(_helper_evaluate, *args(t)) for t in tasks]
         got: list[list[Any] | None] = [None] * len(tasks)
         for k in range(len(tasks) - 1, -1, -1):
             if not futures[k].cancel():  # a helper has it (and every task before it)
@@ -148,7 +161,7 @@ class Evaluator:
                     r.table = self.table
             got[k] = res
         for task, res in zip(tasks, got):
-            for (g, i, _, _), r in zip(task, res):
+            for (g, i, _, _, _), r in zip(task, res):
                 out[g][i] = r
         return out
 
@@ -205,9 +218,10 @@ class Evaluator:
                                          for x in self.select)]
         return sel
 
-    def _evaluate_here(self, changes: list[Changes],
-                       selects: list[list[str] | None]) -> list[Any]:
-        """:meth:`evaluate_variants` in this process, each variant on its own selection."""
+    def _evaluate_here(self, changes: list[Changes], selects: list[list[str] | None],
+                       speeds: list[tuple[float, ...] | None] | None = None) -> list[Any]:
+        """:meth:`evaluate_variants` in this process, each variant on its own selection (and
+        its own screening speeds, or all)."""
         import time
 
         from .. import api
@@ -218,7 +232,9 @@ class Evaluator:
         if self._pinned is None:
             self._pinned = set(self.cache)
         for start in range(0, len(changes), self.batch):
-            built = [self._build(ch) for ch in changes[start:start + self.batch]]
+            built = [self._build(ch, sp) for ch, sp in zip(
+                changes[start:start + self.batch],
+                (speeds or [None] * len(changes))[start:start + self.batch])]
             sels = [self._selection(s) for s in selects[start:start + self.batch]]
             live = [(e, s) for e, s in zip(built, sels) if isinstance(e, Engine)]
             done: list[Any] | None = None
@@ -309,17 +325,16 @@ def _helper_ping() -> bool:
     return _HELPER is not None
 
 
-def _helper_evaluate(changes: list[Changes], selects: list[list[str] | None]
-                     ) -> tuple[list, int]:
+def _helper_evaluate(changes: list[Changes], selects: list[list[str] | None],
+                     speeds: list[tuple[float, ...] | None] | None = None) -> tuple[list, int]:
     """In a helper process: check the variants with the inherited evaluator (its own cache
     grows from the parent's) and return their rule results without the calculated
     quantities (they stay in this process's cache), and the number of evaluations."""
-    import dataclasses
 
     ev = _HELPER
     assert ev is not None
     n0 = ev.evaluations
-    out = ev._evaluate_here(changes, selects)
+    out = ev._evaluate_here(changes, selects, speeds)
     slim = []
     for r in out:
         if hasattr(r, "results"):
