@@ -3,6 +3,8 @@ speeds where each result is worst today, every answer confirmed at every speed."
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
 
@@ -176,3 +178,26 @@ def test_value_failing_at_every_speed_goes_on_at_every_speed():
     k.full_x.add(repr(25.0))
     _advance(k, [(25.0, 0.0002)])
     assert k.done and k.remedy.found and k.remedy.value == 25.0
+
+
+def test_outputs_name_the_screening_speeds(i4):
+    """The JSON, the text output and the report's remedies section say at which speeds the
+    bearing results were searched and that each answer was checked at every speed."""
+    from checker.outputs import to_json
+    from checker.remedies import attach, to_text
+    from checker.report.section_remedies import remedies_section
+
+    cache: dict = {}
+    res = api.check(i4, select=["BRG-003"], cache=cache)
+    attach(res, remedies=True, cache=cache, select=["BRG-003"], workers=1,
+           levers_file=None)
+    sp = res.remedies["screening_speeds"]
+    assert sp and len(sp) < 61
+    doc = json.loads(to_json(res))
+    rpm = doc["remedies"]["screening_speeds_rpm"]
+    assert rpm == [float(f"{x * 30.0 / np.pi:.6g}") for x in sp] and 1000.0 in rpm
+    assert "each answer checked at every speed" in to_text(res)
+    text = " ".join(b.get("text", "") for b in remedies_section(res)["blocks"]
+                    if b.get("type") == "text")
+    assert f"{len(sp)} swept speeds where they are worst today" in text
+    assert "checked at every speed" in text

@@ -13,6 +13,7 @@ cache. :func:`attach` runs them on a finished check (``checker check --remedies 
 
 from __future__ import annotations
 
+import math
 import time
 from pathlib import Path
 from typing import Any
@@ -109,7 +110,8 @@ def _attach(res, ev, table, remedies: bool, tols, levers_file: str | None,
         if levers_file:
             levers = merge(levers, load_levers(levers_file, {r.id for r in table.rules}))
         n0 = ev.evaluations
-        out = find_remedies(res, ev, levers)
+        info: dict = {}
+        out = find_remedies(res, ev, levers, info=info)
         by = {(x.rule, x.item): x for x in out}
         for r in res.results:
             x = by.get((r.rule, r.item))
@@ -118,6 +120,7 @@ def _attach(res, ev, table, remedies: bool, tols, levers_file: str | None,
         res.json_extras = add_to_json
         res.remedies = {"results": out, "levers": levers,
                         "evaluations": ev.evaluations - n0,
+                        "screening_speeds": info.get("screening_speeds"),
                         "seconds": time.perf_counter() - t0}
         ev.stop_workers()
     if tols is not None:
@@ -151,7 +154,10 @@ def add_to_json(res, d: dict, timings: bool = True) -> None:
     by_key = {(x["rule"], x["item"]): x for x in d["results"]}
     if res.remedies is not None:
         items = [x.as_dict() for x in res.remedies["results"]]
+        sp = res.remedies.get("screening_speeds")
         d["remedies"] = {"results": items, "evaluations": res.remedies["evaluations"],
+                         "screening_speeds_rpm": None if not sp else
+                         [float(f"{x * 30.0 / math.pi:.6g}") for x in sp],
                          "levers": [{"id": lv.id, "name": lv.name, "rules": list(lv.rules),
                                      "input": lv.where_text(), "direction": lv.direction,
                                      "unit": lv.unit} for lv in res.remedies["levers"]]}
@@ -184,7 +190,11 @@ def to_text(res) -> str:
     lines: list[str] = []
     if res.remedies is not None:
         lines.append("")
-        lines.append(f"What it takes to pass ({res.remedies['evaluations']} evaluations):")
+        sp = res.remedies.get("screening_speeds")
+        how = (f"; failing bearing results searched at {len(sp)} speeds where they are worst"
+               f" today ({', '.join(f'{x * 30.0 / math.pi:.0f}' for x in sp)} rpm), each"
+               " answer checked at every speed" if sp else "")
+        lines.append(f"What it takes to pass ({res.remedies['evaluations']} evaluations{how}):")
         for x in res.remedies["results"]:
             if x.status == "pass" and not x.remedies:
                 continue

@@ -19,6 +19,12 @@ Jobs of separable levers (a result depends only on its own row, e.g. the clearan
 bearing) on different items share one evaluation per step. At each answer the check is run
 again with every selected rule whose status can change there: the other results whose status
 changes are its side effects.
+
+Failing results of bearing rules (film thickness, specific load: values computed per speed)
+are searched at screening speeds, the few speeds where each is worst today
+(:mod:`checker.remedies.screening`); a value that passes there is an answer only once the
+check at every speed (the side-effect check above) passes it within the window, and the
+search goes on at every speed from a value that does not.
 Results of one item that need one lever in opposite directions are a conflict, stated with
 the levers that do not have it.
 """
@@ -793,12 +799,13 @@ def _conflicts(out: list[ResultRemedies]) -> None:
 
 
 def find_remedies(nominal, ev: Evaluator, levers: list[Lever], near: float = NEAR,
-                  pack: bool = True) -> list[ResultRemedies]:
+                  pack: bool = True, info: dict | None = None) -> list[ResultRemedies]:
     """Remedies for the failing results of ``nominal`` (a CheckResult) and for the passing
     ones within ``near`` of their limit, by every applicable lever.
 
     ``pack=False`` evaluates every trial value of every job on its own (the one-by-one path;
-    the answers are the same, with more evaluations)."""
+    the answers are the same, with more evaluations). ``info`` (a dict) receives
+    ``screening_speeds``: the screening speeds [rad/s] used, or None."""
     out: list[ResultRemedies] = []
     jobs: list[_Job] = []
     bindings: dict[tuple, Any] = {}
@@ -856,6 +863,8 @@ def find_remedies(nominal, ev: Evaluator, levers: list[Lever], near: float = NEA
     if speeds:
         for j in cand:
             j.screen = True
+    if info is not None:
+        info["screening_speeds"] = speeds
     _run(jobs, ev, pack, nominal, speeds, screen_rules)
     # both directions of an 'either' lever: keep the found one nearest to today
     for rr in out:

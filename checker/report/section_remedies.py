@@ -12,6 +12,7 @@ results workbook, sheets :data:`REMEDIES_SHEET` and :data:`CORNERS_SHEET`.
 
 from __future__ import annotations
 
+import math
 import re
 from typing import Any
 
@@ -340,6 +341,16 @@ def _count(n: int, one: str, many: str | None = None) -> str:
     return f"{n} {one if n == 1 else (many or one + 's')}"
 
 
+def _screening_text(rem: dict) -> str:
+    sp = rem.get("screening_speeds")
+    if not sp:
+        return ""
+    rpm = ", ".join(f"{x * 30.0 / math.pi:.0f}" for x in sp)
+    return (" Failing bearing results (film thickness, specific load) were searched at the"
+            f" {len(sp)} swept speeds where they are worst today ({rpm} rpm), and each answer"
+            " was then checked at every speed.")
+
+
 @section("remedies", label="remedies and tolerance corners")
 def remedies_section(res: CheckResult) -> dict:
     blocks: list[dict] = []
@@ -351,7 +362,8 @@ def remedies_section(res: CheckResult) -> dict:
             " design lever listed for its rule was moved from today's value in its allowed"
             " direction until the margin reached zero (bracketed root finding; discrete"
             " levers: the first standard choice that passes); every value given was checked"
-            " by a direct evaluation (margin 0 to 0.1 %). At each value the check was run"
+            " by a direct evaluation (margin 0 to 0.1 %)." + _screening_text(rem)
+            + " At each value the check was run"
             " again (every rule whose status can change there: a result not evaluated for a"
             " blank limit stays so): the other results whose status changes are listed."
             f" {rem['evaluations']} evaluations. Results with the same answers share a row.")})
