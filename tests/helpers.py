@@ -134,3 +134,30 @@ def stub_section_images(monkeypatch, modules=None) -> None:
         mod = importlib.import_module(name)
         if hasattr(mod, "to_image"):
             monkeypatch.setattr(mod, "to_image", fake)
+
+
+def confirm_failing_answers(ev, out) -> list:
+    """Each answer of a failing result in ``out`` (find_remedies) checked by a direct
+    evaluation at its value (its lever bound to the item's cells anew, independent of the
+    search's own binding): the margin lies in the accepted window. Returns the remedies
+    checked."""
+    from checker.levers import ITEM
+    from checker.remedies.solve import TOL
+    from checker.remedies.variants import bind, find
+    from checker.ruletable import REL_TOL
+
+    done = []
+    for rr in out:
+        if rr.status == "pass":
+            continue
+        for rm in rr.remedies:
+            if not rm.found:
+                continue
+            lv = rm.lever
+            rows = (rr.item,) if lv.row == ITEM else ((lv.row,) if lv.row else None)
+            b = bind(ev.base, lv.sheet, lv.columns, lv.unit, rows, lv.where, lv.default)
+            r = find(ev.evaluate_variants([b.changes(rm.value)], select=[rr.rule])[0],
+                     rr.rule, rr.item)
+            assert -REL_TOL <= r.margin <= TOL, (rr.rule, rr.item, lv.id, r.margin)
+            done.append(rm)
+    return done
