@@ -25,6 +25,7 @@ are searched at screening speeds, the few speeds where each is worst today
 (:mod:`checker.remedies.screening`); a value that passes there is an answer only once the
 check at every speed (the side-effect check above) passes it within the window, and the
 search goes on at every speed from a value that does not.
+
 Results of one item that need one lever in opposite directions are a conflict, stated with
 the levers that do not have it.
 """
