@@ -13,7 +13,6 @@ cache. :func:`attach` runs them on a finished check (``checker check --remedies 
 
 from __future__ import annotations
 
-import math
 import time
 from pathlib import Path
 from typing import Any
@@ -151,13 +150,15 @@ def corners_fail(res) -> bool:
 
 def add_to_json(res, d: dict, timings: bool = True) -> None:
     """The ``remedies`` and ``corners`` blocks of the JSON output (and per result)."""
+    from .screening import in_rpm
+
     by_key = {(x["rule"], x["item"]): x for x in d["results"]}
     if res.remedies is not None:
         items = [x.as_dict() for x in res.remedies["results"]]
         sp = res.remedies.get("screening_speeds")
         d["remedies"] = {"results": items, "evaluations": res.remedies["evaluations"],
                          "screening_speeds_rpm": None if not sp else
-                         [float(f"{x * 30.0 / math.pi:.6g}") for x in sp],
+                         [float(f"{x:.6g}") for x in in_rpm(sp)],
                          "levers": [{"id": lv.id, "name": lv.name, "rules": list(lv.rules),
                                      "input": lv.where_text(), "direction": lv.direction,
                                      "unit": lv.unit} for lv in res.remedies["levers"]]}
@@ -190,10 +191,11 @@ def to_text(res) -> str:
     lines: list[str] = []
     if res.remedies is not None:
         lines.append("")
+        from .screening import speeds_text
+
         sp = res.remedies.get("screening_speeds")
         how = (f"; failing bearing results searched at {len(sp)} speeds where they are worst"
-               f" today ({', '.join(f'{x * 30.0 / math.pi:.0f}' for x in sp)} rpm), each"
-               " answer checked at every speed" if sp else "")
+               f" today ({speeds_text(sp)}), each answer checked at every speed" if sp else "")
         lines.append(f"What it takes to pass ({res.remedies['evaluations']} evaluations{how}):")
         for x in res.remedies["results"]:
             if x.status == "pass" and not x.remedies:

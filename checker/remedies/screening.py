@@ -54,7 +54,6 @@ def screening_speeds(nominal: Any, results: list[tuple[str, str]]) -> tuple[floa
         if rule is None or not screenable(rule, nominal):
             return None
         q = nominal.outcome.quantities[rule.quantity]
-        dims = list(q.coords)
         items = list(q.coords["item"])
         if item not in items:
             return None
@@ -62,14 +61,12 @@ def screening_speeds(nominal: Any, results: list[tuple[str, str]]) -> tuple[floa
         speeds = sp if speeds is None else speeds
         if sp.shape != speeds.shape or not np.array_equal(sp, speeds):
             return None
-        v = np.moveaxis(np.asarray(q.values, dtype=float)[items.index(item)],
-                        dims.index("speed") - 1, -1).reshape(-1, sp.size)
+        at = items.index(item)
+        v = _rows(np.asarray(q.values, dtype=float), q, at)
         worst = v if rule.check in ("<=", "<") else -v  # larger = worse
         ok = np.isfinite(worst)
         if q.applies is not None:  # points the rule does not judge
-            ok &= np.moveaxis(np.broadcast_to(np.asarray(q.applies, dtype=bool),
-                                              np.shape(q.values))[items.index(item)],
-                              dims.index("speed") - 1, -1).reshape(-1, sp.size)
+            ok &= _rows(np.asarray(q.applies, dtype=bool), q, at)
         worst = np.where(ok, worst, -np.inf)
         for row in worst:
             for k in np.argsort(-row, kind="stable")[:WORST]:
@@ -77,3 +74,23 @@ def screening_speeds(nominal: Any, results: list[tuple[str, str]]) -> tuple[floa
     if speeds is None or not picked or len(picked) > MAX_SHARE * speeds.size:
         return None
     return tuple(float(speeds[j]) for j in sorted(picked))
+
+
+def _rows(a: np.ndarray, q: Any, at: int) -> np.ndarray:
+    """Item ``at`` of an array over the quantity ``q``'s dims: a row over the speeds per
+    point of its other dims (the load cases)."""
+    a = np.broadcast_to(a, np.shape(q.values))[at]
+    return np.moveaxis(a, list(q.coords).index("speed") - 1, -1).reshape(
+        -1, len(q.coords["speed"]))
+
+
+def in_rpm(speeds: tuple[float, ...]) -> list[float]:
+    """Screening speeds [rad/s] in rpm (for what users read)."""
+    from ..units import from_si
+
+    return [float(from_si(x, "rad/s", "rpm")) for x in speeds]
+
+
+def speeds_text(speeds: tuple[float, ...]) -> str:
+    """``1000, 1100, 7000 rpm``."""
+    return ", ".join(f"{x:.0f}" for x in in_rpm(speeds)) + " rpm"

@@ -330,7 +330,6 @@ def _helper_evaluate(changes: list[Changes], selects: list[list[str] | None],
     """In a helper process: check the variants with the inherited evaluator (its own cache
     grows from the parent's) and return their rule results without the calculated
     quantities (they stay in this process's cache), and the number of evaluations."""
-
     ev = _HELPER
     assert ev is not None
     n0 = ev.evaluations

@@ -12,7 +12,6 @@ results workbook, sheets :data:`REMEDIES_SHEET` and :data:`CORNERS_SHEET`.
 
 from __future__ import annotations
 
-import math
 import re
 from typing import Any
 
@@ -342,13 +341,14 @@ def _count(n: int, one: str, many: str | None = None) -> str:
 
 
 def _screening_text(rem: dict) -> str:
+    from ..remedies.screening import speeds_text
+
     sp = rem.get("screening_speeds")
     if not sp:
         return ""
-    rpm = ", ".join(f"{x * 30.0 / math.pi:.0f}" for x in sp)
     return (" Failing bearing results (film thickness, specific load) were searched at the"
-            f" {len(sp)} swept speeds where they are worst today ({rpm} rpm), and each answer"
-            " was then checked at every speed.")
+            f" {len(sp)} swept speeds where they are worst today ({speeds_text(sp)}), and each"
+            " answer was then checked at every speed.")
 
 
 @section("remedies", label="remedies and tolerance corners")
