@@ -77,6 +77,26 @@ class Lever:
         return f"{self.sheet}: {cols} ({rows})"
 
 
+def _j300_order(grade: str) -> tuple[float, float]:
+    from .calc.viscosity import j300_order
+
+    return j300_order(grade)
+
+
+CHOICE_ORDERS: dict[tuple[str, str], Any] = {("Oil", "grade"): _j300_order}
+"""Text inputs whose choices have a physical order, by (sheet, field attribute): a key
+function (raises ValueError for a text it does not know). The oil grade ranks by its SAE J300
+viscosity (HTHS at 150 C, then kinematic at 100 C), so a lever's grades are tried thinner to
+thicker whatever their order in the file, and today's grade need not be one of them."""
+
+
+def choice_order(lever: Lever) -> Any:
+    """The key function ranking the lever's text choices, or None (the order given)."""
+    if len(lever.columns) != 1:
+        return None
+    return CHOICE_ORDERS.get((lever.sheet, lever.columns[0].attr))
+
+
 def _field(sheet: str, name: str | None) -> Field | None:
     norm = (name or "").strip().lower()
     for f in SHEETS[sheet].fields:
@@ -213,6 +233,13 @@ def parse_lever(raw: Any, origin: str, problems: list[str], rule_ids: set[str] |
     if default is not None and (isinstance(default, bool) or not isinstance(default, (int, float))):
         problems.append(f"{pre}: 'default' must be a number in {unit or '-'}")
         return None
+    order = CHOICE_ORDERS.get((sheet, cols[0].attr)) if len(cols) == 1 else None
+    for c in choices if order is not None else ():
+        try:
+            order(str(c))
+        except ValueError as exc:
+            problems.append(f"{pre}: choice '{c}': {exc}")
+            return None
     return Lever(lid, str(raw.get("name") or cols[0].label), tuple(rules), sheet, tuple(cols),
                  row=None if row is None else str(row), where=where,
                  items=tuple(str(x) for x in items), unit=unit, direction=direction,

@@ -33,13 +33,14 @@ the levers that do not have it.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 from typing import Any
 
 from openpyxl.utils import get_column_letter
 
 from ..display import CELL_REF, with_unit
-from ..levers import ITEM, Lever
+from ..levers import ITEM, Lever, choice_order
 from ..ruletable import REL_TOL
 from .screening import screenable, screening_speeds
 from .variants import Binding, Evaluator, bind, find
@@ -243,14 +244,43 @@ def _discrete_candidates(job: _Job) -> list[Any]:
         vals = sorted(float(c) for c in choices)
         return [v for v in vals if v > now] if job.sign > 0 else [v for v in vals
                                                                  if v < now][::-1]
-    # texts in the order given (e.g. oil grades, thinner to thicker)
     names = [str(c) for c in choices]
+    order = choice_order(lv)
+    if order is not None:
+        return _ranked_candidates(names, cur[0], order, job.sign)
+    # texts in the order given (e.g. property classes, weaker to stronger)
     now = str(cur[0] or "").strip().upper()
     up = [n.upper() for n in names]
     if now not in up:
         return []
     i = up.index(now)
     return names[i + 1:] if job.sign > 0 else names[:i][::-1]
+
+
+def _ranked_candidates(names: list[str], today: Any, order, sign: int) -> list[str]:
+    """Text choices ranked by ``order`` (e.g. oil grades by their SAE J300 viscosity): those
+    strictly beyond today's rank in the lever's direction, nearest first, one per rank (of
+    equal ranks the one sharing today's first word, e.g. the winter grade ``5W``, else the
+    first listed). Today's value need not be among the choices."""
+    try:
+        now = order(str(today or ""))
+    except ValueError:
+        return []
+    ranked: dict[Any, list[str]] = {}
+    for n in names:
+        ranked.setdefault(order(n), []).append(n)
+    keys = sorted((k for k in ranked if (k > now if sign > 0 else k < now)),
+                  reverse=sign < 0)
+    def first_word(text: str) -> str | None:
+        m = re.match(r"\s*(?:SAE\s*)?(\d+\s*W)", text, flags=re.IGNORECASE)
+        return m.group(1).replace(" ", "").upper() if m else None
+
+    head = first_word(str(today))
+    out = []
+    for k in keys:
+        same = [n for n in ranked[k] if head is not None and first_word(n) == head]
+        out.append(same[0] if same else ranked[k][0])
+    return out
 
 
 def _start(job: _Job, value: float | None, limits: list[float] | None, check: str) -> None:
