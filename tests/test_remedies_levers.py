@@ -92,3 +92,56 @@ def test_i4_with_5w20_oil_gets_a_thicker_grade_remedy(tmp_path):
         assert rm.evaluations > 0  # thicker grades were tried
         if rm.found:
             assert j300_order(str(rm.value)) > j300_order("5W-20")
+
+
+@pytest.fixture(scope="module")
+def v8_joints(tmp_path_factory):
+    from checker.workbook.example import write_workbook
+    from checker.workbook.example_data import load_example
+
+    wb = tmp_path_factory.mktemp("v8") / "engine-v8.xlsx"
+    write_workbook(wb, load_example("v8"))
+    table = load_rules()
+    sel, ign = ["JNT-00"], ["JNT-008"]
+    ev = Evaluator(read_raw_workbook(wb), table, select=sel, ignore=ign)
+    nom = api.check(wb, select=sel, ignore=ign, cache=ev.cache)
+    return {(rr.rule, rr.item): rr for rr in find_remedies(nom, ev, table.levers)}
+
+
+def test_joint_levers_follow_the_tightening_method(v8_joints):
+    # the V8's crank-nose bolt is angle controlled (preload fraction blank: the method's 0.85),
+    # its flywheel bolts torque controlled (examples/templates: example_v8.toml)
+    nose = [rr for (rule, item), rr in v8_joints.items() if item == "crank nose"]
+    fly = [rr for (rule, item), rr in v8_joints.items() if item == "flywheel"]
+    assert nose and fly
+    for rr in nose:
+        ids = {rm.lever.id for rm in rr.remedies}
+        assert "joint-tightening-torque" not in ids
+        assert "joint-preload-fraction" in ids and "joint-bolt-size" in ids
+        frac = next(rm for rm in rr.remedies if rm.lever.id == "joint-preload-fraction")
+        assert frac.nominal == pytest.approx(0.85)  # Bell 2013: snug + angle, 0.85 R_p0.2
+        assert "blank" not in frac.reason
+    for rr in fly:
+        ids = {rm.lever.id for rm in rr.remedies}
+        assert "joint-tightening-torque" in ids and "joint-preload-fraction" not in ids
+    for rr in nose + fly:
+        assert all("today's value is blank" not in rm.reason for rm in rr.remedies)
+
+
+def test_when_is_validated_and_resolves_spellings(tmp_path):
+    from checker.errors import RuleFileError
+
+    base = ('[[lever]]\nid = "t"\nrules = ["JNT-001"]\nsheet = "Joints"\nrow = "{item}"\n'
+            'column = "tightening torque"\nunit = "N m"\ndirection = "either"\n'
+            'bounds = [0.5, 1.5]\n')
+    p = tmp_path / "l.toml"
+    p.write_text(base + 'when = { tightening = ["torque", "angle"] }\n', encoding="utf-8")
+    (lv,) = load_levers(p)
+    assert lv.holds_for({"tightening": "Angle-controlled"})
+    assert lv.holds_for({"tightening": "torque"})
+    assert not lv.holds_for({"tightening": "yield controlled"})
+    assert not lv.holds_for({"tightening": None})
+    for bad in ('when = { tightening = ["by hand"] }\n', 'when = { bolts = [1] }\n'):
+        p.write_text(base + bad, encoding="utf-8")
+        with pytest.raises(RuleFileError, match="when"):
+            load_levers(p)

@@ -40,8 +40,9 @@ from typing import Any
 from openpyxl.utils import get_column_letter
 
 from ..display import CELL_REF, with_unit
-from ..levers import ITEM, Lever, choice_order
+from ..levers import ITEM, Lever, choice_order, row_default, row_needs
 from ..ruletable import REL_TOL
+from ..workbook.schema import SHEETS
 from .screening import screenable, screening_speeds
 from .variants import Binding, Evaluator, bind, find
 
@@ -829,6 +830,19 @@ def _conflicts(out: list[ResultRemedies]) -> None:
                 rr.conflicts.append(text)
 
 
+def _row_values(base, lv: Lever, rows, attrs: tuple[str, ...]) -> dict[str, Any] | None:
+    """Raw values of the result row's cells ``attrs`` (``{attr: value}``), or None when the
+    lever needs none."""
+    if not attrs:
+        return None
+    out: dict[str, Any] = {}
+    for a in attrs:
+        f = next(x for x in SHEETS[lv.sheet].fields if x.attr == a)
+        b = bind(base, lv.sheet, (f,), "", rows, lv.where)
+        out[a] = None if isinstance(b, str) else b.nominal[0]
+    return out
+
+
 def find_remedies(nominal, ev: Evaluator, levers: list[Lever], near: float = NEAR,
                   pack: bool = True, info: dict | None = None) -> list[ResultRemedies]:
     """Remedies for the failing results of ``nominal`` (a CheckResult) and for the passing
@@ -852,11 +866,17 @@ def find_remedies(nominal, ev: Evaluator, levers: list[Lever], near: float = NEA
             rows = (r.item,) if lv.row == ITEM else ((lv.row,) if lv.row else None)
             key = (lv.id, rows)
             if key not in bindings:
-                bindings[key] = bind(ev.base, lv.sheet, lv.columns, lv.unit, rows, lv.where,
-                                     lv.default)
+                row = _row_values(ev.base, lv, rows, row_needs(lv))
+                if row is not None and not lv.holds_for(row):
+                    bindings[key] = "not for this row (when)"
+                else:
+                    bindings[key] = bind(ev.base, lv.sheet, lv.columns, lv.unit, rows,
+                                         lv.where, row_default(lv, row or {}))
             b = bindings[key]
             if isinstance(b, str):
-                continue  # the lever's input is not in this workbook (e.g. another row)
+                continue  # the lever's input is not in this workbook (e.g. another row),
+                # or the lever does not apply to the row (e.g. torque on a yield-controlled
+                # joint)
             signs = {"increase": [1], "decrease": [-1], "either": [1, -1]}[lv.direction]
             if r.status == "pass":
                 signs = [1, -1]
