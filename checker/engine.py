@@ -778,7 +778,28 @@ def _tv_model(data: WorkbookData, p: Params, pr: _Problems) -> list[TVStation]:
         tv.append(TVStation(r["station"], r["role"], r["inertia"], cyls_here,
                             r["absolute_damping"] or 0.0, r["stiffness"],
                             r["relative_damping"] or 0.0))
+        shares = _rod_piston_inertia(p)
+        if shares is not None and cyls_here and r["inertia"] < len(cyls_here) * shares:
+            pr.warn("TVModel", "inertia", i, f"inertia {r['inertia']:.4g} kg m^2 is less than"
+                    f" the con-rod and piston shares of its {len(cyls_here)} cylinder(s)"
+                    f" alone ({len(cyls_here) * shares:.4g} kg m^2: m_rot r^2 + 1/2 m_rec r^2"
+                    " from the Engine sheet's masses); the torsional model uses a station's"
+                    " inertia as given, so a cylinder station includes those shares (the"
+                    " throw's own inertia plus them)")
     return tv
+
+
+def _rod_piston_inertia(p: Params) -> float | None:
+    """Con-rod and piston shares of one cylinder's station inertia [kg m^2]: the rod's rotating
+    share ``m_rod (1 - a/l) r^2`` plus the mean inertia of the reciprocating masses
+    ``1/2 (m_piston + m_rod a/l) r^2`` (``a`` rod centre of mass from the big end; the
+    two-mass rod of the loads; terms in (r/l)^2 neglected); None without the masses."""
+    m_p, m_r, a = p.get("piston_mass"), p.get("rod_mass"), p.get("rod_com")
+    stroke, rod = p.get("stroke"), p.get("rod_length")
+    if None in (m_p, m_r, a, stroke, rod) or not 0 < a < rod:
+        return None
+    r2 = (stroke / 2) ** 2
+    return (m_r * (1 - a / rod) + 0.5 * (m_p + m_r * a / rod)) * r2
 
 
 def _joints(data: WorkbookData, pr: _Problems) -> list[Joint]:

@@ -283,3 +283,22 @@ def test_knock_on_rule_holds_back_only_checks_that_need_the_rejected_sheet(tmp_p
     where = sorted(str(e).split(":")[0] for e in info.value.errors)
     assert where == sorted(cells.values()), info.value.errors
     assert info.value.follow_on == 0
+
+
+def test_cylinder_station_lighter_than_its_rod_and_piston_shares_is_a_warning(tmp_path):
+    """The torsional model takes a station's inertia as given (it adds no con-rod or piston
+    share): a cylinder station below those shares alone (the I4: 0.451 kg x 47.3^2 mm^2 +
+    1/2 0.642 kg x 47.3^2 mm^2 = 1.73e-3 kg m^2) is warned about at its cell."""
+    from checker.engine import _rod_piston_inertia
+
+    e = load_engine(example_path(tmp_path))
+    r = 0.0946 / 2
+    a_l = 35.73 / 145.7
+    hand = (0.597 * (1 - a_l) + 0.5 * (0.4955 + 0.597 * a_l)) * r * r
+    assert _rod_piston_inertia(e.params) == pytest.approx(hand, rel=1e-12)
+    assert hand == pytest.approx(1.73e-3, rel=5e-3)
+    cell = {}
+    p = edited(tmp_path, lambda wb: cell.setdefault("c", set_cell(
+        wb, "TVModel", "station", "Cylinder 2", "inertia", 0.0015)), "light.xlsx")
+    w = [x for x in load_engine(p).warnings if "con-rod and piston shares" in x.message]
+    assert len(w) == 1 and w[0].where == cell["c"], w
