@@ -10,17 +10,18 @@ and appends each result, as it comes, to ``checker/calc/data/throw_stiffness_fe.
 ``holdout``). About 5 s per throw on one core; ``--only-missing`` continues an interrupted run.
 
 ``fit`` fits the coefficients of
-:func:`checker.calc.throw_stiffness.throw_torsional_stiffness` on the ``fit`` rows (least
-squares in log stiffness) and writes them to
+:func:`checker.calc.throw_stiffness.throw_torsional_stiffness` on the ``fit`` rows (the
+L8 norm of the log errors, close to minimax) and writes them to
 ``checker/calc/data/throw_stiffness.json`` with the errors on the fit and hold-out rows.
 ``tests/calc/test_throw_stiffness.py`` compares the fast model with every FE row.
 
-The samples: 64 points of a scrambled Sobol sequence (seed 33) for the fit and 24 of a Latin
-hypercube (seed 34) held out, over Dp/Dj 0.75-1.0, S/Dj -0.15..0.30 (S = (Dj + Dp)/2 - R),
-tw/Dj 0.2-0.5, Bj/Dj and Bp/Dp 1.2-1.8, Lj/Dj 0.35-0.6, Lp/Dp 0.35-1.5 (half of them below
-0.75), bores dj/Dj and dp/Dp 0 (40 %) or 0.2-0.6, counterweights (60 %: angle 120-180 deg,
-inner radius 0.3-0.6 Dj, outer radius 0.95-1.25 (R + Dp/2), thickness 0.6-1.0 tw), Poisson's
-ratio 0.27-0.31; Dj = 60 mm, E = 210 GPa (the stiffness scales with G Dj^3).
+The samples: 64 points of a scrambled Sobol sequence (seed 33) and 10 extreme combinations
+(:data:`CORNERS`) for the fit, 24 of a Latin hypercube (seed 34) held out. Over Dp/Dj
+0.75-1.0, S/Dj -0.15..0.30 (S = (Dj + Dp)/2 - R), tw/Dj 0.2-0.5, Bj/Dj and Bp/Dp 1.2-1.8,
+Lj/Dj 0.35-0.6, Lp/Dp 0.35-1.5 (half of them below 0.75), bores dj/Dj and dp/Dp 0 (40 %) or
+0.2-0.6, counterweights (60 %: angle 120-180 deg, inner radius 0.3-0.6 Dj, outer radius
+0.95-1.25 (R + Dp/2), thickness 0.6-1.0 tw), Poisson's ratio 0.27-0.31; Dj = 60 mm,
+E = 210 GPa (the stiffness scales with G Dj^3).
 """
 
 from __future__ import annotations
@@ -72,6 +73,36 @@ def _throw_from_unit(u: np.ndarray) -> dict:
     return {k: float(v) for k, v in row.items()}
 
 
+def _throw_from_ratios(dpj, s, tw, bj, bp, lj, lp, djr=0.0, dpr=0.0, cw=None, nu=0.29) -> dict:
+    Dp = dpj * DJ
+    R = (DJ + Dp) / 2 - s * DJ
+    row = dict(Dj=DJ, Dp=Dp, Lj=lj * DJ, Lp=lp * Dp, tw=tw * DJ, R=R, Bj=bj * DJ, Bp=bp * Dp,
+               dj=djr * DJ, dp=dpr * Dp, E=E, nu=nu,
+               cw_ri=0.0, cw_ro=0.0, cw_angle=0.0, cw_t=0.0)
+    if cw is not None:
+        angle, ro, tc = cw
+        row.update(cw_angle=math.radians(angle), cw_ri=0.5 * DJ, cw_ro=ro * (R + Dp / 2),
+                   cw_t=tc * row["tw"])
+    return {k: float(v) for k, v in row.items()}
+
+
+CORNERS = [
+    # Dp/Dj, S/Dj, tw/Dj, Bj/Dj, Bp/Dp, Lj/Dj, Lp/Dp, dj/Dj, dp/Dp, counterweight
+    (0.75, -0.15, 0.2, 1.2, 1.2, 0.35, 0.35, 0.0, 0.0, None),
+    (1.0, 0.30, 0.5, 1.8, 1.8, 0.6, 1.5, 0.6, 0.6, (180, 1.25, 1.0)),
+    (1.0, -0.15, 0.2, 1.8, 1.8, 0.35, 0.35, 0.0, 0.0, None),
+    (0.75, 0.30, 0.5, 1.2, 1.2, 0.6, 1.5, 0.0, 0.6, (120, 0.95, 0.6)),
+    (0.75, -0.15, 0.2, 1.8, 1.2, 0.6, 0.75, 0.6, 0.0, None),
+    (1.0, 0.30, 0.35, 1.2, 1.8, 0.6, 0.35, 0.0, 0.0, (180, 1.25, 1.0)),
+    (0.9, 0.0, 0.2, 1.5, 1.5, 0.45, 1.5, 0.0, 0.6, None),
+    (0.75, 0.30, 0.2, 1.2, 1.2, 0.35, 0.35, 0.0, 0.0, None),
+    (1.0, -0.15, 0.5, 1.2, 1.2, 0.35, 0.35, 0.0, 0.0, (150, 1.1, 0.8)),
+    (0.85, 0.10, 0.5, 1.8, 1.8, 0.35, 0.75, 0.3, 0.3, None),
+]
+"""Extreme combinations of the range (in the fit: the corners are where a fit of the
+interior alone is least accurate, 3.2 % at most)."""
+
+
 def sample_design() -> list[dict]:
     from scipy.stats import qmc
 
@@ -82,6 +113,8 @@ def sample_design() -> list[dict]:
         rows.append(dict(name=f"fit{i:02d}", set="fit", **_throw_from_unit(u)))
     for i, u in enumerate(hold):
         rows.append(dict(name=f"hold{i:02d}", set="holdout", **_throw_from_unit(u)))
+    for i, c in enumerate(CORNERS):
+        rows.append(dict(name=f"corner{i}", set="fit", **_throw_from_ratios(*c)))
     return rows
 
 
@@ -110,10 +143,12 @@ def run_fe(size: float, only_missing: bool) -> None:
               f"{row['seconds']:.1f} s", flush=True)
 
 
-FE_MESH_ERROR = 0.003
+FE_MESH_ERROR = 0.005
 """Bound on the FE's own discretisation error at the samples' mesh setting (size 0.12 Dj):
-the convergence study (benchmarks/bench_throw_fe.py) gives +0.2 % on the I4 throw against the
-extrapolated limit; FE stiffness converges from above."""
+the convergence study (benchmarks/bench_throw_fe.py) on the I4 throw puts size 0.12 at
++0.34 % above the limit extrapolated with a fitted order (about 2.5 in h) and at +0.5..0.6 %
+with the order of the re-entrant edges' singularity (about 1.1), which the finest meshes have
+not reached; the FE stiffness converges from above."""
 
 
 def read_samples(path: Path = SAMPLES_FILE) -> dict[str, np.ndarray]:
@@ -141,7 +176,7 @@ NAMES = ("c_j", "c_p", "c_w", "c_s", "eta")
 def fit_and_write(out: Path | None = None, write: bool = True) -> dict:
     """Fit the coefficients on the ``fit`` rows; write them with the errors (JSON) unless
     ``write`` is false."""
-    from scipy.optimize import least_squares
+    from scipy.optimize import least_squares, minimize
 
     from checker.calc import throw_stiffness as ts
 
@@ -152,7 +187,12 @@ def fit_and_write(out: Path | None = None, write: bool = True) -> dict:
         k = model_stiffness(dict(zip(NAMES, p)), {c: v[fit] for c, v in d.items()})
         return np.log(k / d["k_fe"][fit])
 
+    # least squares first, then the L8 norm of the log errors (close to minimax: the aim is
+    # the largest error over the range, not the mean)
     sol = least_squares(resid, [0.3, 0.3, 0.8, 0.2, 0.75])
+    sol = minimize(lambda p: float(np.sum(resid(p) ** 8)) ** 0.125, sol.x,
+                   method="Nelder-Mead",
+                   options=dict(maxiter=40000, maxfev=40000, xatol=1e-8, fatol=1e-14))
     coef = {n: float(f"{v:.6g}") for n, v in zip(NAMES, sol.x)}
     err = model_stiffness(coef, d) / d["k_fe"] - 1
     stats = {}

@@ -34,14 +34,18 @@ them and the stated error covers them. The classical formulas are the same serie
 coefficients: Carter (1928) and Ker Wilson (1956) as usually quoted [1]_ [2]_
 (:func:`carter_stiffness`, :func:`ker_wilson_stiffness`).
 
-Accuracy against the FE of the same geometry, 88 throws over the fitted range (64 used by the
-fit, 24 held out): max 1.7 % (hold-out 1.1 %), mean 0.43 %; the FE's own discretisation error
-at the samples' mesh is below 0.3 % (convergence study, ``benchmarks/bench_throw_fe.py``). The
-stated model error, ``ThrowStiffness.model_error``, is their sum rounded up: 2 %. The model is
-smooth and monotone in every dimension (positive coefficients; the web's effective length
-stays positive over the range, R - c_s (Dj + Dp)/2 >= 0.66 R). On the I4 throw of Bell (2013)
-(idealised: solid, web width 75.7 mm): FE 518.8, this model 519.5, Carter 506, Ker Wilson
-486 kN m/rad (published FE of the real crank, with lightening and fillets: 403.3).
+Accuracy against the FE of the same geometry, 98 throws over the fitted range (64 of a Sobol
+sequence and 10 extreme corners used by the fit, 24 of a Latin hypercube held out): max 2.6 %
+(corners), hold-out max 1.5 %, mean 0.7 %; fitted on the Sobol throws alone the model is
+within 3.2 % of the corners, so the form, not the fit, sets the error. The FE's own
+discretisation error at the samples' mesh is below 0.5 % and systematic (the samples are
+0.12-0.26 % above a mesh of two-thirds the size; convergence study in
+``benchmarks/bench_throw_fe.py``). The stated model error, ``ThrowStiffness.model_error``,
+is their sum rounded up: 3.5 %. The model is smooth and monotone in every dimension (positive
+coefficients; the web's effective length stays positive over the range,
+R - c_s (Dj + Dp)/2 >= 0.57 R). On the I4 throw of Bell (2013) (idealised: solid, web width
+75.7 mm): FE 518.8, this model 520.7, Carter 506, Ker Wilson 486 kN m/rad (published FE of the
+real crank, with lightening and fillets: 403.3).
 
 References
 ----------

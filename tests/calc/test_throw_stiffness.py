@@ -85,9 +85,12 @@ def test_coefficients_are_the_fit_of_the_samples():
     spec.loader.exec_module(mod)
     stored = json.loads(ts.COEF_FILE.read_text(encoding="utf-8"))
     new = mod.fit_and_write(out=None, write=False)
-    for k, v in stored["coefficients"].items():
-        assert new["coefficients"][k] == pytest.approx(v, rel=1e-4), k
+    d = _samples()
+    k_stored = mod.model_stiffness(stored["coefficients"], d)
+    k_new = mod.model_stiffness(new["coefficients"], d)
+    np.testing.assert_allclose(k_new, k_stored, rtol=2e-4)
     assert new["model_error"] == stored["model_error"]
+    assert new["errors"]["all"]["max"] == pytest.approx(stored["errors"]["all"]["max"], abs=2e-4)
 
 
 def test_i4_throw_against_fe_and_classical_formulas():
