@@ -37,6 +37,7 @@ from checker.calc._checks import non_negative, positive
 
 __all__ = [
     "GapGeometry",
+    "andrade_slope",
     "andrade_viscosity",
     "couette_factor",
     "impedance_power",
@@ -130,17 +131,40 @@ def wetted_area(g: GapGeometry) -> float:
     return 2.0 * np.pi * b * (ro + ri) + 2.0 * np.pi * (ro**2 - ri**2)
 
 
-def andrade_viscosity(temperature: ArrayLike, nu_ref: float, t_ref: float, nu_2: float,
-                      t_2: float) -> np.ndarray:
-    """Kinematic viscosity against temperature, ``ln nu = A + B / T`` through two points.
+#: Temperatures of the viscosity temperature coefficient of silicone-fluid datasheets,
+#: ``VTC = 1 - nu(210 F) / nu(100 F)`` [K].
+VTC_TEMPERATURES = (310.928, 372.039)
+
+
+def andrade_slope(vtc: float) -> float:
+    """Slope ``B`` [K] of ``ln nu = A + B / T`` from a viscosity temperature coefficient.
+
+    ``VTC = 1 - nu(98.9 C) / nu(37.8 C)`` (210 and 100 F, as silicone-fluid datasheets give
+    it): ``B = ln(1 / (1 - VTC)) / (1/T_37.8 - 1/T_98.9)``.
+
+    Examples
+    --------
+    >>> round(andrade_slope(0.6), 1)
+    1734.5
+    """
+    v = float(positive("vtc", vtc))
+    if v >= 1.0:
+        raise ValueError("vtc must be below 1")
+    t1, t2 = VTC_TEMPERATURES
+    return float(np.log(1.0 / (1.0 - v)) / (1.0 / t1 - 1.0 / t2))
+
+
+def andrade_viscosity(temperature: ArrayLike, nu_ref: float, t_ref: float,
+                      slope: float) -> np.ndarray:
+    """Kinematic viscosity against temperature, ``nu = nu_ref exp(B (1/T - 1/T_ref))``.
 
     Parameters
     ----------
     temperature : array_like [K]
     nu_ref, t_ref : float [m^2/s], [K]
-        Viscosity at the reference temperature.
-    nu_2, t_2 : float [m^2/s], [K]
-        Viscosity at a second temperature (``t_2 != t_ref``).
+        Viscosity at the reference temperature (the grade).
+    slope : float [K]
+        ``B`` of ``ln nu = A + B / T`` (:func:`andrade_slope`).
 
     Returns
     -------
@@ -148,22 +172,18 @@ def andrade_viscosity(temperature: ArrayLike, nu_ref: float, t_ref: float, nu_2:
 
     Notes
     -----
-    Andrade, Nature 125, 1930. Interpolation between the two points; used outside them
-    (extrapolation) it is the fit's own trend, valid for a liquid well above its pour point
-    (silicone fluids: about -50 C).
+    Andrade, Nature 125, 1930. Valid for a liquid well above its pour point (silicone fluids:
+    about -50 C); the datasheet's VTC fixes ``B`` between 37.8 and 98.9 C, beyond them it is
+    the law's own trend.
 
     Examples
     --------
-    >>> round(float(andrade_viscosity(320.0, 1e-3, 300.0, 5e-4, 340.0)) * 1e3, 6)
-    0.691955
+    >>> round(float(andrade_viscosity(372.039, 1.0, 310.928, andrade_slope(0.6))), 6)
+    0.4
     """
     t = positive("temperature", temperature)
     nu1, t1 = float(positive("nu_ref", nu_ref)), float(positive("t_ref", t_ref))
-    nu2, t2 = float(positive("nu_2", nu_2)), float(positive("t_2", t_2))
-    if t1 == t2:
-        raise ValueError("the two viscosity temperatures must differ")
-    b = np.log(nu1 / nu2) / (1.0 / t1 - 1.0 / t2)
-    return nu1 * np.exp(b * (1.0 / t - 1.0 / t1))
+    return nu1 * np.exp(float(slope) * (1.0 / t - 1.0 / t1))
 
 
 def maxwell_impedance(omega: ArrayLike, damping: ArrayLike,

@@ -92,13 +92,16 @@ def test_couette_factor_sum_of_faces():
         vd.couette_factor(vd.GapGeometry(0.01, 0.15, 0.04, 0.002, 0.0005))
 
 
-def test_andrade_law_through_its_points():
-    nu = vd.andrade_viscosity(np.array([298.15, 373.15]), 1e-1, 298.15, 4e-2, 373.15)
-    np.testing.assert_allclose(nu, [1e-1, 4e-2], rtol=1e-14)
-    # ln nu linear in 1/T
+def test_andrade_law_reproduces_the_vtc():
+    b = vd.andrade_slope(0.6)
+    t1, t2 = vd.VTC_TEMPERATURES
+    nu = vd.andrade_viscosity(np.array([t1, t2]), 0.1, t1, b)
+    assert 1.0 - nu[1] / nu[0] == pytest.approx(0.6, rel=1e-12)
+    # ln nu linear in 1/T, through the reference point
     t = np.array([250.0, 300.0, 350.0, 400.0])
-    ln = np.log(vd.andrade_viscosity(t, 1e-1, 298.15, 4e-2, 373.15))
-    assert np.allclose(np.diff(ln) / np.diff(1 / t), np.diff(ln)[0] / np.diff(1 / t)[0])
+    ln = np.log(vd.andrade_viscosity(t, 0.1, 298.15, b))
+    np.testing.assert_allclose(np.diff(ln) / np.diff(1 / t), b, rtol=1e-9)
+    assert float(vd.andrade_viscosity(298.15, 0.1, 298.15, b)) == 0.1
 
 
 def test_rubber_table_at_its_points_reproduces_constant_properties_exactly():
