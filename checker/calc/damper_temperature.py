@@ -95,7 +95,7 @@ class RubberTable:
 
 
 #: Bisection stops when every bracket is narrower than this [K].
-TEMPERATURE_TOLERANCE = 1e-6
+TEMPERATURE_TOLERANCE = 1e-3
 
 
 def self_heated_temperature(power_at: Callable[[np.ndarray], np.ndarray], ambient: ArrayLike,

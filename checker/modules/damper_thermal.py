@@ -46,7 +46,7 @@ ENDS = dinp.ENDS
 _DIMS = ("end", "case", "speed")
 _COORDS = {"end": ENDS, "case": CASES}
 
-VISCOUS_SEARCH = 1000.0
+VISCOUS_SEARCH = 500.0
 """Span above the air temperature [K] within which the viscous damper's heat balance is
 solved; no solution within it is reported (thermal runaway), never clipped."""
 
@@ -116,6 +116,12 @@ def _limit(engine: Engine, attr: str, what: str, lo_hi: tuple[str, str] | None =
     return {"all": {"limit": (float(lim),), "limit_cell": engine.cell("Damper", attr)}}
 
 
+def _envelope(inputs: dict) -> np.ndarray | None:
+    """(C, S) operating envelope of the load cases (module loads), None = every speed."""
+    cyc = getattr(inputs["loads.cycle"].detail, "cycle", None)
+    return getattr(cyc, "envelope", None)
+
+
 class _Resolver:
     """Re-solves of the torsional model with the damper element's impedance per point."""
 
@@ -140,6 +146,8 @@ class _Resolver:
         self.sp = np.tile(self.speeds, self.C)
         self.omega = self.sp[:, None] * self.orders  # (P, O)
         self.cases = tuple(nose_q.coords["case"])
+        if self.cases != CASES:
+            raise MissingInputs([f"the load cases {self.cases} differ from {CASES}"])
         self.nominal_nose = np.asarray(nose_q.values, dtype=float)
         try:
             self.primary = dt.primary_mode(self.model, self.ring)
@@ -161,10 +169,13 @@ class _Resolver:
         return x.reshape((self.C, self.S) + x.shape[1:])
 
 
-def _judged_at_peak_power(power: np.ndarray) -> np.ndarray:
-    """(E, C, S) mask: the speed of the largest dissipated power of each end and case."""
+def _judged_at_peak_power(power: np.ndarray, envelope: np.ndarray | None) -> np.ndarray:
+    """(E, C, S) mask: the speed of the largest dissipated power of each end and case within
+    the case's operating envelope ((C, S), None = every speed)."""
     mask = np.zeros(power.shape, dtype=bool)
     ok = np.isfinite(power)
+    if envelope is not None:
+        ok &= np.broadcast_to(envelope, power.shape)
     p = np.where(ok, power, -np.inf)
     k = np.argmax(p, axis=-1)
     e_i, c_i = np.indices(power.shape[:2])
@@ -173,7 +184,7 @@ def _judged_at_peak_power(power: np.ndarray) -> np.ndarray:
 
 
 @calculation("damper_rubber_ends", "damper", provides=RUBBER_PROVIDES,
-             needs=("tv.nose_amplitude",), reads=("damper", "tv_model", "cylinders", "params"),
+             needs=("tv.nose_amplitude", "loads.cycle"), reads=("damper", "tv_model", "cylinders", "params"),
              applies=dinp.has_rubber_ends)
 def damper_rubber_ends(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """The rubber damper at the cold and hot ends of the operating temperature range."""
@@ -242,7 +253,7 @@ def damper_rubber_ends(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     sh = lambda x: x.reshape(E, rs.C, rs.S)  # noqa: E731
     temp, power, tau, nose, k_st, eta_t = map(sh, (temp, power, tau, nose, k_st, eta_t))
     tuning = np.sqrt(k_st / j_ring) / rs.primary.omega
-    judged = _judged_at_peak_power(power)
+    judged = _judged_at_peak_power(power, _envelope(inputs))
     detail = DamperEndsDetail(
         damper_type="rubber", ends=ENDS, air_temperature=tuple(t_air), heat_resistance=res_th,
         speeds=rs.speeds, cases=rs.cases, temperature=temp, power=power, nose_amplitude=nose,
@@ -280,7 +291,7 @@ def damper_rubber_ends(engine: Engine, inputs: dict) -> dict[str, Quantity]:
 
 
 @calculation("viscous_damper", "damper", provides=VISCOUS_PROVIDES,
-             needs=("tv.nose_amplitude",), reads=("damper", "tv_model", "cylinders", "params"),
+             needs=("tv.nose_amplitude", "loads.cycle"), reads=("damper", "tv_model", "cylinders", "params"),
              applies=dinp.is_viscous)
 def viscous_damper(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """The untuned viscous damper at the cold and hot ends: heat, silicone temperature and
@@ -330,7 +341,7 @@ def viscous_damper(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         damping[e] = np.where(ok, cp.damping_at(tt), np.nan)
     sh = lambda x: x.reshape(E, rs.C, rs.S)  # noqa: E731
     temp, power, nose, damping = map(sh, (temp, power, nose, damping))
-    judged = _judged_at_peak_power(power)
+    judged = _judged_at_peak_power(power, _envelope(inputs))
     law = ("the silicone's viscosity at its temperature (Andrade, from the datasheet's VTC)"
            if cp.slope is not None else
            "a damping coefficient independent of temperature (typed, or no viscosity"
