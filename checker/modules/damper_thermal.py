@@ -184,7 +184,8 @@ def _judged_at_peak_power(power: np.ndarray, envelope: np.ndarray | None) -> np.
 
 
 @calculation("damper_rubber_ends", "damper", provides=RUBBER_PROVIDES,
-             needs=("tv.nose_amplitude", "loads.cycle"), reads=("damper", "tv_model", "cylinders", "params"),
+             needs=("tv.nose_amplitude", "loads.cycle"),
+             reads=("damper", "tv_model", "cylinders", "params"),
              applies=dinp.has_rubber_ends)
 def damper_rubber_ends(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """The rubber damper at the cold and hot ends of the operating temperature range."""
@@ -291,7 +292,8 @@ def damper_rubber_ends(engine: Engine, inputs: dict) -> dict[str, Quantity]:
 
 
 @calculation("viscous_damper", "damper", provides=VISCOUS_PROVIDES,
-             needs=("tv.nose_amplitude", "loads.cycle"), reads=("damper", "tv_model", "cylinders", "params"),
+             needs=("tv.nose_amplitude", "loads.cycle"),
+             reads=("damper", "tv_model", "cylinders", "params"),
              applies=dinp.is_viscous)
 def viscous_damper(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """The untuned viscous damper at the cold and hot ends: heat, silicone temperature and
