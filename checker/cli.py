@@ -273,7 +273,7 @@ def _keep_freed_memory() -> None:
 @click.option("--engine", "which", type=click.Choice(["i4", "i6", "v8"], case_sensitive=False),
               default="i4",
               show_default=True, help="i4: the gasoline engine of Bell, Ricardo 2013; i6: a"
-              " truck diesel from Mendes et al. 2008 with an assumed rubber damper; v8: a"
+              " truck diesel from Mendes et al. 2008 with an assumed viscous damper; v8: a"
               " 90-degree cross-plane V8 from GM LS1 service data; assumptions labelled in each.")
 def template(path: str, force: bool, which: str) -> None:
     """Write an example workbook to PATH (default: engine.xlsx for the I4, engine-i6.xlsx for
