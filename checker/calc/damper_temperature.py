@@ -94,8 +94,10 @@ class RubberTable:
         return np.where(ok, gi, np.nan), np.where(ok, ei, np.nan)
 
 
-#: Bisection stops when every bracket is narrower than this [K].
+#: The heat balance is solved when ``|T - T_a - R P(T)|`` is below this at every point [K].
 TEMPERATURE_TOLERANCE = 1e-3
+#: Most evaluations of ``P(T)`` (bracketing iterations; the Illinois method takes about 5-10).
+MAX_ITERATIONS = 200
 
 
 def self_heated_temperature(power_at: Callable[[np.ndarray], np.ndarray], ambient: ArrayLike,
@@ -114,7 +116,7 @@ def self_heated_temperature(power_at: Callable[[np.ndarray], np.ndarray], ambien
         ``R = 1 / (h A)``; ``None`` or 0: no self-heating (``T = T_a``).
     t_max : float [K]
         Highest temperature the properties are known at (top of the rubber table; for a
-        viscous damper any bound above the fluid's limit).
+        viscous damper a bound far above the fluid's limit).
 
     Returns
     -------
@@ -126,10 +128,13 @@ def self_heated_temperature(power_at: Callable[[np.ndarray], np.ndarray], ambien
 
     Notes
     -----
-    ``g(T) = T - T_a - R P(T)`` is ``<= 0`` at ``T_a``; bisection on ``[T_a, t_max]`` to
-    :data:`TEMPERATURE_TOLERANCE` finds a root where ``g(t_max) >= 0`` (the lowest-lying one
-    when ``P`` falls with ``T``, as it does for a damper past its resonance; with several
-    roots, one of them).
+    ``g(T) = T - T_a - R P(T)`` is ``<= 0`` at ``T_a``; where ``g(t_max) >= 0`` a root lies in
+    ``[T_a, t_max]`` and the Illinois variant of the false-position method (Dowell and
+    Jarratt, BIT 11, 1971) keeps it bracketed until ``|g| <`` :data:`TEMPERATURE_TOLERANCE`
+    (the lowest-lying root when ``P`` falls with ``T``, as for a damper detuning as it heats;
+    with several roots, one of them). Deterministic: a fixed sequence of vectorised
+    evaluations. ``RuntimeError`` if :data:`MAX_ITERATIONS` do not suffice (never a silent
+    partial result).
     """
     ta = np.asarray(ambient, dtype=float)
     if not resistance:
@@ -137,17 +142,37 @@ def self_heated_temperature(power_at: Callable[[np.ndarray], np.ndarray], ambien
     r = float(resistance)
     if r < 0:
         raise ValueError("resistance must be >= 0 K/W")
-    hi = np.full(ta.shape, float(t_max))
-    ok = hi >= ta
-    p_hi = np.asarray(power_at(np.where(ok, hi, ta)), dtype=float)
-    ok &= hi - ta - r * p_hi >= 0
-    lo = ta.copy()
-    hi = np.where(ok, hi, ta)
-    while np.max(hi - lo, initial=0.0) > TEMPERATURE_TOLERANCE:
-        mid = 0.5 * (lo + hi)
-        g = mid - ta - r * np.asarray(power_at(mid), dtype=float)
-        lo = np.where(g < 0, mid, lo)
-        hi = np.where(g < 0, hi, mid)
-    t = 0.5 * (lo + hi)
-    p = np.asarray(power_at(t), dtype=float)
-    return np.where(ok, t, np.nan), np.where(ok, p, np.nan)
+
+    def g(t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        p = np.asarray(power_at(t), dtype=float)
+        return t - ta - r * p, p
+
+    lo, (g_lo, p_lo) = ta.copy(), g(ta)
+    hi = np.maximum(np.full(ta.shape, float(t_max)), ta)
+    g_hi, _ = g(hi)
+    ok = g_hi >= 0
+    t, gt, pt = lo.copy(), g_lo, p_lo
+    done = ~ok | (np.abs(g_lo) < TEMPERATURE_TOLERANCE)
+    side = np.zeros(ta.shape, dtype=int)
+    for _ in range(MAX_ITERATIONS):
+        if done.all():
+            break
+        den = np.where(g_hi - g_lo > 0, g_hi - g_lo, 1.0)
+        cand = np.clip(hi - g_hi * (hi - lo) / den, lo, hi)
+        cand = np.where(done, t, cand)
+        gc, pc = g(cand)
+        t, gt, pt = (np.where(done, t, cand), np.where(done, gt, gc),
+                     np.where(done, pt, pc))
+        below = ~done & (gc < 0)
+        above = ~done & (gc >= 0)
+        lo, g_lo = np.where(below, cand, lo), np.where(below, gc, g_lo)
+        hi, g_hi = np.where(above, cand, hi), np.where(above, gc, g_hi)
+        g_hi = np.where(below & (side == -1), 0.5 * g_hi, g_hi)  # Illinois step
+        g_lo = np.where(above & (side == 1), 0.5 * g_lo, g_lo)
+        side = np.where(below, -1, np.where(above, 1, side))
+        done |= (np.abs(gc) < TEMPERATURE_TOLERANCE) | (hi - lo < TEMPERATURE_TOLERANCE)
+    else:
+        if not done.all():
+            raise RuntimeError("the damper's heat balance did not converge in"
+                               f" {MAX_ITERATIONS} iterations")
+    return np.where(ok, t, np.nan), np.where(ok, pt, np.nan)
