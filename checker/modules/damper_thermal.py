@@ -153,6 +153,16 @@ class _Resolver:
             self.primary = dt.primary_mode(self.model, self.ring)
         except ValueError as exc:
             raise MissingInputs([f"TVModel: {exc}"]) from None
+        # the damper element's contribution to D is z b b^T (b: +1 ring, -1 hub), so with
+        # another z the relative twist is dphi0 / (1 + (z - z0) s), s = b^T D0^-1 b
+        # (Sherman-Morrison): the heat balance's iterations need no new solve
+        r0 = tv.forced_response(self.model, self.sp, self.orders, self.force)
+        self.z0 = tv.element_impedance(self.model, self.omega)[..., self.ring]
+        self.dphi0 = r0.theta[:, self.hub] - r0.theta[:, self.ring]
+        unit = np.zeros_like(self.force)
+        unit[:, self.ring, :], unit[:, self.hub, :] = 1.0, -1.0
+        rb = tv.forced_response(self.model, self.sp, self.orders, unit)
+        self.s = rb.theta[:, self.ring] - rb.theta[:, self.hub]
 
     def solve(self, z: np.ndarray) -> tuple[tv.ForcedResponse, np.ndarray]:
         """Response with the damper impedance ``z`` (P, O) and the relative twist (P, O)."""
@@ -161,7 +171,10 @@ class _Resolver:
         return r, r.theta[:, self.hub] - r.theta[:, self.ring]
 
     def power(self, z: np.ndarray) -> np.ndarray:
-        _, dphi = self.solve(z)
+        """Dissipated power (P,) with the damper impedance ``z`` (P, O), by the rank-one
+        update of the nominal solve (exact up to rounding; the reported results come from a
+        full solve at the converged temperature)."""
+        dphi = self.dphi0 / (1.0 + (z - self.z0) * self.s)
         return vd.impedance_power(dphi, self.omega, z).sum(-1)
 
     def shape(self, x: np.ndarray) -> np.ndarray:
