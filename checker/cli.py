@@ -42,6 +42,8 @@ STEP_WORDS = {
     "tv_response": "the torsional vibration of the crank train",
     "tv_joint_torque": "the joint torques from the torsional model",
     "damper_tuning": "the damper tuning",
+    "damper_rubber_ends": "the damper rubber at the ends of its temperature range",
+    "viscous_damper": "the viscous damper's heat and damping",
     "crank_fatigue": "the crankshaft fatigue safety factors",
     "crank_nose_fatigue": "the crank-nose fatigue safety factor",
     "flywheel": "the cyclic irregularity and flywheel inertia",

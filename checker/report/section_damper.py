@@ -8,8 +8,9 @@ import numpy as np
 
 from ..api import CheckResult
 from ..display import case_text
+from . import judged as jd
 from .plots import figure, legend_below, to_image
-from .sections import fmt, in_unit, rpm, section
+from .sections import display_values, fmt, in_unit, rpm, section
 
 
 def _deg(rad):
@@ -26,6 +27,45 @@ def _peak_text(q: dict, design: int, group: int, case: str | None) -> list[str]:
     speed = q["damper.peak_speed"].values[design, group]
     where = f"order {order:g}, " + (f"{case_text(case)}, " if case else "")
     return [fmt(_deg(v), 4), f"{where}{rpm(speed):.0f} rpm"]
+
+
+def _judged_table(res: CheckResult, names: tuple[str, ...], caption: str) -> dict | None:
+    """The damper's judged worst points at the cold and hot ends (quantities over end, case,
+    speed): per quantity the judged worst of each end and load case, most severe first (the
+    rule result's value and point; a range rule shows the point of its result only), then,
+    marked, worse points the rules do not judge."""
+    q = res.outcome.quantities
+    rows, css = [], []
+    for name in names:
+        qq = q.get(name)
+        rr = [r for r in res.results if r.value is not None and r.status != "not_evaluated"
+              and any(x.id == r.rule and x.quantity == name for x in res.rules)]
+        if qq is None or not rr:
+            continue
+        ends, cases = qq.coords["end"], qq.coords["case"]
+        sp = rpm(np.array(qq.coords["speed"], dtype=float))
+        lim = (qq.item_attrs.get("all") or {}).get("limit")
+        lim_txt = "-" if lim is None else " .. ".join(
+            f"{fmt(display_values(qq, x)[0])}" for x in lim) + f" {display_values(qq, 0)[1]}"
+        how = jd.direction(res, name, "max")
+        found = [jd.worst(qq, (e, c), how) for e in range(len(ends)) for c in range(len(cases))]
+        sign = 1.0 if how == "max" else -1.0
+        judged = sorted((j for j, _ in found if j is not None), key=lambda p: -sign * p.value)
+        if lim is not None and len(lim) == 2:  # a range: the point of the rule's result
+            shown = display_values(qq, np.array([p.value for p in judged]))[0]
+            judged = [judged[int(np.argmin(np.abs(shown - rr[0].value)))]] if judged else []
+        for p in judged + [u for _, u in found if u is not None]:
+            e, c, k = p.index
+            val, unit = display_values(qq, p.value)
+            rows.append([qq.spec.description.split(",")[0], case_text(cases[c]),
+                         f"{fmt(val)} {unit}".strip(), lim_txt, f"{sp[k]:.0f}", ends[e],
+                         jd.judged_text(res, qq, p, None, cases[c])])
+            css.append(jd.row_css(p))
+    if not rows:
+        return None
+    return {"type": "table", "caption": caption,
+            "columns": ["quantity", "case", "value", "limit", "speed [rpm]", "end",
+                        "judged by"], "rows": rows, "row_css": css}
 
 
 def _ends_rows(d, q, cols) -> list[list[str]]:
@@ -48,7 +88,7 @@ def _ends_rows(d, q, cols) -> list[list[str]]:
     return rows
 
 
-def _ends_figure(d, caption: str, what: str) -> dict:
+def _ends_figure(d, caption: str, what: str, data: list[str]) -> dict:
     """Damper temperature and crank-nose amplitude against speed, cold and hot end."""
     sp = rpm(d.speeds)
     fig, axes = figure(170, 64, ncols=2, legend_rows=1)
@@ -66,10 +106,10 @@ def _ends_figure(d, caption: str, what: str) -> dict:
     for ax in axes:
         ax.set_xlabel("Engine speed [rpm]")
     legend_below(fig, axes=[axes[0]], ncols=4)
-    return {"type": "figure", "png": to_image(fig), "caption": caption}
+    return {"type": "figure", "png": to_image(fig), "caption": caption, "data": data}
 
 
-def _rubber_ends_blocks(q: dict) -> list[dict]:
+def _rubber_ends_blocks(res: CheckResult, q: dict) -> list[dict]:
     """The rubber at the cold and hot ends (DMP-005..007)."""
     tq = q["damper.end_tuning_ratio"]
     d = tq.detail
@@ -102,9 +142,18 @@ def _rubber_ends_blocks(q: dict) -> list[dict]:
         {"type": "table", "caption": "Rubber at the speed of its largest dissipated power per"
          " end and load case (rules DMP-005..007; maxima over every speed)",
          "columns": [c for c, _ in cols], "rows": _ends_rows(d, q, cols)},
+        *([t] if (t := _judged_table(res, ("damper.end_tuning_ratio",
+                                           "damper.end_shear_stress",
+                                           "damper.end_heat_density"),
+                                     "Rubber at the cold and hot ends against the limits (rules"
+                                     " DMP-005..007): the judged worst first (the value of the"
+                                     " rule result), then, marked, worse values at points the"
+                                     " rules do not judge")) else []),
         _ends_figure(d, "Rubber temperature from its own heat (left) and crank-nose"
                      " amplitude (right) at the cold (blue) and hot (red) end; grey: the"
-                     " nominal rubber of the TV section", "Rubber"),
+                     " nominal rubber of the TV section", "Rubber",
+                     ["damper.end_rubber_temperature", "damper.end_nose_amplitude",
+                      "tv.nose_amplitude"]),
     ]
 
 
@@ -165,10 +214,19 @@ def _viscous_section(res: CheckResult) -> dict:
                    " dissipated power per end and load case (rules DMP-008..010; maxima over"
                    " every speed)", "columns": [c for c, _ in cols],
                    "rows": _ends_rows(d, q, cols)})
+    t = _judged_table(res, ("damper.heat_flux", "damper.silicone_temperature",
+                            "damper.damping_to_optimum"),
+                      "Viscous damper against the limits (rules DMP-008..010): the judged worst"
+                      " first (the value of the rule result), then, marked, worse values at"
+                      " points the rules do not judge")
+    if t is not None:
+        blocks.append(t)
     blocks.append(_ends_figure(d, "Silicone temperature from the housing's heat balance"
                                " (left) and crank-nose amplitude (right) at the cold (blue)"
                                " and hot (red) end; grey: the TV section's nominal damper (the"
-                               " silicone at its reference temperature)", "Silicone"))
+                               " silicone at its reference temperature)", "Silicone",
+                               ["damper.silicone_temperature", "damper.viscous_nose_amplitude",
+                                "tv.nose_amplitude"]))
     parts = []
     for e, end in enumerate(d.ends):
         v = np.where(opt.applies[e] if opt.applies is not None else True, opt.values[e],
@@ -270,7 +328,7 @@ def damper_section(res: CheckResult) -> dict:
                                   " synthesised (the low-speed part is the rigid-body"
                                   " rolling motion, which the damper does not change)"})
     if "damper.end_tuning_ratio" in q:
-        blocks += _rubber_ends_blocks(q)
+        blocks += _rubber_ends_blocks(res, q)
     f, f_opt = v("damper.tuning_ratio"), v("damper.optimum_tuning_ratio")
     dev = (f / f_opt - 1.0) * 100
     return {"id": "damper", "title": title,
