@@ -58,7 +58,7 @@ def _spec(name: str, unit: str, description: str, display: str) -> QuantitySpec:
 
 R_TEMP = _spec("damper.end_rubber_temperature", "K",
                "Damper rubber temperature at the cold and hot ends of the operating range"
-               " (air temperature + own heat / (h A))", "degC")
+               " (air temperature + own heat / (h A))", "°C")
 R_TUNING = _spec("damper.end_tuning_ratio", "",
                  "Damper tuning ratio sqrt(k'(T)/J_ring) / crank first mode with the rubber at"
                  " its own temperature, cold and hot end", "")
@@ -72,7 +72,7 @@ R_NOSE = _spec("damper.end_nose_amplitude", "rad",
                " own temperature, cold and hot end", "deg")
 V_TEMP = _spec("damper.silicone_temperature", "K",
                "Viscous damper silicone temperature (air temperature + heat / (h A)), cold and"
-               " hot end", "degC")
+               " hot end", "°C")
 V_FLUX = _spec("damper.heat_flux", "W/m**2",
                "Viscous damper dissipated power per wetted ring area, cold and hot end",
                "W/cm**2")

@@ -29,6 +29,12 @@ def _peak_text(q: dict, design: int, group: int, case: str | None) -> list[str]:
     return [fmt(_deg(v), 4), f"{where}{rpm(speed):.0f} rpm"]
 
 
+_SHORT = {"damper.end_tuning_ratio": "tuning ratio", "damper.end_shear_stress": "shear stress",
+          "damper.end_heat_density": "heat per volume", "damper.heat_flux": "heat per area",
+          "damper.silicone_temperature": "silicone temperature",
+          "damper.damping_to_optimum": "c / c_opt"}
+
+
 def _judged_table(res: CheckResult, names: tuple[str, ...], caption: str) -> dict | None:
     """The damper's judged worst points at the cold and hot ends (quantities over end, case,
     speed): per quantity the judged worst of each end and load case, most severe first (the
@@ -51,13 +57,15 @@ def _judged_table(res: CheckResult, names: tuple[str, ...], caption: str) -> dic
         found = [jd.worst(qq, (e, c), how) for e in range(len(ends)) for c in range(len(cases))]
         sign = 1.0 if how == "max" else -1.0
         judged = sorted((j for j, _ in found if j is not None), key=lambda p: -sign * p.value)
-        if lim is not None and len(lim) == 2:  # a range: the point of the rule's result
+        unjudged = [u for _, u in found if u is not None]
+        if lim is not None and len(lim) == 2:  # a range: the point of the rule's result only
             shown = display_values(qq, np.array([p.value for p in judged]))[0]
             judged = [judged[int(np.argmin(np.abs(shown - rr[0].value)))]] if judged else []
-        for p in judged + [u for _, u in found if u is not None]:
+            unjudged = []  # (larger is not worse for a range)
+        for p in judged + unjudged:
             e, c, k = p.index
             val, unit = display_values(qq, p.value)
-            rows.append([qq.spec.description.split(",")[0], case_text(cases[c]),
+            rows.append([_SHORT.get(name, name), case_text(cases[c]),
                          f"{fmt(val)} {unit}".strip(), lim_txt, f"{sp[k]:.0f}", ends[e],
                          jd.judged_text(res, qq, p, None, cases[c])])
             css.append(jd.row_css(p))
