@@ -217,3 +217,25 @@ def test_workbook_keeps_its_data(tmp_path):
     e = load_engine(p)
     t = [x[0] for x in e.damper["rubber_table"]]
     assert t == sorted(t) and t[0] == pytest.approx(233.15)
+
+
+def test_maxwell_silicone_in_the_torsional_solve(tmp_path):
+    # the I6 with the silicone's shear modulus: k_s = G Phi in series with c (Andre & Spurk
+    # 1982); the TV solve's damper power is sum 1/2 Omega Im z |dphi|^2 with that z
+    content = i6_content(damper_ring=True)
+    content["Damper"] = list(content["Damper"]) + [
+        ("Silicone shear modulus", 2000, "Pa", "test")]
+    p = tmp_path / "i6_maxwell.xlsx"
+    write_workbook(p, content)
+    res = api.check(p, select=["DMP"])
+    q = res.outcome.quantities
+    g = vd.GapGeometry(0.09, 0.13, 0.04, 0.0005, 0.0006)
+    d = q["damper.optimum_damping"].detail
+    assert d.shear_stiffness == pytest.approx(2000 * vd.couette_factor(g), rel=1e-12)
+    pw = q["damper.power"]
+    omega = pw.detail.orders * np.array(pw.coords["speed"])[:, None]
+    z = vd.maxwell_impedance(omega, d.damping_nominal, d.shear_stiffness)
+    np.testing.assert_allclose(pw.values, vd.impedance_power(pw.detail.dphi, omega, z).sum(-1),
+                               rtol=1e-12)
+    assert {r.rule for r in res.results} == {"DMP-008", "DMP-009", "DMP-010"}
+    assert all(r.value is not None for r in res.results)
