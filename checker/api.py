@@ -337,6 +337,9 @@ def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = No
         engine = load_engine(source, check_overrides=_check_overrides)
         table = RuleTable(resolved["rules"], table.files, resolved["applied"], table.levers)
     chosen = _select(table, select, ignore)
+    # rules on the quantities of a calculation that does not apply to this engine (a rubber
+    # damper's rules on an engine with a viscous damper): no result
+    chosen = [r for r in chosen if graph.applies_to(engine, r.quantity)]
     wanted = {r.quantity for r in chosen}
     # quantities a result is shown beside (the film thickness by the other method); not
     # computed with compare=False (variants judged on their margins: remedies, corners)

@@ -42,6 +42,8 @@ STEP_WORDS = {
     "tv_response": "the torsional vibration of the crank train",
     "tv_joint_torque": "the joint torques from the torsional model",
     "damper_tuning": "the damper tuning",
+    "damper_rubber_ends": "the damper rubber at the ends of its temperature range",
+    "viscous_damper": "the viscous damper's heat and damping",
     "crank_fatigue": "the crankshaft fatigue safety factors",
     "crank_nose_fatigue": "the crank-nose fatigue safety factor",
     "flywheel": "the cyclic irregularity and flywheel inertia",
@@ -273,7 +275,7 @@ def _keep_freed_memory() -> None:
 @click.option("--engine", "which", type=click.Choice(["i4", "i6", "v8"], case_sensitive=False),
               default="i4",
               show_default=True, help="i4: the gasoline engine of Bell, Ricardo 2013; i6: a"
-              " truck diesel from Mendes et al. 2008 with an assumed rubber damper; v8: a"
+              " truck diesel from Mendes et al. 2008 with an assumed viscous damper; v8: a"
               " 90-degree cross-plane V8 from GM LS1 service data; assumptions labelled in each.")
 def template(path: str, force: bool, which: str) -> None:
     """Write an example workbook to PATH (default: engine.xlsx for the I4, engine-i6.xlsx for

@@ -747,6 +747,7 @@ def _crank_mass(data: WorkbookData, p: Params, cylinders: list[Cylinder], comple
 def _tv_model(data: WorkbookData, p: Params, pr: _Problems) -> list[TVStation]:
     """Sheet TVModel: the stations front to rear, each cylinder on one station."""
     err = pr.err
+    viscous = data.params.get("Damper", {}).get("damper_type") == "viscous"
     n_cyl = p.get("cylinders")
     tv_rows = _rows(data, "TVModel")
     tv = []
@@ -755,7 +756,12 @@ def _tv_model(data: WorkbookData, p: Params, pr: _Problems) -> list[TVStation]:
         if r["station"] is None or r["inertia"] is None or r["role"] is None:
             continue
         last = i == len(tv_rows) - 1
-        if not last and r["stiffness"] is None:
+        if viscous and r["role"] == "damper ring":  # the silicone couples the ring
+            for col, what in (("stiffness", "stiffness"), ("relative_damping", "damping")):
+                if r[col] is not None:
+                    err("TVModel", col, i, f"a viscous damper's ring has no {what} to next"
+                        " here: its coupling is the silicone's (sheet Damper); leave it blank")
+        elif not last and r["stiffness"] is None:
             err("TVModel", "stiffness", i, "stiffness to the next station is required for"
                 " every station but the last (expected a torsional stiffness, e.g. N m/rad)")
         if last and r["stiffness"] is not None:
@@ -882,12 +888,44 @@ def _brake_torque(data: WorkbookData, pr: _Problems) -> list[tuple[float, float]
 
 
 def _damper(data: WorkbookData, pr: _Problems) -> Params:
-    """Sheet Damper: the rubber ring's radii are consistent."""
+    """Sheet Damper (and DamperRubber): the rubber ring's radii are consistent; a viscous
+    damper's coupling is given once; the rubber table (sorted by temperature, no repeats) is
+    kept as ``damper["rubber_table"]``, ``((T [K], G' [Pa], eta), ...)``, only when given."""
     damper = Params(data.params.get("Damper", {}))
     if damper.get("inner_radius") is not None and damper.get("outer_radius") is not None and \
             damper["inner_radius"] >= damper["outer_radius"]:
         pr.err("Damper", "inner_radius", None, "rubber inner radius must be smaller than the"
                " outer radius")
+    if damper.get("ring_inner_radius") is not None and \
+            damper.get("ring_outer_radius") is not None and \
+            damper["ring_inner_radius"] >= damper["ring_outer_radius"]:
+        pr.err("Damper", "ring_inner_radius", None, "ring inner radius must be smaller than"
+               " the ring outer radius")
+    lo, hi = damper.get("operating_temperature_min"), damper.get("operating_temperature_max")
+    if lo is not None and hi is not None and lo > hi:
+        pr.err("Damper", "operating_temperature_min", None, "the minimum operating"
+               " temperature is above the maximum")
+    if damper.get("damper_type") == "viscous" and damper.get("viscous_damping") is not None \
+            and damper.get("silicone_viscosity") is not None:
+        pr.err("Damper", "viscous_damping", None, "give the damping coefficient or the"
+               " silicone's viscosity (with the gap geometry), not both: one source per value")
+    rows = [r for r in _rows(data, "DamperRubber")
+            if None not in (r["temperature"], r["storage_modulus"], r["loss_factor"])]
+    seen: set[float] = set()
+    for i, r in enumerate(_rows(data, "DamperRubber")):
+        t = r["temperature"]
+        if t is None:
+            continue
+        if round(t, 9) in seen:
+            pr.err("DamperRubber", "temperature", i, "duplicate temperature")
+        seen.add(round(t, 9))
+    if rows:
+        if damper.get("damper_type") == "viscous":
+            pr.err("DamperRubber", "temperature", 0, "a rubber table with a viscous damper"
+                   " (Damper type): remove the table or set the type to rubber")
+        table = tuple(sorted((r["temperature"], r["storage_modulus"], r["loss_factor"])
+                             for r in rows))
+        damper = Params(dict(damper, rubber_table=table))
     return damper
 
 

@@ -161,6 +161,10 @@ class Calculation:
     description: str = ""
     optional: tuple[str, ...] = ()  # needs that may be unavailable (the calc copes)
     reads: tuple[str, ...] | None = None  # engine inputs read (None = all); see input_key
+    applies: Callable[[Engine], bool] | None = None
+    """Whether the calculation applies to an engine at all (``None``: always). The rules on
+    the quantities of a calculation that does not apply give no result (a rubber damper's
+    tuning for an engine with a viscous damper): :func:`applies_to`."""
 
 
 UNAVAILABLE = "__unavailable__"
@@ -190,7 +194,8 @@ def quantity(spec: QuantitySpec) -> QuantitySpec:
 def calculation(name: str, module: str, provides: Iterable[str],
                 needs: Callable[[Engine], tuple[str, ...]] | Iterable[str] = (),
                 description: str = "", optional: Iterable[str] = (),
-                reads: Iterable[str] | None = None):
+                reads: Iterable[str] | None = None,
+                applies: Callable[[Engine], bool] | None = None):
     """Decorator registering a calculation function ``f(engine, inputs) -> {name: Quantity}``.
 
     ``reads`` names the engine inputs the calculation reads, for result caching across
@@ -198,14 +203,16 @@ def calculation(name: str, module: str, provides: Iterable[str],
     ``"oil"``...) or one field of it (``"params.bore"``, ``"bearings.clearance"``). ``None``
     (the default) means the whole engine: always safe, never reused across variants.
     A test perturbs every input a calculation does not declare and checks its results stay
-    identical.
+    identical. ``applies`` (engine -> bool): whether the calculation applies to the engine at
+    all (:attr:`Calculation.applies`; it may read only what ``reads`` declares).
     """
     provides = tuple(provides)
     needs_f = needs if callable(needs) else (lambda engine, _n=tuple(needs): _n)
 
     def deco(func):
         calc = Calculation(name, module, provides, func, needs_f, description or func.__doc__
-                           or "", tuple(optional), None if reads is None else tuple(reads))
+                           or "", tuple(optional), None if reads is None else tuple(reads),
+                           applies)
         CALCULATIONS[name] = calc
         for q in provides:
             if q not in QUANTITIES:
@@ -214,6 +221,14 @@ def calculation(name: str, module: str, provides: Iterable[str],
         return func
 
     return deco
+
+
+def applies_to(engine: Engine, qname: str) -> bool:
+    """Whether the calculation providing ``qname`` applies to ``engine``
+    (:attr:`Calculation.applies`; unknown quantities apply)."""
+    cname = PROVIDER.get(qname)
+    calc = CALCULATIONS.get(cname) if cname else None
+    return calc is None or calc.applies is None or bool(calc.applies(engine))
 
 
 def ensure_registered() -> None:

@@ -172,6 +172,8 @@ KINDS: dict[str, Kind] = {
         Kind("linear_stiffness", "N/m", "N/mm"),
         Kind("linear_damping", "N*s/m", "N s/m"),
         Kind("power_density", "W/m**3", "W/cm^3"),
+        Kind("heat_flux", "W/m**2", "W/cm^2"),
+        Kind("heat_transfer_coefficient", "W/(m**2*K)", "W/(m^2 K)"),
         Kind("power", "W", "kW"),
         Kind("volume_flow", "m**3/s", "l/min"),
         Kind("dimensionless", "", "-"),

@@ -40,7 +40,7 @@ TITLES = {
     "i4": "Example I4 gasoline: the engine of Bell, 'Cranktrain Analysis Using ENGDYN and"
           " VALDYN', Ricardo workshop, 2013",
     "i6": "Example I6 truck diesel: the MWM six-cylinder of Mendes, Meirelles, Zampieri, Proc."
-          " IMechE Part K 222(2), 2008, with an assumed rubber damper",
+          " IMechE Part K 222(2), 2008, with an assumed viscous damper",
     "v8": "Example V8 gasoline: a 90-degree cross-plane V8 from the GM LS1 5.7 L service data",
 }
 HEADER = """\

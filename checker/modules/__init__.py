@@ -35,6 +35,7 @@ from . import (  # noqa: E402, F401  (after the registry: their calculations nam
     bearing_performance,
     bearings,
     crank_nose,
+    damper_thermal,
     damper_tuning,
     fatigue,
     flywheel,

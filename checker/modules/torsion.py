@@ -83,6 +83,7 @@ from ..calc import damper as dmp
 from ..calc import excitation as exc
 from ..calc import torsion_post as tp
 from ..calc import torsional as tv
+from ..calc import viscous_damper as vd
 from ..engine import Engine
 from ..graph import (
     MissingInputs,
@@ -106,6 +107,7 @@ from ..results.torsion import (
     TwistDetail,
 )
 from ..units import RPM
+from . import damper_inputs as dinp
 from .joints import POINTS
 
 CASES = ("full", "no")
@@ -169,15 +171,17 @@ D_POWER = quantity(QuantitySpec(
 D_SHEAR = quantity(QuantitySpec(
     "damper.shear_stress", "Pa", ("case", "speed"),
     "Damper rubber shear stress amplitude at the inner (bonded) radius", "MPa",
-    coords={"case": CASES}, detail=DamperDetail))
+    filters=("damper_type",), coords={"case": CASES},
+    detail=DamperDetail))
 D_HEAT = quantity(QuantitySpec(
     "damper.heat_density", "W/m**3", ("case", "speed"),
-    "Mean heat generated per unit rubber volume (P/V)", "W/cm**3", coords={"case": CASES},
-    detail=DamperDetail))
+    "Mean heat generated per unit rubber volume (P/V)", "W/cm**3", filters=("damper_type",),
+    coords={"case": CASES}, detail=DamperDetail))
 D_HEAT_PEAK = quantity(QuantitySpec(
     "damper.heat_density_peak", "W/m**3", ("case", "speed"),
     "Peak local heat per unit rubber volume (inner radius, q_mean (r_o/r_i)^2)", "W/cm**3",
-    coords={"case": CASES}, detail=DamperDetail))
+    filters=("damper_type",), coords={"case": CASES},
+    detail=DamperDetail))
 D_SHEAR_RATIO = quantity(QuantitySpec(
     "damper.shear_stress_ratio", "", ("case", "speed"),
     "Damper rubber shear stress / supplier limit (Damper sheet)", "", coords={"case": CASES},
@@ -233,20 +237,39 @@ def _tv_inputs(engine: Engine) -> TVModelData:
         problems.append("TVModel: the 'damper ring' station is the last one; its rubber element"
                         " is the element to the next station")
         ring = None
-    stiffness = np.array([s.stiffness for s in st[:-1]], dtype=float)
+    viscous = dinp.is_viscous(engine)
+    stiffness = np.array([0.0 if (viscous and i == ring) else s.stiffness
+                          for i, s in enumerate(st[:-1])], dtype=float)
     rel = np.array([s.relative_damping for s in st[:-1]], dtype=float)
     loss = np.zeros(len(st) - 1)
     eta = engine.damper.get("loss_factor")
-    if ring is not None:
+    dyn = {}
+    if ring is not None and viscous:
+        # untuned viscous damper: the silicone couples ring and hub (no spring)
+        eta = None
+        try:
+            coupling = dinp.viscous_coupling(engine)
+        except MissingInputs as exc:
+            problems += exc.reasons
+        else:
+            if coupling.shear_stiffness is None:
+                rel[ring] = coupling.damping
+            else:
+                dyn[ring] = coupling.impedance
+    elif ring is not None:
         if eta is None and rel[ring] == 0:
             problems.append(engine.describe_missing("Damper", "loss_factor",
                                                     what="the damper rubber"))
         loss[ring] = eta or 0.0
+    if viscous and ring is None:
+        problems.append("TVModel: Damper type 'viscous' needs a station with role 'damper"
+                        " ring' (the inertia ring; its hub is the next station)")
     if problems:
         raise MissingInputs(problems)
     model = tv.TorsionalModel(
         inertia=[s.inertia for s in st], stiffness=stiffness,
-        damping_abs=[s.absolute_damping for s in st], damping_rel=rel, loss_factor=loss)
+        damping_abs=[s.absolute_damping for s in st], damping_rel=rel, loss_factor=loss,
+        dynamic_stiffness=dyn)
     return TVModelData(
         model=model, ring=ring, nose=roles.index("crank nose"),
         flywheel=roles.index("flywheel") if "flywheel" in roles else None,
@@ -606,10 +629,12 @@ def _damper(engine: Engine, data: TVModelData, model: tv.TorsionalModel, orders:
     shape = theta.shape[:2]
     nan = np.full(shape, np.nan)
 
+    kind = dinp.damper_type(engine)
+
     def q(spec, values, missing=(), fields=None):
         miss = {(ci,): list(missing) for ci in range(shape[0])} if missing else {}
-        return Quantity(spec, values, cs_coords, missing=miss, findings=findings,
-                        detail=DamperDetail(**common, **(fields or {})))
+        return Quantity(spec, values, cs_coords, {"all": {"damper_type": kind}}, missing=miss,
+                        findings=findings, detail=DamperDetail(**common, **(fields or {})))
 
     if ring is None:
         why = ["TVModel: no station with role 'damper ring' (engine without a TV damper)"]
@@ -619,6 +644,8 @@ def _damper(engine: Engine, data: TVModelData, model: tv.TorsionalModel, orders:
     eta = float(model.loss_factor[ring])
     c_rel = float(model.damping_rel[ring])
     dphi = dmp.relative_twist(theta[:, :, hub], theta[:, :, ring])  # (C, S, O)
+    if dinp.is_viscous(engine):
+        return _viscous_damper(engine, model, ring, hub, orders, dphi, omega, q)
     torque = dmp.damper_torque(dphi, omega, ks, eta, c_rel)
     power_o = dmp.dissipated_power(dphi, omega, ks, eta, c_rel)
     power = power_o.sum(-1)
@@ -649,8 +676,9 @@ def _damper(engine: Engine, data: TVModelData, model: tv.TorsionalModel, orders:
         lim = d.get(lim_attr)
         if lim is None:
             return {"all": {"limit_missing": [engine.describe_missing(
-                "Damper", lim_attr, what="the damper supplier")]}}
-        return {"all": {"limit": (float(lim),), "limit_cell": engine.cell("Damper", lim_attr)}}
+                "Damper", lim_attr, what="the damper supplier")], "damper_type": kind}}
+        return {"all": {"limit": (float(lim),), "limit_cell": engine.cell("Damper", lim_attr),
+                        "damper_type": kind}}
 
     for name, spec, val, lim_attr in (
             ("damper.shear_stress", D_SHEAR, tau, "shear_stress_limit"),
@@ -669,6 +697,31 @@ def _damper(engine: Engine, data: TVModelData, model: tv.TorsionalModel, orders:
         else:
             out[name] = q(spec, val / lim, fields=dict(
                 geom, limit=lim, limit_cell=engine.cell("Damper", lim_attr)))
+    return out
+
+
+def _viscous_damper(engine: Engine, model: tv.TorsionalModel, ring: int, hub: int,
+                    orders: np.ndarray, dphi: np.ndarray, omega: np.ndarray, q
+                    ) -> dict[str, Quantity]:
+    """Twist, torque and power of an untuned viscous damper's silicone coupling (nominal:
+    the silicone at its reference temperature, or the typed coefficient); the rubber's
+    stress and heat do not apply (rules DMP-001..003 select rubber dampers only)."""
+    z = tv.element_impedance(model, omega)[..., ring]  # (C, S, O)
+    torque = z * dphi
+    power_o = vd.impedance_power(dphi, omega, z)
+    base = {"dphi": dphi, "torque_orders": torque, "power_orders": power_o,
+            "stiffness": 0.0, "loss_factor": 0.0,
+            "relative_damping": float(model.damping_rel[ring]),
+            "hub": engine.tv_model[hub].station, "ring": engine.tv_model[ring].station}
+    out = {"damper.relative_twist": q(D_TWIST, dmp.synthesized_amplitude(orders, dphi),
+                                      fields=base),
+           "damper.torque": q(D_TORQUE, dmp.synthesized_amplitude(orders, torque), fields=base),
+           "damper.power": q(D_POWER, power_o.sum(-1), fields=base)}
+    nan = np.full(dphi.shape[:2], np.nan)
+    why = ["Damper: a viscous damper has no rubber (Damper type 'viscous'); its silicone's"
+           " heat and temperature are judged by DMP-008..010"]
+    for n in _DAMPER_QUANTITIES[3:]:
+        out[n] = q(_SPECS[n], nan, why)
     return out
 
 

@@ -44,6 +44,20 @@ MECHANISMS: dict[str, str] = {
                " loses its damping (Bell 2013; Nashif, Jones and Henderson 1985).",
     "DMP-004": "Damper tuned away from Den Hartog's optimum: less damping of the crank mode"
                " (Den Hartog 1956, sec. 3.3).",
+    "DMP-005": "The rubber's stiffness changes with its temperature: at that end of the range"
+               " the ring is tuned away from the crank mode, which then resonates more (Den"
+               " Hartog 1956, sec. 3.3).",
+    "DMP-006": "Rubber shear stress above the supplier's limit at that end of the temperature"
+               " range: the rubber tears or its bond fails (Bell, Ricardo 2013, (21)).",
+    "DMP-007": "Too much heat per volume of rubber at that end of the temperature range: the"
+               " rubber overheats and ages (Bell 2013; Nashif, Jones and Henderson 1985).",
+    "DMP-008": "Too much heat per wetted area of the silicone film: the fluid ages, loses"
+               " viscosity and the damper its damping (Andre and Spurk 1982).",
+    "DMP-009": "Silicone above its temperature limit: the fluid degrades and the damper stops"
+               " damping (housing heat balance, Incropera et al. 2007).",
+    "DMP-010": "Damping away from Den Hartog's optimum for an untuned damper: too little lets"
+               " the crank resonate, too much locks the ring to the crank (Den Hartog 1956,"
+               " ch. 3).",
     "FAT-001": "Goodman safety factor below the target: a fatigue crack can start at the fillet"
                " or oil hole (Bell, Ricardo 2013, 'Crankshaft analysis (25)-(28)').",
     "FAT-002": "Equivalent alternating stress too close to the M53 fatigue strength: crack"

@@ -415,8 +415,10 @@ def _damper(res: CheckResult, q: dict) -> list[dict]:
     legend_below(fig, ncols=6)
     faint = not jd.mask(pw).all()
     blocks: list[dict] = [{"type": "figure", "png": _svg(fig), "caption": (
-        "TV damper rubber: dissipated power (sum of orders), heat per unit rubber volume (mean"
-        " P/V and peak at the inner radius) and shear-stress amplitude at the inner radius"
+        ("TV damper silicone (viscous damper): dissipated power (sum of orders)"
+         if d.get("damper_type") == "viscous" else
+         "TV damper rubber: dissipated power (sum of orders), heat per unit rubber volume (mean"
+        " P/V and peak at the inner radius) and shear-stress amplitude at the inner radius")
         + (f"; faint dotted: computed but not judged ({jd.reason(pw)})" if faint else "")
         + "."), "data": [x.name for x in (pw, heat, heat_pk, tau) if x is not None]}]
     tw, tq = q.get("damper.relative_twist"), q.get("damper.torque")
@@ -567,7 +569,9 @@ def torsion_section(res: CheckResult) -> dict:
 
         blocks.append({"type": "heading", "text": "Crank-nose amplitude: judged worst cases"})
         blocks += tables(nose)
-        blocks.append({"type": "heading", "text": "TV damper rubber: judged worst cases"})
+        blocks.append({"type": "heading", "text": "TV damper silicone: dissipated power"
+                       if res.engine.damper.get("damper_type") == "viscous" else
+                       "TV damper rubber: judged worst cases"})
         blocks += tables(damper)
         blocks.append({"type": "heading", "text": "Torques at the bolted joints"})
         blocks += _joints(res, q)

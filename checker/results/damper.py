@@ -42,3 +42,41 @@ class DamperTuningDetail(Detail):
     peaks: dict[str, dict[str, dict[str, Any] | None]]
     """Largest resonant peak per design ("actual", "optimum") and order group ("cylinder
     order", "higher orders"): ``{"value" [rad], "order", "case", "speed" [rad/s]}`` or None."""
+
+
+@dataclass(frozen=True, kw_only=True)
+class DamperEndsDetail(Detail):
+    """The damper at the cold and hot ends of its operating temperature range (module
+    ``damper``, :mod:`checker.modules.damper_thermal`): a rubber damper with its temperature
+    table (node ``damper_rubber_ends``) or an untuned viscous damper (node
+    ``viscous_damper``), each at its own temperature from its heat.
+
+    Axes: ``E`` ends (cold, hot), ``C`` load cases, ``S`` swept speeds.
+    """
+
+    damper_type: str  # "rubber" | "viscous"
+    ends: tuple[str, ...]  # ("cold", "hot")
+    air_temperature: tuple[float, ...]  # (E,) air temperature at the damper [K]
+    heat_resistance: float  # 1/(h A) of the cooled surface [K/W]
+    speeds: np.ndarray  # (S,) [rad/s]
+    cases: tuple[str, ...]  # (C,)
+    temperature: np.ndarray  # (E, C, S) damper (rubber / silicone) temperature [K]
+    power: np.ndarray  # (E, C, S) dissipated power [W]
+    nose_amplitude: np.ndarray  # (E, C, S) crank-nose half range [rad]
+    nominal_nose_amplitude: np.ndarray  # (C, S) crank nose with the nominal damper [rad]
+    judged: np.ndarray  # (E, C, S) bool: the speed of the largest power per end and case
+    crank_mode_omega: float  # crank's first mode without the ring [rad/s]
+    modal_inertia: float  # its modal inertia at the hub [kg m^2]
+    ring_inertia: float  # [kg m^2]
+    ring: str  # ring station
+    stiffness: np.ndarray | None = None  # (E, C, S) rubber storage stiffness [N m/rad]
+    loss_factor: np.ndarray | None = None  # (E, C, S) rubber loss factor [-]
+    table: tuple[tuple[float, float, float], ...] = ()  # rubber (T [K], G' [Pa], eta)
+    damping: np.ndarray | None = None  # (E, C, S) viscous c at the silicone temperature
+    damping_optimum: float | None = None  # Den Hartog's c_opt [N m s/rad]
+    damping_nominal: float | None = None  # c at the reference temperature / typed
+    mass_ratio: float | None = None  # mu = J_ring / J_eq [-]
+    peak_magnification: float | None = None  # 1 + 2/mu at the optimum [-]
+    wetted_area: float | None = None  # [m^2]
+    coupling: str = ""  # how the viscous coupling was obtained
+    shear_stiffness: float | None = None  # Maxwell k_s [N m/rad]

@@ -39,10 +39,13 @@ Two deliberate choices
 ----------------------
 * The TVModel chain is the published one (pulley, gear train, 6 cylinders, flywheel): there is
   no damper ring, since [MENDES]'s J1/k1 are not available. ``i6_content(damper_ring=True)``
-  adds an ASSUMED rubber damper ring (Den Hartog tuning to the first mode) for damper checks:
-  mu = J_d / J_eq = 0.06 / 0.1444 = 0.42 (J_eq the modal inertia of the first mode at the
-  pulley), f_d = 216.6 / (1 + mu) = 153 Hz, k_d = J_d (2 pi f_d)^2 = 55.5 kN m/rad (Den
-  Hartog, Mechanical Vibrations, 1956, §3.3). The shaft's damping to next is the viscous
+  adds an ASSUMED damper ring for damper checks: an untuned viscous (Houdaille) damper, a steel
+  ring 90/130 x 40 mm of 0.1085 kg m^2 (mu = J_d / J_eq = 0.1085 / 0.1444 = 0.75, J_eq the
+  modal inertia of the first mode at the pulley) in silicone whose grade is sized by Den
+  Hartog's optimum untuned damping c_opt = 2 J_d w_n / sqrt(2 (1 + mu)(2 + mu)) = 95 N m s/rad
+  at the hot end's silicone temperature (Den Hartog, Mechanical Vibrations, 1956, ch. 3);
+  docs/dampers.md compares it with the tuned rubber damper (0.06 kg m^2, 55.5 kN m/rad) the
+  example carried before. The shaft's damping to next is the viscous
   equivalent of the published loss factor at the first mode, c = 0.035 k / (2 pi 216.6 Hz).
 * Throw angles follow the workbook convention ("from throw 1, in the direction of rotation",
   :func:`checker.calc.crank_forces.throw_angles`: gamma = -phi): with firing angles
@@ -62,7 +65,7 @@ from .example_derived import i6_throw_angles
 def i6_content(damper_ring: bool = False) -> dict[str, Any]:
     """The I6 diesel workbook as ``{sheet: rows}`` (parameter sheets) or ``(columns, rows)``.
 
-    ``damper_ring=True`` keeps the assumed rubber damper ring in front of the published chain
+    ``damper_ring=True`` keeps the assumed (viscous) damper ring in front of the published chain
     (``checker template --engine i6``); without it the TVModel is the published chain.
     """
     content = load_example("i6")

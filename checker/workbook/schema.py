@@ -396,6 +396,97 @@ DAMPER = Sheet(
         F("Tuning ratio, maximum", "tuning_ratio_max", "ratio", check=">0", required=False,
           valid=R(1e-3, 100), usual=R(0.3, 3),
           note="Highest acceptable ring frequency / crank first-mode frequency."),
+        # --- damper type, operating temperatures and heat path (rubber and viscous)
+        F("Damper type", "damper_type", "choice", required=False,
+          choices=("rubber", "viscous"),
+          aliases=(("elastomer", "rubber"), ("rubber damper", "rubber"),
+                   ("silicone", "viscous"), ("viscous damper", "viscous"),
+                   ("houdaille", "viscous"), ("untuned viscous", "viscous")),
+          note="rubber (blank): tuned ring on rubber, TVModel 'stiffness to next' of the ring"
+               " row = rubber stiffness; viscous: untuned ring in silicone (Houdaille), the"
+               " ring row's stiffness and damping to next blank, the coupling from this"
+               " sheet."),
+        F("Operating temperature, minimum", "operating_temperature_min", "temperature",
+          required=False, valid=R(-100, 300, "°C"), usual=R(-50, 150, "°C"),
+          note="Air temperature around the damper at the cold end of operation (the damper"
+               " is judged at both ends: DMP-005..007, DMP-008..010)."),
+        F("Operating temperature, maximum", "operating_temperature_max", "temperature",
+          required=False, valid=R(-100, 300, "°C"), usual=R(-50, 150, "°C"),
+          note="Air temperature around the damper at the hot end of operation."),
+        F("Damper heat transfer coefficient", "heat_transfer", "heat_transfer_coefficient",
+          check=">0", required=False, valid=R(0.1, 1e5, "W/(m^2 K)"),
+          usual=R(5, 1000, "W/(m^2 K)"),
+          note="Convective heat-transfer coefficient from the damper's cooled surface to the"
+               " air: with the area, the damper's own temperature T = T_air + P/(h A)"
+               " (blank: no self-heating, the damper at the air temperature)."),
+        F("Damper cooled surface area", "cooled_area", "area", check=">0", required=False,
+          valid=R(1, 1e8, "mm^2"), usual=R(1e3, 1e7, "mm^2"),
+          note="Outer surface of the housing (viscous) or ring (rubber) the heat leaves by."),
+        # --- viscous (untuned, Houdaille) damper
+        F("Viscous damping coefficient", "viscous_damping", "torsional_damping", check=">0",
+          required=False, valid=R(1e-6, 1e7, "N m s/rad"), usual=R(0.01, 1e5, "N m s/rad"),
+          note="Viscous damper: the coupling ring-housing c, if known; blank = from the"
+               " silicone's viscosity and the gap geometry (Couette shear). Give one, not"
+               " both."),
+        F("Silicone kinematic viscosity", "silicone_viscosity", "kinematic_viscosity",
+          check=">0", required=False, valid=R(1, 1e8, "mm^2/s"), usual=R(100, 2e6, "mm^2/s"),
+          note="At the reference temperature (the grade, e.g. 100 000 cSt at 25 °C)."),
+        F("Silicone reference temperature", "silicone_temperature_ref", "temperature",
+          required=False, valid=R(-100, 300, "°C"), usual=R(0, 60, "°C")),
+        F("Silicone viscosity temperature coefficient", "silicone_vtc", "ratio",
+          check="0..1", required=False, valid=R(0.01, 0.99), usual=R(0.3, 0.9),
+          note="VTC = 1 - nu(98.9 °C)/nu(37.8 °C) (210/100 °F) of the silicone-fluid"
+               " datasheet; with it ln nu = A + B/T (Andrade 1930) gives the viscosity at the"
+               " silicone's temperature."),
+        F("Silicone density", "silicone_density", "density", check=">0", required=False,
+          valid=R(100, 5000, "kg/m^3"), usual=R(900, 1100, "kg/m^3")),
+        F("Silicone shear modulus", "silicone_shear_modulus", "stress", check=">0",
+          required=False, valid=R(1, 1e9, "Pa"), usual=R(100, 1e7, "Pa"),
+          note="Optional: the fluid's shear stiffness in series with its viscosity (Maxwell"
+               " model, Andre & Spurk 1982); blank = Newtonian."),
+        F("Ring inner radius", "ring_inner_radius", "length", check=">0", required=False,
+          valid=R(1, 5000, "mm"), usual=R(10, 1000, "mm")),
+        F("Ring outer radius", "ring_outer_radius", "length", check=">0", required=False,
+          valid=R(1, 5000, "mm"), usual=R(10, 1000, "mm")),
+        F("Ring width", "ring_width", "length", check=">0", required=False,
+          valid=R(0.1, 5000, "mm"), usual=R(2, 500, "mm")),
+        F("Radial gap", "gap_radial", "length", check=">0", required=False,
+          valid=R(0.001, 100, "mm"), usual=R(0.05, 3, "mm"),
+          note="Silicone film at the ring's inner and outer cylindrical faces."),
+        F("Axial gap", "gap_axial", "length", check=">0", required=False,
+          valid=R(0.001, 100, "mm"), usual=R(0.05, 3, "mm"),
+          note="Silicone film at each side face of the ring."),
+        F("Silicone heat flux limit", "heat_flux_limit", "heat_flux", check=">0",
+          required=False, valid=R(1e-6, 1e3, "W/cm^2"), usual=R(0.001, 10, "W/cm^2"),
+          note="Largest dissipated power per wetted ring area (supplier; DMP-008)."),
+        F("Silicone temperature limit", "silicone_temperature_limit", "temperature",
+          required=False, valid=R(-50, 400, "°C"), usual=R(60, 250, "°C"),
+          note="Highest silicone temperature (fluid supplier; DMP-009)."),
+        F("Damping to optimum, minimum", "damping_ratio_min", "ratio", check=">0",
+          required=False, valid=R(1e-3, 100), usual=R(0.2, 5),
+          note="Lowest acceptable c / c_opt of the viscous damper (DMP-010 needs minimum and"
+               " maximum)."),
+        F("Damping to optimum, maximum", "damping_ratio_max", "ratio", check=">0",
+          required=False, valid=R(1e-3, 100), usual=R(0.2, 5),
+          note="Highest acceptable c / c_opt of the viscous damper."),
+    ),
+)
+
+DAMPER_RUBBER = Sheet(
+    "DamperRubber",
+    "table",
+    max_rows=200,
+    note="Damper rubber against temperature (supplier data): storage shear modulus and loss"
+         " factor, evaluated at the rubber's own temperature at the ends of the operating"
+         " temperature range (sheet Damper). Blank table = one value (TVModel stiffness,"
+         " Damper loss factor).",
+    fields=(
+        F("temperature", "temperature", "temperature",
+          valid=R(-150, 400, "°C"), usual=R(-60, 200, "°C")),
+        F("storage shear modulus", "storage_modulus", "stress", check=">0",
+          valid=R(1e-3, 1e5, "MPa"), usual=R(0.1, 100, "MPa")),
+        F("loss factor", "loss_factor", "ratio", check=">=0",
+          valid=R(0, 10), usual=R(0.01, 2)),
     ),
 )
 
@@ -886,8 +977,8 @@ SHEETS: dict[str, Sheet] = {
     s.name: s
     for s in (
         ENGINE, CYLINDERS, PEAK_PRESSURE, PRESSURE_TRACES, BRAKE_TORQUE, BEARINGS, CRANK_MASS,
-        OIL, TV_MODEL, DAMPER, FATIGUE, JOINTS, JOINT_TORQUES, RULE_OVERRIDES, TOLERANCES,
-        NOTES,
+        OIL, TV_MODEL, DAMPER, DAMPER_RUBBER, FATIGUE, JOINTS, JOINT_TORQUES, RULE_OVERRIDES,
+        TOLERANCES, NOTES,
     )
 }
 

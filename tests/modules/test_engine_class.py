@@ -65,6 +65,10 @@ def test_a_truck_needs_project_limits(tmp_path):
         assert r.status == "not_evaluated"
         assert "commercial vehicle" in r.message and "passenger car" in r.message
         assert "RuleOverrides" in r.message and "Engine!B4" in r.message
+        if r.rule == "TV-003":
+            # the I6's untuned viscous damper adds no spring mode: no low order meets a crank
+            # mode inside the speed range (3 x 2800 rpm < 216.6 Hz), nothing to show
+            continue
         assert r.value is not None and r.value > 0  # computed, shown, not judged
         assert "computed, not judged" in r.message
     assert not any(c["kind"] == "assumption" for c in res.caveats)

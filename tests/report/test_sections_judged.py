@@ -23,7 +23,7 @@ from checker.ruletable import Rule, evaluate_rule
 from tests.helpers import example_path, stub_section_images
 
 RPM = 2 * np.pi / 60
-SECTION_MODULES = ("loads", "bearings", "torsion", "fatigue", "joints", "flywheel")
+SECTION_MODULES = ("loads", "bearings", "torsion", "fatigue", "joints", "flywheel", "damper")
 
 
 def _stub_svg(monkeypatch) -> None:

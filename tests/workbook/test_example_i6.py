@@ -48,9 +48,10 @@ def _chain_frequencies(stations) -> np.ndarray:
 
 def test_same_sheets_and_columns_as_the_i4_example():
     i4, i6 = example_content(), i6_content()
-    assert list(i6) == list(i4)
+    # the I4 alone carries the optional rubber table against temperature
+    assert list(i6) == [s for s in i4 if s != "DamperRubber"]
     for name, body in i4.items():
-        if isinstance(body, tuple):
+        if isinstance(body, tuple) and name != "DamperRubber":
             assert [c for c, _u in i6[name][0]] == [c for c, _u in body[0]], name
 
 
@@ -216,9 +217,9 @@ def test_damper_ring_variant(tmp_path):
     tv = e.tv_model
     assert len(tv) == 10 and tv[0].role == "damper ring"
     assert [s.inertia for s in tv[1:]] == pytest.approx(PUBLISHED_J, abs=5e-5)
-    # Den Hartog tuning: ring frequency = f1 / (1 + mu), mu = J_d / J_eq of the first mode
-    f_ring = math.sqrt(tv[0].stiffness / tv[0].inertia) / (2 * math.pi)
-    j_eq = 0.1444  # modal inertia of the first mode at the pulley (beta_pulley = 1)
-    assert f_ring == pytest.approx(216.6 / (1 + tv[0].inertia / j_eq), rel=0.01)
-    f = _chain_frequencies(tv)
-    assert f[1] < 216.6 < f[2]  # the absorber splits the first mode
+    # an untuned viscous damper: no spring on the ring; its inertia is the steel ring's
+    assert e.damper["damper_type"] == "viscous" and tv[0].stiffness is None
+    d = e.damper
+    j_ring = 7850 * math.pi * d["ring_width"] * (d["ring_outer_radius"] ** 4
+                                                 - d["ring_inner_radius"] ** 4) / 2
+    assert tv[0].inertia == pytest.approx(j_ring, rel=1e-3)

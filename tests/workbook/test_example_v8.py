@@ -30,9 +30,9 @@ def engine(tmp_path_factory):
 
 def test_same_sheets_and_columns_as_the_i4_example():
     i4, v = example_content(), v8.v8_content()
-    assert list(v) == list(i4)
+    assert list(v) == [s for s in i4 if s != "DamperRubber"]  # the I4's optional table
     for name, body in i4.items():
-        if isinstance(body, tuple):
+        if isinstance(body, tuple) and name != "DamperRubber":
             assert [c for c, _u in v[name][0]] == [c for c, _u in body[0]], name
 
 
