@@ -70,6 +70,15 @@ def text_outside_the_page(pdf: bytes) -> list[tuple]:
     return bad
 
 
+def test_no_program_internals_on_any_page(report):
+    """No page shows a dict or list repr, None, nan or a class name (issue 37)."""
+    from tests.helpers import pdf_internals
+
+    name, rep = report
+    bad = pdf_internals(rep.pdf)
+    assert not bad, f"{name}: program internals on the page: {bad[:5]}"
+
+
 def test_no_text_outside_the_page(report):
     name, rep = report
     bad = text_outside_the_page(rep.pdf)
