@@ -451,6 +451,52 @@ def _collect(by_index: dict[tuple, list[str]], sel: list[np.ndarray]) -> list[st
     return out
 
 
+_PARENS = re.compile(r"\([^()]*\)")
+_LOCATION = re.compile(r"^[A-Za-z][\w!$]*\s*:\s+")
+_CLAUSE = re.compile(r"^(?:no|not|none)\b|\b(?:is|are|was|were|must|did|does|do|cannot|can|could"
+                     r"|would|has|have|had|gives?|gave|needs?|lies|lie|meets?|met)\b", re.I)
+
+
+def _item_phrase(item: str) -> str:
+    """An item inside a sentence: "the engine" for the whole engine, else "'M1'"."""
+    label = display.item_label(item)
+    return f"the {label}" if item == display.ENGINE_ITEM else f"'{label}'"
+
+
+def is_sentence(reason: str) -> bool:
+    """Whether a not-evaluated reason is a clause of its own ("Joints: no bolted joints are
+    given", "the engine class 'truck' has no published limit") rather than the name of a
+    missing input ("Bearings!Q3: max film temperature of M1 (the shell supplier's limit)"),
+    which reads after the word *missing*. Parenthesised remarks and a leading location
+    ("Sheet!B3: ", "TVModel: ") are not read."""
+    body = reason
+    for _ in range(3):  # nested parentheses
+        body = _PARENS.sub("", body)
+    return bool(_CLAUSE.search(_LOCATION.sub("", body.strip(), count=1)))
+
+
+def not_evaluated_message(reasons: list[str]) -> str:
+    """The message of a result that is not evaluated, in sentences: ``not evaluated: missing
+    A; B`` for the inputs it names, each reason that is a clause of its own as it is
+    (:func:`is_sentence`), in the order given."""
+    parts: list[str] = []
+    inputs: list[str] = []
+
+    def flush() -> None:
+        if inputs:
+            parts.append("missing " + "; ".join(inputs))
+            inputs.clear()
+
+    for r in reasons:
+        if is_sentence(r):
+            flush()
+            parts.append(r)
+        else:
+            inputs.append(r)
+    flush()
+    return "not evaluated: " + ("; ".join(parts) or "no reason was given")
+
+
 def _coord_text(dim: str, label: Any) -> str:
     if dim == "speed":
         return f"{from_si(float(label), 'rad/s', 'rpm'):.0f} rpm"
@@ -515,10 +561,10 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
     base = dict(rule=rule.id, name=rule.name, severity=rule.severity, unit=rule.unit,
                 source=rule.source, check=rule.check)
     if q is None:
-        reasons = unavailable or ["quantity was not computed"]
+        reasons = unavailable or [f"the quantity {rule.quantity} was not computed"]
         return [RuleResult(**base, item="all", status="not_evaluated", value=None,
                            limit=rule.limit_text(), limit_values=None, margin=None, case="",
-                           message="not evaluated: missing " + "; ".join(reasons),
+                           message=not_evaluated_message(reasons),
                            missing=list(reasons))]
     dims = spec.dims
     results: list[RuleResult] = []
@@ -579,25 +625,27 @@ def _item_limit(rule: Rule, q: Quantity, item: str, attrs: dict, sel_i: list, fa
         lim = rule.limits.get(key)
         if lim is None:
             if rule.limit_by == "engine_class" and key:
-                why = [f"a limit for a {key} engine: the published limit of {rule.id} is"
+                why = [f"no published limit for a {key} engine: the limit of {rule.id} is"
                        f" for {' and '.join(rule.limits)} engines"
                        f" ({_source_short(rule.source)}); enter the project's limit in"
                        f" RuleOverrides (engine class from"
                        f" {attrs.get('engine_class_cell') or 'sheet Engine'})"]
                 limit_text = "project limit"
             else:
-                why = [f"no {rule.limit_by.replace('_', ' ')} given for '{item}'"
+                why = [f"no {rule.limit_by.replace('_', ' ')} is given for"
+                       f" {_item_phrase(item)}"
                        if not key else
-                       f"{rule.limit_by.replace('_', ' ')} '{key}' of '{item}' has no"
-                       f" limit in rule {rule.id} (known: {', '.join(rule.limits)}); add"
-                       " a RuleOverrides row"]
+                       f"{rule.limit_by.replace('_', ' ')} '{key}' of"
+                       f" {_item_phrase(item)} has no limit in rule {rule.id} (known:"
+                       f" {', '.join(rule.limits)}); add a RuleOverrides row"]
     if not why and rule.limit_from == "workbook":
         # the engine's own limit, carried by the quantity (SI, converted to the rule unit)
         given = attrs.get("limit")
         n_lim = 2 if rule.check == "between" else 1
         if given is None or len(tuple(given)) != n_lim:
             no_limit = list(attrs.get("limit_missing") or [])
-            why = list(no_limit) or [f"no limit for '{item}' given in the workbook"]
+            why = list(no_limit) or [f"no limit for {_item_phrase(item)} is given in"
+                                     " the workbook"]
             why += [m for m in _collect(q.missing, sel_i) if m not in why]
         else:
             lim = tuple(float(factor(float(x))) for x in given)
@@ -605,7 +653,7 @@ def _item_limit(rule: Rule, q: Quantity, item: str, attrs: dict, sel_i: list, fa
         return lim, None
     # reported but not judged: the worst value in the rule's direction
     value, where_txt = _unjudged_worst(rule, q, sel_i, dims, factor)
-    msg = "not evaluated: missing " + "; ".join(why)
+    msg = not_evaluated_message(why)
     if value is not None:
         msg += (f" (computed, not judged: {display.with_unit(value, rule.unit)}"
                 + (f" at {where_txt}" if where_txt else "") + ")")
@@ -643,10 +691,10 @@ def _nonfinite_result(rule: Rule, q: Quantity, item: str, sub: np.ndarray, sel_i
                           limit_values=list(lim), margin=None, case=where_txt, message=msg,
                           findings=findings, internal_error=True)
     if not missing:
-        missing = ["some values could not be computed"]
+        missing = ["some values could not be computed (the calculation names no input)"]
     return RuleResult(**base, item=item, status="not_evaluated", value=None, limit=lim_text,
                       limit_values=list(lim), margin=None, case="",
-                      message="not evaluated: missing " + "; ".join(missing), missing=missing,
+                      message=not_evaluated_message(missing), missing=missing,
                       findings=findings)
 
 

@@ -631,19 +631,7 @@ def _damper(engine: Engine, data: TVModelData, model: tv.TorsionalModel, orders:
            "damper.torque": q(D_TORQUE, torque_amp, fields=base),
            "damper.power": q(D_POWER, power, fields=base)}
     d = engine.damper
-    geo_missing = [engine.describe_missing("Damper", a, what="the damper rubber")
-                   for a in ("inner_radius", "outer_radius", "axial_length") if d.get(a) is None]
-    if geo_missing:
-        for n in ("damper.shear_stress", "damper.heat_density", "damper.heat_density_peak",
-                  "damper.shear_stress_ratio", "damper.heat_ratio", "damper.heat_peak_ratio"):
-            out[n] = q(_SPECS[n], nan, geo_missing)
-        return out
-    ri, ro, ln = d["inner_radius"], d["outer_radius"], d["axial_length"]
-    tau = dmp.annulus_shear_stress(torque_amp, ri, ln)
-    q_mean, q_peak = dmp.annulus_heat_density(power, ri, ro, ln)
-    geom = dict(base, volume=float(dmp.annulus_volume(ri, ro, ln)),
-                shear_modulus=float(dmp.annulus_shear_modulus(ks, ri, ro, ln)),
-                shear_orders=dmp.annulus_shear_stress(np.abs(torque), ri, ln))
+
     def limit_attrs(lim_attr: str) -> dict:
         """The supplier's limit of the rules DMP-001..003 (SI, judged in physical units)."""
         lim = d.get(lim_attr)
@@ -652,6 +640,24 @@ def _damper(engine: Engine, data: TVModelData, model: tv.TorsionalModel, orders:
                 "Damper", lim_attr, what="the damper supplier")]}}
         return {"all": {"limit": (float(lim),), "limit_cell": engine.cell("Damper", lim_attr)}}
 
+    geo_missing = [engine.describe_missing("Damper", a, what="the damper rubber")
+                   for a in ("inner_radius", "outer_radius", "axial_length") if d.get(a) is None]
+    if geo_missing:
+        for n in ("damper.shear_stress", "damper.heat_density", "damper.heat_density_peak",
+                  "damper.shear_stress_ratio", "damper.heat_ratio", "damper.heat_peak_ratio"):
+            out[n] = q(_SPECS[n], nan, geo_missing)
+        # the supplier's limits as without the geometry: a result names each missing input
+        for n, lim_attr in (("damper.shear_stress", "shear_stress_limit"),
+                            ("damper.heat_density", "heat_limit"),
+                            ("damper.heat_density_peak", "heat_limit")):
+            out[n].item_attrs = limit_attrs(lim_attr)
+        return out
+    ri, ro, ln = d["inner_radius"], d["outer_radius"], d["axial_length"]
+    tau = dmp.annulus_shear_stress(torque_amp, ri, ln)
+    q_mean, q_peak = dmp.annulus_heat_density(power, ri, ro, ln)
+    geom = dict(base, volume=float(dmp.annulus_volume(ri, ro, ln)),
+                shear_modulus=float(dmp.annulus_shear_modulus(ks, ri, ro, ln)),
+                shear_orders=dmp.annulus_shear_stress(np.abs(torque), ri, ln))
     for name, spec, val, lim_attr in (
             ("damper.shear_stress", D_SHEAR, tau, "shear_stress_limit"),
             ("damper.heat_density", D_HEAT, q_mean, "heat_limit"),
