@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 
 from .api import CheckResult
+from .display import item_label
 
 _STATUS = {"pass": "PASS", "fail": "FAIL", "not_evaluated": "NOT EVALUATED"}
 
@@ -26,7 +27,7 @@ def to_text(res: CheckResult) -> str:
             notes.append(r.message)
         if r.override:
             notes.append(r.override)
-        rows.append((r.rule, status_label(r.status, r.severity), r.item, value, r.limit,
+        rows.append((r.rule, status_label(r.status, r.severity), item_label(r.item), value, r.limit,
                      r.case, r.margin_text if r.status != "not_evaluated" else "", notes))
     w = [max([len(x[i]) for x in rows] + [1]) for i in range(7)]
     lines = []
@@ -73,7 +74,7 @@ def to_junit(res: CheckResult) -> str:
              for w in res.engine.warnings],
            "    </properties>"]
     for r in res.results:
-        name = quoteattr(f"{r.rule} {r.name} [{r.item}]")
+        name = quoteattr(f"{r.rule} {r.name} [{item_label(r.item)}]")
         out.append(f'    <testcase classname={quoteattr(r.rule.split("-")[0])} name={name}>')
         if id(r) in failing:
             out.append(f"      <failure message={quoteattr(r.message)}>{escape(r.source)}"

@@ -14,7 +14,7 @@ import re
 from dataclasses import dataclass, field
 
 from ..api import CheckResult
-from ..display import CELL_REF
+from ..display import CELL_REF, item_label
 from ..ruletable import RuleResult
 
 GROUPS = (
@@ -49,7 +49,7 @@ class Row:
 
     @property
     def item_text(self) -> str:
-        return ", ".join(self.items) if self.items != ["all"] else "engine"
+        return ", ".join(item_label(x) for x in self.items)
 
     @property
     def css(self) -> str:
