@@ -164,7 +164,8 @@ class CheckResult:
         (:mod:`checker.caveats`): what page 1 shows beside the verdict."""
         from . import caveats
 
-        return caveats.collect(self.outcome)
+        return caveats.applicable(caveats.collect(self.outcome), self.results,
+                                  {o.rule for o in self.table.overrides})
 
     def to_frame(self):
         """The rule results as a pandas DataFrame (one row per rule and item)."""

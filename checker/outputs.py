@@ -18,7 +18,8 @@ def status_label(status: str, severity: str) -> str:
 
 def to_text(res: CheckResult) -> str:
     """One aligned line per rule result (rule, status, item, value, limit, case, margin in
-    words), the not-evaluated reasons and limit overrides below their line, then a summary."""
+    words), the not-evaluated reasons and limit overrides below their line, the input
+    warnings and the caveats (what qualifies the results), then a summary."""
     rows = []
     for r in res.results:
         value = "-" if r.value is None else r.value_text
@@ -40,6 +41,11 @@ def to_text(res: CheckResult) -> str:
         lines.append("")
         lines.append(f"input warnings ({len(res.engine.warnings)}): unusual values, check them")
         lines += [f"  {w}" for w in res.engine.warnings]
+    cav = res.caveats
+    if cav:
+        lines.append("")
+        lines.append(f"caveats ({len(cav)}): what qualifies these results")
+        lines += [f"  {c['kind']}: {c['text']}" for c in cav]
     lines.append("")
     lines.append(f"{res.engine.name}: {res.summary_text()}"
                  + (f" (modules run: {', '.join(res.outcome.modules_run) or 'none'};"
@@ -72,6 +78,8 @@ def to_junit(res: CheckResult) -> str:
            f'      <property name="fail_on" value={quoteattr(res.fail_on)}/>',
            *[f'      <property name="input_warning" value={quoteattr(str(w))}/>'
              for w in res.engine.warnings],
+           *[f'      <property name="caveat" value={quoteattr(c["kind"] + ": " + c["text"])}/>'
+             for c in res.caveats],
            "    </properties>"]
     for r in res.results:
         name = quoteattr(f"{r.rule} {r.name} [{item_label(r.item)}]")

@@ -164,13 +164,16 @@ def _validity_flags(res: CheckResult) -> list[str]:
 def _stated_caveats(res: CheckResult) -> dict[str, list[str]]:
     """The caveats the calculations state (:func:`checker.results.caveats_of`: dicts with a
     ``kind`` and a one-sentence ``text``), their sentences by page-1 heading."""
+    from ..caveats import applicable
+
     out: dict[str, list[str]] = {}
-    for name in sorted(res.outcome.quantities):
-        for c in caveats_of(res.outcome.quantities[name]):
-            title = CAVEAT_TITLES.get(str(c.get("kind", "")), "Model validity")
-            text = _sentence(str(c["text"]))
-            if text not in out.setdefault(title, []):
-                out[title].append(text)
+    stated = [c for name in sorted(res.outcome.quantities)
+              for c in caveats_of(res.outcome.quantities[name])]
+    for c in applicable(stated, res.results, {o.rule for o in res.table.overrides}):
+        title = CAVEAT_TITLES.get(str(c.get("kind", "")), "Model validity")
+        text = _sentence(str(c["text"]))
+        if text not in out.setdefault(title, []):
+            out[title].append(text)
     return out
 
 
