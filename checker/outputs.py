@@ -7,7 +7,8 @@ import json
 from .api import CheckResult
 from .display import item_label
 
-_STATUS = {"pass": "PASS", "fail": "FAIL", "not_evaluated": "NOT EVALUATED"}
+_STATUS = {"pass": "PASS", "fail": "FAIL", "not_evaluated": "NOT EVALUATED",
+           "not_applicable": "NOT APPLICABLE"}
 
 
 def status_label(status: str, severity: str) -> str:
@@ -24,12 +25,12 @@ def to_text(res: CheckResult) -> str:
     for r in res.results:
         value = "-" if r.value is None else r.value_text
         notes = []
-        if r.status == "not_evaluated" or r.internal_error:
+        if r.status in ("not_evaluated", "not_applicable") or r.internal_error:
             notes.append(r.message)
         if r.override:
             notes.append(r.override)
         rows.append((r.rule, status_label(r.status, r.severity), item_label(r.item), value, r.limit,
-                     r.case, r.margin_text if r.status != "not_evaluated" else "", notes))
+                     r.case, r.margin_text, notes))
     w = [max([len(x[i]) for x in rows] + [1]) for i in range(7)]
     lines = []
     for x in rows:
@@ -60,13 +61,15 @@ def to_json(res: CheckResult, timings: bool = True) -> str:
 
 
 def to_junit(res: CheckResult) -> str:
-    """JUnit XML: one test case per rule result (fail -> failure, not evaluated -> skipped)."""
+    """JUnit XML: one test case per rule result (fail -> failure, not evaluated and not
+    applicable -> skipped, with the message)."""
     from xml.sax.saxutils import escape, quoteattr  # imports urllib.request: only here
 
     c = res.counts()
     failing = {id(r) for r in res.failed}
     failures = len(failing)
-    skipped = sum(1 for r in res.results if r.status == "not_evaluated" and id(r) not in failing)
+    skipped = sum(1 for r in res.results if r.status in ("not_evaluated", "not_applicable")
+                  and id(r) not in failing)
     out = ['<?xml version="1.0" encoding="UTF-8"?>',
            f'<testsuites name="checker" tests="{len(res.results)}" failures="{failures}">',
            f'  <testsuite name={quoteattr(res.engine.name)} tests="{len(res.results)}"'
@@ -75,6 +78,7 @@ def to_junit(res: CheckResult) -> str:
            f'      <property name="verdict" value={quoteattr(res.verdict_text)}/>',
            f'      <property name="complete" value="{str(res.complete).lower()}"/>',
            f'      <property name="not_evaluated" value="{c["not_evaluated"]}"/>',
+           f'      <property name="not_applicable" value="{c["not_applicable"]}"/>',
            f'      <property name="fail_on" value={quoteattr(res.fail_on)}/>',
            *[f'      <property name="input_warning" value={quoteattr(str(w))}/>'
              for w in res.engine.warnings],
@@ -89,7 +93,7 @@ def to_junit(res: CheckResult) -> str:
                        "</failure>")
         elif r.status == "fail":
             out.append(f"      <system-out>{escape('WARNING: ' + r.message)}</system-out>")
-        elif r.status == "not_evaluated":
+        elif r.status in ("not_evaluated", "not_applicable"):
             out.append(f"      <skipped message={quoteattr(r.message)}/>")
         out.append("    </testcase>")
     out += ["  </testsuite>", "</testsuites>"]

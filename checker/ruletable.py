@@ -36,6 +36,13 @@ such as a balancing limit or a target), carried by the quantity per item (item a
 ``limit`` in SI, ``limit_cell``, and ``limit_missing`` when not given)."""
 REL_TOL = 1e-9
 """Values within this relative distance of a limit count as on the limit (float noise)."""
+SCOPE_ATTRIBUTES = ("location", "type", "role", "kind", "order")
+"""Item attributes that say what an item *is* (the crank-nose joint, a main bearing): a rule
+filtering on them (``where = { location = "crank nose" }``) is about other items, and the
+items it leaves out get no line. An item left out by any other attribute (a joint's
+tightening method, a bearing's lining) is one the rule would judge but does not apply to:
+it is listed as *not applicable* with the reason, as is an item none of whose points the
+quantity judges (``Quantity.applies``), and a rule that applies to nothing in the engine."""
 
 
 @dataclass(frozen=True)
@@ -371,7 +378,7 @@ class RuleResult:
     rule: str
     name: str
     item: str
-    status: str  # "pass" | "fail" | "not_evaluated"
+    status: str  # "pass" | "fail" | "not_evaluated" | "not_applicable"
     severity: str
     value: float | None
     unit: str
@@ -404,7 +411,10 @@ class RuleResult:
 
     @property
     def margin_text(self) -> str:
-        """The distance to the limit in words ("limit exceeded by 11 %")."""
+        """The distance to the limit in words ("limit exceeded by 11 %"); empty for a result
+        that was not judged (not evaluated, not applicable)."""
+        if self.status not in ("pass", "fail"):
+            return ""
         return display.margin_words(self.check, self.value, self.limit_values, self.margin,
                                     self.status == "pass", self.unit)
 
@@ -418,7 +428,7 @@ class RuleResult:
             "case": self.case, "message": self.message, "source": self.source,
             "missing": self.missing, "findings": self.findings,
             "internal_error": self.internal_error,
-            "margin_text": self.margin_text if self.status != "not_evaluated" else "",
+            "margin_text": self.margin_text,
             "override": self.override or None,
             "compare": {k: float(f"{v:.6g}") for k, v in self.compare.items()} or None,
             "judged_on": self.judged_on or None,
@@ -576,9 +586,12 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
             d = dims.index(k)
             sel[d] = np.array([i for i, c in enumerate(q.coords[k]) if str(c) in vals], int)
     factor = _affine(spec.unit, rule.unit)
+    # (item, what it has, why the rule does not apply, out of the rule's scope)
+    not_applicable: list[tuple[str, str, str, bool]] = []
     for ii, item in enumerate(items):
         attrs = q.item_attrs.get(item, {})
         if not _item_selected(rule, attrs, dims):
+            not_applicable.append((item, *_not_selected_reason(rule, attrs, dims)))
             continue
         if "item" in dims:
             sel_i = list(sel)
@@ -590,7 +603,9 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
             results.append(unjudged)
             continue
         sub = q.values[np.ix_(*sel_i)]
-        if sub.size == 0:
+        if sub.size == 0 or (q.applies is not None
+                             and not q.applies[np.ix_(*sel_i)].any()):
+            not_applicable.append((item, *_unjudged_reason(q), False))
             continue
         if not np.isfinite(sub).all():
             results.append(_nonfinite_result(rule, q, item, sub, sel_i, lim, base))
@@ -598,7 +613,68 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
         r = _judge(rule, spec, q, item, attrs, sub, sel_i, lim, factor, others, base)
         if r is not None:
             results.append(r)
-    return results
+    return results + _not_applicable(rule, q, results, not_applicable, base)
+
+
+def _not_applicable(rule: Rule, q: Quantity, results: list[RuleResult],
+                    left_out: list[tuple[str, str, str, bool]], base: dict
+                    ) -> list[RuleResult]:
+    """The ``not applicable`` results of a rule (never a pass, never counted as incomplete).
+    ``left_out``: (item, what it has, why, out of the rule's scope) per item the rule does not
+    judge. With results on other items: one per such item (those out of its scope get no
+    line); with none: one for the rule, which says why it applies to nothing here."""
+    def result(item: str, reason: str) -> RuleResult:
+        return RuleResult(**base, item=item, status="not_applicable", value=None,
+                          limit=rule.limit_text(), limit_values=None, margin=None, case="",
+                          message=f"not applicable: {reason}")
+
+    if results:
+        return [result(item, f"{has}; {why}" if has else
+                       f"the rule judges none of its points: {why}")
+                for item, has, why, scope in left_out if not scope]
+    if not left_out:
+        return [result("all", "the quantity has no item to judge")]
+    by_why: dict[str, dict[str, list[str]]] = {}
+    for item, has, why, _ in left_out:
+        by_why.setdefault(why, {}).setdefault(has, []).append(item)
+    parts = []
+    for why, groups in by_why.items():
+        if "" in groups:  # no judged point (the quantity's applies mask)
+            items = groups.pop("")
+            whose = ("this engine" if items == [display.ENGINE_ITEM]
+                     else ", ".join(display.item_label(i) for i in items))
+            parts.append(f"the rule judges no point of {whose}: {why}")
+        if groups:
+            have = "; ".join(f"{has} ({', '.join(display.item_label(i) for i in items)})"
+                             for has, items in groups.items())
+            parts.append(f"{why}; none of this engine's items does: {have}")
+    return [result("all", "; ".join(parts))]
+
+
+def _not_selected_reason(rule: Rule, attrs: dict, dims: tuple[str, ...]
+                         ) -> tuple[str, str, bool]:
+    """Why the ``where`` filters leave an item out: (what the item has, what the rule applies
+    to, whether the filter is on what the item is (:data:`SCOPE_ATTRIBUTES`: out of the
+    rule's scope))."""
+    to = f"{rule.id} applies to {rule.applies_to or 'other items'}"
+    for k, vals in rule.where.items():
+        if k in dims:
+            continue
+        v = attrs.get(k)
+        if str(v) in vals or str(v).lower() in [x.lower() for x in vals]:
+            continue
+        label = k.replace("_", " ")
+        if not rule.applies_to:
+            to = f"{rule.id} applies to {label} {' or '.join(vals)}"
+        have = f"its {label} is '{v}'" if v not in (None, "") else f"its {label} is not given"
+        return have, to, k in SCOPE_ATTRIBUTES
+    return "it is not one of its items", to, False
+
+
+def _unjudged_reason(q: Quantity) -> tuple[str, str]:
+    """Why no point of an item is judged: ("", the quantity's ``applies_text``)."""
+    text = (q.applies_text or "").rstrip(".")
+    return "", (text or "the quantity marks none of its points as judged")
 
 
 def _item_selected(rule: Rule, attrs: dict, dims: tuple[str, ...]) -> bool:

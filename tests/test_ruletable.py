@@ -169,8 +169,12 @@ def test_resonant_peak_mask_and_applies():
     [res] = evaluate_rule(rule, q, None)  # the 1.0 point is not judged
     assert res.status == "pass" and res.value == pytest.approx(2.0)
     q.applies = np.zeros((1, 3), bool)
-    # nothing to judge: no result (never a pass without a value)
-    assert evaluate_rule(rule, q, None) == []
+    q.applies_text = "judged at resonant peaks only"
+    # nothing to judge: not applicable, with the reason (never a pass without a value)
+    [na] = evaluate_rule(rule, q, None)
+    assert na.status == "not_applicable" and na.value is None and na.margin is None
+    assert na.message.startswith("not applicable: the rule judges no point of")
+    assert "judged at resonant peaks only" in na.message
 
 
 def test_joints_only_workbook_uses_given_torques(tmp_path):

@@ -260,11 +260,15 @@ def _verdict_words(res: CheckResult) -> str:
         head = (f"{n} results fail their limits." if n != 1 else "1 result fails its limit.")
     else:
         head = "No result fails its limit."
+    na = c["not_applicable"]
+    tail = (f" {na} result{'s' if na != 1 else ''} not applicable: a rule or item the rule"
+            " does not cover, listed with the reason after this page; not a pass." if na
+            else "")
     if res.complete:
-        return head + " Complete: every selected result was evaluated."
+        return head + " Complete: every selected result was evaluated." + tail
     ne = c["not_evaluated"]
     return (head + f" Incomplete: {ne} result{'s' if ne != 1 else ''} could not be evaluated"
-            " (missing inputs, listed after this page); they are not passes.")
+            " (missing inputs, listed after this page); they are not passes." + tail)
 
 
 PLAIN = ((re.compile(r"\bTV (module|model)\b"), "torsional model"),

@@ -134,7 +134,7 @@ def _results_rows(res: CheckResult) -> tuple[list[str], list[list]]:
                      _cell(r.value),
                      unit_text(r.unit), r.limit,
                      None if r.margin is None else round(r.margin * 100, 3),
-                     r.margin_text if r.status != "not_evaluated" else "", r.case, r.message,
+                     r.margin_text, r.case, r.message,
                      r.override])
     return header, rows
 

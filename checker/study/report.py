@@ -17,7 +17,8 @@ from .results import STATUS_ORDER, baseline_values, best_variant, sensitivity, v
 from .run import StudyRun
 
 _COLOURS = {"pass": "#27ae60", "warning": "#d68910", "fail": "#c0392b",
-            "not_evaluated": "#7f8c8d", "input error": "#34495e", "-": "#bdc3c7"}
+            "not_evaluated": "#7f8c8d", "input error": "#34495e", "-": "#bdc3c7",
+            "not_applicable": "#bdc3c7"}
 
 
 def _label(text: str) -> str:
