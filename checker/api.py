@@ -64,7 +64,10 @@ class CheckResult:
       ``pass``;
     * ``complete`` is False when any selected result is not evaluated: a pass is then an
       *incomplete* pass, shown as such everywhere;
-    * ``nothing_checked``: no selected result was evaluated at all; the CLI then exits 2.
+    * ``nothing_checked``: no selected result was evaluated at all; the CLI then exits 2;
+    * a ``not_applicable`` result (a rule or item the rule does not apply to, with the reason)
+      is listed for the reader only: never a pass, never incomplete, no effect on the verdict
+      or the exit code.
     """
 
     engine: Engine
@@ -85,6 +88,10 @@ class CheckResult:
         return [r for r in self.results if r.status == "not_evaluated"]
 
     @property
+    def not_applicable(self) -> list[RuleResult]:
+        return [r for r in self.results if r.status == "not_applicable"]
+
+    @property
     def failed(self) -> list[RuleResult]:
         modes = self.fail_on.split(",")
         sev = ("error", "warning") if "warning" in modes else ("error",)
@@ -101,22 +108,27 @@ class CheckResult:
 
     @property
     def nothing_checked(self) -> bool:
-        """True when not a single selected result was evaluated (a vacuous check)."""
-        return all(r.status == "not_evaluated" for r in self.results)
+        """True when not a single selected result was evaluated (a vacuous check); results
+        that are not applicable do not count either way."""
+        return all(r.status == "not_evaluated" for r in self.results
+                   if r.status != "not_applicable")
 
     def nothing_checked_reason(self) -> str:
         """Why nothing was checked: the selection and the distinct missing inputs."""
-        if not self.results:
-            return "no rule result was produced for the selected rules"
+        results = [r for r in self.results if r.status != "not_applicable"]
+        if not results:
+            why = "; ".join(dict.fromkeys(f"{r.rule}: {r.message}" for r in self.results))
+            return ("no rule result was produced for the selected rules"
+                    + (f" ({why})" if why else ""))
         reasons: list[str] = []
-        for r in self.results:
+        for r in results:
             for m in r.missing or [r.message]:
                 if m not in reasons:
                     reasons.append(m)
         shown = reasons[:8] + ([f"... and {len(reasons) - 8} more"] if len(reasons) > 8
                                else [])
-        ids = sorted({r.rule for r in self.results})
-        return (f"nothing was checked: none of the {len(self.results)} selected rule results"
+        ids = sorted({r.rule for r in results})
+        return (f"nothing was checked: none of the {len(results)} selected rule results"
                 f" ({', '.join(ids)}) could be evaluated. Missing:\n"
                 + "\n".join(f"  - {x}" for x in shown))
 
@@ -138,7 +150,7 @@ class CheckResult:
         return 1 if self.failed else 0
 
     def counts(self) -> dict[str, int]:
-        out = {"pass": 0, "fail": 0, "warning": 0, "not_evaluated": 0}
+        out = {"pass": 0, "fail": 0, "warning": 0, "not_evaluated": 0, "not_applicable": 0}
         for r in self.results:
             if r.status == "fail" and r.severity == "warning" and not r.internal_error:
                 out["warning"] += 1
@@ -151,7 +163,9 @@ class CheckResult:
         c = self.counts()
         line = (f"{self.verdict_text} - {c['pass']} passed, {c['fail']} failed,"
                 f" {c['warning']} warning{'s' if c['warning'] != 1 else ''},"
-                f" {c['not_evaluated']} not evaluated")
+                f" {c['not_evaluated']} not evaluated"
+                + (f", {c['not_applicable']} not applicable" if c.get("not_applicable")
+                   else ""))
         if not self.complete and "not-evaluated" not in self.fail_on:
             line += (f"; incomplete: {c['not_evaluated']} result"
                      f"{'s' if c['not_evaluated'] != 1 else ''} could not be evaluated"
@@ -164,7 +178,8 @@ class CheckResult:
         (:mod:`checker.caveats`): what page 1 shows beside the verdict."""
         from . import caveats
 
-        return caveats.collect(self.outcome)
+        return caveats.applicable(caveats.collect(self.outcome), self.results,
+                                  {o.rule for o in self.table.overrides})
 
     def to_frame(self):
         """The rule results as a pandas DataFrame (one row per rule and item)."""

@@ -5,7 +5,8 @@ A caveat does not change a verdict; it says what a reviewer must know before tru
 a synthesized pressure trace that misses its IMEP target (every no-load result rests on it), a
 rule limit applied to an engine class its source does not cover. Each caveat is a dict::
 
-    {"kind": "model validity" | "limit outside its class", "severity": "high" | "medium",
+    {"kind": "model validity" | "limit outside its class" | "assumption",
+     "severity": "high" | "medium",
      "text": one sentence, "rules": [rule ids it affects] (may be empty)}
 
 The calculations put caveats into their quantities' ``extra["caveats"]``; :func:`collect`
@@ -70,6 +71,16 @@ def imep_caveats(cycle: Any) -> list[dict[str, Any]]:
             "rules": [], "case": case, "speeds_rpm": [float(x) for x in rpm[bad]],
             "worst_deviation": float(dev[k])})
     return out
+
+
+def applicable(caveats: list[dict[str, Any]], results: list, overridden: set[str]
+               ) -> list[dict[str, Any]]:
+    """The caveats that qualify a result of this run: those naming no rule, and those naming
+    a rule that was judged (passed or failed) with its published limit (not one the
+    workbook's RuleOverrides replaced: the project's own limit needs no caveat)."""
+    judged = {r.rule for r in results if r.status in ("pass", "fail")}
+    return [c for c in caveats if not c.get("rules")
+            or any(x in judged and x not in overridden for x in c["rules"])]
 
 
 def collect(outcome: Any) -> list[dict[str, Any]]:

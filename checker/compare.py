@@ -179,9 +179,11 @@ def _state(r) -> str:
 
 
 def result_changes(base: CheckResult, var: CheckResult) -> list[dict[str, Any]]:
-    """Results that differ, status changes first, then the largest margin changes."""
-    a = {(r.rule, r.item): r for r in base.results}
-    b = {(r.rule, r.item): r for r in var.results}
+    """Results that differ, status changes first, then the largest margin changes. A rule
+    that does not apply (``not_applicable``) has no result to compare: one that applies on one
+    side only is a new result or a result gone."""
+    a = {(r.rule, r.item): r for r in base.results if r.status != "not_applicable"}
+    b = {(r.rule, r.item): r for r in var.results if r.status != "not_applicable"}
     out = []
     for k in list(a) + [x for x in b if x not in a]:
         ra, rb = a.get(k), b.get(k)

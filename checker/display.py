@@ -14,6 +14,19 @@ import re
 SIG = 4
 """Significant digits of a displayed value."""
 
+ENGINE_ITEM = "all"
+"""The item key of a result about the whole engine (a quantity without an item axis: the
+crank-nose amplitude, the cyclic irregularity); the JSON keeps this key."""
+ENGINE_LABEL = "engine"
+"""How that item reads wherever people read it (text, JUnit, the PDF, the results workbook,
+messages)."""
+
+
+def item_label(item: str) -> str:
+    """An item as people read it: the whole engine's key ``all`` reads ``engine``; any other
+    item (``M1``, ``crank nose``, ``order 2``) as it is."""
+    return ENGINE_LABEL if item == ENGINE_ITEM else item
+
 _WORD_UNITS = {
     "um": "µm", "micron": "µm", "microns": "µm", "deg": "°", "degree": "°", "degrees": "°",
     "percent": "%", "N/mm^2": "MPa", "N/mm**2": "MPa", "N/mm²": "MPa", "Nm": "N·m",

@@ -36,6 +36,13 @@ such as a balancing limit or a target), carried by the quantity per item (item a
 ``limit`` in SI, ``limit_cell``, and ``limit_missing`` when not given)."""
 REL_TOL = 1e-9
 """Values within this relative distance of a limit count as on the limit (float noise)."""
+SCOPE_ATTRIBUTES = ("location", "type", "role", "kind", "order")
+"""Item attributes that say what an item *is* (the crank-nose joint, a main bearing): a rule
+filtering on them (``where = { location = "crank nose" }``) is about other items, and the
+items it leaves out get no line. An item left out by any other attribute (a joint's
+tightening method, a bearing's lining) is one the rule would judge but does not apply to:
+it is listed as *not applicable* with the reason, as is an item none of whose points the
+quantity judges (``Quantity.applies``), and a rule that applies to nothing in the engine."""
 
 
 @dataclass(frozen=True)
@@ -371,7 +378,7 @@ class RuleResult:
     rule: str
     name: str
     item: str
-    status: str  # "pass" | "fail" | "not_evaluated"
+    status: str  # "pass" | "fail" | "not_evaluated" | "not_applicable"
     severity: str
     value: float | None
     unit: str
@@ -404,7 +411,10 @@ class RuleResult:
 
     @property
     def margin_text(self) -> str:
-        """The distance to the limit in words ("limit exceeded by 11 %")."""
+        """The distance to the limit in words ("limit exceeded by 11 %"); empty for a result
+        that was not judged (not evaluated, not applicable)."""
+        if self.status not in ("pass", "fail"):
+            return ""
         return display.margin_words(self.check, self.value, self.limit_values, self.margin,
                                     self.status == "pass", self.unit)
 
@@ -418,7 +428,7 @@ class RuleResult:
             "case": self.case, "message": self.message, "source": self.source,
             "missing": self.missing, "findings": self.findings,
             "internal_error": self.internal_error,
-            "margin_text": self.margin_text if self.status != "not_evaluated" else "",
+            "margin_text": self.margin_text,
             "override": self.override or None,
             "compare": {k: float(f"{v:.6g}") for k, v in self.compare.items()} or None,
             "judged_on": self.judged_on or None,
@@ -449,6 +459,52 @@ def _collect(by_index: dict[tuple, list[str]], sel: list[np.ndarray]) -> list[st
             if t not in out:
                 out.append(t)
     return out
+
+
+_PARENS = re.compile(r"\([^()]*\)")
+_LOCATION = re.compile(r"^[A-Za-z][\w!$]*\s*:\s+")
+_CLAUSE = re.compile(r"^(?:no|not|none)\b|\b(?:is|are|was|were|must|did|does|do|cannot|can|could"
+                     r"|would|has|have|had|gives?|gave|needs?|lies|lie|meets?|met)\b", re.I)
+
+
+def _item_phrase(item: str) -> str:
+    """An item inside a sentence: "the engine" for the whole engine, else "'M1'"."""
+    label = display.item_label(item)
+    return f"the {label}" if item == display.ENGINE_ITEM else f"'{label}'"
+
+
+def is_sentence(reason: str) -> bool:
+    """Whether a not-evaluated reason is a clause of its own ("Joints: no bolted joints are
+    given", "the engine class 'truck' has no published limit") rather than the name of a
+    missing input ("Bearings!Q3: max film temperature of M1 (the shell supplier's limit)"),
+    which reads after the word *missing*. Parenthesised remarks and a leading location
+    ("Sheet!B3: ", "TVModel: ") are not read."""
+    body = reason
+    for _ in range(3):  # nested parentheses
+        body = _PARENS.sub("", body)
+    return bool(_CLAUSE.search(_LOCATION.sub("", body.strip(), count=1)))
+
+
+def not_evaluated_message(reasons: list[str]) -> str:
+    """The message of a result that is not evaluated, in sentences: ``not evaluated: missing
+    A; B`` for the inputs it names, each reason that is a clause of its own as it is
+    (:func:`is_sentence`), in the order given."""
+    parts: list[str] = []
+    inputs: list[str] = []
+
+    def flush() -> None:
+        if inputs:
+            parts.append("missing " + "; ".join(inputs))
+            inputs.clear()
+
+    for r in reasons:
+        if is_sentence(r):
+            flush()
+            parts.append(r)
+        else:
+            inputs.append(r)
+    flush()
+    return "not evaluated: " + ("; ".join(parts) or "no reason was given")
 
 
 def _coord_text(dim: str, label: Any) -> str:
@@ -515,10 +571,10 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
     base = dict(rule=rule.id, name=rule.name, severity=rule.severity, unit=rule.unit,
                 source=rule.source, check=rule.check)
     if q is None:
-        reasons = unavailable or ["quantity was not computed"]
+        reasons = unavailable or [f"the quantity {rule.quantity} was not computed"]
         return [RuleResult(**base, item="all", status="not_evaluated", value=None,
                            limit=rule.limit_text(), limit_values=None, margin=None, case="",
-                           message="not evaluated: missing " + "; ".join(reasons),
+                           message=not_evaluated_message(reasons),
                            missing=list(reasons))]
     dims = spec.dims
     results: list[RuleResult] = []
@@ -530,9 +586,12 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
             d = dims.index(k)
             sel[d] = np.array([i for i, c in enumerate(q.coords[k]) if str(c) in vals], int)
     factor = _affine(spec.unit, rule.unit)
+    # (item, what it has, why the rule does not apply, out of the rule's scope)
+    not_applicable: list[tuple[str, str, str, bool]] = []
     for ii, item in enumerate(items):
         attrs = q.item_attrs.get(item, {})
         if not _item_selected(rule, attrs, dims):
+            not_applicable.append((item, *_not_selected_reason(rule, attrs, dims)))
             continue
         if "item" in dims:
             sel_i = list(sel)
@@ -544,7 +603,9 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
             results.append(unjudged)
             continue
         sub = q.values[np.ix_(*sel_i)]
-        if sub.size == 0:
+        if sub.size == 0 or (q.applies is not None
+                             and not q.applies[np.ix_(*sel_i)].any()):
+            not_applicable.append((item, *_unjudged_reason(q), False))
             continue
         if not np.isfinite(sub).all():
             results.append(_nonfinite_result(rule, q, item, sub, sel_i, lim, base))
@@ -552,7 +613,68 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
         r = _judge(rule, spec, q, item, attrs, sub, sel_i, lim, factor, others, base)
         if r is not None:
             results.append(r)
-    return results
+    return results + _not_applicable(rule, q, results, not_applicable, base)
+
+
+def _not_applicable(rule: Rule, q: Quantity, results: list[RuleResult],
+                    left_out: list[tuple[str, str, str, bool]], base: dict
+                    ) -> list[RuleResult]:
+    """The ``not applicable`` results of a rule (never a pass, never counted as incomplete).
+    ``left_out``: (item, what it has, why, out of the rule's scope) per item the rule does not
+    judge. With results on other items: one per such item (those out of its scope get no
+    line); with none: one for the rule, which says why it applies to nothing here."""
+    def result(item: str, reason: str) -> RuleResult:
+        return RuleResult(**base, item=item, status="not_applicable", value=None,
+                          limit=rule.limit_text(), limit_values=None, margin=None, case="",
+                          message=f"not applicable: {reason}")
+
+    if results:
+        return [result(item, f"{has}; {why}" if has else
+                       f"the rule judges none of its points: {why}")
+                for item, has, why, scope in left_out if not scope]
+    if not left_out:
+        return [result("all", "the quantity has no item to judge")]
+    by_why: dict[str, dict[str, list[str]]] = {}
+    for item, has, why, _ in left_out:
+        by_why.setdefault(why, {}).setdefault(has, []).append(item)
+    parts = []
+    for why, groups in by_why.items():
+        if "" in groups:  # no judged point (the quantity's applies mask)
+            items = groups.pop("")
+            whose = ("this engine" if items == [display.ENGINE_ITEM]
+                     else ", ".join(display.item_label(i) for i in items))
+            parts.append(f"the rule judges no point of {whose}: {why}")
+        if groups:
+            have = "; ".join(f"{has} ({', '.join(display.item_label(i) for i in items)})"
+                             for has, items in groups.items())
+            parts.append(f"{why}; none of this engine's items does: {have}")
+    return [result("all", "; ".join(parts))]
+
+
+def _not_selected_reason(rule: Rule, attrs: dict, dims: tuple[str, ...]
+                         ) -> tuple[str, str, bool]:
+    """Why the ``where`` filters leave an item out: (what the item has, what the rule applies
+    to, whether the filter is on what the item is (:data:`SCOPE_ATTRIBUTES`: out of the
+    rule's scope))."""
+    to = f"{rule.id} applies to {rule.applies_to or 'other items'}"
+    for k, vals in rule.where.items():
+        if k in dims:
+            continue
+        v = attrs.get(k)
+        if str(v) in vals or str(v).lower() in [x.lower() for x in vals]:
+            continue
+        label = k.replace("_", " ")
+        if not rule.applies_to:
+            to = f"{rule.id} applies to {label} {' or '.join(vals)}"
+        have = f"its {label} is '{v}'" if v not in (None, "") else f"its {label} is not given"
+        return have, to, k in SCOPE_ATTRIBUTES
+    return "it is not one of its items", to, False
+
+
+def _unjudged_reason(q: Quantity) -> tuple[str, str]:
+    """Why no point of an item is judged: ("", the quantity's ``applies_text``)."""
+    text = (q.applies_text or "").rstrip(".")
+    return "", (text or "the quantity marks none of its points as judged")
 
 
 def _item_selected(rule: Rule, attrs: dict, dims: tuple[str, ...]) -> bool:
@@ -579,25 +701,27 @@ def _item_limit(rule: Rule, q: Quantity, item: str, attrs: dict, sel_i: list, fa
         lim = rule.limits.get(key)
         if lim is None:
             if rule.limit_by == "engine_class" and key:
-                why = [f"a limit for a {key} engine: the published limit of {rule.id} is"
+                why = [f"no published limit for a {key} engine: the limit of {rule.id} is"
                        f" for {' and '.join(rule.limits)} engines"
                        f" ({_source_short(rule.source)}); enter the project's limit in"
                        f" RuleOverrides (engine class from"
                        f" {attrs.get('engine_class_cell') or 'sheet Engine'})"]
                 limit_text = "project limit"
             else:
-                why = [f"no {rule.limit_by.replace('_', ' ')} given for '{item}'"
+                why = [f"no {rule.limit_by.replace('_', ' ')} is given for"
+                       f" {_item_phrase(item)}"
                        if not key else
-                       f"{rule.limit_by.replace('_', ' ')} '{key}' of '{item}' has no"
-                       f" limit in rule {rule.id} (known: {', '.join(rule.limits)}); add"
-                       " a RuleOverrides row"]
+                       f"{rule.limit_by.replace('_', ' ')} '{key}' of"
+                       f" {_item_phrase(item)} has no limit in rule {rule.id} (known:"
+                       f" {', '.join(rule.limits)}); add a RuleOverrides row"]
     if not why and rule.limit_from == "workbook":
         # the engine's own limit, carried by the quantity (SI, converted to the rule unit)
         given = attrs.get("limit")
         n_lim = 2 if rule.check == "between" else 1
         if given is None or len(tuple(given)) != n_lim:
             no_limit = list(attrs.get("limit_missing") or [])
-            why = list(no_limit) or [f"no limit for '{item}' given in the workbook"]
+            why = list(no_limit) or [f"no limit for {_item_phrase(item)} is given in"
+                                     " the workbook"]
             why += [m for m in _collect(q.missing, sel_i) if m not in why]
         else:
             lim = tuple(float(factor(float(x))) for x in given)
@@ -605,7 +729,7 @@ def _item_limit(rule: Rule, q: Quantity, item: str, attrs: dict, sel_i: list, fa
         return lim, None
     # reported but not judged: the worst value in the rule's direction
     value, where_txt = _unjudged_worst(rule, q, sel_i, dims, factor)
-    msg = "not evaluated: missing " + "; ".join(why)
+    msg = not_evaluated_message(why)
     if value is not None:
         msg += (f" (computed, not judged: {display.with_unit(value, rule.unit)}"
                 + (f" at {where_txt}" if where_txt else "") + ")")
@@ -643,10 +767,10 @@ def _nonfinite_result(rule: Rule, q: Quantity, item: str, sub: np.ndarray, sel_i
                           limit_values=list(lim), margin=None, case=where_txt, message=msg,
                           findings=findings, internal_error=True)
     if not missing:
-        missing = ["some values could not be computed"]
+        missing = ["some values could not be computed (the calculation names no input)"]
     return RuleResult(**base, item=item, status="not_evaluated", value=None, limit=lim_text,
                       limit_values=list(lim), margin=None, case="",
-                      message="not evaluated: missing " + "; ".join(missing), missing=missing,
+                      message=not_evaluated_message(missing), missing=missing,
                       findings=findings)
 
 

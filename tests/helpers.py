@@ -161,3 +161,46 @@ def confirm_failing_answers(ev, out) -> list:
             assert -REL_TOL <= r.margin <= TOL, (rr.rule, rr.item, lv.id, r.margin)
             done.append(rm)
     return done
+
+
+# Program internals that must never reach a page (issue 37): a Python dict or list printed
+# where a sentence belongs, None/nan for a missing number, a class or object repr.
+INTERNALS = (
+    (r"\{\s*'\w+'\s*:", "a dict repr"),
+    (r"\{\s*\"\w+\"\s*:", "a dict repr"),
+    (r"\[\s*'[^'\n]*'\s*(?:,|\])", "a list repr"),
+    (r"\bNone\b", "None"),
+    (r"\b(?:nan|NaN|inf)\b", "a nan or inf"),
+    (r"<[\w.]+ object at 0x", "an object repr"),
+    (r"<(?:checker|numpy|pandas)\.", "a class name"),
+    (r"<class '", "a class name"),
+    (r"\b[A-Z]\w*(?:Detail|Result|Quantity|Spec|Row|Rule)\(", "a dataclass repr"),
+    (r"\b\w+\(\w+=", "a dataclass repr"),
+    (r"\barray\(\[|\bdtype\b|np\.float", "a numpy repr"),
+    (r"Traceback \(most recent call last\)", "a traceback"),
+)
+
+
+def program_internals(text: str) -> list[str]:
+    """What of ``text`` (one page) is a program internal (:data:`INTERNALS`), each with 40
+    characters around it; empty when the page reads as written for people."""
+    import re
+
+    out = []
+    flat = " ".join(text.split())
+    for pattern, what in INTERNALS:
+        for m in re.finditer(pattern, flat):
+            out.append(f"{what}: ...{flat[max(0, m.start() - 40):m.end() + 40]}...")
+    return out
+
+
+def pdf_internals(pdf) -> list[str]:
+    """:func:`program_internals` of every page of a PDF (bytes or path), as
+    ``page N: ...``; text extracted with pypdf."""
+    import io
+
+    import pypdf
+
+    src = io.BytesIO(pdf) if isinstance(pdf, (bytes, bytearray)) else pdf
+    return [f"page {n}: {x}" for n, page in enumerate(pypdf.PdfReader(src).pages, start=1)
+            for x in program_internals(page.extract_text())]

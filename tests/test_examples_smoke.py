@@ -22,6 +22,7 @@ import pypdf
 import pytest
 
 from tests import variants
+from tests.helpers import pdf_internals
 
 pytestmark = pytest.mark.ci
 
@@ -142,6 +143,19 @@ def test_compare_on_clearance_oil_temperature_and_bolt_torque(runs, engine):
     assert "Oil supply temperature" in text
 
 
+@pytest.mark.parametrize("engine", ENGINES)
+def test_no_page_shows_program_internals(runs, engine):
+    """Every page of the example's report, its compare pack and (I4) the report with remedies
+    and corners reads as written for people: no dict or list repr, None, nan or class name
+    (issue 37; :func:`tests.helpers.program_internals`)."""
+    d = runs[engine]["dir"]
+    names = ["engine.pdf", "compare.pdf"] + (["remedies.pdf"] if engine == "i4" else [])
+    for name in names:
+        assert (d / name).is_file(), name
+        bad = pdf_internals(d / name)
+        assert not bad, f"{engine} {name}: {bad[:5]}"
+
+
 # --- studies ---------------------------------------------------------------------------------
 # Every study of examples/ (one per design: full factorial, Latin hypercube, one at a time,
 # table) through ``checker study`` with its PDF, on the template it is written for, two local
@@ -191,6 +205,8 @@ def test_example_study_writes_its_tables_and_pdf(study_runs, study):
     assert n >= 3
     text = "".join(_pdf_pages(out / "study.pdf"))
     assert "Parametric study" in text
+    bad = pdf_internals(out / "study.pdf")  # no dict, list, None, nan or class name (issue 37)
+    assert not bad, f"{study}: {bad[:5]}"
     # the second run computes nothing: every variant is resumed from variants/
     _ok(r["resume"], (0,))
     assert f"(0 computed, {n} resumed" in r["resume"].stderr, r["resume"].stderr[-1500:]

@@ -169,8 +169,12 @@ def test_resonant_peak_mask_and_applies():
     [res] = evaluate_rule(rule, q, None)  # the 1.0 point is not judged
     assert res.status == "pass" and res.value == pytest.approx(2.0)
     q.applies = np.zeros((1, 3), bool)
-    # nothing to judge: no result (never a pass without a value)
-    assert evaluate_rule(rule, q, None) == []
+    q.applies_text = "judged at resonant peaks only"
+    # nothing to judge: not applicable, with the reason (never a pass without a value)
+    [na] = evaluate_rule(rule, q, None)
+    assert na.status == "not_applicable" and na.value is None and na.margin is None
+    assert na.message.startswith("not applicable: the rule judges no point of")
+    assert "judged at resonant peaks only" in na.message
 
 
 def test_joints_only_workbook_uses_given_torques(tmp_path):
@@ -202,3 +206,60 @@ def test_findings_of_the_judged_point_come_first():
     [res] = evaluate_rule(rule, q, None)
     assert res.case == "max power"
     assert res.findings == ["at max power", "at tv peak"]
+
+
+# --- not-evaluated reasons read as sentences (issue 37, item 2) -------------------------------
+@pytest.mark.parametrize(("reasons", "message"), [
+    (["Bearings!Q3: max film temperature of M1 (the shell supplier's limit)"],
+     "not evaluated: missing Bearings!Q3: max film temperature of M1 (the shell supplier's"
+     " limit)"),
+    (["no limit for the engine is given in the workbook",
+      "Damper!B3: Rubber inner radius of the damper rubber (length, e.g. mm)"],
+     "not evaluated: no limit for the engine is given in the workbook; missing Damper!B3: Rubber"
+     " inner radius of the damper rubber (length, e.g. mm)"),
+    (["Joints: no bolted joints are given (sheet Joints)"],
+     "not evaluated: Joints: no bolted joints are given (sheet Joints)"),
+    (["Engine (parameter 'Free force limit, 1st order'): Free force limit, 1st order of the"
+      " project (needed to judge the 1st-order free force; blank = not judged) (force)"],
+     "not evaluated: missing Engine (parameter 'Free force limit, 1st order'): Free force"
+     " limit, 1st order of the project (needed to judge the 1st-order free force; blank = not"
+     " judged) (force)"),
+    (["M53 formula gives no valid SCF for this geometry",
+      "or give the factor: Fatigue!B20: alpha_B (a number, no unit)"],
+     "not evaluated: M53 formula gives no valid SCF for this geometry; or give the factor:"
+     " Fatigue!B20: alpha_B (a number, no unit)"),
+])
+def test_not_evaluated_reasons_compose_into_sentences(reasons, message):
+    from checker.ruletable import not_evaluated_message
+
+    assert not_evaluated_message(reasons) == message
+
+
+def _damper_blank(*labels):
+    def edit(wb):
+        from tests.helpers import param_row
+
+        ws = wb["Damper"]
+        for label in labels:
+            ws.cell(param_row(ws, label), 2).value = None
+    return edit
+
+
+@pytest.mark.parametrize("blank", [
+    ("Rubber inner radius", "Rubber shear stress limit"),  # both: each named once
+    ("Rubber inner radius",),  # the limit given: the geometry is what is missing
+    ("Rubber shear stress limit",),
+])
+def test_damper_rule_without_geometry_or_limit_names_what_is_missing(tmp_path, blank):
+    """DMP-001 read "missing no limit for 'all' given in the workbook" when the damper's
+    geometry was blank: its limit was not looked up at all. Every blank cell is named, in a
+    sentence, and the whole engine is not called 'all'."""
+    res = api.check(edited(tmp_path, _damper_blank(*blank)), select=["DMP-001"])
+    (r,) = res.results
+    assert r.status == "not_evaluated"
+    assert "missing no " not in r.message and "'all'" not in r.message, r.message
+    assert r.message.startswith("not evaluated: missing Damper!B"), r.message
+    for label in blank:
+        assert label in r.message, (label, r.message)
+    for label in {"Rubber inner radius", "Rubber shear stress limit"} - set(blank):
+        assert label not in r.message, (label, r.message)

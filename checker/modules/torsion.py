@@ -474,6 +474,8 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
                     " crank-nose TV targets of a refined passenger-car engine with a rubber"
                     " damper (Bell 2013) are applied; set the class, or enter the project's"
                     " limits (RuleOverrides), for any other engine."},)
+    if (cls or DEFAULT_ENGINE_CLASS).lower() == DEFAULT_ENGINE_CLASS:
+        cls_caveats += layout_caveats(engine)
     common = {"orders": orders, "speeds": speeds, "resonance": reson,
               "near_resonance": band.near, "assumptions": tuple(assumptions)}
     out: dict[str, Quantity] = {}
@@ -554,6 +556,52 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
 DEFAULT_ENGINE_CLASS = "passenger car"
 """Engine class when the Engine sheet gives none (stated as an assumption): the class of the
 crank-nose TV targets of Bell 2013."""
+TARGET_LAYOUTS = (("in-line", 4), ("V", 6))
+"""The layouts the crank-nose TV targets of Bell 2013 are given for ('Crankshaft analysis
+(15)': '4th order for I4 or 6th order for V6 <0.06 deg', 'higher orders <0.05 deg')."""
+_COUNT_WORDS = {1: "single", 2: "two", 3: "three", 4: "four", 5: "five", 6: "six",
+                8: "eight", 10: "ten", 12: "twelve"}
+
+
+def engine_layout(engine: Engine) -> tuple[str, int]:
+    """(``in-line`` | ``V`` | ``N-bank``, cylinder count) from the Cylinders sheet's bank
+    angles (one bank angle: in-line; two: a V)."""
+    banks = {round(float(c.bank_angle), 6) for c in engine.cylinders}
+    kind = "in-line" if len(banks) <= 1 else "V" if len(banks) == 2 else f"{len(banks)}-bank"
+    return kind, len(engine.cylinders)
+
+
+def layout_text(kind: str, n: int) -> str:
+    """An engine layout in words: "an in-line three", "a V8", "a 3-bank 12-cylinder"."""
+    if kind == "in-line":
+        return f"an in-line {_COUNT_WORDS.get(n, f'{n}-cylinder')}"
+    if kind == "V":
+        return f"a V{n}"
+    return f"a {kind} {n}-cylinder engine"
+
+
+def _ordinal(n: int) -> str:
+    suffix = "th" if 10 <= n % 100 <= 20 else {1: "st", 2: "nd", 3: "rd"}.get(n % 10, "th")
+    return f"{n}{suffix}"
+
+
+def layout_caveats(engine: Engine) -> tuple[dict, ...]:
+    """The caveat that the passenger-car TV targets (TV-001..003) judge a layout they were not
+    given for (:data:`TARGET_LAYOUTS`): an in-line three's 3rd order held to the target of
+    an I4's 4th or a V6's 6th is an extrapolation. Empty for an I4 or a V6."""
+    kind, n = engine_layout(engine)
+    if (kind, n) in TARGET_LAYOUTS or n == 0:
+        return ()
+    return ({
+        "kind": "limit outside its class", "severity": "medium",
+        "rules": ["TV-001", "TV-002", "TV-003"],
+        "text": f"The crank-nose TV targets of TV-001..003 are given for an in-line four and"
+                " a V6 (Bell 2013, 'Crankshaft analysis (15)': 4th order of an I4 or 6th"
+                f" order of a V6 < 0.06 deg, higher orders < 0.05 deg); this engine is"
+                f" {layout_text(kind, n)}, so its cylinder-count order ({_ordinal(n)}) and the"
+                " orders above and below it are judged by targets extrapolated to a layout"
+                " they were not given for; enter the project's limits (RuleOverrides) where"
+                " they are known."},)
 ROUND_OFF_FLOOR = 1e-9
 """Amplitudes below this fraction of the largest are round-off (an order the firing order
 cancels): never a resonant peak."""
@@ -658,19 +706,7 @@ def _damper(engine: Engine, data: TVModelData, model: tv.TorsionalModel, orders:
            "damper.torque": q(D_TORQUE, torque_amp, fields=base),
            "damper.power": q(D_POWER, power, fields=base)}
     d = engine.damper
-    geo_missing = [engine.describe_missing("Damper", a, what="the damper rubber")
-                   for a in ("inner_radius", "outer_radius", "axial_length") if d.get(a) is None]
-    if geo_missing:
-        for n in ("damper.shear_stress", "damper.heat_density", "damper.heat_density_peak",
-                  "damper.shear_stress_ratio", "damper.heat_ratio", "damper.heat_peak_ratio"):
-            out[n] = q(_SPECS[n], nan, geo_missing)
-        return out
-    ri, ro, ln = d["inner_radius"], d["outer_radius"], d["axial_length"]
-    tau = dmp.annulus_shear_stress(torque_amp, ri, ln)
-    q_mean, q_peak = dmp.annulus_heat_density(power, ri, ro, ln)
-    geom = dict(base, volume=float(dmp.annulus_volume(ri, ro, ln)),
-                shear_modulus=float(dmp.annulus_shear_modulus(ks, ri, ro, ln)),
-                shear_orders=dmp.annulus_shear_stress(np.abs(torque), ri, ln))
+
     def limit_attrs(lim_attr: str) -> dict:
         """The supplier's limit of the rules DMP-001..003 (SI, judged in physical units)."""
         lim = d.get(lim_attr)
@@ -680,6 +716,24 @@ def _damper(engine: Engine, data: TVModelData, model: tv.TorsionalModel, orders:
         return {"all": {"limit": (float(lim),), "limit_cell": engine.cell("Damper", lim_attr),
                         "damper_type": kind}}
 
+    geo_missing = [engine.describe_missing("Damper", a, what="the damper rubber")
+                   for a in ("inner_radius", "outer_radius", "axial_length") if d.get(a) is None]
+    if geo_missing:
+        for n in ("damper.shear_stress", "damper.heat_density", "damper.heat_density_peak",
+                  "damper.shear_stress_ratio", "damper.heat_ratio", "damper.heat_peak_ratio"):
+            out[n] = q(_SPECS[n], nan, geo_missing)
+        # the supplier's limits as without the geometry: a result names each missing input
+        for n, lim_attr in (("damper.shear_stress", "shear_stress_limit"),
+                            ("damper.heat_density", "heat_limit"),
+                            ("damper.heat_density_peak", "heat_limit")):
+            out[n].item_attrs = limit_attrs(lim_attr)
+        return out
+    ri, ro, ln = d["inner_radius"], d["outer_radius"], d["axial_length"]
+    tau = dmp.annulus_shear_stress(torque_amp, ri, ln)
+    q_mean, q_peak = dmp.annulus_heat_density(power, ri, ro, ln)
+    geom = dict(base, volume=float(dmp.annulus_volume(ri, ro, ln)),
+                shear_modulus=float(dmp.annulus_shear_modulus(ks, ri, ro, ln)),
+                shear_orders=dmp.annulus_shear_stress(np.abs(torque), ri, ln))
     for name, spec, val, lim_attr in (
             ("damper.shear_stress", D_SHEAR, tau, "shear_stress_limit"),
             ("damper.heat_density", D_HEAT, q_mean, "heat_limit"),

@@ -17,6 +17,7 @@ import time
 from pathlib import Path
 from typing import Any
 
+from ..display import item_label
 from ..errors import UsageProblem
 
 
@@ -200,11 +201,12 @@ def to_text(res) -> str:
         for x in res.remedies["results"]:
             if x.status == "pass" and not x.remedies:
                 continue
-            lines.append(f"  {x.rule} {x.item} ({x.status}"
+            lines.append(f"  {x.rule} {item_label(x.item)} ({x.status}"
                          + ("; the margin reaches zero at" if x.status == "pass" else "; passes at")
                          + "):")
             for rm in x.remedies:
-                fx = ", ".join(f"{e['rule']} {e['item']} -> {e['to']}" for e in rm.side_effects)
+                fx = ", ".join(f"{e['rule']} {item_label(e['item'])} -> {e['to']}"
+                               for e in rm.side_effects)
                 lines.append(f"    - {rm.text()}" + (f"; side effects: {fx}" if fx else ""))
             for c in x.conflicts:
                 lines.append(f"    ! {c}")
@@ -219,7 +221,8 @@ def to_text(res) -> str:
                 continue
             from ..display import with_unit
 
-            lines.append(f"  {c.rule} {c.item}: nominal {with_unit(c.nominal_value, c.unit)}"
+            lines.append(f"  {c.rule} {item_label(c.item)}:"
+                         f" nominal {with_unit(c.nominal_value, c.unit)}"
                          f" ({c.nominal_status}), worst {with_unit(c.worst_value, c.unit)}"
                          f" ({c.worst_status}) at {', '.join(c.corner)}"
                          + (" [inside the box]" if c.inside else ""))

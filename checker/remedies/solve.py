@@ -773,7 +773,8 @@ def _effects(j: _Job, res: Any, items: set[str], packed: bool, base: dict) -> li
 def _judgeable_rules(nominal, changes: list[dict]) -> list[str]:
     """The rules whose results can change status in the variants ``changes``: those with
     results at nominal (a rule that applies to no item of this engine, e.g. the
-    sputter-lining film guideline without sputter linings, has none in a variant either),
+    sputter-lining film guideline without sputter linings, is not applicable in a variant
+    either),
     less those whose every result is not evaluated for a workbook limit left blank in cells
     that no variant fills (e.g. the shell supplier's film temperature: not judged at any
     lever value, so its heat balance of every bearing is not solved again for each answer
@@ -781,6 +782,8 @@ def _judgeable_rules(nominal, changes: list[dict]) -> list[str]:
     moved = {f"{sh}!{get_column_letter(c)}{r}" for ch in changes for sh, r, c in ch}
 
     def stays_unjudged(r) -> bool:
+        if r.status == "not_applicable":  # as before these were listed: no result to judge
+            return True
         if r.status != "not_evaluated":
             return False
         for text in r.limit_missing:

@@ -14,7 +14,7 @@ import numpy as np
 
 from .. import __version__
 from ..compare import Comparison
-from ..display import with_unit
+from ..display import item_label, with_unit
 from ..resources import templates_dir
 from ..units import from_si
 
@@ -174,7 +174,7 @@ def _trade(c: Comparison) -> dict[str, Any]:
     """The net trade of a variant: what newly passes, what newly fails, what got worse and
     better (by how much, in points of the relative margin)."""
     def line(r: dict) -> str:
-        where = r["item"] if r["item"] != "all" else "engine"
+        where = item_label(r["item"])
         return (f"{r['rule']} {r['name']}, {where}: {_fmt_side(r['baseline'])} → "
                 f"{_fmt_side(r['variant'])}")
     worse = [r for r in c.results if r["change"] == "margin changed"
@@ -185,7 +185,7 @@ def _trade(c: Comparison) -> dict[str, Any]:
     better.sort(key=lambda r: -r["margin_change"])
 
     def moved(rs: list[dict]) -> list[str]:
-        return [f"{r['rule']} {r['name']}, {r['item'] if r['item'] != 'all' else 'engine'}:"
+        return [f"{r['rule']} {r['name']}, {item_label(r['item'])}:"
                 f" {_points(r['margin_change'])}" for r in rs[:5]]
     return {
         "newly_passing": [line(r) for r in c.results if r["change"] == "newly passing"],
@@ -242,4 +242,5 @@ def pack_html(comps: list[Comparison]) -> str:
     }
     env = Environment(loader=FileSystemLoader(str(templates_dir())),
                       autoescape=select_autoescape(["html"]), undefined=StrictUndefined)
+    env.filters["item_label"] = item_label
     return env.get_template("compare.html").render(**ctx)

@@ -64,7 +64,7 @@ def rule_ids(res: CheckResult, quantity: str, item: str | None = None,
     out: list[str] = []
     for rr in res.results:
         r = rules.get(rr.rule)
-        if r is None or rr.status == "not_evaluated":
+        if r is None or rr.status not in ("pass", "fail"):
             continue
         if item is not None and rr.item not in (item, "all"):
             continue

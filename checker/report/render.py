@@ -34,11 +34,25 @@ WEASYPRINT_HELP = (
 Progress = Callable[[str], None]
 
 
+def rule_label(name: str, rule_id: str):
+    """A rule's name with its id after it, as HTML: the last word of the name and the id are
+    kept on one line (``<span class="name-end">``). With the id alone as the inline box that
+    does not fit, WeasyPrint broke the name after its first word ("Contact / stress under the
+    bolt head JNT-002") instead of before the id."""
+    from markupsafe import Markup, escape
+
+    head, _, last = str(name).rpartition(" ")
+    return Markup(f"{escape(head)}{' ' if head else ''}<span class=\"name-end\">{escape(last)}"
+                  f" <span class=\"rule-id\">{escape(rule_id)}</span></span>")
+
+
 def _environment():
     from jinja2 import Environment, FileSystemLoader, StrictUndefined, select_autoescape
 
-    return Environment(loader=FileSystemLoader(str(templates_dir())),
-                       autoescape=select_autoescape(["html"]), undefined=StrictUndefined)
+    env = Environment(loader=FileSystemLoader(str(templates_dir())),
+                      autoescape=select_autoescape(["html"]), undefined=StrictUndefined)
+    env.filters["rule_label"] = rule_label
+    return env
 
 
 FIGURE_SCHEME = "checker-figure:"
@@ -246,11 +260,15 @@ def _verdict_words(res: CheckResult) -> str:
         head = (f"{n} results fail their limits." if n != 1 else "1 result fails its limit.")
     else:
         head = "No result fails its limit."
+    na = c["not_applicable"]
+    tail = (f" {na} result{'s' if na != 1 else ''} not applicable: a rule or item the rule"
+            " does not cover, listed with the reason after this page; not a pass." if na
+            else "")
     if res.complete:
-        return head + " Complete: every selected result was evaluated."
+        return head + " Complete: every selected result was evaluated." + tail
     ne = c["not_evaluated"]
     return (head + f" Incomplete: {ne} result{'s' if ne != 1 else ''} could not be evaluated"
-            " (missing inputs, listed after this page); they are not passes.")
+            " (missing inputs, listed after this page); they are not passes." + tail)
 
 
 PLAIN = ((re.compile(r"\bTV (module|model)\b"), "torsional model"),

@@ -13,7 +13,7 @@ import re
 import numpy as np
 
 from ..api import CheckResult
-from ..display import case_text, unit_text
+from ..display import case_text, item_label, unit_text
 from ..results.loads import cycle_of
 
 ATTACHMENT_NAME = "results.xlsx"
@@ -130,10 +130,11 @@ def _results_rows(res: CheckResult) -> tuple[list[str], list[list]]:
     rows = []
     for r in res.results:
         st = "WARN" if r.status == "fail" and r.severity == "warning" else r.status.upper()
-        rows.append([r.rule, r.name, r.item, st.replace("_", " "), r.severity, _cell(r.value),
+        rows.append([r.rule, r.name, item_label(r.item), st.replace("_", " "), r.severity,
+                     _cell(r.value),
                      unit_text(r.unit), r.limit,
                      None if r.margin is None else round(r.margin * 100, 3),
-                     r.margin_text if r.status != "not_evaluated" else "", r.case, r.message,
+                     r.margin_text, r.case, r.message,
                      r.override])
     return header, rows
 

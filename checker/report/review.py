@@ -148,6 +148,17 @@ _VALIDITY = re.compile(r"validity|outside \[|taken as|collaps|did not converge|n
                        r"extrapolat|IMEP|caveat", re.I)
 
 
+CAVEAT_TITLES = {"model validity": "Model validity",
+                 "limit outside its class": "Limits outside their engine class",
+                 "assumption": "Assumptions behind the limits"}
+"""The heading of each caveat kind on page 1 (:mod:`checker.caveats`), in page order."""
+
+
+def _sentence(t: str) -> str:
+    t = t.strip().rstrip(".")
+    return t[:1].upper() + t[1:] + "."
+
+
 def _validity_flags(res: CheckResult) -> list[str]:
     """Model-validity findings of the quantities (one line per distinct finding, with the
     number of items it concerns)."""
@@ -157,12 +168,26 @@ def _validity_flags(res: CheckResult) -> list[str]:
             for t in texts:
                 if _VALIDITY.search(t):
                     seen[t] = seen.get(t, 0) + 1
-        for t in caveats_of(q):
-            seen.setdefault(str(t), 1)
     out = []
     for t, n in seen.items():
         t = t.rstrip(".")
         out.append(t + (f" ({n} items)" if n > 1 else "") + ".")
+    return out
+
+
+def _stated_caveats(res: CheckResult) -> dict[str, list[str]]:
+    """The caveats the calculations state (:func:`checker.results.caveats_of`: dicts with a
+    ``kind`` and a one-sentence ``text``), their sentences by page-1 heading."""
+    from ..caveats import applicable
+
+    out: dict[str, list[str]] = {}
+    stated = [c for name in sorted(res.outcome.quantities)
+              for c in caveats_of(res.outcome.quantities[name])]
+    for c in applicable(stated, res.results, {o.rule for o in res.table.overrides}):
+        title = CAVEAT_TITLES.get(str(c.get("kind", "")), "Model validity")
+        text = _sentence(str(c["text"]))
+        if text not in out.setdefault(title, []):
+            out[title].append(text)
     return out
 
 
@@ -201,7 +226,7 @@ def _imep_miss(res: CheckResult) -> str:
 def _class_limits(res: CheckResult) -> list[str]:
     """Rules whose limit is a target for one engine class, applied without a project limit."""
     over = {o.rule for o in res.table.overrides}
-    ran = {r.rule for r in res.results if r.status != "not_evaluated"}
+    ran = {r.rule for r in res.results if r.status in ("pass", "fail")}
     out = []
     for r in res.table.rules:
         src = (r.source or "").lower()
@@ -245,7 +270,9 @@ def caveats(res: CheckResult) -> list[dict]:
     """``[{"title", "items"}]``: model-validity flags, limits applied outside their engine
     class, and the inputs that are assumptions."""
     out = []
+    stated = _stated_caveats(res)
     flags = _validity_flags(res)
+    flags += [t for t in stated.pop("Model validity", []) if t not in flags]
     imep = _imep_miss(res)
     if imep:
         flags.insert(0, imep)
@@ -253,9 +280,11 @@ def caveats(res: CheckResult) -> list[dict]:
         more = len(flags) - 6
         out.append({"title": "Model validity", "items": flags[:6] + (
             [f"... and {more} more in the module sections."] if more > 0 else [])})
-    cls = _class_limits(res)
+    cls = _class_limits(res) + stated.pop("Limits outside their engine class", [])
     if cls:
         out.append({"title": "Limits outside their engine class", "items": cls})
+    for title, items in stated.items():
+        out.append({"title": title, "items": items})
     rows = assumption_rows(res)
     if rows:
         by: dict[str, int] = {}

@@ -10,6 +10,7 @@ from ..calc.scf import VALIDITY
 from ..display import case_text
 from ..modules.fatigue import FACTORS_OF, LOCATIONS, SCF_FIELDS
 from ..results.fatigue import FatigueDetail, GoodmanDetail
+from ..ruletable import not_evaluated_message
 from . import judged as jd
 from .plots import LIMIT_STYLE, figure, legend_below, limit_line, literal, to_image
 from .sections import fmt, in_unit, rpm, section
@@ -404,7 +405,7 @@ def _nose(res: CheckResult) -> list[dict]:
         why = res.outcome.unavailable.get("fatigue.nose_goodman_sf")
         if why is None:
             return []
-        return out + [{"type": "text", "text": "Not evaluated: missing " + "; ".join(why)}]
+        return out + [{"type": "text", "text": "N" + not_evaluated_message(why)[1:]}]
     ex = nq.detail
     sp = rpm(np.array(nq.coords["speed"]))
     rows, css = [], []

@@ -16,7 +16,7 @@ import re
 from typing import Any
 
 from ..api import CheckResult
-from ..display import with_unit
+from ..display import item_label, with_unit
 from .sections import section
 
 REMEDIES_SHEET = "Remedies"
@@ -34,7 +34,8 @@ _NUM = re.compile(r"^(.*?)(\d+)(\D*)$")
 def items_text(items: list[str]) -> str:
     """Items as a reader scans them: runs of three or more consecutive numbers with the same
     words around them shortened, ``BE1, BE2, BE3, BE4`` -> ``BE1–BE4``, ``main 3 fillet,
-    main 4 fillet, main 5 fillet`` -> ``main 3–5 fillet``."""
+    main 4 fillet, main 5 fillet`` -> ``main 3–5 fillet``; the whole engine reads ``engine``."""
+    items = [item_label(x) for x in items]
     out: list[str] = []
     k = 0
     while k < len(items):
@@ -228,18 +229,19 @@ def _remedies_sheet(rem: dict) -> dict:
     for x in rem["results"]:
         for rm in x.remedies:
             d = rm.as_dict()
-            rows.append([x.rule, x.item, x.status, d["name"], d["input"], d["unit"],
+            rows.append([x.rule, item_label(x.item), x.status, d["name"], d["input"], d["unit"],
                          _cell(rm, d["nominal"]), _cell(rm, d["value"]) if rm.found else "",
                          num(d["change"]), num(d["change_percent"]),
                          num(d["margin_at_value"]), d["reason"] or "", num(d["best_margin"]),
-                         "; ".join(f"{e['rule']} {e['item']} {e['from']} → {e['to']}"
+                         "; ".join(f"{e['rule']} {item_label(e['item'])} {e['from']} → {e['to']}"
                                    + (f" ({e['value']:.6g} {e.get('unit') or ''})".replace(
                                        " )", ")") if isinstance(e.get("value"), (int, float))
                                       else "")
                                    for e in rm.side_effects),
                          " ".join(x.conflicts)])
         if not x.remedies:
-            rows.append([x.rule, x.item, x.status, "no design lever is listed for this rule"]
+            rows.append([x.rule, item_label(x.item), x.status,
+                         "no design lever is listed for this rule"]
                         + [""] * 11)
     return {"type": "table", "detail": True, "sheet": REMEDIES_SHEET,
             "caption": "Each result and lever: today's value, the value at which the margin"
@@ -312,7 +314,7 @@ def _corners_sheet(cor: dict) -> dict:
     def n(v):
         return "" if v is None else float(f"{v:.6g}")
 
-    rows = [[c.rule, c.item, c.unit, n(c.nominal_value), n(c.nominal_margin),
+    rows = [[c.rule, item_label(c.item), c.unit, n(c.nominal_value), n(c.nominal_margin),
              _status(c.nominal_status), n(c.worst_value), n(c.worst_margin),
              _status(c.worst_status), "; ".join(c.corner) or "no tolerance affects it",
              "yes" if c.inside else "no", c.design] for c in cor["results"]]

@@ -14,7 +14,7 @@ import re
 from dataclasses import dataclass, field
 
 from ..api import CheckResult
-from ..display import CELL_REF
+from ..display import CELL_REF, item_label
 from ..ruletable import RuleResult
 
 GROUPS = (
@@ -22,6 +22,7 @@ GROUPS = (
     ("warning", "Warnings", "warn"),
     ("not_evaluated", "Not evaluated", "ne"),
     ("pass", "Passed", "pass"),
+    ("not_applicable", "Not applicable", "na"),
 )
 """(kind, heading, CSS class) in the order the report shows them."""
 
@@ -33,7 +34,7 @@ LOOK_FIRST = 5
 class Row:
     """One line of a results table: a finding and the items it applies to."""
 
-    kind: str  # fail | warning | not_evaluated | pass
+    kind: str  # fail | warning | not_evaluated | pass | not_applicable
     rule: str
     name: str
     items: list[str]
@@ -49,12 +50,12 @@ class Row:
 
     @property
     def item_text(self) -> str:
-        return ", ".join(self.items) if self.items != ["all"] else "engine"
+        return ", ".join(item_label(x) for x in self.items)
 
     @property
     def css(self) -> str:
-        return {"fail": "fail", "warning": "warn", "not_evaluated": "ne", "pass": "pass"}[
-            self.kind]
+        return {"fail": "fail", "warning": "warn", "not_evaluated": "ne", "pass": "pass",
+                "not_applicable": "na"}[self.kind]
 
 
 def kind(r: RuleResult) -> str:
@@ -69,6 +70,8 @@ def _note(r: RuleResult) -> str:
     """The note under a row: why a result is not evaluated or an internal error, or the
     first finding of a failed result (passes carry their findings in the module section).
     What it takes to pass and the worst tolerance corner follow (:class:`_Extras`)."""
+    if r.status == "not_applicable":
+        return r.message
     if r.status == "not_evaluated":
         # the computed value of a rule without its limit is shown in the module section
         return re.sub(r" \(computed, not judged: [^)]*\)$", "", r.message)
@@ -174,7 +177,7 @@ def rows(res: CheckResult, results: list[RuleResult] | None = None) -> list[Row]
         value = "-" if r.value is None else r.value_text
         note = _note(r)
         pattern, case = note, r.case
-        if k == "not_evaluated":
+        if k in ("not_evaluated", "not_applicable"):
             # shown with the missing inputs, not by value; the same missing input on several
             # items (one cell each) is one row
             pattern = CELL_REF.sub("\x00", note).replace(r.item, "\x01") if r.item else note
@@ -184,13 +187,13 @@ def rows(res: CheckResult, results: list[RuleResult] | None = None) -> list[Row]
         cells.setdefault(key, []).append(CELL_REF.findall(note))
         if row is None:
             merged[key] = Row(k, r.rule, r.name, [r.item], case or "-", value, r.limit,
-                              r.margin_text if r.status != "not_evaluated" else "-", note,
+                              r.margin_text or "-", note,
                               r.override, r.margin, [r])
         else:
             row.items.append(r.item)
             row.results.append(r)
     for key, row in merged.items():
-        if row.kind == "not_evaluated" and len(row.items) > 1:
+        if row.kind in ("not_evaluated", "not_applicable") and len(row.items) > 1:
             text = key[5].replace("\x01", "each listed item")
             for j in range(text.count("\x00")):
                 refs = [c[j] for c in cells[key] if len(c) > j]

@@ -11,12 +11,14 @@ from typing import Any
 import numpy as np
 
 from .. import __version__
+from ..display import item_label
 from ..resources import templates_dir
 from .results import STATUS_ORDER, baseline_values, best_variant, sensitivity, variant_table
 from .run import StudyRun
 
 _COLOURS = {"pass": "#27ae60", "warning": "#d68910", "fail": "#c0392b",
-            "not_evaluated": "#7f8c8d", "input error": "#34495e", "-": "#bdc3c7"}
+            "not_evaluated": "#7f8c8d", "input error": "#34495e", "-": "#bdc3c7",
+            "not_applicable": "#bdc3c7"}
 
 
 def _label(text: str) -> str:
@@ -206,7 +208,8 @@ def _answer(vt, df, run: StudyRun, fams: list[str], gov: dict[int, dict]) -> lis
     if cnt:
         (rule, item), k = cnt.most_common(1)[0]
         every = "every" if k == len(gov) else f"{k} of {len(gov)}"
-        out.append(f"{item} ({rule}) governs {every} variant{'s' if k != 1 else ''}: its"
+        out.append(f"{item_label(item)} ({rule}) governs {every}"
+                   f" variant{'s' if k != 1 else ''}: its"
                    " margin is the smallest of all error-severity results.")
     params = [q for q in run.study.parameters if q.numeric]
     items_of = {t.param.name: t.items for t in run.targets}
@@ -301,7 +304,7 @@ def context(run: StudyRun, df) -> dict[str, Any]:
         rows.append({"variant": int(r["variant"]) + 1, "name": r["variant_name"],
                      "values": values, "cells": cells,
                      "governing": "-" if g is None else
-                     f"{g['rule']} {g['item']}, {g['case']}",
+                     f"{g['rule']} {item_label(g['item'])}, {g['case']}",
                      "feasible": bool(r["feasible"]), "input_error": bool(r["input_error"])})
     errors = [{"variant": rec["index"] + 1, "name": rec["name"], "errors": rec["errors"]}
               for rec in run.records if rec["status"] == "input error"]
@@ -324,7 +327,8 @@ def context(run: StudyRun, df) -> dict[str, Any]:
     if best:
         g = gov.get(best["variant"])
         best = dict(best, variant=best["variant"] + 1, ties=_ties(vt, best),
-                    governing="" if g is None else f"{g['rule']} at {g['item']} ({g['case']})")
+                    governing="" if g is None else
+                    f"{g['rule']} at {item_label(g['item'])} ({g['case']})")
     return {
         "title": f"Parametric study: {run.study.name}",
         "study": run.study, "date": _dt.date.today().isoformat(), "version": __version__,

@@ -20,7 +20,7 @@ import numpy as np
 
 from .run import StudyRun
 
-STATUS_ORDER = ("fail", "input error", "not_evaluated", "warning", "pass")
+STATUS_ORDER = ("fail", "input error", "not_evaluated", "warning", "pass", "not_applicable")
 
 
 def family(rule: str) -> str:
@@ -160,7 +160,7 @@ def variant_table(df, run: StudyRun):
                 worst = min(worst, mm)
         row["smallest margin"] = worst if np.isfinite(worst) else np.nan
         row["feasible"] = (not err) and all(
-            row[f"{f} status"] in ("pass", "warning", "-") for f in fams)
+            row[f"{f} status"] in ("pass", "warning", "-", "not_applicable") for f in fams)
         out.append(row)
     return pd.DataFrame(out), fams
 

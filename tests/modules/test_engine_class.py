@@ -98,3 +98,74 @@ def test_unknown_class_is_an_input_error(tmp_path, bad):
 
     with pytest.raises(InputErrors, match="Engine class"):
         api.check(edited(tmp_path, edit), select=["TV"])
+
+
+# --- the layout the targets were given for (issue 37, item 7) ---------------------------------
+def _layout_caveats(res):
+    return [c for c in res.caveats if "a layout they were not given for" in c["text"]]
+
+
+def test_the_targets_extrapolated_to_another_layout_are_a_caveat():
+    """Bell 2013 gives the crank-nose targets for an I4 (4th order) and a V6 (6th): judging an
+    in-line three's 3rd order or a V8's 8th with them is an extrapolation, stated."""
+    import tempfile
+    from dataclasses import replace
+    from pathlib import Path
+
+    from checker.engine import load_engine
+    from checker.modules.torsion import layout_caveats
+    from checker.workbook.example import example_content
+    from checker.workbook.example_v8 import v8_content
+
+    with tempfile.TemporaryDirectory() as d:
+        i4, v8 = Path(d) / "i4.xlsx", Path(d) / "v8.xlsx"
+        write_workbook(i4, example_content())
+        write_workbook(v8, v8_content())
+        e4, e8 = load_engine(i4), load_engine(v8)
+    assert layout_caveats(e4) == ()  # the layout the I4 target is given for
+    (c3,) = layout_caveats(replace(e4, cylinders=e4.cylinders[:3]))
+    assert "this engine is an in-line three" in c3["text"]
+    assert "cylinder-count order (3rd)" in c3["text"] and "Bell 2013" in c3["text"]
+    assert c3["kind"] == "limit outside its class" and c3["rules"] == list(TV)
+    (c8,) = layout_caveats(e8)
+    assert "this engine is a V8" in c8["text"] and "(8th)" in c8["text"]
+
+
+def test_the_layout_caveat_is_in_every_output_and_not_for_an_i4(tmp_path):
+    import json
+    import xml.etree.ElementTree as ET
+
+    from checker.outputs import to_json, to_junit, to_text
+    from checker.report import review
+    from checker.workbook.example_v8 import v8_content
+
+    p = tmp_path / "v8.xlsx"
+    write_workbook(p, v8_content())
+    res = api.check(p, select=["TV"])
+    (c,) = _layout_caveats(res)
+    assert c in json.loads(to_json(res, timings=False))["caveats"]
+    assert f"limit outside its class: {c['text']}" in to_text(res)
+    props = [x.get("value") for x in ET.fromstring(to_junit(res)).iter("property")
+             if x.get("name") == "caveat"]
+    assert f"limit outside its class: {c['text']}" in props
+    page1 = {x["title"]: " ".join(x["items"]) for x in review.caveats(res)}
+    assert "this engine is a V8" in page1["Limits outside their engine class"]
+    assert not _layout_caveats(api.check(example_path(tmp_path), select=["TV"]))
+
+
+def test_no_layout_caveat_when_the_project_gives_its_limits(tmp_path):
+    """The caveat qualifies the published targets; with the project's own limits for every
+    TV rule (RuleOverrides) it has nothing left to qualify."""
+    from checker.workbook.example_v8 import v8_content
+
+    p = tmp_path / "v8.xlsx"
+    write_workbook(p, v8_content())
+    wb = openpyxl.load_workbook(p)
+    ws = wb["RuleOverrides"]
+    for k, rule in enumerate(TV):
+        for j, v in enumerate((rule, "0.1", "deg", "engine maker's V8 target"), start=1):
+            ws.cell(3 + k, j).value = v
+    wb.save(p)
+    res = api.check(p, select=["TV"])
+    assert all(r.override for r in res.results)
+    assert not _layout_caveats(res)

@@ -70,6 +70,15 @@ def text_outside_the_page(pdf: bytes) -> list[tuple]:
     return bad
 
 
+def test_no_program_internals_on_any_page(report):
+    """No page shows a dict or list repr, None, nan or a class name (issue 37)."""
+    from tests.helpers import pdf_internals
+
+    name, rep = report
+    bad = pdf_internals(rep.pdf)
+    assert not bad, f"{name}: program internals on the page: {bad[:5]}"
+
+
 def test_no_text_outside_the_page(report):
     name, rep = report
     bad = text_outside_the_page(rep.pdf)
@@ -147,6 +156,43 @@ def test_no_word_broken_inside_a_table(report):
     assert not bad, f"{name}: words broken across lines in table cells: {bad[:8]}"
 
 
+def premature_breaks(document) -> list[tuple]:
+    """(page, "line|next") where a rule's name in a table breaks a line early: the next
+    line's first word would have fitted on it (issue 37: "Contact / stress under the bolt
+    head" wrapped after one word). Cells that name a rule (a ``rule-id`` span), widths from
+    the laid-out boxes (a word's width estimated by its share of its line's characters)."""
+    cell_cls, line_cls, text_cls = _cls("TableCellBox"), _cls("LineBox"), _cls("TextBox")
+    bad = []
+    for n, page in enumerate(document.pages, start=1):
+        for cell in _boxes(page._page_box):
+            el = getattr(cell, "element", None)
+            if not isinstance(cell, cell_cls) or el is None or el.find(
+                    ".//span[@class='rule-id']") is None:
+                continue
+            lines = []
+            for b in _boxes(cell):
+                if isinstance(b, line_cls):
+                    ts = [t for t in _boxes(b) if isinstance(t, text_cls)]
+                    text = "".join(t.text for t in ts)
+                    if text.strip():
+                        lines.append((text, sum(t.width for t in ts)))
+            room = cell.width
+            end = el.find(".//span[@class='name-end']")  # kept on one line on purpose
+            tail = _text(end) if end is not None else ""
+            for (a, wa), (b, wb) in zip(lines, lines[1:]):
+                word = tail if tail and b.strip().startswith(tail) else b.split()[0]
+                w_word = wb * (len(word) + 1) / max(len(b), 1)
+                if wa + w_word < room - 2 * EPS:
+                    bad.append((n, f"{a.strip()}|{b.strip()[:20]}"))
+    return bad
+
+
+def test_no_rule_name_breaks_early_in_a_table(report):
+    name, rep = report
+    bad = premature_breaks(rep.document)
+    assert not bad, f"{name}: a line of a rule's name broken early: {bad[:8]}"
+
+
 def _lines_with_owner(box, owner=None):
     """(line box, tag of the element that holds it) of the page body, in document order."""
     line_cls, margin_cls = _cls("LineBox"), _cls("MarginBox")
@@ -184,6 +230,52 @@ def test_no_heading_at_the_bottom_of_a_page(report):
     name, rep = report
     bad = stranded_headings(rep.document)
     assert not bad, f"{name}: heading left at the bottom of a page: {bad}"
+
+
+def _flow(box, in_h2=None):
+    """("h2", text) for a section heading, ("content", "") for any other line or image of
+    the page body, in document order (margin boxes left out)."""
+    if isinstance(box, _cls("MarginBox")):
+        return
+    el = getattr(box, "element", None)
+    tag = getattr(box, "element_tag", None)
+    if tag == "h2" and in_h2 is None and "toc-title" not in (el.get("class") or ""):
+        yield "h2", " ".join(_text(el).split())
+        return
+    if isinstance(box, _cls("LineBox")) or tag == "img":
+        yield "content", ""
+        return
+    for child in getattr(box, "children", ()) or ():
+        yield from _flow(child, in_h2)
+
+
+def header_mismatches(document, first: str = "Verdict") -> list[tuple]:
+    """(page, running header, section the page starts in) where they differ: the header
+    must name the section whose text the page starts with (the heading at the top of the
+    page, else the section running on from the pages before), as printed reference works
+    do; not a section that starts lower down the page (issue 37)."""
+    bad = []
+    running = first
+    for n, page in enumerate(document.pages, start=1):
+        items = list(_flow(page._page_box))
+        header = ""
+        for m in _boxes(page._page_box):
+            if isinstance(m, _cls("MarginBox")) and m.at_keyword == "@top-right":
+                header = " ".join("".join(t.text for t in _boxes(m)
+                                          if isinstance(t, _cls("TextBox"))).split())
+        starts = items[0][1] if items and items[0][0] == "h2" else running
+        if n > 1 and header != starts:
+            bad.append((n, header, starts))
+        for kind, text in items:
+            if kind == "h2":
+                running = text
+    return bad
+
+
+def test_the_running_header_names_the_section_the_page_starts_in(report):
+    name, rep = report
+    bad = header_mismatches(rep.document)
+    assert not bad, f"{name}: running header (page, header, section at its top): {bad}"
 
 
 def test_the_checks_find_bad_layouts():

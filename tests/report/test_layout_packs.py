@@ -154,10 +154,31 @@ def test_no_heading_at_the_bottom_of_a_page(document):
     assert not bad, f"{name}: heading left at the bottom of a page: {bad}"
 
 
-def test_notext_outside_the_page(document):
+_PDFS: dict[str, bytes] = {}
+
+
+def _pdf(document) -> bytes:
+    """The document's PDF, written once per document for the tests that read it."""
     name, _, doc = document
-    bad = text_outside_the_page(doc.write_pdf())
+    if name not in _PDFS:
+        _PDFS[name] = doc.write_pdf()
+    return _PDFS[name]
+
+
+def test_notext_outside_the_page(document):
+    name, _, _ = document
+    bad = text_outside_the_page(_pdf(document))
     assert not bad, f"{name}: text outside the page: {bad[:5]}"
+
+
+def test_no_program_internals_on_any_page(document):
+    """No page of a study PDF or compare pack shows a dict or list repr, None, nan or a class
+    name (issue 37)."""
+    from tests.helpers import pdf_internals
+
+    name, _, _ = document
+    bad = pdf_internals(_pdf(document))
+    assert not bad, f"{name}: program internals on the page: {bad[:5]}"
 
 
 def test_the_study_answers_in_words(document):

@@ -9,7 +9,7 @@ import pytest
 from checker import api
 from checker.report import review, summary
 from checker.ruletable import RuleResult
-from tests.helpers import edited, example_path
+from tests.helpers import edited, example_path, program_internals
 
 
 def _result(rule: str, value: float, margin: float, status: str = "fail") -> RuleResult:
@@ -70,6 +70,17 @@ def test_the_caveats_name_validity_flags_class_limits_and_assumptions(checked):
     assert "TV-001" in cav["Limits outside their engine class"]
     assert "passenger-car" in cav["Limits outside their engine class"]
     assert "marked as assumptions" in cav["Inputs that are assumptions"]
+
+
+def test_the_caveats_are_sentences_not_program_data(checked):
+    """Issue 37: the engine-class caveat the torsion states (a dict with kind, severity,
+    rules and text) was printed as the dict's repr on page 2; its sentence is shown, under
+    the heading of its kind."""
+    cav = {c["title"]: " ".join(c["items"]) for c in review.caveats(checked)}
+    for title, text in cav.items():
+        assert not program_internals(f"{title}. {text}"), (title, text)
+    assert cav["Assumptions behind the limits"].startswith("Engine class not given (")
+    assert "'kind'" not in " ".join(cav.values())
 
 
 def test_assumptions_become_rows_with_sheet_cell_value_and_source(checked):
