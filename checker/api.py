@@ -26,6 +26,7 @@ from .ruletable import (
     apply_overrides,
     evaluate_rule,
     load_rules,
+    not_applicable_result,
     override_problems,
 )
 from .ruletable import select_rules as _select
@@ -353,8 +354,11 @@ def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = No
         table = RuleTable(resolved["rules"], table.files, resolved["applied"], table.levers)
     chosen = _select(table, select, ignore)
     # rules on the quantities of a calculation that does not apply to this engine (a rubber
-    # damper's rules on an engine with a viscous damper): no result
-    chosen = [r for r in chosen if graph.applies_to(engine, r.quantity)]
+    # damper's rules on an engine with a viscous damper): not applicable, with the reason
+    inapplicable = {r.id: graph.why_not_applies(engine, r.quantity) for r in chosen
+                    if not graph.applies_to(engine, r.quantity)}
+    every_rule = chosen
+    chosen = [r for r in chosen if r.id not in inapplicable]
     wanted = {r.quantity for r in chosen}
     # quantities a result is shown beside (the film thickness by the other method); not
     # computed with compare=False (variants judged on their margins: remedies, corners)
@@ -366,7 +370,10 @@ def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = No
                               for k, q in outcome.quantities.items()}
     _apply_envelope(outcome)
     results: list[RuleResult] = []
-    for r in chosen:
+    for r in every_rule:
+        if r.id in inapplicable:
+            results.append(not_applicable_result(r, inapplicable[r.id]))
+            continue
         results += evaluate_rule(r, outcome.quantities.get(r.quantity),
                                  outcome.unavailable.get(r.quantity), outcome.quantities)
     _mark_overrides(results, table)

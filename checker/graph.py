@@ -163,8 +163,10 @@ class Calculation:
     reads: tuple[str, ...] | None = None  # engine inputs read (None = all); see input_key
     applies: Callable[[Engine], bool] | None = None
     """Whether the calculation applies to an engine at all (``None``: always). The rules on
-    the quantities of a calculation that does not apply give no result (a rubber damper's
-    tuning for an engine with a viscous damper): :func:`applies_to`."""
+    the quantities of a calculation that does not apply are ``not applicable`` (a rubber
+    damper's tuning for an engine with a viscous damper): :func:`applies_to`."""
+    applies_why: Callable[[Engine], str] | None = None
+    """Why it does not apply, in words (the not-applicable results' reason)."""
 
 
 UNAVAILABLE = "__unavailable__"
@@ -195,7 +197,8 @@ def calculation(name: str, module: str, provides: Iterable[str],
                 needs: Callable[[Engine], tuple[str, ...]] | Iterable[str] = (),
                 description: str = "", optional: Iterable[str] = (),
                 reads: Iterable[str] | None = None,
-                applies: Callable[[Engine], bool] | None = None):
+                applies: Callable[[Engine], bool] | None = None,
+                applies_why: Callable[[Engine], str] | None = None):
     """Decorator registering a calculation function ``f(engine, inputs) -> {name: Quantity}``.
 
     ``reads`` names the engine inputs the calculation reads, for result caching across
@@ -204,7 +207,8 @@ def calculation(name: str, module: str, provides: Iterable[str],
     (the default) means the whole engine: always safe, never reused across variants.
     A test perturbs every input a calculation does not declare and checks its results stay
     identical. ``applies`` (engine -> bool): whether the calculation applies to the engine at
-    all (:attr:`Calculation.applies`; it may read only what ``reads`` declares).
+    all (:attr:`Calculation.applies`; it may read only what ``reads`` declares);
+    ``applies_why`` (engine -> str) says why not.
     """
     provides = tuple(provides)
     needs_f = needs if callable(needs) else (lambda engine, _n=tuple(needs): _n)
@@ -212,7 +216,7 @@ def calculation(name: str, module: str, provides: Iterable[str],
     def deco(func):
         calc = Calculation(name, module, provides, func, needs_f, description or func.__doc__
                            or "", tuple(optional), None if reads is None else tuple(reads),
-                           applies)
+                           applies, applies_why)
         CALCULATIONS[name] = calc
         for q in provides:
             if q not in QUANTITIES:
@@ -221,6 +225,14 @@ def calculation(name: str, module: str, provides: Iterable[str],
         return func
 
     return deco
+
+
+def why_not_applies(engine: Engine, qname: str) -> str:
+    """Why the calculation providing ``qname`` does not apply to ``engine`` (words)."""
+    calc = CALCULATIONS.get(PROVIDER.get(qname, ""))
+    if calc is not None and calc.applies_why is not None:
+        return calc.applies_why(engine)
+    return f"the analysis behind {qname} does not apply to this engine"
 
 
 def applies_to(engine: Engine, qname: str) -> bool:

@@ -616,6 +616,15 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
     return results + _not_applicable(rule, q, results, not_applicable, base)
 
 
+def not_applicable_result(rule: Rule, reason: str) -> RuleResult:
+    """The one result of a rule whose analysis does not apply to the engine at all."""
+    return RuleResult(rule=rule.id, name=rule.name, severity=rule.severity, unit=rule.unit,
+                      source=rule.source, check=rule.check, item="all",
+                      status="not_applicable", value=None, limit=rule.limit_text(),
+                      limit_values=None, margin=None, case="",
+                      message=f"not applicable: {reason}")
+
+
 def _not_applicable(rule: Rule, q: Quantity, results: list[RuleResult],
                     left_out: list[tuple[str, str, str, bool]], base: dict
                     ) -> list[RuleResult]:

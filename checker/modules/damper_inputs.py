@@ -39,6 +39,26 @@ def is_viscous(engine: Engine) -> bool:
     return damper_type(engine) == "viscous"
 
 
+def why_no_rubber_ends(engine: Engine) -> str:
+    """Why DMP-005..007 do not apply (the words of their not-applicable results)."""
+    if damper_type(engine) != "rubber":
+        return "the damper is a viscous (silicone) one: DMP-008..010 judge it"
+    return ("the workbook gives no rubber temperature table (sheet DamperRubber) and no operating"
+            " temperature range (Damper sheet): the rubber is judged at its stated properties"
+            " (DMP-001..004)")
+
+
+def why_not_viscous(engine: Engine) -> str:
+    """Why DMP-008..010 do not apply."""
+    return "the damper is a tuned rubber damper, not a viscous one (Damper type)"
+
+
+def why_not_rubber(engine: Engine) -> str:
+    """Why the rubber damper's tuning rules do not apply."""
+    return ("the damper is an untuned viscous (silicone) damper: it has no tuning; DMP-008..010"
+            " judge its damping and heat")
+
+
 @dataclass(frozen=True)
 class ViscousCoupling:
     """The silicone coupling of an untuned viscous damper (SI).

@@ -199,7 +199,7 @@ def _judged_at_peak_power(power: np.ndarray, envelope: np.ndarray | None) -> np.
 @calculation("damper_rubber_ends", "damper", provides=RUBBER_PROVIDES,
              needs=("tv.nose_amplitude", "loads.cycle"),
              reads=("damper", "tv_model", "cylinders", "params"),
-             applies=dinp.has_rubber_ends)
+             applies=dinp.has_rubber_ends, applies_why=dinp.why_no_rubber_ends)
 def damper_rubber_ends(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """The rubber damper at the cold and hot ends of the operating temperature range."""
     what = "the damper rubber at the ends of its operating temperature range"
@@ -307,7 +307,7 @@ def damper_rubber_ends(engine: Engine, inputs: dict) -> dict[str, Quantity]:
 @calculation("viscous_damper", "damper", provides=VISCOUS_PROVIDES,
              needs=("tv.nose_amplitude", "loads.cycle"),
              reads=("damper", "tv_model", "cylinders", "params"),
-             applies=dinp.is_viscous)
+             applies=dinp.is_viscous, applies_why=dinp.why_not_viscous)
 def viscous_damper(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """The untuned viscous damper at the cold and hot ends: heat, silicone temperature and
     damping against Den Hartog's optimum."""

@@ -132,7 +132,8 @@ def peak_summary(orders: np.ndarray, theta: np.ndarray, n_cyl: int, speeds: np.n
 
 @calculation("damper_tuning", "damper", provides=PROVIDES, needs=("tv.nose_amplitude",),
              reads=("damper", "tv_model", "cylinders", "params"),
-             applies=lambda engine: not dinp.is_viscous(engine))
+             applies=lambda engine: not dinp.is_viscous(engine),
+             applies_why=dinp.why_not_rubber)
 def damper_tuning(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Actual vs optimum damper tuning and the crank-nose amplitude at the optimum."""
     nose_q = inputs["tv.nose_amplitude"]
