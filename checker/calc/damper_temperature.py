@@ -17,6 +17,15 @@ through its cooled surface, ``T = T_ambient + P(T) R_th`` with ``R_th = 1 / (h A
 (:func:`checker.calc.viscous_damper.steady_temperature`); ``P(T)`` is the forced response's
 dissipated power with the properties at ``T``. :func:`self_heated_temperature` solves this
 per point by bisection.
+
+References
+----------
+.. [1] US Patent 11,136,448 B2 (torsional vibration damper elastomer: tan delta >= 0.14 from
+   -30 to 120 C, E'(-30 C)/E'(60 C) up to 21).
+.. [2] E. Moreira, J. Dias Rodrigues, A. Ferreira, "Frequency and temperature dependent
+   viscoelastic properties of a damping material", Shock and Vibration 17, 2010 (WLF shift).
+.. [3] F. P. Incropera, D. P. DeWitt, "Fundamentals of Heat and Mass Transfer", Wiley, 2002,
+   ch. 3 (thermal resistance of a cooled surface, R = 1/(h A)).
 """
 
 from __future__ import annotations
