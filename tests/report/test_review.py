@@ -9,7 +9,7 @@ import pytest
 from checker import api
 from checker.report import review, summary
 from checker.ruletable import RuleResult
-from tests.helpers import edited, example_path, program_internals
+from tests.helpers import edited, example_path, param_row, program_internals
 
 
 def _result(rule: str, value: float, margin: float, status: str = "fail") -> RuleResult:
@@ -53,6 +53,9 @@ def test_every_rule_has_a_mechanism_that_cites_a_publication():
 def checked(tmp_path_factory):
     def doc_control(wb):
         ws = wb["Engine"]
+        # the engine class left blank: its assumption is a caveat (a dict with kind, severity,
+        # rules and text, issue 37 item 1)
+        ws.cell(param_row(ws, "Engine class"), 2).value = None
         row = ws.max_row + 1
         for k, (label, value) in enumerate((("Author", "A. Engineer"),
                                             ("Reviewer", "B. Chief"))):
