@@ -1,7 +1,7 @@
 """Matplotlib helpers: vector SVG with real text, deterministic bytes, fixed layout.
 
-Matplotlib is imported on the first figure only (``checker check`` and the report's parent
-process never pay for it; the report draws its figures in worker processes).
+Matplotlib is imported on the first figure only (``checker check`` never pays for it); the
+report imports it once before it forks its drawing processes, which then share it.
 
 Layout rules for every figure (the report's pages are reviewed as images): margins are fixed
 in millimetres (no ``bbox_inches="tight"`` or constrained layout, which draw the figure once
