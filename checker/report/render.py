@@ -3,9 +3,10 @@ PDF with the results workbook attached (deterministic bytes for the same input o
 day).
 
 :func:`build_report` runs the stages and times them (``Report.stages``, shown by
-``benchmarks/bench_report.py``): figures are drawn in forked workers while this process
-imports the PDF engine; then the HTML and the PDF layout, while a forked process writes the
-results workbook; then the PDF file.
+``benchmarks/bench_report.py``): forked drawing processes build the sections (figures as
+placeholders of their size) while this process imports the PDF engine; then the HTML and the
+PDF layout, while the drawing processes draw the figures and a forked process writes the
+results workbook; then the PDF file, the drawn figures in place of the placeholders.
 """
 
 from __future__ import annotations
