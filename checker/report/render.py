@@ -496,37 +496,38 @@ def build_report(res: CheckResult, progress: Progress | None = None,
     # workers build the sections while this process imports the PDF engine, then draw their
     # figures while it lays the PDF out (placeholders of the figures' size in the layout)
     job = drawing if drawing is not None else SectionJob(res, progress, defer=True)
-    wp = _weasyprint()
-    env = _environment()
-    clock.stage("PDF engine import")
-    children = _children_cpu()
-    sections = job.result()
-    # the sections the job was started without (the remedies and corners, found after it)
-    sections += [SECTIONS[m](res) for m in modules_with_sections(res) if m not in job.mods]
-    clock.stage("sections (figures set up)", extra_cpu=_children_cpu() - children)
-    sections, extra = _split_details(_plain_sections(sections))
-    extra += _extra_sheets(res)
-    say("Writing the results workbook")
-    book_job = Forked(results_book.build, res, extra)  # written while the PDF is laid out
-    from .results_book import sheet_names
-
-    sheets = sheet_names(res, extra)
-    for s in sections:
-        for b in s["blocks"]:
-            if b["type"] == "figure" and "data_text" not in b:
-                b["data_text"] = _data_text(b.get("data"), sheets)
-    figures: dict[str, bytes] = {}
-    pending: dict[str, tuple[int, int]] = {}
-    html = env.get_template("report.html").render(**context(res, sections, results_file,
-                                                            figures, pending))
-    clock.stage("HTML")
-    images = _FigureCache()  # WeasyPrint's image cache (URL -> image, key -> image data)
-    logger = logging.getLogger("weasyprint.progress")
-    handler = _PageProgress(say)
-    old_level = logger.level
-    logger.addHandler(handler)
-    logger.setLevel(logging.INFO)
+    book_job = None
     try:
+        wp = _weasyprint()
+        env = _environment()
+        clock.stage("PDF engine import")
+        children = _children_cpu()
+        sections = job.result()
+        # the sections the job was started without (the remedies and corners, found after it)
+        sections += [SECTIONS[m](res) for m in modules_with_sections(res) if m not in job.mods]
+        clock.stage("sections (figures set up)", extra_cpu=_children_cpu() - children)
+        sections, extra = _split_details(_plain_sections(sections))
+        extra += _extra_sheets(res)
+        say("Writing the results workbook")
+        book_job = Forked(results_book.build, res, extra)  # written while the PDF is laid out
+        from .results_book import sheet_names
+
+        sheets = sheet_names(res, extra)
+        for s in sections:
+            for b in s["blocks"]:
+                if b["type"] == "figure" and "data_text" not in b:
+                    b["data_text"] = _data_text(b.get("data"), sheets)
+        figures: dict[str, bytes] = {}
+        pending: dict[str, tuple[int, int]] = {}
+        html = env.get_template("report.html").render(**context(res, sections, results_file,
+                                                                figures, pending))
+        clock.stage("HTML")
+        images = _FigureCache()  # WeasyPrint's image cache (URL -> image, key -> image data)
+        logger = logging.getLogger("weasyprint.progress")
+        handler = _PageProgress(say)
+        old_level = logger.level
+        logger.addHandler(handler)
+        logger.setLevel(logging.INFO)
         try:
             doc = _html_class(wp)(string=html, base_url=str(templates_dir()),
                                   url_fetcher=_fetcher(wp, figures)).render(cache=images)
@@ -545,9 +546,10 @@ def build_report(res: CheckResult, progress: Progress | None = None,
                                       " plot data of this report")])
         if not images.filled:
             raise RuntimeError("the PDF was written without its drawn figures")
-    except BaseException:
+    except BaseException:  # no drawing or workbook process outlives the report
         job.close()
-        book_job.close()
+        if book_job is not None:
+            book_job.close()
         raise
     clock.stage("PDF write")
     clock.wall["of which waiting for the figures"] = images.wait

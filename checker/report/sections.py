@@ -189,6 +189,7 @@ class SectionJob:
 
         global _RESULT
         self.res = res
+        load_sections()
         self.mods = modules_with_sections(res) if modules is None else list(modules)
         self.progress = progress
         self.defer = False
@@ -249,6 +250,7 @@ class SectionJob:
                 except EOFError:
                     del self._open[w]
                     if w not in self._done:
+                        self.procs[w].join(timeout=10)  # its end of file: it is ending
                         code = self.procs[w].exitcode
                         self.close()
                         raise RuntimeError(f"a drawing process ended (exit code {code})"

@@ -83,3 +83,18 @@ def test_a_failing_section_fails_the_job_and_ends_its_processes(res):
         assert job.procs == []
     finally:
         del SECTIONS["boom"]
+
+
+def test_a_drawing_process_that_dies_fails_the_job(res, monkeypatch):
+    """A drawing process that ends before sending its figures (killed, out of memory) is
+    an error of the report, never a placeholder in the PDF."""
+    import os
+
+    monkeypatch.setattr(plots, "draw_deferred", lambda index: os._exit(3))
+    job = SectionJob(res, modules=["joints"], defer=True)
+    sections = job.result()
+    assert any(isinstance(b.get("png"), plots.Deferred) for s in sections
+               for b in s["blocks"])
+    with pytest.raises(RuntimeError, match="exit code 3"):
+        job.images()
+    assert job.procs == []
