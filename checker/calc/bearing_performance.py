@@ -253,22 +253,30 @@ def groove_feed_flow(
     if np.all(span == 2.0 * np.pi):  # full groove: 2 pi (1 + 1.5 eps^2), no trigonometry
         integral = (2.0 * np.pi) * (1.0 + 1.5 * eps2)
     else:
-        phi = np.arctan2(ey, ex)
-        integral = _cubed_film_integral(np.sqrt(eps2), np.asarray(t1, dtype=float) - phi,
-                                        span)
+        integral = _cubed_film_integral(ex, ey, eps2, np.asarray(t1, dtype=float),
+                                        np.asarray(t2, dtype=float), span)
     return ps * 0.5 * dia * cl**3 * integral / (6.0 * mu * b)
 
 
-def _cubed_film_integral(eps: np.ndarray, u1: np.ndarray, span: np.ndarray) -> np.ndarray:
-    """``int_{u1}^{u1+span} (1 - eps cos u)^3 du`` in closed form (expanded cubic; ``int cos^2
-    = u/2 + sin 2u / 4``, ``int cos^3 = sin u - sin^3 u / 3``)."""
-    e1, e2, e3 = 3.0 * eps, 3.0 * eps**2, eps**3  # shared by both ends
+def _cubed_film_integral(ex: np.ndarray, ey: np.ndarray, eps2: np.ndarray, t1: np.ndarray,
+                         t2: np.ndarray, span: np.ndarray) -> np.ndarray:
+    """``int_{t1}^{t2} (1 - eps cos(t - phi))^3 dt`` (``eps (cos phi, sin phi) = (ex, ey)``,
+    ``span = t2 - t1``) in closed form without trigonometry of the eccentricity.
 
-    def prim(u):
-        su = np.sin(u)
-        return (u - e1 * su + e2 * (0.5 * u + 0.25 * np.sin(2.0 * u))
-                - e3 * (su - su**3 / 3.0))
-    return prim(u1 + span) - prim(u1)
+    With ``u = t - phi`` the expanded cubic integrates to ``P(u) = u (1 + 1.5 eps^2) -
+    3 eps sin u + 0.75 eps^2 sin 2u - eps^3 (sin u - sin^3 u / 3)`` (``int cos^2 = u/2 +
+    sin 2u / 4``, ``int cos^3 = sin u - sin^3 u / 3``); with ``a = eps sin u = ex sin t -
+    ey cos t`` and ``c = eps cos u = ex cos t + ey sin t`` (the groove ends ``t`` are
+    scalars per bearing, so the only trigonometry is of them) it is the polynomial
+    ``u (1 + 1.5 eps^2) - 3 a + 1.5 a c - eps^2 a + a^3 / 3``."""
+
+    def ends(t):
+        st, ct = np.sin(t), np.cos(t)
+        a = ex * st - ey * ct
+        c = ex * ct + ey * st
+        return a * (1.5 * c - 3.0 - eps2) + a * a * a / 3.0
+
+    return span * (1.0 + 1.5 * eps2) + ends(t2) - ends(t1)
 
 
 def hole_feed_flow(

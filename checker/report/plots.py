@@ -1,7 +1,7 @@
 """Matplotlib helpers: vector SVG with real text, deterministic bytes, fixed layout.
 
-Matplotlib is imported on the first figure only (``checker check`` and the report's parent
-process never pay for it; the report draws its figures in worker processes).
+Matplotlib is imported on the first figure only (``checker check`` never pays for it); the
+report imports it once before it forks its drawing processes, which then share it.
 
 Layout rules for every figure (the report's pages are reviewed as images): margins are fixed
 in millimetres (no ``bbox_inches="tight"`` or constrained layout, which draw the figure once
@@ -49,6 +49,8 @@ _RC = {
     "figure.dpi": 100,
     "text.usetex": False,
     "path.simplify_threshold": 0.3,
+    # a drawing process of the report holds its figures until it draws them (DEFERRED)
+    "figure.max_open_warning": 0,
 }
 _PLT = None
 
@@ -168,9 +170,83 @@ class Png(bytes):
     width_mm: float
 
 
+DEFERRED: list | None = None
+"""In a drawing process of the report (:class:`checker.report.sections.SectionJob` with
+``defer``): the figures whose drawing :func:`to_image` deferred, ``(figure, dpi)`` in order;
+None (the default): :func:`to_image` draws at once."""
+
+DRAWER = 0
+"""Number of the drawing process (the first part of a :class:`Deferred` key)."""
+
+_PLACEHOLDERS: dict[tuple[int, int], bytes] = {}
+
+
+class Deferred(Png):
+    """A figure not drawn yet (:data:`DEFERRED`): a white JPEG of the figure's exact pixel
+    size, so that the PDF can be laid out before the figure is drawn; ``key``: (drawing
+    process :data:`DRAWER`, place in :data:`DEFERRED`), ``size``: (width, height) [px]."""
+
+    key: tuple[int, int]
+    size: tuple[int, int]
+
+
+def pixel_size(fig) -> tuple[int, int]:
+    """Width and height [px] of the image :func:`to_image` draws of ``fig`` at the figure's
+    dpi (Agg's canvas: the figure's size in pixels, truncated)."""
+    w, h = fig.bbox.size
+    return int(w), int(h)
+
+
+def image_size(data: bytes) -> tuple[int, int]:
+    """Width and height [px] of an image (JPEG or PNG bytes)."""
+    from PIL import Image
+
+    with Image.open(io.BytesIO(data)) as img:
+        return img.size
+
+
+def _prepare(fig, dpi: float) -> None:
+    for ax in fig.axes:
+        if ax.name == "polar" and hasattr(ax, "_autotitlepos"):
+            ax._autotitlepos = True  # the title lifted over the 0° label (see _RC titley)
+    fig.set_dpi(dpi)
+    fig.patch.set_facecolor("white")
+
+
 def to_image(fig, dpi: float = PNG_DPI) -> Png:
     """Draw and close a figure; returns its image (RGB JPEG; deterministic: no metadata).
-    Raster, because the PDF engine draws vector (SVG) figures in pure Python."""
+    Raster, because the PDF engine draws vector (SVG) figures in pure Python. In a drawing
+    process that defers its figures (:data:`DEFERRED`), a :class:`Deferred` placeholder of
+    the same size instead; :func:`draw_deferred` draws them later."""
+    _prepare(fig, dpi)
+    if DEFERRED is None:
+        return _draw(fig)
+    from PIL import Image
+
+    size = pixel_size(fig)
+    if size not in _PLACEHOLDERS:
+        buf = io.BytesIO()
+        Image.new("RGB", size, "white").save(buf, format="JPEG", quality=JPEG_QUALITY,
+                                             subsampling=0, optimize=False)
+        _PLACEHOLDERS[size] = buf.getvalue()
+    png = Deferred(_PLACEHOLDERS[size])
+    png.texts = []
+    png.width_mm = fig.get_figwidth() * 25.4
+    png.key = (DRAWER, len(DEFERRED))
+    png.size = size
+    DEFERRED.append(fig)
+    return png
+
+
+def draw_deferred(index: int) -> Png:
+    """The image of the figure ``DEFERRED[index]`` (drawn and closed now; the entry freed)."""
+    fig = DEFERRED[index]
+    DEFERRED[index] = None
+    return _draw(fig)
+
+
+def _draw(fig) -> Png:
+    """Draw and close a prepared figure (:func:`_prepare`)."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg, RendererAgg
     from PIL import Image
 
@@ -181,11 +257,6 @@ def to_image(fig, dpi: float = PNG_DPI) -> Png:
         drawn.append(s)
         return orig(self, gc, x, y, s, prop, angle, ismath, mtext)
 
-    for ax in fig.axes:
-        if ax.name == "polar" and hasattr(ax, "_autotitlepos"):
-            ax._autotitlepos = True  # the title lifted over the 0° label (see _RC titley)
-    fig.set_dpi(dpi)
-    fig.patch.set_facecolor("white")
     canvas = FigureCanvasAgg(fig)
     RendererAgg.draw_text = draw_text
     try:

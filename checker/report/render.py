@@ -3,9 +3,10 @@ PDF with the results workbook attached (deterministic bytes for the same input o
 day).
 
 :func:`build_report` runs the stages and times them (``Report.stages``, shown by
-``benchmarks/bench_report.py``): figures are drawn in forked workers while this process
-imports the PDF engine; then the HTML and the PDF layout, while a forked process writes the
-results workbook; then the PDF file.
+``benchmarks/bench_report.py``): forked drawing processes build the sections (figures as
+placeholders of their size) while this process imports the PDF engine; then the HTML and the
+PDF layout, while the drawing processes draw the figures and a forked process writes the
+results workbook; then the PDF file, the drawn figures in place of the placeholders.
 """
 
 from __future__ import annotations
@@ -58,12 +59,15 @@ def _environment():
 FIGURE_SCHEME = "checker-figure:"
 
 
-def _figure_sources(sections: list[dict], figures: dict[str, bytes] | None = None
-                    ) -> list[dict]:
+def _figure_sources(sections: list[dict], figures: dict[str, bytes] | None = None,
+                    pending: dict[str, tuple[int, int]] | None = None) -> list[dict]:
     """Figures as JPEG images. With ``figures`` (the PDF), each image is a short
     ``checker-figure:N`` URL served from that dict by :class:`_Fetcher`: the HTML parser then
-    never reads the base64 text that data URIs would add. Without it (the standalone HTML
-    file), data URIs."""
+    never reads the base64 text that data URIs would add; ``pending`` collects the URLs of
+    the figures that are placeholders still being drawn (URL -> ``png.key``). Without it
+    (the standalone HTML file), data URIs."""
+    from .plots import Deferred
+
     n = 0
     for s in sections:
         for b in s["blocks"]:
@@ -76,6 +80,10 @@ def _figure_sources(sections: list[dict], figures: dict[str, bytes] | None = Non
                     n += 1
                     figures[f"{FIGURE_SCHEME}{n}"] = data
                     b["src"] = f"{FIGURE_SCHEME}{n}"
+                    if isinstance(b["png"], Deferred):
+                        if pending is None:
+                            raise ValueError("a figure placeholder in a finished report")
+                        pending[b["src"]] = b["png"].key
                 else:
                     b["src"] = "data:image/jpeg;base64," + base64.b64encode(data).decode(
                         "ascii")
@@ -342,10 +350,11 @@ def _extra_sheets(res: CheckResult) -> list[dict]:
 
 
 def context(res: CheckResult, sections: list[dict] | None = None,
-            results_file: str | None = None, figures: dict[str, bytes] | None = None) -> dict:
+            results_file: str | None = None, figures: dict[str, bytes] | None = None,
+            pending: dict[str, tuple[int, int]] | None = None) -> dict:
     """Everything the template shows (formatting only). ``sections``: built sections
-    (default: built here); ``figures``: collects the figures served by URL (see
-    :func:`_figure_sources`; default: data URIs)."""
+    (default: built here); ``figures``: collects the figures served by URL, ``pending`` the
+    placeholders among them (see :func:`_figure_sources`; default: data URIs)."""
     if sections is None:
         sections = SectionJob(res).result()
     from .section_loads import lining_text
@@ -396,7 +405,7 @@ def context(res: CheckResult, sections: list[dict] | None = None,
         "rule_count": len(res.table.rules),
         "assumption_groups": _assumption_groups(res),
         "sections": [dict(x, groups=_groups(x["blocks"]))
-                     for x in _figure_sources(sections, figures)],
+                     for x in _figure_sources(sections, figures, pending)],
         "rule_rows": rule_rows,
         "rule_files": [f.replace("\\", "/").split("/")[-1] for f in res.table.files],
         "overrides": res.table.overrides,
@@ -502,53 +511,125 @@ def build_report(res: CheckResult, progress: Progress | None = None,
     here."""
     say = progress or (lambda _text: None)
     clock = _Clock()
-    # workers draw while this process does the rest
-    job = drawing if drawing is not None else SectionJob(res, progress)
-    wp = _weasyprint()
-    env = _environment()
-    clock.stage("PDF engine import")
-    children = _children_cpu()
-    sections = job.result()
-    # the sections the job was started without (the remedies and corners, found after it)
-    sections += [SECTIONS[m](res) for m in modules_with_sections(res) if m not in job.mods]
-    clock.stage("figures", extra_cpu=_children_cpu() - children)
-    sections, extra = _split_details(_plain_sections(sections))
-    extra += _extra_sheets(res)
-    say("Writing the results workbook")
-    book_job = Forked(results_book.build, res, extra)  # written while the PDF is laid out
-    from .results_book import sheet_names
-
-    sheets = sheet_names(res, extra)
-    for s in sections:
-        for b in s["blocks"]:
-            if b["type"] == "figure" and "data_text" not in b:
-                b["data_text"] = _data_text(b.get("data"), sheets)
-    figures: dict[str, bytes] = {}
-    html = env.get_template("report.html").render(**context(res, sections, results_file,
-                                                            figures))
-    clock.stage("HTML")
-    logger = logging.getLogger("weasyprint.progress")
-    handler = _PageProgress(say)
-    old_level = logger.level
-    logger.addHandler(handler)
-    logger.setLevel(logging.INFO)
+    # workers build the sections while this process imports the PDF engine, then draw their
+    # figures while it lays the PDF out (placeholders of the figures' size in the layout)
+    job = drawing if drawing is not None else SectionJob(res, progress, defer=True)
+    book_job = None
     try:
-        doc = _html_class(wp)(string=html, base_url=str(templates_dir()),
-                      url_fetcher=_fetcher(wp, figures)).render()
-    finally:
-        logger.removeHandler(handler)
-        logger.setLevel(old_level)
-    clock.stage("PDF layout")
-    children = _children_cpu()
-    book = book_job.result()
-    clock.stage("results workbook", extra_cpu=_children_cpu() - children)
-    say(f"Writing the PDF ({len(doc.pages)} pages)")
-    pdf = _write(wp, doc, html, [(results_book.ATTACHMENT_NAME, book,
-                                  "Every computed quantity, the rule results and the plot"
-                                  " data of this report")])
+        wp = _weasyprint()
+        env = _environment()
+        clock.stage("PDF engine import")
+        children = _children_cpu()
+        sections = job.result()
+        # the sections the job was started without (the remedies and corners, found after it)
+        sections += [SECTIONS[m](res) for m in modules_with_sections(res) if m not in job.mods]
+        clock.stage("sections (figures set up)", extra_cpu=_children_cpu() - children)
+        sections, extra = _split_details(_plain_sections(sections))
+        extra += _extra_sheets(res)
+        say("Writing the results workbook")
+        book_job = Forked(results_book.build, res, extra)  # written while the PDF is laid out
+        from .results_book import sheet_names
+
+        sheets = sheet_names(res, extra)
+        for s in sections:
+            for b in s["blocks"]:
+                if b["type"] == "figure" and "data_text" not in b:
+                    b["data_text"] = _data_text(b.get("data"), sheets)
+        figures: dict[str, bytes] = {}
+        pending: dict[str, tuple[int, int]] = {}
+        html = env.get_template("report.html").render(**context(res, sections, results_file,
+                                                                figures, pending))
+        clock.stage("HTML")
+        images = _FigureCache()  # WeasyPrint's image cache (URL -> image, key -> image data)
+        logger = logging.getLogger("weasyprint.progress")
+        handler = _PageProgress(say)
+        old_level = logger.level
+        logger.addHandler(handler)
+        logger.setLevel(logging.INFO)
+        try:
+            doc = _html_class(wp)(string=html, base_url=str(templates_dir()),
+                                  url_fetcher=_fetcher(wp, figures)).render(cache=images)
+        finally:
+            logger.removeHandler(handler)
+            logger.setLevel(old_level)
+        clock.stage("PDF layout")
+        children = _children_cpu()
+        book = book_job.result()
+        clock.stage("results workbook", extra_cpu=_children_cpu() - children)
+        # the figures still being drawn are fetched when the PDF writer first reads one
+        images.arm(figures, pending, job.images)
+        say(f"Writing the PDF ({len(doc.pages)} pages)")
+        pdf = _write(wp, doc, html, [(results_book.ATTACHMENT_NAME, book,
+                                      "Every computed quantity, the rule results and the"
+                                      " plot data of this report")])
+        if not images.filled:
+            raise RuntimeError("the PDF was written without its drawn figures")
+    except BaseException:  # no drawing or workbook process outlives the report
+        job.close()
+        if book_job is not None:
+            book_job.close()
+        raise
     clock.stage("PDF write")
+    clock.wall["of which waiting for the figures"] = images.wait
+    clock.cpu["figures drawn during the layout"] = images.children_cpu
     return Report(pdf, standalone_html(html, figures) if want_html else "", book,
                   len(doc.pages), clock.wall, clock.cpu, doc)
+
+
+class _FigureCache(dict):
+    """WeasyPrint's image cache (a dict: URL -> image, data key -> image bytes) that puts the
+    drawn figures in place of their placeholders when the PDF writer first reads the data of
+    one (:meth:`arm`): the figures are drawn while the PDF is laid out and its pages are
+    drawn, and are needed only when the file is serialised. An image keeps its placeholder's
+    size (checked), so the layout is that of the drawn figure."""
+
+    def __init__(self):
+        super().__init__()
+        self._armed: tuple | None = None
+        self._keys: set[str] = set()
+        self.filled = True
+        self.wait = 0.0
+        """Time waited for the drawing processes [s]."""
+        self.children_cpu = 0.0
+        """Processor time of the drawing processes, counted when they ended [s]."""
+
+    def arm(self, figures: dict[str, bytes], pending: dict[str, tuple[int, int]],
+            drawn: Callable[[], dict[tuple[int, int], bytes]]) -> None:
+        """Fill the placeholders ``pending`` (URL -> key) with ``drawn()[key]`` (and
+        ``figures[URL]``) when the data of one is first read."""
+        if not pending:
+            return
+        keys = set()
+        for url in pending:
+            img = dict.get(self, url)
+            if img is None or not hasattr(img, "image_data"):
+                raise RuntimeError(f"figure {url}: not found in the laid-out document")
+            keys.add(img.image_data._key)
+        self._armed, self._keys, self.filled = (figures, pending, drawn), keys, False
+
+    def __getitem__(self, key):
+        if self._armed is not None and key in self._keys:
+            self._fill()
+        return super().__getitem__(key)
+
+    def _fill(self) -> None:
+        from .plots import image_size
+
+        figures, pending, drawn = self._armed
+        self._armed = None
+        t, c = time.perf_counter(), _children_cpu()
+        images = drawn()
+        self.wait = time.perf_counter() - t
+        self.children_cpu = _children_cpu() - c
+        for url, key in pending.items():
+            data = bytes(images[key])
+            img = dict.__getitem__(self, url)
+            if (img.width, img.height) != image_size(data):
+                raise RuntimeError(f"figure {url}: drawn at another size than its"
+                                   " placeholder")
+            img.image_data = img.cache_image_data(data)
+            figures[url] = data
+        self.filled = True
 
 
 def start_drawing(res: CheckResult, progress: Progress | None = None) -> SectionJob:
@@ -556,7 +637,7 @@ def start_drawing(res: CheckResult, progress: Progress | None = None) -> Section
     priority: started before the remedies' and corners' search, they take the processor time
     that the search leaves idle (its rounds wait for their slowest variant) instead of
     running after it. Give the job to :func:`build_report`."""
-    return SectionJob(res, progress, nice=19)
+    return SectionJob(res, progress, nice=19, defer=True)
 
 
 def _children_cpu() -> float:

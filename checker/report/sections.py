@@ -111,11 +111,6 @@ def _one(module: str, progress: Callable[[str], None] | None = None) -> dict:
 
 _RESULT: CheckResult | None = None
 _ARG: CheckResult | None = None
-_PROGRESS: Callable[[str], None] | None = None
-
-
-def _worker(module: str) -> dict:
-    return _one(module, None)  # progress is told by the parent (it owns stderr)
 
 
 def _worker_start(nice: int) -> None:
@@ -133,70 +128,180 @@ SLOW_FIRST = ("torsion", "loads", "fatigue", "bearings")
 """Sections with the most figures, started first so that the workers stay busy."""
 
 
+def _drawer(worker: int, tasks, conn, nice: int, defer: bool) -> None:
+    """A drawing process: builds the sections of the modules it takes from ``tasks`` (None:
+    no more) and sends each to the parent, ``("section", module, dict)``; with ``defer`` its
+    figures are placeholders (:class:`checker.report.plots.Deferred`) and it draws them after
+    the last section, ``("images", None, {(worker, index): image})``; then ``("done", None,
+    None)``. An exception of a section is sent as ``("error", module, exception)``."""
+    import signal
+
+    from . import plots
+
+    signal.signal(signal.SIGINT, signal.SIG_DFL)  # Ctrl-C: the parent handles it
+    _worker_start(nice)
+    plots.DEFERRED = [] if defer else None
+    plots.DRAWER = worker
+    try:
+        while (module := tasks.get()) is not None:
+            # progress is told by the parent (it owns stderr)
+            conn.send(("section", module, _one(module, None)))
+        if defer:
+            images = {}
+            for i in range(len(plots.DEFERRED)):
+                size = plots.pixel_size(plots.DEFERRED[i])
+                png = plots.draw_deferred(i)
+                if plots.image_size(png) != size:
+                    raise RuntimeError("a figure was drawn at another size than its"
+                                       " placeholder")
+                images[(worker, i)] = png
+            conn.send(("images", None, images))
+        conn.send(("done", None, None))
+    except BaseException as exc:  # noqa: BLE001 - every failure goes to the parent
+        try:
+            conn.send(("error", None, exc))
+        except Exception:  # noqa: BLE001 - an exception that does not pickle
+            conn.send(("error", None, RuntimeError(f"{type(exc).__name__}: {exc}")))
+    finally:
+        conn.close()
+
+
 class SectionJob:
-    """Sections being built: in forked worker processes (matplotlib is single-threaded and
-    drawing dominates a section's time) while the caller does other work; call
-    :meth:`result` to wait. Sequential where fork is unavailable or with one core."""
+    """Sections being built in forked drawing processes (matplotlib is single-threaded and
+    drawing dominates a section's time) while the caller does other work; :meth:`result`
+    waits for the sections. Sequential where fork is unavailable or with one core.
+
+    With ``defer`` the figures of the sections are placeholders of their exact pixel size
+    (:class:`checker.report.plots.Deferred`, key ``png.key``): the sections arrive when their
+    content is known and their figures built, and the processes draw the figures while the
+    caller lays the PDF out; :meth:`images` waits for them."""
 
     def __init__(self, res: CheckResult, progress: Callable[[str], None] | None = None,
                  workers: int | None = None, modules: list[str] | None = None,
-                 nice: int = 0):
+                 nice: int = 0, defer: bool = False):
         """``modules``: the sections to build (default: every section of ``res``);
         ``nice``: the workers' scheduling priority increment (``os.nice``): drawing started
         before other work of the command (the remedies' search) takes only the processor time
-        that work leaves idle."""
+        that work leaves idle; ``defer``: figures drawn after every section is built (see the
+        class)."""
         import multiprocessing as mp
         import os
 
-        global _RESULT, _PROGRESS
+        global _RESULT
         self.res = res
+        load_sections()
         self.mods = modules_with_sections(res) if modules is None else list(modules)
         self.progress = progress
-        self.pool = None
-        self.futures: dict[str, object] = {}
+        self.defer = False
+        self.procs: list = []
+        self.conns: list = []
+        self._open: dict[int, object] = {}
+        self._sections: dict[str, dict] = {}
+        self._images: dict[tuple[int, int], bytes] = {}
+        self._done: set[int] = set()
         cores = os.cpu_count() or 1
         if not self.mods or cores < 2 or "fork" not in mp.get_all_start_methods():
             return
         n = max(1, min(len(self.mods), workers or cores))
-        from concurrent.futures import ProcessPoolExecutor
+        ctx = mp.get_context("fork")
+        order = sorted(self.mods, key=lambda m: (m not in SLOW_FIRST,
+                                                 SLOW_FIRST.index(m) if m in SLOW_FIRST
+                                                 else 0))
+        tasks = ctx.SimpleQueue()
+        for m in order + [None] * n:  # a few short items: they fit the pipe's buffer
+            tasks.put(m)
+        self.defer = defer
+        # pyplot imported once here, before the fork, rather than by each drawing process
+        # (about 0.3 s of processor time each; the processes start drawing at once)
+        from . import plots
 
-        _RESULT, _PROGRESS = res, progress
+        plots.pyplot()
+        _RESULT = res
         try:
-            self.pool = ProcessPoolExecutor(n, mp_context=mp.get_context("fork"),
-                                            initializer=_worker_start, initargs=(nice,))
-            order = sorted(self.mods, key=lambda m: (m not in SLOW_FIRST,
-                                                     SLOW_FIRST.index(m) if m in SLOW_FIRST
-                                                     else 0))
-            for m in order:
-                self.futures[m] = self.pool.submit(_worker, m)
+            for w in range(n):
+                recv, send = ctx.Pipe(duplex=False)
+                p = ctx.Process(target=_drawer, args=(w, tasks, send, nice, defer),
+                                daemon=True)
+                p.start()
+                send.close()  # the child's copy only: its end of file says it ended
+                self.procs.append(p)
+                self.conns.append(recv)
+                self._open[w] = recv
+        except BaseException:
+            self.close()
+            raise
         finally:
-            _RESULT, _PROGRESS = None, None
+            _RESULT = None
         if progress is not None:  # drawn in parallel from now on; told here (stderr is ours)
             for m in order:
                 progress(f"Drawing the {LABELS.get(m, m)} figures")
 
+    def _receive(self, until) -> None:
+        """Messages of the drawing processes until ``until()`` holds."""
+        from multiprocessing.connection import wait
+
+        while not until():
+            if not self._open:
+                raise RuntimeError("the drawing processes ended without every figure")
+            for conn in wait(list(self._open.values())):
+                w = next(k for k, c in self._open.items() if c is conn)
+                try:
+                    kind, module, value = conn.recv()
+                except EOFError:
+                    del self._open[w]
+                    if w not in self._done:
+                        self.procs[w].join(timeout=10)  # its end of file: it is ending
+                        code = self.procs[w].exitcode
+                        self.close()
+                        raise RuntimeError(f"a drawing process ended (exit code {code})"
+                                           " before its figures were drawn") from None
+                    continue
+                if kind == "section":
+                    self._sections[module] = value
+                elif kind == "images":
+                    self._images.update(value)
+                elif kind == "done":
+                    self._done.add(w)
+                else:
+                    self.close()
+                    raise value
+
     def result(self) -> list[dict]:
         global _ARG
-        if self.pool is None:
+        if not self.procs:
             _ARG = self.res
             try:
                 return [_one(m, self.progress) for m in self.mods]
             finally:
                 _ARG = None
-        try:
-            return [self.futures[m].result() for m in self.mods]
-        finally:
-            self.pool.shutdown()
+        self._receive(lambda: len(self._sections) == len(self.mods))
+        if not self.defer:
+            self.images()
+        return [self._sections[m] for m in self.mods]
+
+    def images(self) -> dict[tuple[int, int], bytes]:
+        """The drawn figures of the placeholders, by ``png.key`` (waits for them; empty
+        without ``defer``). The drawing processes have ended when it returns."""
+        if self.procs:
+            self._receive(lambda: len(self._done) == len(self.procs))
+            for p in self.procs:
+                p.join()
+            for c in self.conns:
+                c.close()
+            self.procs, self._open = [], {}
+        return self._images
 
     def close(self) -> None:
         """End the drawing processes without waiting for the sections (the command failed
         before it needed them)."""
-        if self.pool is None:
-            return
-        from ..forked import end_pool
-
-        pool, self.pool = self.pool, None
-        end_pool(pool)
+        procs, self.procs, self._open = self.procs, [], {}
+        for p in procs:
+            if p.is_alive():
+                p.terminate()
+        for p in procs:
+            p.join()
+        for c in self.conns:
+            c.close()
 
 
 def param_table(caption: str, items: list[tuple[str, str]], pairs: int = 2) -> dict:
