@@ -173,3 +173,90 @@ def test_pulley_unbalance_adds_its_first_order_force(tmp_path):
     # the throws' own balance ratio is unchanged (the unbalance belongs to no throw)
     assert np.allclose(base.outcome.quantities["balance.balance_ratio"].values,
                        res.outcome.quantities["balance.balance_ratio"].values)
+
+
+# ------------------------------------------------------------------ throw stiffness wiring
+class _StandIn:
+    """A stand-in for checker.calc.throw_stiffness with the agreed interface (the real model
+    is built on another branch): k = G Jp(Dj) / (throw length), so the wiring is checkable."""
+
+    @staticmethod
+    def throw_torsional_stiffness(**kw):
+        from types import SimpleNamespace
+
+        g = kw["youngs_modulus"] / (2 * (1 + kw["poisson_ratio"]))
+        length = kw["journal_length"] + 2 * kw["web_thickness"] + kw["pin_length"]
+        k = g * np.pi * kw["journal_diameter"]**4 / 32 / length
+        return SimpleNamespace(stiffness=k, in_range=np.ones_like(k, bool),
+                               method="stand-in", model_error=0.03)
+
+
+@pytest.fixture
+def stand_in(monkeypatch):
+    import sys
+
+    monkeypatch.setitem(sys.modules, "checker.calc.throw_stiffness", _StandIn)
+    return _StandIn
+
+
+def test_tv_stiffness_derived_where_blank_typed_wins(tmp_path, stand_in):
+    ends = [("Crank nose diameter", 40, "mm", "test"), ("Crank nose length", 60, "mm", "test"),
+            ("Flywheel flange diameter", 70, "mm", "test"),
+            ("Flywheel flange length", 30, "mm", "test")]
+
+    def edit(c):
+        _set_table(c, "TVModel", "stiffness to next", None,
+                   lambda r: r[0] in ("Crank nose", "Cylinder 1", "Cylinder 4"))
+
+    e = load_engine(_write(tmp_path, i4_with_crank(ends=ends, edit=edit)))
+    g = 210e9 / 2.6
+    k_throw = g * math.pi * 0.055**4 / 32 / 0.096
+
+    def comp(d, ln):
+        return ln / (g * math.pi * d**4 / 32)
+
+    st = {s.station: s.stiffness for s in e.tv_model}
+    assert st["Cylinder 1"] == pytest.approx(k_throw, rel=1e-12)  # two halves of equal throws
+    assert st["Cylinder 2"] == 416625  # typed wins
+    assert st["Crank nose"] == pytest.approx(
+        1 / (comp(0.040, 0.060 - 0.0135) + comp(0.055, 0.0135) + 1 / (2 * k_throw)), rel=1e-12)
+    assert st["Cylinder 4"] == pytest.approx(
+        1 / (1 / (2 * k_throw) + comp(0.055, 0.0135) + comp(0.070, 0.030 - 0.0135)), rel=1e-12)
+    origin = {(m.item, m.attr): (m.origin, m.derived) for m in e.crank_model}
+    assert origin[("Cylinder 1", "stiffness")][0] == "derived"
+    assert origin[("Cylinder 2", "stiffness")] == ("typed", pytest.approx(k_throw))
+    # the JSON quantities: always the geometry's values, also where typed values win
+    res = api.check(e, select=["TV-001"])
+    q = res.outcome.quantities
+    assert q["crank.throw_stiffness"].values == pytest.approx([k_throw] * 4)
+    assert q["crank.throw_inertia"].values == pytest.approx(
+        e.crank.mass_properties.inertia_total)
+    assert q["crank.throw_mass"].values == pytest.approx(e.crank.mass_properties.mass_total)
+    d = res.to_dict(timings=False)
+    assert d["quantities"]["crank.throw_stiffness"]["coords"]["item"] == [
+        "throw 1", "throw 2", "throw 3", "throw 4"]
+    assert {m["origin"] for m in d["crank_model"]} == {"typed", "derived"}
+    assert "crank" in d["modules"]["run"]
+
+
+def test_no_crank_sheet_no_crank_quantities_or_module(tmp_path):
+    d = api.check(_write(tmp_path, example_content(), "plain.xlsx"),
+                  select=["BAL"]).to_dict(timings=False)
+    assert not [k for k in d["quantities"] if k.startswith("crank.")]
+    assert "crank" not in d["modules"]["run"] + d["modules"]["skipped"]
+    assert "crank_model" not in d
+
+
+def test_stiffness_not_derivable_without_the_model_is_an_error_at_the_cell(tmp_path,
+                                                                            monkeypatch):
+    import sys
+
+    monkeypatch.setitem(sys.modules, "checker.calc.throw_stiffness", None)  # ImportError
+
+    def edit(c):
+        _set_table(c, "TVModel", "stiffness to next", None, lambda r: r[0] == "Cylinder 2")
+
+    errs = _errors(_write(tmp_path, i4_with_crank(edit=edit)))
+    msg = errs["TVModel!F6"]
+    assert "stiffness to the next station is required" in msg
+    assert "throw stiffness model" in msg
