@@ -302,9 +302,11 @@ def _shaft_compliance(d: float, bore: float, length: float, g: float) -> float:
 
 def tv_from_crank(rows: list[dict[str, Any]], crank: CrankGeometry, params: dict[str, Any],
                   pin_of_cylinder: dict[int, int], where: dict[tuple, str], err: Err,
-                  stiff: ThrowStiffnessInfo) -> list[ModelValue]:
+                  stiff: ThrowStiffnessInfo, warn: Err | None = None) -> list[ModelValue]:
     """Fill the TVModel rows' blank inertias of cylinder stations and blank stiffnesses
-    between crank stations from the geometry (in place); every value's origin."""
+    between crank stations from the geometry (in place); every value's origin. A derived
+    stiffness that uses a throw outside the stiffness model's fitted range is a warning
+    (``warn``) at its cell."""
     model: list[ModelValue] = []
     mp = crank.mass_properties
     share = rod_inertia_share(params)
@@ -385,6 +387,15 @@ def tv_from_crank(rows: list[dict[str, Any]], crank: CrankGeometry, params: dict
         typed = r.get("stiffness")
         if typed is None and derived is not None:
             r["stiffness"] = derived
+            used = [t for t in ((a, b) if a is not None and b is not None else (a or b,))
+                    if t is not None and 1 <= t <= n and not stiff.in_range[t - 1]]
+            if used and warn is not None:
+                err_text = ("" if stiff.model_error is None
+                            else f" (stated error {stiff.model_error * 100:.1f} % inside it)")
+                warn("TVModel", "stiffness", i, "stiffness derived from throw"
+                     f" {', '.join(map(str, sorted(set(used))))} outside the fitted range of"
+                     f" the throw stiffness model{err_text}: the value is extrapolated; check"
+                     " it or type the stiffness")
         if typed is None and derived is None:
             err("TVModel", "stiffness", i, "stiffness to the next station is required for"
                 " every station but the last (expected a torsional stiffness, e.g. N m/rad;"

@@ -613,7 +613,7 @@ def _crank_rows(data: WorkbookData, crank: CrankGeometry | None, cylinders: list
     tv = [dict(r) for r in out["TVModel"]]
     stiff = cd.throw_stiffness(crank)
     model += cd.tv_from_crank(tv, crank, data.params["Engine"], pin_of, data.where,
-                              pr.blank_required, stiff)
+                              pr.blank_required, stiff, pr.warn)
     out.update(Bearings=bearings, Fatigue=Params(fatigue), CrankMass=crank_mass, TVModel=tv,
                model=model, stiffness=stiff, where={**data.where, **filled})
     return out

@@ -261,3 +261,20 @@ def test_stiffness_not_derivable_without_the_model_is_an_error_at_the_cell(tmp_p
     msg = errs["TVModel!F6"]
     assert "stiffness to the next station is required" in msg
     assert "throw stiffness model" in msg
+
+
+def test_derived_stiffness_outside_the_fitted_range_is_a_warning_at_its_cell(tmp_path):
+    # the I6's throws lie outside the fast model's fitted range (the report says so); typed
+    # stiffnesses win there, so no warning; blank, the derived one is used: a warning
+    from checker.workbook.example_data import load_example
+
+    c = load_example("i6")
+    assert not [w for w in load_engine(_write(tmp_path, c, "i6.xlsx")).warnings
+                if w.where.startswith("TVModel")]
+    _set_table(c, "TVModel", "stiffness to next", None, lambda r: r[0] == "Cylinder 2")
+    e = load_engine(_write(tmp_path, c, "i6-derived.xlsx"))
+    (w,) = [w for w in e.warnings if w.where.startswith("TVModel")]
+    assert w.where == "TVModel!F7"
+    assert "derived from throw 2, 3 outside the fitted range" in w.message
+    assert next(m for m in e.crank_model if m.item == "Cylinder 2"
+                and m.attr == "stiffness").origin == "derived"
