@@ -30,6 +30,7 @@ def _split(values: tuple[str, ...]) -> list[str] | None:
 # what each calculation of the graph computes, in words (progress lines)
 STEP_WORDS = {
     "balance": "the balance of the rotating and reciprocating masses",
+    "crank_geometry": "the crank's throws from its geometry",
     "pressure_traces": "the cylinder pressure traces",
     "bearing_loads": "the bearing loads",
     "specific_load": "the specific bearing loads",

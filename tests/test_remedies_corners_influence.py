@@ -3,6 +3,9 @@
 * The worst corners, values and statuses on the I4, I6 and V8 templates are those of the
   earlier algorithm (one at a time over every rule, then 2^k corners per group, one variant per
   corner), stored from it in ``test_remedies_corners_expected.json``, with fewer evaluations.
+  (The V8's entry was stored again when its torsional model became the one derived from its
+  crank geometry, issue 33: from this algorithm, every worst corner checked against all 16
+  corners of its 4 tolerances evaluated directly, equal to the 6 stored digits.)
 * The structure never misses an influence: on the I4 each tolerance at each end of its range,
   checked directly, leaves every result it is said not to move bitwise unchanged.
 * Item classes: a bearing's clearance leaves the results of the bearings of the other type
