@@ -241,7 +241,8 @@ def compare(baseline: str | Path, variants: list[str | Path], select=None, ignor
         try:
             return api.check(path, select=select, ignore=ignore, fail_on=fail_on)
         except InputErrors as exc:  # say which of the workbooks it is
-            raise InputErrors(exc.errors, exc.warnings, source=Path(path).name) from None
+            raise InputErrors(exc.errors, exc.warnings, source=Path(path).name,
+                              follow_on=exc.follow_on) from None
 
     base_res = checked(baseline)
     base_raw = read_raw_workbook(baseline)

@@ -230,8 +230,19 @@ def _deg(a: float) -> str:
     return f"{math.degrees(a):.6g} deg"
 
 
+def _even_firing(angles: list[float]) -> bool:
+    """True when the firing angles [rad] are evenly spaced over the 720 deg cycle."""
+    n = len(angles)
+    if n < 2:
+        return True
+    a = sorted(x % (2 * _TWO_PI) for x in angles)
+    gaps = [b - c for b, c in zip(a[1:] + [a[0] + 2 * _TWO_PI], a)]
+    return all(abs(g - 2 * _TWO_PI / n) <= _THROW_TOL for g in gaps)
+
+
 def check_cylinders(cylinders: list[Cylinder], row_of: dict[int, int],
-                    err: Callable[[str, str, int | None, str], None]) -> None:
+                    err: Callable[[str, str, int | None, str], None],
+                    cell: Callable[[str, int], str] | None = None) -> None:
     """Cross-check the Cylinders sheet: crank pins, shared pins and throw angles.
 
     Convention of the calculations (:func:`checker.calc.crank_forces.throw_angles`, module
@@ -242,7 +253,14 @@ def check_cylinders(cylinders: list[Cylinder], row_of: dict[int, int],
     cylinder's axis (4-stroke: firing TDC every 720 deg, throw direction modulo 360 deg).
     The workbook's throw angle is measured from throw 1 in the direction of rotation, so it must
     equal ``gamma_i - gamma_(throw 1)`` (mod 360 deg); cylinders sharing a crank pin (V engines)
-    must give the same ``gamma``. ``row_of`` maps the cylinder number to its data row index.
+    must give the same ``gamma``. ``row_of`` maps the cylinder number to its data row index;
+    ``cell(attr, row)`` names a cell (``Cylinders!C4``) for messages that name two.
+
+    A throw angle that contradicts its firing angle names both cells and says which to change:
+    the firing angle when the others fire at even intervals and this one breaks them while the
+    value the throw implies keeps them (cell of the error: the firing angle); the throw angle
+    when the firing angles are evenly spaced (the error at the throw angle); otherwise either,
+    with both values.
     """
     def gamma(c: Cylinder) -> float:
         return (c.bank_angle - c.firing_angle) % _TWO_PI
@@ -276,15 +294,42 @@ def check_cylinders(cylinders: list[Cylinder], row_of: dict[int, int],
     if not shared_ok or 1 not in by_pin:
         return
     ref = gamma(by_pin[1][0])
+    firing = {c.number: c.firing_angle for c in cylinders}
+    even_now = _even_firing(list(firing.values()))
     for c in sorted(cylinders, key=lambda c: c.number):
         expected = (gamma(c) - ref) % _TWO_PI
-        if _angle_diff(c.throw_angle, expected) > _THROW_TOL:
-            err("Cylinders", "throw_angle", row_of[c.number],
-                f"throw angle {_deg(c.throw_angle)} contradicts the firing and bank angles:"
-                f" cylinder {c.number} (crank pin {c.pin}, bank {_deg(c.bank_angle)}) fires"
-                f" {_deg(c.firing_angle)} after cylinder 1, so its throw is at"
-                f" {_deg(expected)} from throw 1 in the direction of rotation (throw = bank"
-                " angle - firing angle, relative to throw 1, modulo 360 deg)")
+        if _angle_diff(c.throw_angle, expected) <= _THROW_TOL:
+            continue
+        row = row_of[c.number]
+        # the firing angles the throw angle implies (4-stroke: two, 360 deg apart)
+        f0 = (c.bank_angle - ref - c.throw_angle) % _TWO_PI
+        keeps_even = [f for f in (f0, f0 + _TWO_PI)
+                      if _even_firing([*(v for k, v in firing.items() if k != c.number), f])]
+        why = (f"cylinder {c.number} (crank pin {c.pin}, bank {_deg(c.bank_angle)}) fires"
+               f" {_deg(c.firing_angle)} after cylinder 1, so its throw is at"
+               f" {_deg(expected)} from throw 1 in the direction of rotation (throw = bank"
+               " angle - firing angle, relative to throw 1, modulo 360 deg)")
+        if cell is None:
+            b_ref, c_ref = "the throw angle", "the firing angle"
+        else:
+            b_ref, c_ref = cell("throw_angle", row), cell("firing_angle", row)
+        if not even_now and keeps_even:
+            err("Cylinders", "firing_angle", row,
+                f"firing angle {_deg(c.firing_angle)} contradicts the throw angle"
+                f" {_deg(c.throw_angle)} ({b_ref}): {why}. The firing angles are not evenly spaced"
+                f" and would be with this one at {_deg(keeps_even[0])}: change this firing angle"
+                f" to {_deg(keeps_even[0])} (or {b_ref} to {_deg(expected)} if the crank"
+                " changed)")
+        elif even_now:
+            err("Cylinders", "throw_angle", row,
+                f"throw angle {_deg(c.throw_angle)} contradicts the firing and bank angles"
+                f" ({c_ref}): {why}. The firing angles are evenly spaced: change this throw"
+                f" angle to {_deg(expected)} (or {c_ref} if the firing order changed)")
+        else:
+            err("Cylinders", "throw_angle", row,
+                f"throw angle {_deg(c.throw_angle)} contradicts the firing and bank angles"
+                f" ({c_ref}): {why}. Change one of the two: this throw angle to"
+                f" {_deg(expected)}, or {c_ref} to {_deg(f0)} or {_deg(f0 + _TWO_PI)}")
 
 
 def check_traces(rows: list[dict[str, Any]], err: Callable[[str, str, int | None, str], None]
@@ -461,26 +506,47 @@ def check_oil(oil: Params, err: Callable[[str, str, int | None, str], None]) -> 
 
 class _Problems:
     """The errors and warnings of one workbook, collected across every sheet's builder (all
-    problems are reported in one pass), each located by its cell."""
+    problems are reported in one pass), each located by its cell.
+
+    Causes, not their consequences: a cell the loader rejected (a value out of range, a wrong
+    unit, a text where a number belongs) leaves its row out of the sheet's data. A cross-check
+    that counts or matches that sheet's rows (``needs``: the crank pins of ``Cylinders`` for
+    the throws of ``CrankMass``) would then report problems that exist only because the row is
+    missing ("throw 3 does not exist (the engine has 2 crank pins)"). An error whose ``needs``
+    name a sheet with a rejected cell is therefore held back (counted in ``follow_on``, said
+    in one line): the cause is reported once, and the cross-check runs again on the corrected
+    workbook."""
 
     def __init__(self, data: WorkbookData):
         self.where = data.where
         self.errors: list[InputError] = list(data.errors)
         self.warnings: list[InputError] = list(data.warnings)
+        self.rejected = {e.where.split("!", 1)[0] for e in data.errors}
+        self.follow_on = 0
 
     def _at(self, sheet: str, attr: str, row: int | None) -> str:
         key = (sheet, attr) if row is None else (sheet, row, attr)
         return self.where.get(key, sheet)
 
-    def err(self, sheet: str, attr: str, row: int | None, msg: str) -> None:
-        self.errors.append(InputError(self._at(sheet, attr, row), msg))
+    def _follows(self, needs: tuple[str, ...]) -> bool:
+        if any(n in self.rejected for n in needs):
+            self.follow_on += 1
+            return True
+        return False
+
+    def err(self, sheet: str, attr: str, row: int | None, msg: str,
+            needs: tuple[str, ...] = ()) -> None:
+        """An error at a cell; ``needs``: the sheets whose every row the check relies on."""
+        if not self._follows(needs):
+            self.errors.append(InputError(self._at(sheet, attr, row), msg))
 
     def warn(self, sheet: str, attr: str, row: int | None, msg: str) -> None:
         self.warnings.append(InputError(self._at(sheet, attr, row), msg))
 
-    def sheet_error(self, sheet: str, msg: str) -> None:
+    def sheet_error(self, sheet: str, msg: str, needs: tuple[str, ...] = ()) -> None:
         """A problem of a whole sheet (no single cell)."""
-        self.errors.append(InputError(sheet, msg))
+        if not self._follows(needs):
+            self.errors.append(InputError(sheet, msg))
 
 
 def build_engine(data: WorkbookData,
@@ -515,7 +581,7 @@ def build_engine(data: WorkbookData,
     if check_overrides is not None:
         pr.errors += check_overrides(overrides)
     if pr.errors:
-        raise InputErrors(pr.errors, pr.warnings)
+        raise InputErrors(pr.errors, pr.warnings, follow_on=pr.follow_on)
     return Engine(
         params=p, cylinders=tuple(sorted(cylinders, key=lambda c: c.number)),
         bearings=tuple(bearings), crank_mass=crank_mass, tv_model=tuple(tv),
@@ -549,14 +615,15 @@ def _cylinders(data: WorkbookData, p: Params, pr: _Problems) -> tuple[list[Cylin
         cylinders.append(Cylinder(r["cylinder"], r["throw_angle"], fa % (4 * math.pi),
                                   r["bank_angle"] or 0.0, r["pin"] or r["cylinder"]))
     if complete and cylinders and len(row_of) == len(cylinders):
-        check_cylinders(cylinders, row_of, err)
+        check_cylinders(cylinders, row_of, err,
+                        lambda attr, row: pr._at("Cylinders", attr, row))
     if n_cyl is not None and cyl_rows and len(cyl_rows) != n_cyl:
         pr.sheet_error("Cylinders", f"{len(cyl_rows)} cylinder rows but Engine says"
                        f" {n_cyl} cylinders ({data.where.get(('Engine', 'cylinders'))})")
     numbers = sorted(c.number for c in cylinders)
     if n_cyl is not None and cylinders and numbers != list(range(1, len(cylinders) + 1)):
         pr.sheet_error("Cylinders", f"cylinders must be numbered 1..{len(cylinders)},"
-                       f" found {numbers}")
+                       f" found {numbers}", needs=("Cylinders",))
     fo_text = p.get("firing_order")
     if fo_text is not None:
         fo = _firing_order(fo_text)
@@ -569,7 +636,7 @@ def _cylinders(data: WorkbookData, p: Params, pr: _Problems) -> tuple[list[Cylin
                 pr.sheet_error(
                     "Cylinders", f"firing angles give the firing order"
                     f" {'-'.join(map(str, by_angle))}, but Engine says '{fo_text}'"
-                    f" ({data.where.get(('Engine', 'firing_order'))})")
+                    f" ({data.where.get(('Engine', 'firing_order'))})", needs=("Cylinders",))
     return cylinders, complete
 
 
@@ -667,7 +734,7 @@ def _crank_mass(data: WorkbookData, p: Params, cylinders: list[Cylinder], comple
     for i, r in enumerate(_rows(data, "CrankMass")):
         if r["throw"] is not None and n_pins and r["throw"] > n_pins:
             err("CrankMass", "throw", i, f"throw {r['throw']} does not exist (the engine has"
-                f" {n_pins} crank pins)")
+                f" {n_pins} crank pins)", needs=("Cylinders",))
         spacing = p.get("main_spacing")
         if r["axial"] is not None and spacing is not None and r["axial"] > spacing:
             err("CrankMass", "axial", i, "axial position lies beyond the next main bearing"
@@ -711,7 +778,28 @@ def _tv_model(data: WorkbookData, p: Params, pr: _Problems) -> list[TVStation]:
         tv.append(TVStation(r["station"], r["role"], r["inertia"], cyls_here,
                             r["absolute_damping"] or 0.0, r["stiffness"],
                             r["relative_damping"] or 0.0))
+        shares = _rod_piston_inertia(p)
+        if shares is not None and cyls_here and r["inertia"] < len(cyls_here) * shares:
+            pr.warn("TVModel", "inertia", i, f"inertia {r['inertia']:.4g} kg m^2 is less than"
+                    f" the con-rod and piston shares of its {len(cyls_here)} cylinder(s)"
+                    f" alone ({len(cyls_here) * shares:.4g} kg m^2: m_rot r^2 + 1/2 m_rec r^2"
+                    " from the Engine sheet's masses); the torsional model uses a station's"
+                    " inertia as given, so a cylinder station includes those shares (the"
+                    " throw's own inertia plus them)")
     return tv
+
+
+def _rod_piston_inertia(p: Params) -> float | None:
+    """Con-rod and piston shares of one cylinder's station inertia [kg m^2]: the rod's rotating
+    share ``m_rod (1 - a/l) r^2`` plus the mean inertia of the reciprocating masses
+    ``1/2 (m_piston + m_rod a/l) r^2`` (``a`` rod centre of mass from the big end; the
+    two-mass rod of the loads; terms in (r/l)^2 neglected); None without the masses."""
+    m_p, m_r, a = p.get("piston_mass"), p.get("rod_mass"), p.get("rod_com")
+    stroke, rod = p.get("stroke"), p.get("rod_length")
+    if None in (m_p, m_r, a, stroke, rod) or not 0 < a < rod:
+        return None
+    r2 = (stroke / 2) ** 2
+    return (m_r * (1 - a / rod) + 0.5 * (m_p + m_r * a / rod)) * r2
 
 
 def _joints(data: WorkbookData, pr: _Problems) -> list[Joint]:

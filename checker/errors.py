@@ -26,10 +26,12 @@ class InputErrors(CheckerError):
     """All problems found in one workbook."""
 
     def __init__(self, errors: list[InputError], warnings: list[InputError] | tuple = (),
-                 source: str = ""):
+                 source: str = "", follow_on: int = 0):
         self.errors = list(errors)
         self.warnings = list(warnings)
         self.source = source  # the file's name when several workbooks are read (compare)
+        # cross-checks held back because they need rows these errors left out
+        self.follow_on = follow_on
         super().__init__("\n".join(str(e) for e in self.errors))
 
     def __str__(self) -> str:
@@ -37,6 +39,12 @@ class InputErrors(CheckerError):
         where = f" {self.source}" if self.source else ""
         head = f"{n} problem{'s' if n != 1 else ''} in the input{where}:"
         text = head + "\n" + "\n".join(f"  {e}" for e in self.errors)
+        if self.follow_on:
+            k = self.follow_on
+            text += (f"\n  ({k} cross-check{'s' if k != 1 else ''} of other rows held back:"
+                     f" {'they need' if k != 1 else 'it needs'} the rows these cells left out;"
+                     f" {'they run' if k != 1 else 'it runs'} again once the cells are"
+                     " corrected)")
         if self.warnings:
             m = len(self.warnings)
             text += (f"\nand {m} warning{'s' if m != 1 else ''}:\n"

@@ -25,7 +25,8 @@ from .workbook.schema import SHEETS, Field
 DIRECTIONS = ("increase", "decrease", "either")
 ITEM = "{item}"
 _KEYS = {"id", "name", "rules", "items", "sheet", "row", "where", "column", "unit",
-         "direction", "bounds", "limits", "choices", "default", "separable", "note", "enabled"}
+         "direction", "bounds", "limits", "choices", "default", "separable", "note", "enabled",
+         "when"}
 
 
 @dataclass(frozen=True)
@@ -49,6 +50,8 @@ class Lever:
     separable: bool = False
     note: str = ""
     origin: str = ""
+    when: tuple[tuple[Field, tuple[str, ...]], ...] = ()  # the row's choice must be one of
+
 
     @property
     def discrete(self) -> bool:
@@ -67,6 +70,20 @@ class Lever:
         it = item.lower()
         return any(fnmatch.fnmatchcase(it, p.lower()) for p in self.items)
 
+    def holds_for(self, row_values: dict[str, Any]) -> bool:
+        """True when the row's values (``{field attr: raw cell value}``) meet ``when``."""
+        from .workbook.schema import ChoiceProblem, resolve_choice
+
+        for f, allowed in self.when:
+            v = row_values.get(f.attr)
+            try:
+                choice = resolve_choice(f, v) if v is not None else None
+            except ChoiceProblem:
+                return False
+            if choice not in allowed:
+                return False
+        return True
+
     def where_text(self) -> str:
         """Where the input is, as users read it: ``Bearings, radial clearance of BE1``."""
         cols = " and ".join(f.label for f in self.columns)
@@ -75,6 +92,63 @@ class Lever:
         rows = ("the result's row" if self.row == ITEM else self.row or
                 ", ".join(f"{k} = {v}" for k, v in self.where) or "every row")
         return f"{self.sheet}: {cols} ({rows})"
+
+
+def _j300_order(grade: str) -> tuple[float, float]:
+    from .calc.viscosity import j300_order
+
+    return j300_order(grade)
+
+
+CHOICE_ORDERS: dict[tuple[str, str], Any] = {("Oil", "grade"): _j300_order}
+"""Text inputs whose choices have a physical order, by (sheet, field attribute): a key
+function (raises ValueError for a text it does not know). The oil grade ranks by its SAE J300
+viscosity (HTHS at 150 C, then kinematic at 100 C), so a lever's grades are tried thinner to
+thicker whatever their order in the file, and today's grade need not be one of them."""
+
+
+def _preload_fraction_default(row_values: dict[str, Any]) -> float | None:
+    from .calc.bolted_joint import PRELOAD_FRACTIONS
+    from .workbook.schema import ChoiceProblem, resolve_choice
+
+    try:
+        method = resolve_choice(_field("Joints", "tightening"), row_values.get("tightening"))
+    except (ChoiceProblem, TypeError):
+        return None
+    frac = PRELOAD_FRACTIONS.get(method)
+    return None if frac is None else frac[0]
+
+
+ROW_DEFAULTS: dict[tuple[str, str], tuple[tuple[str, ...], Any]] = {
+    ("Joints", "preload_fraction"): (("tightening",), _preload_fraction_default),
+}
+"""Blank cells whose calculation default depends on another cell of the row, by (sheet,
+field attribute): (the attributes it reads, a function of ``{attr: raw value}`` giving the
+default in the field's unit, or None). A blank preload fraction is the tightening method's
+fraction of Bell, Ricardo 2013 (:data:`checker.calc.bolted_joint.PRELOAD_FRACTIONS`)."""
+
+
+def row_needs(lever: Lever) -> tuple[str, ...]:
+    """Field attributes of the result's row the lever needs to know (``when``, defaults)."""
+    out = [f.attr for f, _ in lever.when]
+    if lever.default is None and len(lever.columns) == 1:
+        out += ROW_DEFAULTS.get((lever.sheet, lever.columns[0].attr), ((), None))[0]
+    return tuple(dict.fromkeys(out))
+
+
+def row_default(lever: Lever, row_values: dict[str, Any]) -> float | None:
+    """Today's value of the lever's blank cell from the row's other cells (``ROW_DEFAULTS``)."""
+    if lever.default is not None or len(lever.columns) != 1:
+        return lever.default
+    entry = ROW_DEFAULTS.get((lever.sheet, lever.columns[0].attr))
+    return None if entry is None else entry[1](row_values)
+
+
+def choice_order(lever: Lever) -> Any:
+    """The key function ranking the lever's text choices, or None (the order given)."""
+    if len(lever.columns) != 1:
+        return None
+    return CHOICE_ORDERS.get((lever.sheet, lever.columns[0].attr))
 
 
 def _field(sheet: str, name: str | None) -> Field | None:
@@ -213,13 +287,41 @@ def parse_lever(raw: Any, origin: str, problems: list[str], rule_ids: set[str] |
     if default is not None and (isinstance(default, bool) or not isinstance(default, (int, float))):
         problems.append(f"{pre}: 'default' must be a number in {unit or '-'}")
         return None
+    when = []
+    if "when" in raw:
+        w = raw["when"]
+        if spec.shape != "table" or row != ITEM or not isinstance(w, dict) or not w:
+            problems.append(f"{pre}: 'when' must be a table such as {{ tightening ="
+                            f" [\"torque\"] }} on a table lever of row \"{ITEM}\"")
+            return None
+        for k, v in w.items():
+            wf = _field(sheet, k)
+            if wf is None or wf.kind != "choice":
+                problems.append(f"{pre}: 'when': sheet {sheet} has no choice column '{k}'")
+                return None
+            vals = [v] if isinstance(v, str) else v
+            from .workbook.schema import ChoiceProblem, resolve_choice
+
+            try:
+                allowed = tuple(resolve_choice(wf, x) for x in vals)
+            except (ChoiceProblem, TypeError) as exc:
+                problems.append(f"{pre}: 'when' {k}: {exc}")
+                return None
+            when.append((wf, allowed))
+    order = CHOICE_ORDERS.get((sheet, cols[0].attr)) if len(cols) == 1 else None
+    for c in choices if order is not None else ():
+        try:
+            order(str(c))
+        except ValueError as exc:
+            problems.append(f"{pre}: choice '{c}': {exc}")
+            return None
     return Lever(lid, str(raw.get("name") or cols[0].label), tuple(rules), sheet, tuple(cols),
                  row=None if row is None else str(row), where=where,
                  items=tuple(str(x) for x in items), unit=unit, direction=direction,
                  bounds=bounds, limits=limits, choices=tuple(choices),
                  default=None if default is None else float(default),
                  separable=bool(raw.get("separable", False)), note=str(raw.get("note", "")),
-                 origin=origin)
+                 origin=origin, when=tuple(when))
 
 
 def parse_lever_doc(doc: dict, origin: str, problems: list[str],

@@ -24,6 +24,29 @@ from checker.ruletable import RuleTable, load_rules  # noqa: E402
 OUT = ROOT / "docs" / "rules.md"
 
 
+RULE_TABLE = (
+    "`rules/*.toml`, validated on load (a malformed file is exit 2). Each rule has a stable id "
+    "(`JNT-001`, never reused), a name, the quantity it checks and where it applies (item "
+    "attributes such as the joint location, coordinates such as the operating point), a "
+    "comparison and limit with unit (ranges such as `70..75 %`, or limits by an attribute such "
+    "as the clamped material), severity (`error`/`warning`), source and rationale. `--rules "
+    "FILE` uses your own table; the workbook sheet `RuleOverrides` replaces limits for one "
+    "engine (`rule | limit | unit | reason`), and every override is listed in the report. This "
+    "page lists every rule with its quantity, the module computing it, its limits and source "
+    "(generated from the rule files by `scripts/make_rules_doc.py`).",
+    "Only what the selected rules need is computed: `--select JNT-001` runs the joints module "
+    "alone, and a quantity given in the workbook (for example a joint's peak applied torque in "
+    "`JointTorques`) is used as given, skipping its upstream calculation. A given joint torque "
+    "is never used silently, though: JNT-008 compares it with the torsional model's torque at "
+    "the same operating point (quantities `joint.computed_torque`, "
+    "`joint.computed_cover_factor`, `joint.computed_torque_ratio`) and warns when the model's "
+    "is larger, and the report shows both and which one each rule used; this rule alone makes "
+    "`--select JNT` run the torsional module. The JSON and the report say which modules ran, "
+    "how long each took and which were skipped.",
+)
+"""How rule tables are written, overridden and selected (paragraphs of the page's introduction)."""
+
+
 def _file_intro(path: Path) -> str:
     """The comment lines at the top of a rule file, as one paragraph per blank comment."""
     paras: list[list[str]] = [[]]
@@ -71,6 +94,7 @@ def render(table: RuleTable, rule_dir: Path) -> str:
         " ID` shows one, and a workbook's `RuleOverrides` sheet changes a limit for one engine"
         " (with a reason, listed in the report).",
         "",
+        *[line for p in RULE_TABLE for line in (p, "")],
         "| rule | name | severity | limit | computed by |",
         "|---|---|---|---|---|",
     ]

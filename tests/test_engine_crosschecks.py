@@ -208,3 +208,97 @@ def test_bearing_length_to_diameter(tmp_path):
     e = load_engine(edited(tmp_path, lambda wb: set_cell(
         wb, "Bearings", "name", "M1", "effective length", 3), "narrow.xlsx"))  # L/D 0.055
     assert [w.where for w in e.warnings] == [cell["c"]]
+
+
+def test_changed_firing_angle_is_reported_at_the_firing_angle_naming_both_cells(tmp_path):
+    """Issue 37 item 10: only cylinder 2's firing angle changed (540 -> 500 deg): the error is
+    at that cell, names the throw angle's cell too and says which to change."""
+    cells = {}
+
+    def edit(wb):
+        cells["fire"] = set_cell(wb, "Cylinders", "cylinder", 2, "firing angle", 500)
+        cells["throw"] = cells["fire"].replace("!C", "!B")
+
+    errs = _errors(edited(tmp_path, edit))
+    assert len(errs) == 1, errs
+    assert cells["fire"] == "Cylinders!C4" and errs[0].startswith("Cylinders!C4:")
+    assert cells["throw"] in errs[0]  # both cells named
+    assert "change this firing angle to 540 deg" in errs[0]
+    assert "or Cylinders!B4 to 220 deg" in errs[0]
+
+
+def test_changed_throw_angle_is_reported_at_the_throw_angle_naming_both_cells(tmp_path):
+    errs = _errors(edited(tmp_path, lambda wb: set_cell(
+        wb, "Cylinders", "cylinder", 2, "throw angle", 90)))
+    assert len(errs) == 1 and errs[0].startswith("Cylinders!B4:"), errs
+    assert "(Cylinders!C4)" in errs[0] and "change this throw angle to 180 deg" in errs[0]
+
+
+def test_uneven_firing_names_both_fixes():
+    # uneven firing (0/200/480 deg) and no even alternative: either cell, with both values
+    errs = _run_check([(1, 0, 0, 0, 1), (2, 100, 200, 0, 2), (3, 240, 480, 0, 3)])
+    assert len(errs) == 1
+    attr, row, msg = errs[0]
+    assert attr == "throw_angle" and row == 1
+    assert "Change one of the two: this throw angle to 160 deg" in msg
+    assert "the firing angle to 260 deg or 620 deg" in msg
+
+
+@pytest.mark.parametrize("cyl", [3, 4])
+def test_a_rejected_cell_is_reported_once_without_its_knock_on_errors(tmp_path, cyl):
+    """Issue 37 item 11: a firing angle of 840 deg is rejected (outside 0..720 deg), which
+    leaves its cylinder row out; the cross-checks that count the cylinders' rows (crank pins
+    of the CrankMass throws, cylinder numbering) are held back instead of reporting
+    "throw 4 does not exist (the engine has 3 crank pins)"."""
+    cell = {}
+    p = edited(tmp_path, lambda wb: cell.setdefault("c", set_cell(
+        wb, "Cylinders", "cylinder", cyl, "firing angle", 840)))
+    with pytest.raises(InputErrors) as info:
+        load_engine(p)
+    errs = [str(e) for e in info.value.errors]
+    assert len(errs) == 1 and errs[0].startswith(cell["c"] + ":"), errs
+    assert "840" in errs[0]
+    assert info.value.follow_on >= 1
+    assert "held back" in str(info.value) and "does not exist" not in str(info.value)
+
+
+def test_knock_on_rule_holds_back_only_checks_that_need_the_rejected_sheet(tmp_path):
+    """A rejected cell elsewhere (Bearings) does not hide a CrankMass throw that does not
+    exist; with the Cylinders sheet intact the throw check reports it."""
+    cells = {}
+
+    def edit(wb):
+        cells["lining"] = set_cell(wb, "Bearings", "name", "M1", "lining", "AS61")
+        ws = wb["CrankMass"]
+        from tests.helpers import column
+        r = 3
+        while ws.cell(r, 1).value is not None and ws.cell(r + 1, 1).value is not None:
+            r += 1
+        c = column(ws, "throw")
+        ws.cell(r, c).value = 7
+        cells["throw"] = f"CrankMass!{ws.cell(r, c).coordinate}"
+
+    with pytest.raises(InputErrors) as info:
+        load_engine(edited(tmp_path, edit))
+    where = sorted(str(e).split(":")[0] for e in info.value.errors)
+    assert where == sorted(cells.values()), info.value.errors
+    assert info.value.follow_on == 0
+
+
+def test_cylinder_station_lighter_than_its_rod_and_piston_shares_is_a_warning(tmp_path):
+    """The torsional model takes a station's inertia as given (it adds no con-rod or piston
+    share): a cylinder station below those shares alone (the I4: 0.451 kg x 47.3^2 mm^2 +
+    1/2 0.642 kg x 47.3^2 mm^2 = 1.73e-3 kg m^2) is warned about at its cell."""
+    from checker.engine import _rod_piston_inertia
+
+    e = load_engine(example_path(tmp_path))
+    r = 0.0946 / 2
+    a_l = 35.73 / 145.7
+    hand = (0.597 * (1 - a_l) + 0.5 * (0.4955 + 0.597 * a_l)) * r * r
+    assert _rod_piston_inertia(e.params) == pytest.approx(hand, rel=1e-12)
+    assert hand == pytest.approx(1.73e-3, rel=5e-3)
+    cell = {}
+    p = edited(tmp_path, lambda wb: cell.setdefault("c", set_cell(
+        wb, "TVModel", "station", "Cylinder 2", "inertia", 0.0015)), "light.xlsx")
+    w = [x for x in load_engine(p).warnings if "con-rod and piston shares" in x.message]
+    assert len(w) == 1 and w[0].where == cell["c"], w

@@ -54,6 +54,7 @@ __all__ = [
     "walther_kinematic_viscosity",
     "vogel_from_datasheet",
     "j300_grade",
+    "j300_order",
     "vogel_from_j300",
     "j300_viscosity",
     "seireg_dandage_viscosity",
@@ -87,8 +88,13 @@ SAE_J300_2015: dict[str, tuple[float, float, float]] = {
     "50": (16.3e-6, 21.9e-6, 3.7e-3),
     "60": (21.9e-6, 26.1e-6, 3.7e-3),
 }
-"""SAE J300 (2015-01) high-temperature limits per grade (SAE J300, 2015-01):
+"""SAE J300 (2015-01) high-temperature limits per grade (SAE J300, 2015-01, Table 1 "SAE
+viscosity grades for engine oils", high-temperature columns: kinematic viscosity at 100 C,
+ASTM D445, and high-shear-rate viscosity at 150 C, ASTM D4683):
 ``(KV100 min [m^2/s], KV100 upper limit (exclusive) [m^2/s], HTHS at 150 C min [Pa*s])``.
+Every high-temperature grade of the 2015 edition is here (8, 12, 16, 20, 30, 40, 50, 60; 8 and
+12 were added in 2015). The winter-only grades 0W..25W have a KV100 minimum and no HTHS
+minimum; they are not engine-operating grades and are not accepted alone.
 "40-light-winter" is the 0W-40 / 5W-40 / 10W-40 HTHS minimum (3.5 mPa s); 15W/20W/25W-40 and
 monograde 40 use 3.7 mPa s. J300 sets no upper HTHS limit and no KV40 limit."""
 
@@ -398,8 +404,8 @@ def j300_grade(grade: str) -> J300Grade:
 
     Notes
     -----
-    SAE J300 (2015-01), "Engine Oil Viscosity Classification", high-temperature table
-    Winter (W) limits are low-temperature limits and do
+    SAE J300 (2015-01), "Engine Oil Viscosity Classification", Table 1, high-temperature
+    columns. Winter (W) limits are low-temperature limits and do
     not enter; only the 40 grade's HTHS minimum depends on them.
     """
     m = re.fullmatch(r"\s*(?:SAE\s*)?(?:(\d+)\s*W\s*-?\s*)?(\d+)\s*", grade, flags=re.IGNORECASE)
@@ -412,6 +418,27 @@ def j300_grade(grade: str) -> J300Grade:
     lo, hi, hths = SAE_J300_2015[key]
     name = f"{winter}W-{hot}" if winter is not None else hot
     return J300Grade(name=name, kv100_min=lo, kv100_max=hi, hths150_min=hths)
+
+
+def j300_order(grade: str) -> tuple[float, float]:
+    """Sort key of an SAE grade by its J300 high-temperature viscosity: ``(HTHS at 150 C
+    minimum [Pa*s], KV100 minimum [m^2/s])``, the high-temperature high-shear viscosity first
+    (the one that matters in a bearing), then the kinematic viscosity at 100 C.
+
+    Grades with the same key (``0W-20`` and ``5W-20``; ``5W-30`` and ``10W-30``) have the same
+    J300 high-temperature limits; their winter grades differ only at cold start.
+
+    Examples
+    --------
+    >>> sorted(["15W-40", "5W-20", "0W-40", "20W-50", "0W-16"], key=j300_order)
+    ['0W-16', '5W-20', '0W-40', '15W-40', '20W-50']
+
+    References
+    ----------
+    SAE J300 (2015-01), "Engine Oil Viscosity Classification", Table 1.
+    """
+    g = j300_grade(grade)
+    return g.hths150_min, g.kv100_min
 
 
 def vogel_from_j300(

@@ -33,14 +33,16 @@ the levers that do not have it.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 from typing import Any
 
 from openpyxl.utils import get_column_letter
 
 from ..display import CELL_REF, with_unit
-from ..levers import ITEM, Lever
+from ..levers import ITEM, Lever, choice_order, row_default, row_needs
 from ..ruletable import REL_TOL
+from ..workbook.schema import SHEETS
 from .screening import screenable, screening_speeds
 from .variants import Binding, Evaluator, bind, find
 
@@ -243,14 +245,43 @@ def _discrete_candidates(job: _Job) -> list[Any]:
         vals = sorted(float(c) for c in choices)
         return [v for v in vals if v > now] if job.sign > 0 else [v for v in vals
                                                                  if v < now][::-1]
-    # texts in the order given (e.g. oil grades, thinner to thicker)
     names = [str(c) for c in choices]
+    order = choice_order(lv)
+    if order is not None:
+        return _ranked_candidates(names, cur[0], order, job.sign)
+    # texts in the order given (e.g. property classes, weaker to stronger)
     now = str(cur[0] or "").strip().upper()
     up = [n.upper() for n in names]
     if now not in up:
         return []
     i = up.index(now)
     return names[i + 1:] if job.sign > 0 else names[:i][::-1]
+
+
+def _ranked_candidates(names: list[str], today: Any, order, sign: int) -> list[str]:
+    """Text choices ranked by ``order`` (e.g. oil grades by their SAE J300 viscosity): those
+    strictly beyond today's rank in the lever's direction, nearest first, one per rank (of
+    equal ranks the one sharing today's first word, e.g. the winter grade ``5W``, else the
+    first listed). Today's value need not be among the choices."""
+    try:
+        now = order(str(today or ""))
+    except ValueError:
+        return []
+    ranked: dict[Any, list[str]] = {}
+    for n in names:
+        ranked.setdefault(order(n), []).append(n)
+    keys = sorted((k for k in ranked if (k > now if sign > 0 else k < now)),
+                  reverse=sign < 0)
+    def first_word(text: str) -> str | None:
+        m = re.match(r"\s*(?:SAE\s*)?(\d+\s*W)", text, flags=re.IGNORECASE)
+        return m.group(1).replace(" ", "").upper() if m else None
+
+    head = first_word(str(today))
+    out = []
+    for k in keys:
+        same = [n for n in ranked[k] if head is not None and first_word(n) == head]
+        out.append(same[0] if same else ranked[k][0])
+    return out
 
 
 def _start(job: _Job, value: float | None, limits: list[float] | None, check: str) -> None:
@@ -799,6 +830,19 @@ def _conflicts(out: list[ResultRemedies]) -> None:
                 rr.conflicts.append(text)
 
 
+def _row_values(base, lv: Lever, rows, attrs: tuple[str, ...]) -> dict[str, Any] | None:
+    """Raw values of the result row's cells ``attrs`` (``{attr: value}``), or None when the
+    lever needs none."""
+    if not attrs:
+        return None
+    out: dict[str, Any] = {}
+    for a in attrs:
+        f = next(x for x in SHEETS[lv.sheet].fields if x.attr == a)
+        b = bind(base, lv.sheet, (f,), "", rows, lv.where)
+        out[a] = None if isinstance(b, str) else b.nominal[0]
+    return out
+
+
 def find_remedies(nominal, ev: Evaluator, levers: list[Lever], near: float = NEAR,
                   pack: bool = True, info: dict | None = None) -> list[ResultRemedies]:
     """Remedies for the failing results of ``nominal`` (a CheckResult) and for the passing
@@ -822,11 +866,17 @@ def find_remedies(nominal, ev: Evaluator, levers: list[Lever], near: float = NEA
             rows = (r.item,) if lv.row == ITEM else ((lv.row,) if lv.row else None)
             key = (lv.id, rows)
             if key not in bindings:
-                bindings[key] = bind(ev.base, lv.sheet, lv.columns, lv.unit, rows, lv.where,
-                                     lv.default)
+                row = _row_values(ev.base, lv, rows, row_needs(lv))
+                if row is not None and not lv.holds_for(row):
+                    bindings[key] = "not for this row (when)"
+                else:
+                    bindings[key] = bind(ev.base, lv.sheet, lv.columns, lv.unit, rows,
+                                         lv.where, row_default(lv, row or {}))
             b = bindings[key]
             if isinstance(b, str):
-                continue  # the lever's input is not in this workbook (e.g. another row)
+                continue  # the lever's input is not in this workbook (e.g. another row),
+                # or the lever does not apply to the row (e.g. torque on a yield-controlled
+                # joint)
             signs = {"increase": [1], "decrease": [-1], "either": [1, -1]}[lv.direction]
             if r.status == "pass":
                 signs = [1, -1]

@@ -435,11 +435,20 @@ FATIGUE = Sheet(
           required=False,
           valid=R(0.1, 1000, "mm"), usual=R(1, 100, "mm")),
         F("Pin journal oil hole height", "pin_oil_hole_height", "length", required=False,
+          note="Height of the hole's mouth on the pin surface above the throw plane (the"
+               " plane through the crank axis and the pin axis), measured at right angles to"
+               " it, positive on the leading side: r_pin sin(phi), phi the Bearings 'oil hole"
+               " angle' from the pin's outermost point. For the drawing record: the checks"
+               " take the hole's position from that angle, not from this height.",
           valid=R(-5000, 5000, "mm"), usual=R(-1000, 1000, "mm")),
         F("Main journal oil hole diameter", "main_oil_hole_diameter", "length", check=">0",
           required=False,
           valid=R(0.1, 1000, "mm"), usual=R(1, 100, "mm")),
         F("Main journal oil hole height", "main_oil_hole_height", "length", required=False,
+          note="Height of the hole's mouth on the main journal surface above the throw plane"
+               " (the plane through the crank axis and the pin axis), measured at right angles"
+               " to it: r_main sin(angle of the hole from that plane). For the drawing record:"
+               " the main oil-hole check (torsion only) does not use it.",
           valid=R(-5000, 5000, "mm"), usual=R(-1000, 1000, "mm")),
         F("Pin journal land diameter", "pin_land_diameter", "length", check=">0", required=False,
           valid=R(0.1, 10000, "mm"), usual=R(1, 1000, "mm")),
@@ -725,6 +734,13 @@ TV_MODEL = Sheet(
                " station only.",
           valid=R(1, 64)),
         F("inertia", "inertia", "inertia", check=">0",
+          note="Polar moment of inertia of the station about the crank axis, used as given:"
+               " nothing is added. At a cylinder station it includes the con-rod and piston"
+               " shares of its cylinder(s) (Bell 2013 practice): the throw's own inertia + the"
+               " rod's rotating share m_rot r^2 + the mean inertia of the reciprocating masses"
+               " (piston assembly + the rod's reciprocating share) 1/2 m_rec r^2 (r = crank"
+               " radius). Their variable inertia torque is in the excitation, from the Engine"
+               " sheet's masses.",
           valid=R(1e-9, 1e7, "kg m^2"), usual=R(1e-5, 1e6, "kg m^2")),
         F("absolute damping", "absolute_damping", "torsional_damping", check=">=0",
           required=False,

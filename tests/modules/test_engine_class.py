@@ -11,7 +11,7 @@ import pytest
 from checker import api
 from checker.workbook.example import write_workbook
 from checker.workbook.example_i6 import i6_content
-from tests.helpers import edited, example_path, set_param
+from tests.helpers import edited, example_path, param_row, set_param
 
 TV = ("TV-001", "TV-002", "TV-003")
 
@@ -20,8 +20,32 @@ def _tv(res):
     return {r.rule: r for r in res.results if r.rule in TV}
 
 
-def test_blank_class_is_a_passenger_car_stated_as_an_assumption(tmp_path):
+def _blank_class(wb):
+    ws = wb["Engine"]
+    ws.cell(param_row(ws, "Engine class"), 2).value = None
+
+
+def test_every_example_gives_its_class(tmp_path):
+    """The template's Engine sheet has the row the docs list (issue 37 item 12): the I4 and
+    V8 are passenger-car engines (the I4's an assumption, stated), the I6 a truck diesel."""
+    from checker.workbook.example_data import load_example
+
+    for engine, cls, assumed in (("i4", "passenger car", True), ("i6", "commercial vehicle",
+                                                                  False),
+                                 ("v8", "passenger car", False)):
+        row = next(r for r in load_example(engine)["Engine"] if r[0] == "Engine class")
+        assert row[1] == cls and ("ASSUMPTION" in row[3]) == assumed, row
     res = api.check(example_path(tmp_path), select=["TV"])
+    assert not any("Engine class not given" in a for a in res.assumptions)
+    assert any("Engine class = passenger car: ASSUMPTION" in a for a in res.assumptions)
+    assert not any(c["kind"] == "assumption" and "TV-001" in c["rules"] for c in res.caveats)
+    rows = _tv(res)  # the same verdicts as with the class blank (passenger car assumed)
+    assert rows["TV-001"].status == "fail" and rows["TV-002"].status == "fail"
+    assert all(r.name.endswith("(passenger car limit)") for r in rows.values())
+
+
+def test_blank_class_is_a_passenger_car_stated_as_an_assumption(tmp_path):
+    res = api.check(edited(tmp_path, _blank_class), select=["TV"])
     rows = _tv(res)
     assert rows["TV-001"].status == "fail" and rows["TV-002"].status == "fail"
     for r in rows.values():
@@ -53,12 +77,7 @@ def test_a_project_limit_makes_the_rule_evaluated(tmp_path):
         ws.cell(3, 1).value, ws.cell(3, 2).value = "TV-001", "0.2"
         ws.cell(3, 3).value, ws.cell(3, 4).value = "deg", "engine maker's truck target"
 
-    def add_row(wb):
-        ws = wb["Engine"]
-        ws.append(["Engine class", "passenger car", "-", "test"])
-        edit(wb)
-
-    res = api.check(edited(tmp_path, add_row), select=["TV"])
+    res = api.check(edited(tmp_path, edit), select=["TV"])
     rows = _tv(res)
     assert rows["TV-001"].status in ("pass", "fail")
     assert rows["TV-001"].limit == "< 0.2°" and "overridden" in rows["TV-001"].override
@@ -70,8 +89,8 @@ def test_a_project_limit_makes_the_rule_evaluated(tmp_path):
 def test_unknown_class_is_an_input_error(tmp_path, bad):
     from checker.errors import InputErrors
 
-    def add_row(wb):
-        wb["Engine"].append(["Engine class", bad, "-", "test"])
+    def edit(wb):
+        set_param(wb, "Engine", "Engine class", bad)
 
     with pytest.raises(InputErrors, match="Engine class"):
-        api.check(edited(tmp_path, add_row), select=["TV"])
+        api.check(edited(tmp_path, edit), select=["TV"])

@@ -4,6 +4,8 @@ written once per run of rows ("as above") and still applied to every row it cove
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import openpyxl
 import pytest
 
@@ -62,3 +64,26 @@ def test_assumptions_highlighted_and_notes_not_repeated(template):
     eng = load_engine(template)
     rows = [a for a in eng.assumptions if a.startswith("Bearings rows")]
     assert any("3, 4, 5, 6, 7" in a for a in rows) and any("8, 9, 10, 11" in a for a in rows)
+
+
+def test_template_says_what_ambiguous_inputs_mean(template):
+    """Issue 37 item 12: the Engine sheet has the 'Engine class' row the docs list; the oil
+    hole heights say what they are measured from; the TVModel inertia says whether a cylinder
+    station includes the con-rod and piston shares (it does: the model adds nothing)."""
+    wb = openpyxl.load_workbook(template)
+    ws = wb["Engine"]
+    rows = {str(ws.cell(r, 1).value): r for r in range(2, ws.max_row + 1)}
+    assert "Engine class" in rows
+    r = rows["Engine class"]
+    assert ws.cell(r, 2).value == "passenger car" and "ASSUMPTION" in ws.cell(r, 4).value
+    fa = wb["Fatigue"]
+    desc = {str(fa.cell(r, 1).value): fa.cell(r, 5).value for r in range(2, fa.max_row + 1)}
+    for name in ("Pin journal oil hole height", "Main journal oil hole height"):
+        assert "throw plane" in desc[name] and "crank axis" in desc[name], desc[name]
+    tv = wb["TVModel"]
+    header = {tv.cell(1, j).value: tv.cell(1, j) for j in range(1, tv.max_column + 1)}
+    text = header["inertia"].comment.text
+    assert "con-rod and piston shares" in text and "used as given" in text
+    assert "1/2 m_rec r^2" in text
+    doc = (Path(__file__).resolve().parents[2] / "docs" / "workbook.md").read_text()
+    assert "con-rod and piston shares" in doc and "throw plane" in doc
