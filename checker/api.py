@@ -196,6 +196,10 @@ class CheckResult:
         if self.engine.crank is not None:
             # each value of the crank model: typed (wins) or derived from sheet Crank
             d["crank_model"] = [m.as_dict() for m in self.engine.crank_model]
+        bl = self.outcome.quantities.get("loads.bearing_load")
+        if bl is not None and getattr(bl.detail, "beam", None) is not None:
+            # the continuous beam, enough to recompute the main loads with another solver
+            d["crank_beam"] = bl.detail.beam.as_dict()
         if timings:
             d["timings"] = {m: round(t, 6) for m, t in self.outcome.timings.items()}
         if self.json_extras is not None:
@@ -344,6 +348,7 @@ def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = No
     if engine.crank is not None:
         # the crank's throws as its geometry gives them (JSON, results workbook), judged or not
         wanted |= {n for n in graph.QUANTITIES if n.startswith("crank.")}
+        wanted.add("fatigue.fillet_bending_ratio")
     # quantities a result is shown beside (the film thickness by the other method); not
     # computed with compare=False (variants judged on their margins: remedies, corners)
     if compare:

@@ -56,6 +56,7 @@ __all__ = [
     "rectangle_torsion_constant",
     "section_moment",
     "solve_frame",
+    "throw_section_loads",
 ]
 
 _DOF = 6
@@ -502,7 +503,9 @@ def crank_frame(
     throw_angle : array_like, shape (n_pins,) [rad]
         Crank-frame angle of each pin (pin at ``R (sin g, cos g)``).
     crank_radius : float [m]
-    journal_diameter, journal_bore : array_like, shape (n_main,) [m]
+    journal_diameter, journal_bore : array_like, shape (n_pins,) [m]
+        Each throw's journal halves (the element from a main into a throw takes that
+        throw's journal section).
     pin_diameter, pin_bore, web_thickness, web_width : array_like, shape (n_pins,) [m]
     youngs_modulus : float [Pa]
     poisson_ratio : float [-]
@@ -523,8 +526,8 @@ def crank_frame(
         raise ValueError("pin_load_z must give the load positions of every pin")
     gam = finite("throw_angle", throw_angle).ravel()
     r = float(positive("crank_radius", crank_radius))
-    dj = positive("journal_diameter", journal_diameter) * np.ones(n_main)
-    bj = finite("journal_bore", journal_bore) * np.ones(n_main)
+    dj = positive("journal_diameter", journal_diameter) * np.ones(n_pins)
+    bj = finite("journal_bore", journal_bore) * np.ones(n_pins)
     dp = positive("pin_diameter", pin_diameter) * np.ones(n_pins)
     bp = finite("pin_bore", pin_bore) * np.ones(n_pins)
     tw = positive("web_thickness", web_thickness) * np.ones(n_pins)
@@ -593,7 +596,7 @@ def crank_frame(
                 for a, b in zip(pin_chain[:-1], pin_chain[1:]):
                     shaft(a, b, dp[j], bp[j])
                 nxt = node(0.0, 0.0, zm[j + 1])
-                shaft(axis_node, nxt, dj[j + 1], bj[j + 1])
+                shaft(axis_node, nxt, dj[j], bj[j])
                 mains.append(nxt)
     ks = np.asarray(support_stiffness, dtype=float) * np.ones(n_main)
     pr = np.array(props)
@@ -611,3 +614,66 @@ def crank_frame(
     return CrankFrame(
         frame=frame, main_nodes=np.array(mains, dtype=int), web_nodes=webs, pin_nodes=pins
     )
+
+
+def throw_section_loads(
+    pin_force: ArrayLike, bearing_load: ArrayLike, *, pin_z: ArrayLike, main_z: ArrayLike,
+    throw_angle: ArrayLike, cut_z: ArrayLike,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Bending moments and radial shear at sections of each throw, by statics.
+
+    The crank carries the con-rod forces on its pins and, at its mains, minus the bearing
+    loads; the internal loads at an axial cut follow from everything in front of it
+    (:func:`section_moment`), whatever scheme gave the bearing loads. Projected on throw ``j``'s
+    radial and tangential directions ``e_r = (sin g, cos g)``, ``e_t = (cos g, -sin g)``:
+
+    * ``m_r = -(M . e_t)``: the moment of the radial force (IACS UR M53's ``M_BRF``; with
+      lever-rule bearing loads ``m_r`` at the front web centre is ``Q_RF L1`` exactly);
+    * ``m_t = M . e_r``: the moment of the tangential force (M53's ``M_BTO``);
+    * ``v_r = V . e_r``: the radial shear, ``V`` the sum of the forces in front of the cut
+      (the front web's direct force is ``-v_r``, the rear web's ``+v_r``).
+
+    Parameters
+    ----------
+    pin_force : array_like, shape (..., T, N, 2) [N]
+        Force on each pin (sum of its rods), crank frame.
+    bearing_load : array_like, shape (..., M, N, 2) [N]
+        Force of each main journal on its bearing, crank frame.
+    pin_z : array_like, shape (T,) [m]
+    main_z : array_like, shape (M,) [m]
+    throw_angle : array_like, shape (T,) [rad]
+    cut_z : array_like, shape (T, K) [m]
+        Axial positions of the sections of each throw.
+
+    Returns
+    -------
+    m_r, m_t, v_r : ndarray, shape (..., T, K, N) [N m, N m, N]
+    """
+    fp = finite("pin_force", pin_force)
+    fb = finite("bearing_load", bearing_load)
+    zp = finite("pin_z", pin_z).ravel()
+    zm = finite("main_z", main_z).ravel()
+    g = finite("throw_angle", throw_angle).ravel()
+    zc = finite("cut_z", cut_z)
+    n_t, n_k = zc.shape
+    if fp.shape[-3] != zp.size or fb.shape[-3] != zm.size or g.size != n_t:
+        raise ValueError("pin_force, bearing_load, pin_z, main_z and throw_angle must match")
+    cuts = zc.ravel()
+    lp = np.where(zp[None, :] < cuts[:, None], cuts[:, None] - zp[None, :], 0.0)  # (TK, T)
+    lm = np.where(zm[None, :] < cuts[:, None], cuts[:, None] - zm[None, :], 0.0)  # (TK, M)
+    sp = (zp[None, :] < cuts[:, None]).astype(float)
+    sm = (zm[None, :] < cuts[:, None]).astype(float)
+    # forces on the crank: the pin forces and minus the bearing loads
+    moment = (np.einsum("kt,...tnc->...knc", lp, fp)
+              - np.einsum("km,...mnc->...knc", lm, fb))  # lever x F: (..., TK, N, 2)
+    shear = np.einsum("kt,...tnc->...knc", sp, fp) - np.einsum("km,...mnc->...knc", sm, fb)
+    # M = (M_x, M_y) = (lever F_y, -lever F_x)
+    mx, my = moment[..., 1], -moment[..., 0]
+    gk = np.repeat(g, n_k)[:, None]  # (TK, 1)
+    et = (np.cos(gk), -np.sin(gk))
+    er = (np.sin(gk), np.cos(gk))
+    m_r = -(mx * et[0] + my * et[1])
+    m_t = mx * er[0] + my * er[1]
+    v_r = shear[..., 0] * er[0] + shear[..., 1] * er[1]
+    shape = m_r.shape[:-2] + (n_t, n_k, m_r.shape[-1])
+    return m_r.reshape(shape), m_t.reshape(shape), v_r.reshape(shape)
