@@ -79,6 +79,8 @@ class CheckResult:
     # adds the remedy and corner blocks to the JSON (set by checker.remedies, which builds on
     # this module: the API never imports it)
     json_extras: Callable[[CheckResult, dict, bool], None] | None = None
+    # the continuous-beam scheme against the determinate one (report; compare_schemes)
+    scheme_changes: list[dict[str, Any]] | None = None
 
     @property
     def not_evaluated(self) -> list[RuleResult]:
@@ -451,3 +453,33 @@ def check_batch(engines: list[Engine], rules: str | Path | RuleTable | None = No
 
 def today() -> str:
     return _dt.date.today().isoformat()
+
+
+def compare_schemes(res: CheckResult) -> list[dict[str, Any]]:
+    """The verdicts that change when the crank of a continuous-beam workbook is taken as
+    statically determinate (the same engine and rules with Engine 'Main bearing supports' =
+    determinate): one dict per rule result whose status differs (rule, item, case, the two
+    statuses and values). Empty under the determinate scheme."""
+    from dataclasses import replace as _replace
+
+    from .engine import Params
+
+    if (res.engine.params.get("support_scheme") or "determinate") == "determinate":
+        return []
+    det_engine = _replace(res.engine, params=Params({**res.engine.params,
+                                                     "support_scheme": "determinate"}))
+    det = check(det_engine, rules=res.table, select=[r.id for r in res.rules],
+                fail_on=res.fail_on, compare=False)
+    # one result per rule, item and load case in both (the case text names each scheme's own
+    # worst speed): paired in order
+    out = []
+    pairs = zip(det.results, res.results, strict=False)
+    for d, r in pairs:
+        if (d.rule, d.item) != (r.rule, r.item):
+            break
+        if d.status != r.status:
+            out.append({"rule": r.rule, "item": r.item, "case": r.case,
+                        "determinate_case": d.case, "determinate": d.status,
+                        "determinate_value": d.value,
+                        "continuous": r.status, "continuous_value": r.value})
+    return out
