@@ -664,9 +664,11 @@ def throw_section_loads(
     sp = (zp[None, :] < cuts[:, None]).astype(float)
     sm = (zm[None, :] < cuts[:, None]).astype(float)
     # forces on the crank: the pin forces and minus the bearing loads
-    moment = (np.einsum("kt,...tnc->...knc", lp, fp)
-              - np.einsum("km,...mnc->...knc", lm, fb))  # lever x F: (..., TK, N, 2)
-    shear = np.einsum("kt,...tnc->...knc", sp, fp) - np.einsum("km,...mnc->...knc", sm, fb)
+    n_ang = fp.shape[-2]
+    fp2 = fp.reshape(fp.shape[:-2] + (2 * n_ang,))  # (..., T, 2N): one matrix product each
+    fb2 = fb.reshape(fb.shape[:-2] + (2 * n_ang,))
+    moment = (lp @ fp2 - lm @ fb2).reshape(fp.shape[:-3] + (cuts.size, n_ang, 2))
+    shear = (sp @ fp2 - sm @ fb2).reshape(moment.shape)
     # M = (M_x, M_y) = (lever F_y, -lever F_x)
     mx, my = moment[..., 1], -moment[..., 0]
     gk = np.repeat(g, n_k)[:, None]  # (TK, 1)

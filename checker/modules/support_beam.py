@@ -227,20 +227,10 @@ def throw_sections(beam: Beam, f_r: np.ndarray, f_t: np.ndarray, gamma: np.ndarr
     from ..calc import crank_beam as cb
 
     sol = beam.solution
+    n_t = beam.pin_z.size
     g = np.asarray(gamma, dtype=float)[:, None]
     fx = f_r * np.sin(g) + f_t * np.cos(g)  # crank frame: F_R e_r + F_T e_t
     fy = f_r * np.cos(g) - f_t * np.sin(g)
-    pin = np.stack([fx, fy], axis=-1)  # (C, S, T, N, 2)
-    pm = sol.force_map[:, :, beam.pin_load_index, :2]  # (M, 2, T, 2)
-    cont = np.einsum("mitj,cstnj->csmni", pm, pin)
-    off = _offset_loads(beam, theta)
-    if off is not None:
-        cont = cont + np.moveaxis(off, 0, 1)[None, None]  # (M, N, 2)
-    l3 = np.diff(beam.main_z)
-    share_front = (beam.main_z[1:] - beam.pin_z) / l3  # (T,)
-    det = np.zeros_like(cont)
-    det[:, :, :-1] += share_front[:, None, None] * pin
-    det[:, :, 1:] += (1.0 - share_front)[:, None, None] * pin
     L1 = cs.web_centre_distance(geometry["main_spacing"], geometry["main_journal_length"],
                                 geometry["pin_journal_length"], geometry.get("web_offset", 0.0))
     lg, lh = geometry["main_journal_length"], geometry["pin_journal_length"]
@@ -248,11 +238,32 @@ def throw_sections(beam: Beam, f_r: np.ndarray, f_t: np.ndarray, gamma: np.ndarr
     half = (z1 - z0) / 2.0
     cuts = np.column_stack([z0 + L1, z1 - L1, z0 + lg / 2, z1 - lg / 2, z0 + half - lh / 2,
                             z0 + half + lh / 2, beam.pin_z])
+    # everything is linear in the pin forces: the section loads of a unit force at each pin
+    # in x and y (2 T load sets) give the whole sweep as one matrix product
+    unit = np.zeros((2 * n_t, n_t, 1, 2))
+    for t in range(n_t):
+        unit[2 * t, t, 0, 0] = unit[2 * t + 1, t, 0, 1] = 1.0
+    pm = sol.force_map[:, :, beam.pin_load_index, :2]  # (M, 2, T, 2)
+    b_cont = np.einsum("mitj,btnj->bmni", pm, unit)  # (2T, M, 1, 2)
+    share_front = (z1 - beam.pin_z) / (z1 - z0)  # lever rule, (T,)
+    b_det = np.zeros_like(b_cont)
+    b_det[:, :-1] += share_front[None, :, None, None] * unit
+    b_det[:, 1:] += (1.0 - share_front)[None, :, None, None] * unit
+    forces = np.stack([fx, fy], axis=-2)  # (C, S, T, 2, N)
+    lead = forces.shape[:-3]
+    f2 = forces.reshape(lead + (2 * n_t, forces.shape[-1]))  # (C, S, 2T, N)
+    off = _offset_loads(beam, theta)
     out = []
-    for bearing in (cont, det):
-        m_r, m_t, v_r = cb.throw_section_loads(pin, bearing, pin_z=beam.pin_z,
-                                               main_z=beam.main_z, throw_angle=gamma,
-                                               cut_z=cuts)
+    for bearing in (b_cont, b_det):
+        infl = cb.throw_section_loads(unit, bearing, pin_z=beam.pin_z, main_z=beam.main_z,
+                                      throw_angle=gamma, cut_z=cuts)  # 3 x (2T, T, K, 1)
+        m_r, m_t, v_r = ((a[..., 0].reshape(2 * n_t, -1).T @ f2).reshape(
+            lead + (n_t, cuts.shape[1], f2.shape[-1])) for a in infl)
+        if off is not None and bearing is b_cont:
+            zero = np.zeros((n_t, theta.size, 2))
+            extra = cb.throw_section_loads(zero, np.moveaxis(off, 1, 2), pin_z=beam.pin_z,
+                                           main_z=beam.main_z, throw_angle=gamma, cut_z=cuts)
+            m_r, m_t, v_r = (x + e for x, e in zip((m_r, m_t, v_r), extra, strict=True))
         out.append(cs.SectionLoads(
             moment_web=m_r[..., 0:2, :], moment_web_tangential=m_t[..., 0:2, :],
             web_force=np.stack([-v_r[..., 0, :], v_r[..., 1, :]], axis=-2),

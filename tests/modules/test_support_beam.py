@@ -174,3 +174,32 @@ def test_scheme_needs_what_it_uses(tmp_path):
     with pytest.raises(InputErrors) as exc:
         load_engine(p3)
     assert "used by 'continuous beam, elastic supports' only" in exc.value.errors[0].message
+
+
+def test_sweep_section_loads_of_the_lever_rule_are_m53s(checks):
+    """throw_sections' determinate half (the sweep as one product of unit-load influences)
+    equals IACS UR M53's determinate moments at every case, speed, throw and angle."""
+    from checker.calc import crank_forces as cf
+    from checker.modules import support_beam
+    from checker.modules.fatigue import _geometry
+
+    res = checks[("continuous beam, rigid supports", None)]
+    e = res.engine
+    pins = np.array([c.pin - 1 for c in e.cylinders])
+    gamma = cf.throw_angles(np.array([c.firing_angle for c in e.cylinders]),
+                            np.array([c.bank_angle for c in e.cylinders]), pins, 4)
+    g = res.outcome.quantities["fatigue.goodman_sf"].detail
+    geo = _geometry(e)[0].as_kwargs()
+    theta = res.outcome.quantities["loads.bearing_load"].detail.theta
+    beam = support_beam.build_beam(e, gamma)
+    _, det = support_beam.throw_sections(beam, g.pin_force_radial, g.pin_force_tangential,
+                                         gamma, geo, theta)
+    nom = cs.throw_nominal_stresses(g.pin_force_radial, g.pin_force_tangential, 0.0, 0.0,
+                                    **geo)
+    scale = np.abs(nom.moment_web).max()
+    for a, b in ((det.moment_web, nom.moment_web), (det.web_force, nom.web_force),
+                 (det.moment_pin_fillet, nom.moment_pin_fillet),
+                 (det.moment_journal_fillet, nom.moment_journal_fillet),
+                 (det.moment_oil_radial, nom.moment_oil_radial),
+                 (det.moment_oil_tangential, nom.moment_oil_tangential)):
+        np.testing.assert_allclose(a, b, atol=1e-9 * max(scale, np.abs(b).max()))
