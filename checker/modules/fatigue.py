@@ -580,6 +580,14 @@ def _assumptions(engine: Engine, has: dict[str, bool], notes: list[str]) -> list
         f" {M53_K_OIL:g} at the oil bore; fillet rolling/induction hardening not credited"
         " (M53 accepts surface-treatment gains only from tests).",
     ]
+    if support_beam.scheme_of(engine) != "determinate":
+        assumptions[0] = (
+            "Crankshaft fatigue (IACS UR M53 §2-5 stresses and factors) with the bending moments"
+            f" and web forces of the crank as a {support_beam.scheme_of(engine)} (Piraner,"
+            " Pflueger and Bouthier, Cummins crankshaft and bearing analysis process, 2002):"
+            " con-rod gas and inertia forces on the pins, carried to every main by the beam;"
+            " web width B = minimum web width; K_e = 1 (4-stroke). The crank's own"
+            " centrifugal forces are not included (M53 loading; they shift only the mean).")
     if has["main oil hole"]:
         assumptions.append("Main journal oil holes: torsion only (the statically determinate"
                            " bending moment is zero at the journal centre), γ_T of M53's"
@@ -709,8 +717,15 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         oil_hole=oil, main_oil_hole_diameter=where.main_oil_d, theta=theta, speeds=speeds,
         locations=location, sf_by_location=sf_by_loc,
         assumptions=tuple(_assumptions(engine, where.has, notes)))
+    caveats = ()
+    if sections is not None and where.has["main oil hole"]:
+        caveats = ({"kind": "model validity", "severity": "medium", "rules": ["FAT-001"],
+                    "text": "Main-journal oil holes are checked in torsion only, as in the"
+                    " statically determinate scheme; on the continuous beam chosen here the"
+                    " main journals also carry the support bending moments, which that check"
+                    " does not include: their safety factors are not conservative."},)
     detail = GoodmanDetail(
-        **common,
+        **common, caveats=caveats,
         sigma_eq_a=pick["sigma_eq_a"], sigma_eq_m=pick["sigma_eq_m"],
         sigma_a=pick["sigma_a"], sigma_m=pick["sigma_m"], tau_a=pick["tau_a"],
         tau_m=pick["tau_m"], governing=np.moveaxis(governing, 2, 0),
