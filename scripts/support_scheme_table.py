@@ -63,13 +63,18 @@ def main(path: str, k: float = 1e6) -> None:
                   f" (mean {qr.values[sel].mean():.3f}), elastic {qe.values[sel].min():.3f}.."
                   f"{qe.values[sel].max():.3f} (mean {qe.values[sel].mean():.3f});"
                   " Cummins 2002 Fig. 1: 0.80 rigid, 0.87 elastic")
-        mo = {s: r.outcome.quantities.get("bearing.moft") for s, r in res.items()}
-        if mo[SCHEMES[0]] is not None:
-            print("\n| main | thinnest film determinate [um] | rigid [um] | elastic [um] |")
-            print("|---|---|---|---|")
-            for i in mains:
-                v = [np.nanmin(mo[s].values[i]) * 1e6 for s in SCHEMES]
-                print(f"| {names[i]} | " + " | ".join(f"{x:.3f}" for x in v) + " |")
+        print("\n| rule | main | case | determinate | rigid | elastic |")
+        print("|---|---|---|---|---|---|")
+        for k, r0 in enumerate(res[SCHEMES[0]].results):
+            if not (r0.rule.startswith(("BRG-003", "BRG-004", "BRG-001"))
+                    and r0.item.startswith("M")):
+                continue
+            cells = []
+            for s in SCHEMES:
+                r = res[s].results[k]
+                cells.append(f"{r.value_text} {r.status.replace('_', ' ')}")
+            print(f"| {r0.rule} | {r0.item} | {r0.case.split(',')[0]} | " + " | ".join(cells)
+                  + " |")
         print("\nVerdicts that change against the determinate scheme:\n")
         for s in SCHEMES[1:]:
             ch = api.compare_schemes(res[s])
