@@ -1,6 +1,6 @@
 """Linear-elastic 3D finite-element model of one crank throw: torsional stiffness.
 
-    python scripts/throw_fe.py [--size H] [--variant free|rigid|held] [--full]   (the I4 throw)
+    python scripts/throw_fe.py [--Dj MM ...] [--size H] [--variant free|rigid|held] [--full]
 
 Needs the optional extra ``fe`` (``pip install -e .[fe]``: gmsh, scikit-fem, meshio); the
 check never imports this file (it reads the fitted data of
@@ -48,7 +48,7 @@ import argparse
 import math
 import sys
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -177,8 +177,9 @@ def _size_expression(th: Throw, h: float, grade: float, quarter: bool) -> str:
 
 
 def build_mesh(th: Throw, size: float, *, full: bool = False, grade: float = 0.5,
-               verbose: bool = False) -> tuple[np.ndarray, np.ndarray]:
-    """Mesh the throw (or its quarter x >= 0, z <= L/2) with 10-node tetrahedra.
+               verbose: bool = False, half: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """Mesh the throw (or its quarter x >= 0, z <= L/2; ``half``: the half x >= 0 over the
+    whole length, used by the bending FE) with 10-node tetrahedra.
 
     ``size`` is the element size far from the junctions as a fraction of Dj. Returns
     ``(points (n, 3), tets (m, 10))`` in gmsh's node order.
@@ -205,7 +206,7 @@ def build_mesh(th: Throw, size: float, *, full: bool = False, grade: float = 0.5
         vol, _ = occ.fuse(parts[:1], parts[1:])
         if not full:
             big = 10.0 * (th.R + th.Bj + th.Bp + th.cw_ro)
-            box = occ.addBox(0, -big, -0.1 * L, big, 2 * big, 0.6 * L)
+            box = occ.addBox(0, -big, -0.1 * L, big, 2 * big, (1.2 if half else 0.6) * L)
             vol, _ = occ.intersect(vol, [(3, box)])
         occ.synchronize()
         if len(vol) != 1:
@@ -215,7 +216,7 @@ def build_mesh(th: Throw, size: float, *, full: bool = False, grade: float = 0.5
         gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
         fld = gmsh.model.mesh.field
         f = fld.add("MathEval")
-        fld.setString(f, "F", _size_expression(th, h, grade, quarter=not full))
+        fld.setString(f, "F", _size_expression(th, h, grade, quarter=not (full or half)))
         fld.setAsBackgroundMesh(f)
         gmsh.option.setNumber("Mesh.ElementOrder", 2)
         gmsh.option.setNumber("Mesh.HighOrderOptimize", 1)
@@ -454,16 +455,35 @@ def rect_torsion_constant(a: float, b: float, n_terms: int = 200) -> float:
     return a * b ** 3 / 3 * (1 - 192 * b / (np.pi ** 5 * a) * s)
 
 
+_MM = ("Dj", "Dp", "Lj", "Lp", "tw", "R", "Bj", "Bp", "dj", "dp", "cw_ri", "cw_ro", "cw_t")
+
+
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(
+        description=__doc__.splitlines()[0],
+        epilog="Without dimensions: the I4 throw of Bell (2013). Dimensions in mm, e.g. "
+               "--Dj 55 --Dp 48 --Lj 27 --Lp 24.4 --tw 22.3 --R 47.3 --Bj 75.7 --Bp 75.7")
+    for name in _MM:
+        ap.add_argument(f"--{name}", type=float, help="mm")
+    ap.add_argument("--E", type=float, help="Young's modulus, GPa")
+    ap.add_argument("--nu", type=float, help="Poisson's ratio")
+    ap.add_argument("--cw_angle", type=float, help="counterweight included angle, deg")
     ap.add_argument("--size", type=float, default=0.12, help="element size / Dj (far field)")
     ap.add_argument("--variant", default="free", choices=["free", "rigid", "held"])
     ap.add_argument("--full", action="store_true", help="whole throw instead of the quarter")
     args = ap.parse_args(argv)
-    r = solve_throw(I4_THROW, args.size, variant=args.variant, full=args.full)
-    print(f"I4 throw (Bell 2013 dimensions): {r.stiffness / 1e3:.1f} kN m/rad "
-          f"[{r.variant}, size {r.size}, {r.n_elements} tets, {r.n_dofs} dofs, "
-          f"{r.seconds:.1f} s]")
+    given = {k: getattr(args, k) / 1e3 for k in _MM if getattr(args, k) is not None}
+    if args.E is not None:
+        given["E"] = args.E * 1e9
+    if args.nu is not None:
+        given["nu"] = args.nu
+    if args.cw_angle is not None:
+        given["cw_angle"] = math.radians(args.cw_angle)
+    th = replace(I4_THROW, **given)
+    r = solve_throw(th, args.size, variant=args.variant, full=args.full)
+    what = "I4 throw (Bell 2013 dimensions)" if not given else "throw"
+    print(f"{what}: {r.stiffness / 1e3:.2f} kN m/rad [{r.variant}, size {r.size}, "
+          f"{r.n_elements} tets, {r.n_dofs} dofs, {r.seconds:.1f} s]")
     return 0
 
 

@@ -270,7 +270,7 @@ def throw_torsional_stiffness(*, journal_diameter: ArrayLike, journal_bore: Arra
     err = float(coef["model_error"])
     method = (f"series of journal and pin torsion and web in-plane bending (after Carter 1928, "
               f"Ker Wilson 1956) fitted to a linear-elastic 3D FE of the throw "
-              f"({coef['n_samples']} geometries, within {100 * err:.0f} %)")
+              f"({coef['n_samples']} geometries, within {100 * err:g} %)")
     return ThrowStiffness(stiffness=k, in_range=ok, method=method, model_error=err)
 
 

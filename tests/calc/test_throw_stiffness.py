@@ -152,3 +152,19 @@ def test_in_range_flags_outside_the_fit():
 def test_bad_geometry_is_an_error(change, match):
     with pytest.raises(ValueError, match=match):
         ts.throw_torsional_stiffness(**{**I4, **change})
+
+
+def test_samples_are_the_scripts_design():
+    """The stored geometries are those of ``scripts/make_throw_stiffness.py`` (so ``fe``
+    regenerates the same samples)."""
+    spec = importlib.util.spec_from_file_location(
+        "make_throw_stiffness", ts.COEF_FILE.parents[3] / "scripts" / "make_throw_stiffness.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    design = mod.sample_design()
+    d = _samples()
+    assert [r["name"] for r in design] == d["name"].tolist()
+    assert [r["set"] for r in design] == d["set"].tolist()
+    for col in ("Dj", "Dp", "Lj", "Lp", "tw", "R", "Bj", "Bp", "dj", "dp", "E", "nu", "cw_ri",
+                "cw_ro", "cw_angle", "cw_t"):
+        np.testing.assert_allclose([r[col] for r in design], d[col], rtol=1e-8, err_msg=col)
