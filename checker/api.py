@@ -83,6 +83,8 @@ class CheckResult:
     # adds the remedy and corner blocks to the JSON (set by checker.remedies, which builds on
     # this module: the API never imports it)
     json_extras: Callable[[CheckResult, dict, bool], None] | None = None
+    # the continuous-beam scheme against the determinate one (report; compare_schemes)
+    scheme_changes: list[dict[str, Any]] | None = None
 
     @property
     def not_evaluated(self) -> list[RuleResult]:
@@ -212,6 +214,10 @@ class CheckResult:
         if self.engine.crank is not None:
             # each value of the crank model: typed (wins) or derived from sheet Crank
             d["crank_model"] = [m.as_dict() for m in self.engine.crank_model]
+        bl = self.outcome.quantities.get("loads.bearing_load")
+        if bl is not None and getattr(bl.detail, "beam", None) is not None:
+            # the continuous beam, enough to recompute the main loads with another solver
+            d["crank_beam"] = bl.detail.beam.as_dict()
         if timings:
             d["timings"] = {m: round(t, 6) for m, t in self.outcome.timings.items()}
         if self.json_extras is not None:
@@ -366,6 +372,9 @@ def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = No
     if engine.crank is not None:
         # the crank's throws as its geometry gives them (JSON, results workbook), judged or not
         wanted |= {n for n in graph.QUANTITIES if n.startswith("crank.")}
+        if (engine.params.get("support_scheme") or "determinate") != "determinate":
+            # the continuous beam against the determinate scheme (JSON, report)
+            wanted.add("fatigue.fillet_bending_ratio")
     # quantities a result is shown beside (the film thickness by the other method); not
     # computed with compare=False (variants judged on their margins: remedies, corners)
     if compare:
@@ -471,3 +480,33 @@ def check_batch(engines: list[Engine], rules: str | Path | RuleTable | None = No
 
 def today() -> str:
     return _dt.date.today().isoformat()
+
+
+def compare_schemes(res: CheckResult) -> list[dict[str, Any]]:
+    """The verdicts that change when the crank of a continuous-beam workbook is taken as
+    statically determinate (the same engine and rules with Engine 'Main bearing supports' =
+    determinate): one dict per rule result whose status differs (rule, item, case, the two
+    statuses and values). Empty under the determinate scheme."""
+    from dataclasses import replace as _replace
+
+    from .engine import Params
+
+    if (res.engine.params.get("support_scheme") or "determinate") == "determinate":
+        return []
+    det_engine = _replace(res.engine, params=Params({**res.engine.params,
+                                                     "support_scheme": "determinate"}))
+    det = check(det_engine, rules=res.table, select=[r.id for r in res.rules],
+                fail_on=res.fail_on, compare=False)
+    # one result per rule, item and load case in both (the case text names each scheme's own
+    # worst speed): paired in order
+    out = []
+    pairs = zip(det.results, res.results, strict=False)
+    for d, r in pairs:
+        if (d.rule, d.item) != (r.rule, r.item):
+            break
+        if d.status != r.status:
+            out.append({"rule": r.rule, "item": r.item, "case": r.case,
+                        "determinate_case": d.case, "determinate": d.status,
+                        "determinate_value": d.value,
+                        "continuous": r.status, "continuous_value": r.value})
+    return out

@@ -367,6 +367,11 @@ def report(workbook, rules, select, ignore, fail_on, output, html_out, results_o
     prog("Reading the workbook and running the analyses")
     cache: dict | None = {} if (remedies or corners) else None
     res = _run_check(workbook, rules, select, ignore, fail_on, prog, cache)
+    if (res.engine.params.get("support_scheme") or "determinate") != "determinate":
+        from .api import compare_schemes
+
+        prog("Checking the determinate scheme beside the continuous beam")
+        res.scheme_changes = compare_schemes(res)
     drawing = None
     if remedies or corners:
         from .report.render import start_drawing

@@ -57,6 +57,8 @@ class Bearing:
     max_film_temperature: float | None = None  # [K], supplier limit
     max_film_pressure: float | None = None  # [Pa], supplier limit
     min_oil_flow: float | None = None  # [m^3/s], supplier limit
+    support_stiffness: float | None = None  # [N/m] main bearings, continuous beam
+    support_offset: float | None = None  # [m] main bearings, continuous beam (block y)
     index: int = 0  # main number (1..) or big-end number (1..)
     row: int = -1  # data-row index in sheet Bearings
 
@@ -599,6 +601,7 @@ def build_engine(data: WorkbookData,
                    for r in _rows(data, "PressureTraces")
                    if None not in (r["case"], r["speed"], r["crank_angle"], r["pressure"]))
     bt = _brake_torque(data, pr)
+    _support_scheme(p, bearings, crank, pr)
     check_oil(Params(data.params.get("Oil", {})), pr.err)
     damper = _damper(data, pr)
     overrides = _overrides(data, pr)
@@ -617,6 +620,50 @@ def build_engine(data: WorkbookData,
         assumptions=tuple(data.assumptions), warnings=tuple(pr.warnings),
         crank=crank, crank_model=tuple(rows["model"]),
     )
+
+
+def _support_scheme(p: Params, bearings: list[Bearing], crank: CrankGeometry | None,
+                    pr: _Problems) -> None:
+    """Engine 'Main bearing supports' against what it needs: a continuous beam needs the crank's
+    geometry (sheet Crank); elastic supports a stiffness for every main; support values on a
+    big end or under the determinate scheme are refused (they would be ignored)."""
+    scheme = p.get("support_scheme") or "determinate"
+    continuous = scheme.startswith("continuous beam")
+    if continuous and crank is None:
+        pr.err("Engine", "support_scheme", None, f"'{scheme}' needs the crank's dimensions"
+               " (sheet Crank: each throw's bending stiffness follows from them); give sheet"
+               " Crank or choose 'determinate'")
+    for b in bearings:
+        for attr in ("support_stiffness", "support_offset"):
+            if getattr(b, attr) is None:
+                continue
+            if b.type != "main":
+                pr.err("Bearings", attr, b.row, "a support value applies to main bearings"
+                       " only (the crank's supports); leave it blank on a big end")
+            elif not continuous:
+                pr.err("Bearings", attr, b.row, f"{attr.replace('_', ' ')} is used by the"
+                       " continuous-beam schemes only; Engine 'Main bearing supports' is"
+                       f" '{scheme}': choose a continuous beam or leave this cell blank")
+            elif attr == "support_stiffness" and scheme != "continuous beam, elastic supports":
+                pr.err("Bearings", attr, b.row, "support stiffness is used by 'continuous"
+                       " beam, elastic supports' only (rigid supports have none)")
+    if p.get("support_stiffness") is not None and scheme != "continuous beam, elastic supports":
+        pr.err("Engine", "support_stiffness", None, "support stiffness is used by 'continuous"
+               f" beam, elastic supports' only; 'Main bearing supports' is '{scheme}'")
+    mains = [b for b in bearings if b.type == "main"]
+    if scheme == "continuous beam, elastic supports" and p.get("support_stiffness") is None:
+        if all(b.support_stiffness is None for b in mains):
+            pr.err("Engine", "support_scheme", None, f"'{scheme}' needs the radial stiffness of"
+                   " the main bearings' supports: give Engine 'Main bearing support stiffness'"
+                   " (all mains, e.g. 1e6 N/mm) or Bearings 'support stiffness' per main",
+                   needs=("Engine",))
+            mains = []
+        for b in mains:
+            if b.support_stiffness is None:
+                pr.err("Bearings", "support_stiffness", b.row, "'continuous beam, elastic"
+                       " supports' needs a radial support stiffness for every main: give"
+                       " Engine 'Main bearing support stiffness' (all mains) or this cell,"
+                       " e.g. 1e6 N/mm", needs=("Engine",))
 
 
 SPACING_SLIP = 0.05
@@ -794,6 +841,8 @@ def _bearings(rows: list[dict[str, Any]], pr: _Problems, has_crank: bool) -> lis
             oil_hole_diameter=r["oil_hole_diameter"], oil_hole_angle=r["oil_hole_angle"],
             lining=r["lining"], max_film_temperature=r["max_film_temperature"],
             max_film_pressure=r["max_film_pressure"], min_oil_flow=r["min_oil_flow"],
+            support_stiffness=r.get("support_stiffness"),
+            support_offset=r.get("support_offset"),
             index=counts[r["type"]], row=i))
     return bearings
 

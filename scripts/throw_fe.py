@@ -177,8 +177,9 @@ def _size_expression(th: Throw, h: float, grade: float, quarter: bool) -> str:
 
 
 def build_mesh(th: Throw, size: float, *, full: bool = False, grade: float = 0.5,
-               verbose: bool = False) -> tuple[np.ndarray, np.ndarray]:
-    """Mesh the throw (or its quarter x >= 0, z <= L/2) with 10-node tetrahedra.
+               verbose: bool = False, half: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """Mesh the throw (or its quarter x >= 0, z <= L/2; ``half``: the half x >= 0 over the
+    whole length, used by the bending FE) with 10-node tetrahedra.
 
     ``size`` is the element size far from the junctions as a fraction of Dj. Returns
     ``(points (n, 3), tets (m, 10))`` in gmsh's node order.
@@ -205,7 +206,7 @@ def build_mesh(th: Throw, size: float, *, full: bool = False, grade: float = 0.5
         vol, _ = occ.fuse(parts[:1], parts[1:])
         if not full:
             big = 10.0 * (th.R + th.Bj + th.Bp + th.cw_ro)
-            box = occ.addBox(0, -big, -0.1 * L, big, 2 * big, 0.6 * L)
+            box = occ.addBox(0, -big, -0.1 * L, big, 2 * big, (1.2 if half else 0.6) * L)
             vol, _ = occ.intersect(vol, [(3, box)])
         occ.synchronize()
         if len(vol) != 1:
@@ -215,7 +216,7 @@ def build_mesh(th: Throw, size: float, *, full: bool = False, grade: float = 0.5
         gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
         fld = gmsh.model.mesh.field
         f = fld.add("MathEval")
-        fld.setString(f, "F", _size_expression(th, h, grade, quarter=not full))
+        fld.setString(f, "F", _size_expression(th, h, grade, quarter=not (full or half)))
         fld.setAsBackgroundMesh(f)
         gmsh.option.setNumber("Mesh.ElementOrder", 2)
         gmsh.option.setNumber("Mesh.HighOrderOptimize", 1)

@@ -84,6 +84,7 @@ from ._checks import finite as _finite
 
 __all__ = [
     "LocalStresses",
+    "SectionLoads",
     "ThrowNominalStresses",
     "bay_bending_moment",
     "local_stresses",
@@ -467,6 +468,7 @@ def throw_nominal_stresses(
     oil_hole_angle: float = 0.0,
     oil_hole_position: float | None = None,
     k_e: float = 1.0,
+    section_loads: SectionLoads | None = None,
 ) -> ThrowNominalStresses:
     r"""Nominal bending, direct and torsional stresses of crank throws over the cycle.
 
@@ -508,6 +510,11 @@ def throw_nominal_stresses(
         Axial position of the oil-bore section (default: pin centre L2).
     k_e : float [-]
         M53 empirical factor K_e: 1.0 for 4-stroke (default), 0.8 for 2-stroke engines.
+    section_loads : SectionLoads, optional
+        Bending moments and web forces from another support scheme (the crank as a
+        continuous beam, :func:`checker.calc.crank_beam.throw_section_loads`): they replace
+        the statically determinate ``Q_RF``, ``M_BRF``, the fillet moments and ``M_BRO``,
+        ``M_BTO``; torsion is unchanged.
 
     Returns
     -------
@@ -591,12 +598,21 @@ def throw_nominal_stresses(
     _, wp_jnl = shaft_section_moduli(DG, DBG)
     m_bro = bay_bending_moment(fr, xO, L3, L2)
     m_bto = bay_bending_moment(ft, xO, L3, L2)
+    if section_loads is not None:
+        sl = section_loads
+        q_rf, moment_web = np.broadcast_arrays(sl.web_force, sl.moment_web)
+        moment_journal_fillet = np.asarray(sl.moment_journal_fillet)
+        moment_pin_fillet = np.asarray(sl.moment_pin_fillet)
+        m_bro, m_bto = np.asarray(sl.moment_oil_radial), np.asarray(sl.moment_oil_tangential)
+        m_web_t = np.asarray(sl.moment_web_tangential)
+    else:
+        m_web_t = q_tf * L1
     return ThrowNominalStresses(
         overlap=float(web_overlap(D, DG, E)),
         web_centre_distance=L1,
         web_force=q_rf,
         moment_web=moment_web,
-        moment_web_tangential=q_tf * L1,
+        moment_web_tangential=m_web_t,
         moment_journal_fillet=moment_journal_fillet,
         moment_pin_fillet=moment_pin_fillet,
         sigma_web_bending=ke * moment_web / float(w_eqw),
@@ -607,6 +623,23 @@ def throw_nominal_stresses(
         moment_oil_tangential=m_bto,
         sigma_oil_bending=oil_hole_bending_stress(m_bro, m_bto, oil_hole_angle, D, DBH),
     )
+
+
+class SectionLoads(NamedTuple):
+    """Section loads of crank throws from a support scheme other than the determinate one.
+
+    Web arrays (..., 2, N) (front/rear web), oil-bore arrays (..., N); the signs of
+    :func:`throw_nominal_stresses` (``moment_web`` = M53's ``M_BRF``, ``web_force`` = its
+    ``Q_RF``).
+    """
+
+    moment_web: np.ndarray  #: [N m] at the web centres (M53 reference section)
+    moment_web_tangential: np.ndarray  #: [N m] of the tangential force at the web centres
+    web_force: np.ndarray  #: [N] radial force carried by each web
+    moment_journal_fillet: np.ndarray  #: [N m] at the journal fillets
+    moment_pin_fillet: np.ndarray  #: [N m] at the pin fillets
+    moment_oil_radial: np.ndarray  #: [N m] M_BRO at the oil-bore section
+    moment_oil_tangential: np.ndarray  #: [N m] M_BTO at the oil-bore section
 
 
 class LocalStresses(NamedTuple):

@@ -123,7 +123,8 @@ class ThrowGoodman(NamedTuple):
 def throw_goodman(force_radial: ArrayLike, force_tangential: ArrayLike, side_torque: ArrayLike,
                   geometry: dict[str, float], oil_hole_angle: float, scf: dict[str, float],
                   strengths: dict[str, tuple[float, float]], pin_oil_hole: bool = True,
-                  mean_criterion: str = "signed_von_mises") -> ThrowGoodman:
+                  mean_criterion: str = "signed_von_mises",
+                  section_loads: cs.SectionLoads | None = None) -> ThrowGoodman:
     r"""Goodman safety factors of the pin fillets, journal fillets and pin oil holes of throws.
 
     Steps (IACS UR M53 §2-3, Goodman: Shigley 10th ed. eq. 6-46):
@@ -159,6 +160,9 @@ def throw_goodman(force_radial: ArrayLike, force_tangential: ArrayLike, side_tor
         Evaluate the pin oil holes.
     mean_criterion : str
         Mean-stress combination of the fillets (:func:`checker.calc.fatigue.fillet_goodman`).
+    section_loads : SectionLoads, optional
+        Bending moments and web forces of another support scheme (shapes (..., T, 2, N) and
+        (..., T, N)), passed to :func:`checker.calc.crank_stress.throw_nominal_stresses`.
 
     Returns
     -------
@@ -173,7 +177,8 @@ def throw_goodman(force_radial: ArrayLike, force_tangential: ArrayLike, side_tor
     """
     t_side = np.asarray(side_torque, dtype=float)
     nom = cs.throw_nominal_stresses(force_radial, force_tangential, t_side[..., 0, :], t_side,
-                                    **geometry, oil_hole_angle=oil_hole_angle)
+                                    **geometry, oil_hole_angle=oil_hole_angle,
+                                    section_loads=section_loads)
     loc = cs.local_stresses(nom, **{n: scf[n] for n in ("alpha_b", "alpha_t", "beta_b",
                                                         "beta_q", "beta_t", "gamma_b",
                                                         "gamma_t")})

@@ -77,6 +77,7 @@ from ..calc import throw_fatigue as tf
 from ..engine import Engine
 from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
 from ..results.fatigue import (
+    FilletRatioDetail,
     GoodmanDetail,
     LocationStrength,
     M53Detail,
@@ -85,7 +86,7 @@ from ..results.fatigue import (
     ThrowGeometry,
     ThrowNominal,
 )
-from . import joints, loads, torsion  # noqa: F401  (registered first: report order)
+from . import joints, loads, support_beam, torsion  # noqa: F401  (registered first: report order)
 from .loads import CASES
 
 LOCATIONS = ("pin fillet", "main fillet", "pin oil hole", "main oil hole")
@@ -104,6 +105,12 @@ GOODMAN = quantity(QuantitySpec(
     "Goodman fatigue safety factor per crankshaft location (crank-pin and main-journal fillets,"
     " oil holes), load case and speed", "", ("location",), coords={"case": CASES},
     detail=GoodmanDetail))
+FILLET_RATIO = quantity(QuantitySpec(
+    "fatigue.fillet_bending_ratio", "", ("item",),
+    "Fillet bending moment of the crank as a continuous beam over that of the statically"
+    " determinate scheme (amplitudes over the cycle, con-rod forces on the pins) per throw and"
+    " fillet, at the operating point of the largest determinate amplitude", "",
+    detail=FilletRatioDetail))
 M53Q = quantity(QuantitySpec(
     "fatigue.m53_q", "", ("item", "case", "speed"),
     "IACS UR M53 acceptability factor Q = sigma_DW / sigma_V per location, load case and speed",
@@ -492,6 +499,64 @@ def _m53(engine: Engine, g: ThrowGeometry, where: _Locations, location: list[str
             "missing": q_missing, "findings": q_find}
 
 
+@calculation("fillet_bending_ratio", "fatigue", provides=("fatigue.fillet_bending_ratio",),
+             needs=("loads.bearing_load",),
+             reads=("fatigue", "params", "cylinders", "crank", "bearings.name", "bearings.type",
+                    "bearings.index", "bearings.diameter", "bearings.journal_length",
+                    "bearings.support_stiffness", "bearings.support_offset"))
+def fillet_bending_ratio(engine: Engine, inputs: dict) -> dict[str, Quantity]:
+    """Continuous-beam over determinate fillet bending moment per throw and fillet.
+
+    The workbook's continuous scheme, or under the determinate scheme the beam on rigid
+    supports (what choosing it would change); con-rod forces on the pins only, as IACS UR M53
+    counts them, so the two schemes differ in their supports alone (the figure of Piraner,
+    Pflueger and Bouthier, Cummins crankshaft and bearing analysis process, 2002, Fig. 1).
+    """
+    if engine.crank is None:
+        raise MissingInputs(["Crank: the continuous beam needs the crank's geometry (sheet"
+                             " Crank)"])
+    bl: Quantity = inputs["loads.bearing_load"]
+    g, _, _ = _geometry(engine)
+    pins = np.array([c.pin - 1 for c in engine.cylinders])
+    n_pins = int(pins.max()) + 1
+    f_r, f_t, gamma = _pin_forces(engine, bl, pins, n_pins)
+    scheme = support_beam.scheme_of(engine)
+    if scheme == "determinate":
+        scheme = "continuous beam, rigid supports"
+    beam = support_beam.build_beam(engine, gamma, scheme)
+    theta = np.asarray(bl.detail.theta)
+    cont, det = support_beam.throw_sections(beam, f_r, f_t, gamma, g.as_kwargs(), theta)
+    items, a_c, a_d, case, speed = [], [], [], [], []
+    cases, speeds = list(bl.coords["case"]), np.asarray(bl.coords["speed"], dtype=float)
+    for fillet, key in (("pin fillet", "moment_pin_fillet"),
+                        ("main fillet", "moment_journal_fillet")):
+        mc, md = getattr(cont, key), getattr(det, key)  # (C, S, T, 2, N)
+        amp_c = (mc.max(axis=-1) - mc.min(axis=-1)) / 2.0
+        amp_d = (md.max(axis=-1) - md.min(axis=-1)) / 2.0
+        for t in range(n_pins):
+            for side, web in enumerate(("front", "rear")):
+                ad = amp_d[:, :, t, side]
+                ci, si = np.unravel_index(int(np.argmax(ad)), ad.shape)
+                items.append(f"throw {t + 1} {fillet}, {web} web")
+                a_c.append(amp_c[ci, si, t, side])
+                a_d.append(ad[ci, si])
+                case.append(cases[ci])
+                speed.append(speeds[si])
+    a_c, a_d = np.array(a_c), np.array(a_d)
+    if np.any(a_d <= 0.0):
+        raise MissingInputs(["a fillet without determinate bending (no pin force): the ratio"
+                             " is undefined"])
+    detail = FilletRatioDetail(
+        scheme=scheme, amplitude_continuous=a_c, amplitude_determinate=a_d, case=tuple(case),
+        speed=np.array(speed),
+        assumptions=(f"Fillet bending ratio: the crank as a continuous beam ({scheme}) against"
+                     " the statically determinate scheme, under the con-rod forces on the pins"
+                     " (IACS UR M53's loads), bending moment amplitudes at the operating point"
+                     " of each fillet's largest determinate amplitude.",))
+    return {"fatigue.fillet_bending_ratio": Quantity(FILLET_RATIO, a_c / a_d, {"item": items},
+                                                     detail=detail)}
+
+
 def _assumptions(engine: Engine, has: dict[str, bool], notes: list[str]) -> list[str]:
     """The method's assumptions, then the notes of this run."""
     assumptions = [
@@ -515,6 +580,14 @@ def _assumptions(engine: Engine, has: dict[str, bool], notes: list[str]) -> list
         f" {M53_K_OIL:g} at the oil bore; fillet rolling/induction hardening not credited"
         " (M53 accepts surface-treatment gains only from tests).",
     ]
+    if support_beam.scheme_of(engine) != "determinate":
+        assumptions[0] = (
+            "Crankshaft fatigue (IACS UR M53 §2-5 stresses and factors) with the bending moments"
+            f" and web forces of the crank as a {support_beam.scheme_of(engine)} (Piraner,"
+            " Pflueger and Bouthier, Cummins crankshaft and bearing analysis process, 2002):"
+            " con-rod gas and inertia forces on the pins, carried to every main by the beam;"
+            " web width B = minimum web width; K_e = 1 (4-stroke). The crank's own"
+            " centrifugal forces are not included (M53 loading; they shift only the mean).")
     if has["main oil hole"]:
         assumptions.append("Main journal oil holes: torsion only (the statically determinate"
                            " bending moment is zero at the journal centre), γ_T of M53's"
@@ -545,7 +618,9 @@ def _candidate_names(sel: list, main_el: np.ndarray, element_names: list[str]
 # ------------------------------------------------------------------------------- calculation
 @calculation("crank_fatigue", "fatigue", provides=("fatigue.goodman_sf", "fatigue.m53_q"),
              needs=("loads.bearing_load", "tv.element_torque"),
-             reads=("fatigue", "params", "cylinders", "tv_model", "bearings.name", "bearings.type",
+             reads=("fatigue", "params", "cylinders", "tv_model", "crank",
+                    "bearings.support_stiffness", "bearings.support_offset",
+                    "bearings.name", "bearings.type",
                     "bearings.diameter", "bearings.journal_length", "bearings.row",
                     "bearings.oil_holes", "bearings.oil_hole_diameter",
                     "bearings.oil_hole_angle", "bearings.oil_hole_type"))
@@ -569,6 +644,10 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                              " cases or speeds (internal)"])
     where = _locations(engine, g, rows["bigs"], notes)
     f_r, f_t, gamma = _pin_forces(engine, bl, pins, n_pins)
+    sections = None
+    if support_beam.scheme_of(engine) != "determinate":
+        beam = support_beam.build_beam(engine, gamma)
+        sections, _ = support_beam.throw_sections(beam, f_r, f_t, gamma, g.as_kwargs(), theta)
     n_el = len(et.coords["item"])
     sides, st_missing = _station_elements(engine, n_pins, n_el)
     if st_missing:
@@ -587,7 +666,10 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     try:
         parts = [tf.throw_goodman(f_r[ci], f_t[ci], t_side[ci], g.as_kwargs(), phi, k,
                                   {n: where.strength(n) for n in LOCATIONS},
-                                  where.has["pin oil hole"], MEAN_CRITERION) for ci in range(C)]
+                                  where.has["pin oil hole"], MEAN_CRITERION,
+                                  None if sections is None else
+                                  cs.SectionLoads(*(x[ci] for x in sections)))
+                 for ci in range(C)]
     except ValueError as exc:
         raise MissingInputs([f"Fatigue/Bearings/Engine geometry of the crank throw: {exc}"]
                             ) from None
@@ -635,8 +717,15 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         oil_hole=oil, main_oil_hole_diameter=where.main_oil_d, theta=theta, speeds=speeds,
         locations=location, sf_by_location=sf_by_loc,
         assumptions=tuple(_assumptions(engine, where.has, notes)))
+    caveats = ()
+    if sections is not None and where.has["main oil hole"]:
+        caveats = ({"kind": "model validity", "severity": "medium", "rules": ["FAT-001"],
+                    "text": "Main-journal oil holes are checked in torsion only, as in the"
+                    " statically determinate scheme; on the continuous beam chosen here the"
+                    " main journals also carry the support bending moments, which that check"
+                    " does not include: their safety factors are not conservative."},)
     detail = GoodmanDetail(
-        **common,
+        **common, caveats=caveats,
         sigma_eq_a=pick["sigma_eq_a"], sigma_eq_m=pick["sigma_eq_m"],
         sigma_a=pick["sigma_a"], sigma_m=pick["sigma_m"], tau_a=pick["tau_a"],
         tau_m=pick["tau_m"], governing=np.moveaxis(governing, 2, 0),

@@ -14,6 +14,7 @@ from ..engine import Bearing, Engine
 from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
 from ..results.loads import BearingLoadDetail, Cycle, CycleDetail, SpecificLoadDetail
 from ..units import RPM
+from . import support_beam
 
 CASES = ("full", "no")
 """Load cases swept: full load and no load (Bell, Ricardo 2013: 'at full load and no load across the
@@ -294,8 +295,9 @@ def shared_pins_text(engine: Engine) -> list[str]:
 
 @calculation("bearing_loads", "loads", provides=("loads.bearing_load",),
              needs=("loads.cycle",),
-             reads=("params", "cylinders", "crank_mass", "bearings.name", "bearings.type",
-                    "bearings.index", "bearings.lining"))
+             reads=("params", "cylinders", "crank_mass", "crank", "bearings.name",
+                    "bearings.type", "bearings.index", "bearings.lining",
+                    "bearings.support_stiffness", "bearings.support_offset"))
 def bearing_loads(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Big-end loads (rod frame) and main bearing loads (block frame, statically determinate)."""
     _required(engine, ("piston_mass", "rod_mass", "rod_com", "rod_inertia"))
@@ -316,6 +318,7 @@ def bearing_loads(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         rod_cg_from_big_end=p["rod_com"], rod_inertia=p["rod_inertia"], firing_angle=firing,
         bank_angle=bank, **engine.offsets)
     names, fx, fy, wj, wb = [], [], [], [], []
+    beam_detail = main_determinate = None
     missing: dict[tuple, list[str]] = {}
     attrs = {}
     C, S, N = cyc.pressure.shape
@@ -354,6 +357,12 @@ def bearing_loads(engine: Engine, inputs: dict) -> dict[str, Quantity]:
                 mass=np.array([it.mass for it in m]),
                 mass_bay=np.array([it.throw - 1 for it in m]), mass_position=pos,
                 mass_axial_position=np.array([it.axial + it.x for it in m]))
+            if support_beam.scheme_of(engine) != "determinate":
+                beam = support_beam.build_beam(engine, gamma)
+                main_determinate = mains_load
+                mains_load, beam_detail = support_beam.continuous_main_loads(
+                    beam, engine, cyc.theta, cyc.speeds, loads.big_end_crank, pins, gamma, r,
+                    list(cyc.cases))
             for b in mains:
                 k = b.index - 1
                 names.append(b.name)
@@ -382,9 +391,12 @@ def bearing_loads(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         frames={n: ("con-rod frame" if bearings[n].type == "big end" else "block frame")
                 for n in order},
         torque=loads.torque, big_end_crank=loads.big_end_crank,
+        scheme=support_beam.scheme_of(engine), beam=beam_detail,
+        main_determinate=main_determinate,
         assumptions=(
-            "Main bearing loads by the statically determinate method: rigid crank pinned"
-            " at each main, each main carries only the adjacent throws (Bell, Ricardo 2013).",
+            ("Main bearing loads by the statically determinate method: rigid crank pinned"
+             " at each main, each main carries only the adjacent throws (Bell, Ricardo 2013)."
+             if beam_detail is None else beam_detail.assumptions[0]),
             "Con-rod as two masses plus an inertia-correction couple (exact rigid-body"
             " dynamics of the slider crank); constant crank speed; gravity neglected.",
             *shared_pins_text(engine)))

@@ -9,7 +9,13 @@ import numpy as np
 
 from ..api import CheckResult
 from .plots import figure, legend_below, literal, to_image
-from .section_loads import CURVE_COLORS, bearing_speed_figure, shade_caption, worst_table
+from .section_loads import (
+    CURVE_COLORS,
+    bearing_speed_figure,
+    main_load_scheme,
+    shade_caption,
+    worst_table,
+)
 from .sections import fmt, in_unit, merge_items, rpm, section
 
 FEED_WORDS = {"full": "full groove", "partial": "partial groove", "hole": "feed hole(s)",
@@ -201,7 +207,7 @@ def bearing_performance_section(res: CheckResult) -> dict:
              " bearing from a heat balance iterated with the oil's viscosity law (short-bearing"
              " orbits at the balance temperature), and the peak oil-film pressure along the"
              " orbits of the film-thickness section (finite length judged, short bearing"
-             " beside it).")
+             f" beside it). Main bearings under {main_load_scheme(res)}.")
     if t is not None:
         ex = t.detail
         if ex.t_range is not None:

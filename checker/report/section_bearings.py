@@ -8,7 +8,13 @@ from ..api import CheckResult
 from . import judged as jd
 from .film_methods import film_method_blocks
 from .plots import every, figure, to_image
-from .section_loads import bearing_speed_figure, lining_text, shade_caption, worst_table
+from .section_loads import (
+    bearing_speed_figure,
+    lining_text,
+    main_load_scheme,
+    shade_caption,
+    worst_table,
+)
 from .sections import fmt, in_unit, merge_items, rpm, section
 
 
@@ -144,7 +150,7 @@ def bearings_section(res: CheckResult) -> dict:
                                   " thickness with the load over the cycle."})
     return {"id": "bearings", "title": "Bearing oil film (MOFT)",
             "intro": "Minimum oil film thickness at every main and big-end bearing by Booker's"
-                     " mobility method (short bearing, rigid journal, statically determinate"
-                     " loads, mean cold clearance: the concept-stage assumptions of Bell,"
+                     f" mobility method (short bearing, rigid journal, {main_load_scheme(res)},"
+                     " mean cold clearance: the concept-stage assumptions of Bell,"
                      " Ricardo 2013), at full and no load across the speed range.",
             "blocks": blocks}

@@ -137,3 +137,16 @@ class M53Detail(FatigueDetail):
     sigma_add: float  # [Pa] additional bending stress (trunk piston)
     k_fillet: float  # [-] M53 §6 factor K at the fillets
     k_oil: float  # [-] M53 §6 factor K at the oil bore
+
+
+@dataclass(frozen=True, kw_only=True)
+class FilletRatioDetail(Detail):
+    """Detail of ``fatigue.fillet_bending_ratio``: the bending moment amplitude at each fillet
+    on the continuous beam and by the determinate scheme, at the operating point the ratio is
+    taken at (items in the quantity's order)."""
+
+    scheme: str  # the continuous scheme compared (the workbook's, or rigid supports)
+    amplitude_continuous: np.ndarray  # [N m] (I,) half range over the cycle
+    amplitude_determinate: np.ndarray  # [N m] (I,)
+    case: tuple[str, ...]  # (I,) load case of the governing operating point
+    speed: np.ndarray  # [rad/s] (I,) its speed

@@ -255,6 +255,33 @@ ENGINE = Sheet(
           valid=R(1, 20000, "mm"), usual=R(50, 2000, "mm")),
         F("Main journal spacing", "main_spacing", "length", check=">0", required=False,
           valid=R(1, 20000, "mm"), usual=R(50, 2000, "mm")),
+        F("Main bearing supports", "support_scheme", "choice",
+          choices=("determinate", "continuous beam, rigid supports",
+                   "continuous beam, elastic supports"),
+          required=False,
+          note="How the crank carries its loads to the main bearings. determinate (default):"
+               " each throw a rigid beam simply supported on its two mains (Bell 2013, the"
+               " classical concept method). continuous beam: the whole crank an elastic beam"
+               " through its journal and pin centre lines on every main, rigid supports or"
+               " elastic ones (radial stiffness below or per main bearing in Bearings); needs"
+               " sheet Crank (each throw's bending stiffness from its dimensions).",
+          aliases=(("isostatic", "determinate"), ("statically determinate", "determinate"),
+                   ("simply supported", "determinate"),
+                   ("continuous beam", "continuous beam, rigid supports"),
+                   ("hyperstatic", "continuous beam, rigid supports"),
+                   ("indeterminate", "continuous beam, rigid supports"),
+                   ("continuous beam rigid supports", "continuous beam, rigid supports"),
+                   ("continuous beam, rigid", "continuous beam, rigid supports"),
+                   ("continuous beam elastic supports", "continuous beam, elastic supports"),
+                   ("continuous beam, elastic", "continuous beam, elastic supports"),
+                   ("elastic supports", "continuous beam, elastic supports"))),
+        F("Main bearing support stiffness", "support_stiffness", "linear_stiffness",
+          check=">0", required=False,
+          note="Radial stiffness of every main bearing's support (block, cap, shell and oil"
+               " film in series) for the continuous beam on elastic supports; a value in"
+               " Bearings' 'support stiffness' wins for its main. No published value is general:"
+               " take it from the block's FE or a test.",
+          valid=R(1e3, 1e10, "N/mm"), usual=R(1e4, 1e7, "N/mm")),
         F("Connecting rod mass", "rod_mass", "mass", check=">0", required=False,
           note="Including bolts and bearing shells.",
           valid=R(0.001, 100000, "kg"), usual=R(0.05, 10000, "kg")),
@@ -763,6 +790,16 @@ BEARINGS = Sheet(
           note="Supplier's minimum oil flow through this bearing (rule BRG-009). Blank: not"
                " judged.",
           valid=R(1e-4, 1000, "l/min"), usual=R(0.01, 50, "l/min")),
+        F("support stiffness", "support_stiffness", "linear_stiffness", check=">0",
+          required=False,
+          note="Main bearings, continuous beam on elastic supports: this main's radial support"
+               " stiffness (wins over the Engine sheet's). Blank: the Engine sheet's value.",
+          valid=R(1e3, 1e10, "N/mm"), usual=R(1e4, 1e7, "N/mm")),
+        F("support offset", "support_offset", "length", required=False,
+          note="Main bearings, continuous beam: offset of this main's bore centre from the"
+               " line of the others (misalignment), along the cylinder axis of an in-line"
+               " engine (block y), + towards the head. Blank: 0.",
+          valid=R(-5, 5, "mm"), usual=R(-0.2, 0.2, "mm")),
         F("lining", "lining", "choice", required=False, choices=LININGS,
           aliases=_LINING_ALIASES,
           note="Lining material; selects the specific-load and film-thickness limits (AS15/AS16"
