@@ -98,12 +98,14 @@ RULES: dict[str, dict] = {
         "scatter": "the real inertia is 5-15 % below m a b", "confirmed": True},
     "counterweight": {
         "rule": "each throw balanced within itself: the two counterweights (annular sectors of"
-                " 150 deg from the journal radius, web thickness) balance 100 % of the throw's"
+                " 150 deg from the journal radius, web thickness; 180 deg, then up to 2 x the web"
+                " thickness where needed) balance 100 % of the throw's"
                 " rotating unbalance (pin, webs, rods' rotating share); a 90-degree V also"
                 " its cylinder pair's primary reciprocating force m_rec R w^2 (a constant"
                 " rotating vector)",
         "source": "target chosen here (full in-throw balance: no rotating couple, least"
-                  " internal bending); the 90-degree V result is classical balancing theory",
+                  " internal bending); the 90-degree V result is classical balancing theory;"
+                  " swing radius limit rod length - crank radius - 0.25 bore [not confirmed]",
         "scatter": "industrial practice 50-100 % of the rotating unbalance", "confirmed": False},
 }
 

@@ -94,6 +94,7 @@ class Layout:
     cw_ri: float
     cw_ro: float
     cw_angle: float
+    cw_thickness: float
     balance_target: float
     clearance_main: float
     clearance_pin: float
@@ -149,31 +150,42 @@ def _throws_and_firing(b: Brief) -> tuple[list[float], list[int], list[float], l
     return (pins, cyl_pin, banks, firing, "-".join(str(c + 1) for c in order), note)
 
 
-def _cw_for_target(b: Brief, geo: dict, target_unbalance: float, mat: dict, ro_max: float
-                   ) -> tuple[float, float]:
-    """Outer radius and angle of the two counterweights of a throw whose unbalance (kg m,
-    opposite the pin) is ``target_unbalance`` (crank geometry of the crank branch)."""
+def _cw_for_target(b: Brief, geo: dict, target_unbalance: float, mat: dict, ro_max: float,
+                   t_max: float) -> tuple[float, float, float]:
+    """Outer radius, angle and axial thickness of the two counterweights of a throw whose
+    unbalance (kg m, opposite the pin) is ``target_unbalance`` (crank geometry of the crank
+    branch): 150 deg at the web thickness first, then 180 deg, then thicker (up to
+    ``t_max``); none reaches it: the largest that fits if it balances at least half the
+    target (the low end of industrial practice), else :class:`NoRule`."""
     ri = geo["journal_diameter"] / 2.0
+    tw = geo["web_thickness"]
 
-    def u(ro: float, ang: float) -> float:
+    def u(ro: float, ang: float, tc: float) -> float:
         p = throw_mass_properties(**geo, density=mat["density"], cw_inner_radius=ri,
-                                  cw_outer_radius=ro, cw_angle=ang)
+                                  cw_outer_radius=ro, cw_angle=ang, cw_thickness=tc)
         return float(-(p.mass[0, 2] * p.y[0, 2] + p.mass[0, 5] * p.y[0, 5]))
 
-    for ang_deg in (150.0, 180.0):
+    tries = [(150.0, tw), (180.0, tw)] + [(180.0, min(f * tw, t_max)) for f in (1.25, 1.5, 2.0)
+                                          if f * tw <= t_max]
+    for ang_deg, tc in tries:
         ang = math.radians(ang_deg)
-        if u(ro_max, ang) >= target_unbalance:
+        if u(ro_max, ang, tc) >= target_unbalance:
             lo, hi = ri * 1.0001, ro_max
             for _ in range(60):
                 mid = 0.5 * (lo + hi)
-                if u(mid, ang) < target_unbalance:
+                if u(mid, ang, tc) < target_unbalance:
                     lo = mid
                 else:
                     hi = mid
-            return hi, ang
-    raise NoRule("counterweight: no annular counterweight up to 180 deg and the swing radius"
-                 f" {ro_max * 1e3:.0f} mm (rod length - crank radius - 0.25 bore) balances the"
-                 " target; the counterweight rule has no data for this geometry")
+            return hi, ang, tc
+    ang, tc = math.radians(tries[-1][0]), tries[-1][1]
+    if u(ro_max, ang, tc) >= 0.5 * target_unbalance:  # the largest that fits, >= 50 %
+        return ro_max, ang, tc
+    raise NoRule("counterweight: no annular counterweight up to 180 deg, the swing radius"
+                 f" {ro_max * 1e3:.0f} mm (rod length - crank radius - 0.25 bore) and"
+                 f" {t_max * 1e3:.0f} mm thickness balances half the target"
+                 f" ({target_unbalance * 1e3:.0f} kg mm); the counterweight rule has no data for"
+                 " this geometry")
 
 
 def layout(b: Brief) -> Layout:
@@ -209,10 +221,10 @@ def layout(b: Brief) -> Layout:
     if b.layout == "V" and abs(math.degrees(b.bank_angle) - 90.0) < 1e-6:
         target += m_rec * R
     ro_max = rod_len - R - 0.25 * b.bore
-    ro, ang = _cw_for_target(b, geo, target, mat, ro_max)
+    ro, ang, tc = _cw_for_target(b, geo, target, mat, ro_max, tw + 0.45 * pin_len)
     return Layout(b, n_thr, throws, cyl_throw, banks, firing, order, fnote, force,
                   b.peak_pressure, dp, dj, rod_land, pin_len, main_land, main_len, rf_p, rf_j,
-                  tw, bw, rod_len, spacing, wp, piston, rod, dj / 2.0, ro, ang, target,
+                  tw, bw, rod_len, spacing, wp, piston, rod, dj / 2.0, ro, ang, tc, target,
                   5e-4 * dj, 5e-4 * dp)
 
 
@@ -247,10 +259,15 @@ def _crank_rows(L: Layout, mat: dict) -> tuple[list, Any]:
                               web_thickness=L.tw, web_width_journal=L.bw, web_width_pin=L.bw,
                               crank_radius=R, density=mat["density"],
                               cw_inner_radius=L.cw_ri, cw_outer_radius=L.cw_ro,
-                              cw_angle=L.cw_angle)
+                              cw_angle=L.cw_angle, cw_thickness=L.cw_thickness)
+    cw_u = float(-(p.mass[0, 2] * p.y[0, 2] + p.mass[0, 5] * p.y[0, 5]))
     note = est(None, "mass and mass centre of the sized throw geometry (webs: convex hull of"
                " the journal- and pin-side circles; counterweights: annular sectors) by the"
-               " crank-geometry module; " + fl.RULES["counterweight"]["rule"])
+               " crank-geometry module; " + fl.RULES["counterweight"]["rule"]
+               + f"; achieved {100 * cw_u / L.balance_target:.0f} % of the target"
+               f" ({L.balance_target * 1e3:.0f} kg mm per throw), counterweight"
+               f" {L.cw_ri * 1e3:.1f}-{L.cw_ro * 1e3:.1f} mm, {math.degrees(L.cw_angle):.0f} deg,"
+               f" {L.cw_thickness * 1e3:.1f} mm thick")
     rows = []
     names = {1: "web", 2: "counterweight", 3: "pin", 4: "web", 5: "counterweight"}
     for t in range(L.throws):
