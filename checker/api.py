@@ -164,7 +164,9 @@ class CheckResult:
         (:mod:`checker.caveats`): what page 1 shows beside the verdict."""
         from . import caveats
 
-        return caveats.collect(self.outcome)
+        out = caveats.collect(self.outcome)
+        est = caveats.estimate_caveat(self.engine, self.results)
+        return out + ([est] if est else [])
 
     def to_frame(self):
         """The rule results as a pandas DataFrame (one row per rule and item)."""

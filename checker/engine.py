@@ -155,6 +155,7 @@ class Engine:
     sha256: str = ""
     where: dict[tuple, str] = field(default_factory=dict)
     assumptions: tuple[str, ...] = ()  # workbook values marked as assumptions (with cells)
+    estimates: tuple[str, ...] = ()  # workbook values marked ESTIMATE (sized by a rule)
     #: Inputs that can be computed with but are unusual for a crank-train engine (value
     #: outside a field's usual range, a very fine speed grid...), each with its cell.
     warnings: tuple[InputError, ...] = ()
@@ -524,7 +525,8 @@ def build_engine(data: WorkbookData,
         oil=Params(data.params.get("Oil", {})), damper=damper,
         fatigue=Params(data.params.get("Fatigue", {})), overrides=tuple(overrides),
         source=data.path, sha256=data.sha256, where=dict(data.where),
-        assumptions=tuple(data.assumptions), warnings=tuple(pr.warnings),
+        assumptions=tuple(data.assumptions), estimates=tuple(data.estimates),
+        warnings=tuple(pr.warnings),
     )
 
 

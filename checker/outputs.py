@@ -39,6 +39,11 @@ def to_text(res: CheckResult) -> str:
         lines.append("")
         lines.append(f"input warnings ({len(res.engine.warnings)}): unusual values, check them")
         lines += [f"  {w}" for w in res.engine.warnings]
+    from .caveats import estimate_caveat
+
+    est = estimate_caveat(res.engine, res.results)
+    if est:
+        lines += ["", f"estimates: {est['text']}"]
     lines.append("")
     lines.append(f"{res.engine.name}: {res.summary_text()}"
                  + (f" (modules run: {', '.join(res.outcome.modules_run) or 'none'};"

@@ -7,6 +7,7 @@ to_si` (the workbook's unit handling); every problem of a brief is reported at o
 
 from __future__ import annotations
 
+import difflib
 import math
 import re
 import tomllib
@@ -92,7 +93,7 @@ def parse_brief(raw: dict[str, Any], where: str = "brief") -> Brief:
     vals: dict[str, Any] = {}
     for k in raw:
         if k not in KEYS:
-            near = [x for x in KEYS if x.replace("_", "") == k.replace("_", "").lower()]
+            near = difflib.get_close_matches(k.lower(), list(KEYS), n=1, cutoff=0.7)
             errs.append(InputError(f"{where}: {k}", "unknown key; expected one of "
                                    + ", ".join(KEYS) + (f" (did you mean {near[0]}?)"
                                                         if near else "")))
