@@ -245,6 +245,7 @@ class Tuning:
     ring_stiffness: float
     loss_factor: float
     joints: list[dict]
+    tuning: float = 1.0  # Den Hartog's optimum ring / crank-mode frequency ratio
     sizing: bool = True  # a sizing pass (the irregularity target typed for the flywheel module)
 
 
@@ -341,7 +342,6 @@ def _joint_design(location: str, torque: float, face_od: float, face_id: float) 
     bolts). None fits: the largest that does, its cover factor below 1.8 a design finding."""
     frac = PRELOAD_FRACTIONS["yield controlled"][0]
     rp02 = 940e6
-    r_eff = float(effective_friction_diameter(face_od, face_id)) / 2.0
     sizes = [(8, 1.0), (10, 1.25), (12, 1.25), (14, 1.5), (16, 1.5), (18, 1.5), (20, 1.5),
              (24, 2.0), (27, 2.0), (30, 2.0), (36, 3.0)]
     if location == "crank nose":
@@ -353,8 +353,15 @@ def _joint_design(location: str, torque: float, face_od: float, face_id: float) 
     for d_mm, p_mm in fits:
         for n in counts:
             a = float(tensile_stress_area(d_mm * 1e-3, p_mm * 1e-3))
+            fid = max(face_id, 1.1 * d_mm * 1e-3) if location == "crank nose" else face_id
+            r_eff = float(effective_friction_diameter(face_od, fid)) / 2.0
             cap = 0.2 * n * frac * rp02 * a * r_eff
-            best = {"bolts": n, "d": d_mm, "p": p_mm, "capacity": cap}
+            f = frac * rp02 * a
+            head_id = round(1.1 * d_mm, 1)
+            head_od = math.ceil(2 * 1e3 * math.sqrt(4 * f / (math.pi * 450e6)
+                                                    + (head_id * 1e-3)**2)) / 2
+            best = {"bolts": n, "d": d_mm, "p": p_mm, "capacity": cap, "head_od": head_od,
+                    "head_id": head_id, "id": fid}
             if cap >= 1.8 * 1.1 * torque:
                 return best
     return best
@@ -500,8 +507,11 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
     damper = [("Rubber loss factor", round(tune.loss_factor, 3), "-",
                est(None, "Den Hartog's optimum loss factor for the ring/crank inertia ratio"
                    " (damper-tuning module)")),
-              ("Tuning ratio, minimum", 0.9, "-", est(None, "Den Hartog optimum -10 %")),
-              ("Tuning ratio, maximum", 1.1, "-", est(None, "Den Hartog optimum +10 %"))]
+              ("Tuning ratio, minimum", round(0.9 * tune.tuning, 3), "-",
+               est(None, "Den Hartog's optimum tuning ratio for this ring/crank inertia ratio"
+                   " (damper-tuning module) -10 % [band not confirmed]")),
+              ("Tuning ratio, maximum", round(1.1 * tune.tuning, 3), "-",
+               est(None, "Den Hartog's optimum tuning ratio +10 % [band not confirmed]"))]
     rf = est("fillet_radius")
     src = f"{TAG}: {mat['source']}"
     fatigue = [
@@ -547,13 +557,15 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
     jrows = []
     for j in tune.joints:
         jrows.append([j["name"], j["name"], j["bolts"], j["d"], j["p"], "10.9",
-                      "yield controlled", round(1.5 * j["d"], 1), round(1.05 * j["d"], 1),
+                      "yield controlled", j["head_od"], j["head_id"],
                       "steel", _mm(j["od"]), _mm(j["id"]), 0.2,
                       est(None, f"smallest bolt set whose slip capacity covers the torsional"
                           f" model's largest joint torque {j['torque']:.0f} N m with a cover"
                           " factor of 1.8 (+10 %), yield-controlled tightening at 75 % of"
-                          " R_p0.2 and friction 0.2 (Bell, Ricardo 2013); face and head"
-                          " diameters [ratios not confirmed]")])
+                          " R_p0.2 and friction 0.2 (Bell, Ricardo 2013); head bearing"
+                          " diameter for 90 % of the 500 N/mm^2 contact limit on steel (Bell,"
+                          " Ricardo 2013) from a 1.1 d clearance hole; face diameters [ratios"
+                          " not confirmed]")])
     return {
         "Engine": engine,
         "Cylinders": (cyl_cols, cyl_rows),
@@ -623,9 +635,9 @@ def size(b: Brief) -> tuple[Layout, dict[str, Any]]:
     crank_j = L.throws * float(props.inertia_total[0])
     od = 1.6 * L.dj
     joints0 = [{"name": "crank nose", "bolts": 1, "d": 12, "p": 1.25, "torque": 0.0,
-                "od": 0.75 * L.dj, "id": 0.0125},
+                "od": 0.75 * L.dj, "id": 0.0, "head_od": 24.0, "head_id": 13.2},
                {"name": "flywheel", "bolts": 8, "d": 10, "p": 1.25, "torque": 0.0, "od": od,
-                "id": L.dj * 0.8}]
+                "id": L.dj * 0.8, "head_od": 20.0, "head_id": 11.0}]
     tune = Tuning(flywheel=20 * crank_j, ring=0.25 * crank_j,
                   ring_stiffness=0.25 * crank_j * (2 * math.pi * 300.0)**2, loss_factor=0.2,
                   joints=joints0)
@@ -645,7 +657,9 @@ def size(b: Brief) -> tuple[Layout, dict[str, Any]]:
         if k_opt is not None and np.isfinite(k_opt).any():
             k = float(np.nanmax(k_opt)) * ring / tune.ring
         loss = float(np.nanmax(eta)) if eta is not None and np.isfinite(eta).any() else 0.2
-        new = Tuning(fw, ring, k, min(max(loss, 0.05), 1.0), joints0)
+        opt = _q(res, "damper.optimum_tuning_ratio")
+        tr = float(np.nanmax(opt)) if opt is not None and np.isfinite(opt).any() else 1.0
+        new = Tuning(fw, ring, k, min(max(loss, 0.05), 1.0), joints0, tuning=tr)
         done = (abs(new.flywheel / tune.flywheel - 1) < 0.01
                 and abs(new.ring / tune.ring - 1) < 0.01
                 and abs(new.ring_stiffness / tune.ring_stiffness - 1) < 0.01)
