@@ -17,8 +17,9 @@ Main sources:
   ``A = F S / R_p0.2`` (S = 1.5);
 * Khurmi, R.S., Gupta, J.K., "A Textbook of Machine Design", S. Chand, §32.19 "Design
   procedure for crankshaft": web thickness 0.22-0.32 x bore (or 0.4-0.6 x shaft diameter);
-* Bhandari, V.B., "Design of Machine Elements" (centre crankshaft): web width 1.14 x pin
-  diameter (as quoted by the public calculators built on it; the page was not seen);
+* the machine-design textbook rule for a centre crankshaft at TDC, web width 1.14 x pin
+  diameter (found stated only by public online design calculators; the textbook page, e.g.
+  Bhandari, "Design of Machine Elements", not seen: marked unconfirmed);
 * van Basshuysen, R., Schaefer, F., "Internal Combustion Engine Handbook" (2004/2010):
   crank radius / rod length 0.28-0.33 for car engines, diesels lower (as quoted by the German
   Wikipedia article "Pleuelstangenverhaeltnis"; the page was not seen);
@@ -46,8 +47,10 @@ RULES: dict[str, dict] = {
         "source": "Agostini 2019, crankshaft 'Design Guidelines'",
         "scatter": "real cranks have mains 0-20 % larger than pins", "confirmed": True},
     "journal_length": {
-        "rule": "land length L_pin = F/(d p_adm) per rod, L_main = F/(2 d p_adm); F = peak gas"
-                " force p_max pi D^2/4, p_adm = 21.5 MPa (middle of 18-25 MPa); journal length"
+        "rule": "land length L_pin = F/(d p_adm) per rod, L_main = F/(2 d p_adm); F = the"
+                " resultant along the piston axis at TDC and the rated speed (peak gas force"
+                " p_max pi D^2/4 less the reciprocating inertia m_rec R w^2 (1 + R/l), at least"
+                " half the gas force), p_adm = 21.5 MPa (middle of 18-25 MPa); journal length"
                 " = land + 2 (fillet radius + 1 mm chamfer)",
         "source": "Agostini 2019, crankshaft 'Design Guidelines' (admissible pressure about"
                   " 18-25 MPa); the land-to-journal allowance is not from a source",
@@ -63,9 +66,10 @@ RULES: dict[str, dict] = {
         "scatter": "0.22-0.32 x bore (+-19 %)", "confirmed": True},
     "web_width": {
         "rule": "web width = 1.14 x crank-pin diameter (at the pin and at the journal)",
-        "source": "Bhandari, Design of Machine Elements, centre crankshaft (as quoted; page not"
-                  " seen)",
-        "scatter": "not stated", "confirmed": True},
+        "source": "the machine-design textbook rule for a centre crankshaft at TDC (w = 1.14"
+                  " d_c, t = 0.7 d_c), found stated only by public online design calculators;"
+                  " the textbook page (e.g. Bhandari, Design of Machine Elements) not seen",
+        "scatter": "not stated", "confirmed": False},
     "rod_length": {
         "rule": "rod length = crank radius / lambda, lambda = 0.305 (gasoline, middle of"
                 " 0.28-0.33) or 0.28 (diesel, 'usually lower')",
@@ -119,6 +123,20 @@ def peak_gas_force(bore: float, p_max: float) -> float:
     """Peak gas force on the piston [N]: ``F = p_max pi D^2 / 4`` (gauge pressure taken as
     absolute: conservative by 0.1 MPa)."""
     return p_max * math.pi * bore**2 / 4.0
+
+
+def resultant_force(gas: float, m_rec: float, crank_radius: float, rod_length: float,
+                    speed: float) -> float:
+    """Resultant force along the piston axis at TDC [N] (Agostini 2019's ``F`` for the
+    journal lengths): the peak gas force less the reciprocating inertia force
+    ``m_rec R w^2 (1 + R/l)`` at ``speed`` (the gas peak taken at TDC: conservative by the
+    few degrees after TDC where it occurs); at least half the gas force.
+
+    >>> round(resultant_force(49.4e3, 0.9, 0.0473, 0.155, 628.3) / 1e3, 1)
+    27.8
+    """
+    inertia = m_rec * crank_radius * speed**2 * (1.0 + crank_radius / rod_length)
+    return max(gas - inertia, 0.5 * gas)
 
 
 def pin_diameter(bore: float) -> float:

@@ -74,8 +74,8 @@ class Layout:
     cyl_firing: list[float]  # deg
     firing_order: str
     firing_note: str
-    force: float
-    p_max: float
+    force: float  # resultant along the piston axis at the rated speed (bearing lengths)
+    gas: float  # peak gas force (rod stem)
     dp: float
     dj: float
     rod_land: float
@@ -193,21 +193,30 @@ def layout(b: Brief) -> Layout:
     throws, cyl_throw, banks, firing, order, fnote = _throws_and_firing(b)
     n_thr = max(cyl_throw)
     rods_per_pin = b.cylinders // n_thr
-    force = fl.peak_gas_force(b.bore, b.peak_pressure)
+    gas = fl.peak_gas_force(b.bore, b.peak_pressure)
     dp = fl.pin_diameter(b.bore)
     dj = fl.main_diameter(dp)
     rf_p, rf_j = fl.fillet_radius(dp), fl.fillet_radius(dj)
-    rod_land = fl.land_length(force, dp)
+    rod_len = fl.rod_length(b.stroke, b.fuel)
+    wp = fl.wrist_pin(b.bore)
+    piston = fl.piston_mass(b.bore, b.fuel) + wp.mass
+    force, rod_land = gas, fl.land_length(gas, dp)
+    for _ in range(20):  # the rod's big eye is as wide as the land the resultant needs
+        rod = fl.con_rod(force=gas, length=rod_len, pin_d=dp, pin_land=rod_land, wrist=wp)
+        m_rot = rod.mass * (rod_len - rod.centre_from_big_end) / rod_len
+        force = fl.resultant_force(gas, piston + rod.mass - m_rot, b.stroke / 2.0, rod_len,
+                                   b.rated_speed)
+        land = fl.land_length(force, dp)
+        if abs(land - rod_land) < 1e-7:
+            break
+        rod_land = land
+    rod_land = land
     main_land = fl.land_length(force, dj, share=0.5)
     pin_len = rods_per_pin * rod_land + 2 * (rf_p + 1e-3) + (rods_per_pin - 1) * 1e-3
     main_len = main_land + 2 * (rf_j + 1e-3)
     tw = fl.web_thickness(b.bore)
     bw = fl.web_width(dp)
-    rod_len = fl.rod_length(b.stroke, b.fuel)
     spacing = main_len + 2 * tw + pin_len
-    wp = fl.wrist_pin(b.bore)
-    piston = fl.piston_mass(b.bore, b.fuel) + wp.mass
-    rod = fl.con_rod(force=force, length=rod_len, pin_d=dp, pin_land=rod_land, wrist=wp)
     mat = MATERIALS[b.crank_material]
     R = b.stroke / 2.0
     geo = dict(journal_diameter=dj, journal_bore=0.0, journal_length=main_len, pin_diameter=dp,
@@ -222,10 +231,10 @@ def layout(b: Brief) -> Layout:
         target += m_rec * R
     ro_max = rod_len - R - 0.25 * b.bore
     ro, ang, tc = _cw_for_target(b, geo, target, mat, ro_max, tw + 0.45 * pin_len)
-    return Layout(b, n_thr, throws, cyl_throw, banks, firing, order, fnote, force,
-                  b.peak_pressure, dp, dj, rod_land, pin_len, main_land, main_len, rf_p, rf_j,
-                  tw, bw, rod_len, spacing, wp, piston, rod, dj / 2.0, ro, ang, tc, target,
-                  5e-4 * dj, 5e-4 * dp)
+    return Layout(b, n_thr, throws, cyl_throw, banks, firing, order, fnote, force, gas, dp,
+                  dj, rod_land, pin_len, main_land, main_len, rf_p, rf_j, tw, bw, rod_len,
+                  spacing, wp, piston, rod, dj / 2.0, ro, ang, tc, target, 5e-4 * dj,
+                  5e-4 * dp)
 
 
 def _ker_wilson(L: Layout, G: float) -> float:
@@ -441,17 +450,6 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
                  round(L.cyl_bank[c], 6), L.cyl_throw[c], est(None, L.firing_note)]
                 for c in range(b.cylinders)]
     # peak pressure and brake torque: the brief's peak at every speed; torque from rated power
-    speeds = sorted({round(b.min_speed * RPM), round(b.rated_speed * RPM),
-                     round(b.max_speed * RPM)})
-    pp_note = (dflt("peak_pressure") if "peak_pressure" in b.defaults else brief_note) + (
-        "; the brief's peak pressure at every full-load speed (a flat curve)"
-        if "peak_pressure" not in b.defaults else "")
-    if "peak_pressure" in b.defaults:
-        pp_note = est("peak_pressure", "at every full-load speed (a flat curve)")
-    pp_rows = [["full", s, round(b.peak_pressure / 1e5, 2), pp_note] for s in speeds]
-    pp_rows.append(["no", round(b.max_speed * RPM), round(1.5 * cr ** 1.3, 1),
-                    est(None, "motored peak ~ 1 bar x CR^1.3 x 1.5 (polytropic compression,"
-                        " n = 1.3, with throttled/no-load combustion) [not confirmed]")])
     t_max = rated_torque * 1.2
     bt_rows = [[round(b.min_speed * RPM), round(0.8 * t_max, 1),
                 est(None, "80 % of the peak torque at the minimum speed [shape not"
@@ -464,6 +462,21 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
         bt_rows.append([round(b.max_speed * RPM), round(0.8 * rated_torque, 1),
                         est(None, "80 % of the rated torque at the maximum speed [not"
                             " confirmed]")])
+    # full-load peak pressure: the brief's peak where the torque peaks, the firing part of it
+    # scaled with the torque elsewhere (IMEP ~ torque)
+    p_mot = p_int * cr**1.3  # bar: polytropic compression, n = 1.3
+    pk = b.peak_pressure / 1e5
+    src = ("the brief's peak pressure" if "peak_pressure" not in b.defaults
+           else "the typical peak pressure (" + fl.RULES["peak_pressure"]["rule"] + "; "
+           + fl.RULES["peak_pressure"]["source"] + ")")
+    pp_note = est(None, f"{src} at the peak-torque speed; elsewhere the motored peak"
+                  f" ({p_mot:.0f} bar = intake pressure x CR^1.3) plus the firing part scaled"
+                  " with the brake torque (IMEP ~ torque) [not confirmed]")
+    pp_rows = [["full", s_, round(p_mot + (pk - p_mot) * t / t_max, 1), pp_note]
+               for s_, t, _n in bt_rows]
+    pp_rows.append(["no", round(b.max_speed * RPM), round(1.5 * cr ** 1.3, 1),
+                    est(None, "motored peak ~ 1 bar x CR^1.3 x 1.5 (polytropic compression,"
+                        " n = 1.3, with throttled/no-load combustion) [not confirmed]")])
     lining = b.bearing_lining
     bcols = [("name", "-"), ("type", "-"), ("journal diameter", "mm"), ("journal length", "mm"),
              ("effective length", "mm"), ("radial clearance", "mm"), ("groove", "-"),
@@ -590,7 +603,8 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
                   "Values marked ESTIMATE are sized by a stated design rule (see each note and"
                   " docs/new-engine.md), not data of this engine.",
                   "Replace each estimate with the design's value as it becomes known.",
-                  f"Peak gas force {L.force / 1e3:.1f} kN, rated torque {rated_torque:.0f} N m,"
+                  f"Peak gas force {L.gas / 1e3:.1f} kN, resultant at TDC and the rated"
+                  f" speed {L.force / 1e3:.1f} kN, rated torque {rated_torque:.0f} N m,"
                   f" rated BMEP {bmep / 1e5:.1f} bar; rotating share of the rod"
                   f" {m_rot:.3f} kg, crank radius {R * 1e3:g} mm.",
                   "See docs/workbook.md for every sheet, parameter and column."],

@@ -72,11 +72,17 @@ def test_rules_follow_their_sources():
                      "rated_power": "110 kW", "rated_speed": "6000 rpm",
                      "peak_pressure": "85 bar"})
     lay = layout(b)
-    force = 85e5 * math.pi / 4 * 0.086**2
-    assert lay.force == pytest.approx(force)
-    # Agostini 2019: L_pin = F/(d p_adm), L_main = F/(2 d p_adm), p_adm 21.5 MPa
-    assert lay.rod_land == pytest.approx(force / (lay.dp * 21.5e6))
-    assert lay.main_land == pytest.approx(force / (2 * lay.dj * 21.5e6))
+    gas = 85e5 * math.pi / 4 * 0.086**2
+    assert lay.gas == pytest.approx(gas)
+    # Agostini 2019: F the resultant along the piston axis (gas less reciprocating inertia
+    # at TDC and the rated speed), L_pin = F/(d p_adm), L_main = F/(2 d p_adm), 21.5 MPa
+    m_rot = lay.rod.mass * (lay.rod_len - lay.rod.centre_from_big_end) / lay.rod_len
+    m_rec = lay.piston + lay.rod.mass - m_rot
+    w = 6000 * math.pi / 30
+    force = gas - m_rec * 0.0473 * w**2 * (1 + 0.0473 / lay.rod_len)
+    assert lay.force == pytest.approx(force, rel=1e-6)
+    assert lay.rod_land == pytest.approx(force / (lay.dp * 21.5e6), rel=1e-5)
+    assert lay.main_land == pytest.approx(force / (2 * lay.dj * 21.5e6), rel=1e-5)
     assert lay.dj == lay.dp  # Agostini 2019: first approximation
     assert lay.tw == pytest.approx(0.27 * 0.086)  # Khurmi & Gupta: 0.22-0.32 bore
     assert lay.bw == pytest.approx(1.14 * lay.dp)  # Bhandari
