@@ -195,6 +195,9 @@ class CheckResult:
             "quantities": quantity_summary(self.outcome.quantities),
             "caveats": self.caveats,
         }
+        if self.engine.crank is not None:
+            # each value of the crank model: typed (wins) or derived from sheet Crank
+            d["crank_model"] = [m.as_dict() for m in self.engine.crank_model]
         if timings:
             d["timings"] = {m: round(t, 6) for m, t in self.outcome.timings.items()}
         if self.json_extras is not None:
@@ -340,6 +343,9 @@ def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = No
         table = RuleTable(resolved["rules"], table.files, resolved["applied"], table.levers)
     chosen = _select(table, select, ignore)
     wanted = {r.quantity for r in chosen}
+    if engine.crank is not None:
+        # the crank's throws as its geometry gives them (JSON, results workbook), judged or not
+        wanted |= {n for n in graph.QUANTITIES if n.startswith("crank.")}
     # quantities a result is shown beside (the film thickness by the other method); not
     # computed with compare=False (variants judged on their margins: remedies, corners)
     if compare:

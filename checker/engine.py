@@ -11,6 +11,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
+from .crank_input import CrankGeometry
 from .errors import InputError, InputErrors
 from .workbook.loader import WorkbookData
 from .workbook.schema import SHEETS
@@ -156,6 +157,11 @@ class Engine:
     where: dict[tuple, str] = field(default_factory=dict)
     assumptions: tuple[str, ...] = ()  # workbook values marked as assumptions (with cells)
     estimates: tuple[str, ...] = ()  # workbook values marked ESTIMATE (sized by a rule)
+    #: The crank's geometry (sheets Crank, CrankEnds), None without a Crank sheet.
+    crank: CrankGeometry | None = None
+    #: Values of the crank model derived from the geometry or typed over it, with their
+    #: origins (:class:`checker.crank_derive.ModelValue`); empty without a Crank sheet.
+    crank_model: tuple = ()
     #: Inputs that can be computed with but are unusual for a crank-train engine (value
     #: outside a field's usual range, a very fine speed grid...), each with its cell.
     warnings: tuple[InputError, ...] = ()
@@ -468,6 +474,8 @@ class _Problems:
         self.where = data.where
         self.errors: list[InputError] = list(data.errors)
         self.warnings: list[InputError] = list(data.warnings)
+        self._error_cells: set[str] = set()
+        self._indexed = 0
 
     def _at(self, sheet: str, attr: str, row: int | None) -> str:
         key = (sheet, attr) if row is None else (sheet, row, attr)
@@ -475,6 +483,16 @@ class _Problems:
 
     def err(self, sheet: str, attr: str, row: int | None, msg: str) -> None:
         self.errors.append(InputError(self._at(sheet, attr, row), msg))
+
+    def blank_required(self, sheet: str, attr: str, row: int | None, msg: str) -> None:
+        """A required cell left blank (unless its cell already has an error: a value the
+        loader refused is blank here)."""
+        where = self._at(sheet, attr, row)
+        for e in self.errors[self._indexed:]:  # errors added since the last call
+            self._error_cells.add(e.where)
+        self._indexed = len(self.errors)
+        if where not in self._error_cells:
+            self.errors.append(InputError(where, msg))
 
     def warn(self, sheet: str, attr: str, row: int | None, msg: str) -> None:
         self.warnings.append(InputError(self._at(sheet, attr, row), msg))
@@ -498,9 +516,13 @@ def build_engine(data: WorkbookData,
     p = Params(data.params["Engine"])
     cylinders, complete = _cylinders(data, p, pr)
     _engine_geometry(p, pr)
-    bearings = _bearings(data, pr)
-    crank_mass = _crank_mass(data, p, cylinders, complete, bearings, pr)
-    tv = _tv_model(data, p, pr)
+    crank = _crank(data, p, cylinders, pr)
+    rows = _crank_rows(data, crank, cylinders, pr)
+    bearings = _bearings(rows["Bearings"], pr, crank is not None)
+    fatigue = rows["Fatigue"]
+    crank_mass = _crank_mass(data, p, cylinders, complete, bearings, pr, rows["CrankMass"],
+                             fatigue)
+    tv = _tv_model(rows["TVModel"], p, pr, crank is not None)
     joints = _joints(data, pr)
     jt = _joint_torques(data, joints, pr)
     pk = _peak_pressure(data, pr)
@@ -523,11 +545,71 @@ def build_engine(data: WorkbookData,
         joints=tuple(joints), joint_torques=tuple(jt), peak_pressure=tuple(pk),
         pressure_traces=traces, brake_torque=tuple(sorted(bt)),
         oil=Params(data.params.get("Oil", {})), damper=damper,
-        fatigue=Params(data.params.get("Fatigue", {})), overrides=tuple(overrides),
+        fatigue=fatigue, overrides=tuple(overrides),
         source=data.path, sha256=data.sha256, where=dict(data.where),
         assumptions=tuple(data.assumptions), estimates=tuple(data.estimates),
-        warnings=tuple(pr.warnings),
+        warnings=tuple(pr.warnings), crank=crank, crank_model=tuple(rows["model"]),
     )
+
+
+def _crank(data: WorkbookData, p: Params, cylinders: list[Cylinder], pr: _Problems
+           ) -> CrankGeometry | None:
+    """Sheets Crank and CrankEnds: the crank's geometry, checked (None without sheet Crank)."""
+    from .crank_input import build_crank
+
+    rows = _rows(data, "Crank")
+    if not rows:
+        for attr, v in data.params.get("CrankEnds", {}).items():
+            if v is not None:
+                pr.err("CrankEnds", attr, None, "sheet CrankEnds needs sheet Crank (the"
+                       " crank's throws)")
+                break
+        return None
+    n_pins = max((c.pin for c in cylinders), default=0)
+    crank = build_crank(rows, dict(data.params.get("CrankEnds", {})), n_pins, p.get("stroke"),
+                        data.where, pr.err, pr.sheet_error, pr.blank_required)
+    if crank is not None and p.get("main_spacing") is not None:
+        for t in crank.throws:
+            if abs(t.length - p["main_spacing"]) > 0.005 * p["main_spacing"]:
+                pr.warn("Engine", "main_spacing", None, f"main journal spacing"
+                        f" {p['main_spacing'] * 1e3:.6g} mm differs from throw {t.number}'s"
+                        f" length {t.length * 1e3:.6g} mm (main journal + 2 webs + pin,"
+                        f" {crank.cell('journal_length', t.number)},"
+                        f" {crank.cell('web_thickness', t.number)},"
+                        f" {crank.cell('pin_length', t.number)})")
+                break
+    return crank
+
+
+def _crank_rows(data: WorkbookData, crank: CrankGeometry | None, cylinders: list[Cylinder],
+                pr: _Problems) -> dict[str, Any]:
+    """The rows of Bearings, Fatigue, CrankMass and TVModel as the analyses use them: without
+    a crank the workbook's own (unchanged); with one, completed from its geometry
+    (:mod:`checker.crank_derive`), a typed value winning, and the model values' origins."""
+    out: dict[str, Any] = {
+        "Bearings": _rows(data, "Bearings"), "CrankMass": _rows(data, "CrankMass"),
+        "TVModel": _rows(data, "TVModel"),
+        "Fatigue": Params(data.params.get("Fatigue", {})), "model": []}
+    if crank is None:
+        return out
+    from . import crank_derive as cd
+
+    pin_of = {c.number: c.pin for c in cylinders}
+    bearings = [dict(r) for r in out["Bearings"]]
+    cd.bearings_from_crank(bearings, crank, pin_of, data.where, pr.err)
+    fatigue, model = cd.fatigue_from_crank(dict(out["Fatigue"]), crank, pr.err, data.where)
+    typed_throws = {r["throw"] for r in out["CrankMass"] if r.get("throw") is not None}
+    gamma = {}
+    for c in sorted(cylinders, key=lambda c: c.number):
+        gamma.setdefault(c.pin, c.throw_angle)
+    crank_mass = list(out["CrankMass"]) + cd.crank_mass_rows(crank, gamma, typed_throws)
+    tv = [dict(r) for r in out["TVModel"]]
+    stiff = cd.throw_stiffness(crank)
+    model += cd.tv_from_crank(tv, crank, data.params["Engine"], pin_of, data.where, pr.err,
+                              stiff)
+    out.update(Bearings=bearings, Fatigue=Params(fatigue), CrankMass=crank_mass, TVModel=tv,
+               model=model, stiffness=stiff)
+    return out
 
 
 def _cylinders(data: WorkbookData, p: Params, pr: _Problems) -> tuple[list[Cylinder], bool]:
@@ -600,12 +682,18 @@ def _engine_geometry(p: Params, pr: _Problems) -> None:
                 " small end")
 
 
-def _bearings(data: WorkbookData, pr: _Problems) -> list[Bearing]:
-    """Sheet Bearings: the complete rows, with their geometry checked."""
+def _bearings(rows: list[dict[str, Any]], pr: _Problems, has_crank: bool) -> list[Bearing]:
+    """Sheet Bearings (completed from sheet Crank where given): the complete rows, with their
+    geometry checked."""
     err, warn = pr.err, pr.warn
     bearings = []
     counts = {"main": 0, "big end": 0}
-    for i, r in enumerate(_rows(data, "Bearings")):
+    for i, r in enumerate(rows):
+        if r["diameter"] is None:
+            pr.blank_required("Bearings", "diameter", i, "journal diameter is required:"
+                              " expected a length with a unit (e.g. mm)"
+                              + (", found an empty cell" if not has_crank else
+                                 "; sheet Crank does not give it for this row"))
         if None in (r["name"], r["type"], r["diameter"], r["length"], r["clearance"]):
             continue
         counts[r["type"]] += 1
@@ -637,14 +725,16 @@ def _bearings(data: WorkbookData, pr: _Problems) -> list[Bearing]:
 
 
 def _crank_mass(data: WorkbookData, p: Params, cylinders: list[Cylinder], complete: bool,
-                bearings: list[Bearing], pr: _Problems) -> tuple[MassItem, ...]:
-    """Sheet CrankMass, with the crank's bearing count (a main on each side of every throw, a
-    big end per rod) and the mass planes checked against the crank."""
+                bearings: list[Bearing], pr: _Problems, rows: list[dict[str, Any]],
+                fatigue: Params) -> tuple[MassItem, ...]:
+    """Sheet CrankMass (and the rows derived from sheet Crank for throws it does not give),
+    with the crank's bearing count (a main on each side of every throw, a big end per rod) and
+    the mass planes checked against the crank."""
     err = pr.err
     crank_mass = tuple(
         MassItem(r["location"], r["throw"], r["kind"], r["mass"], r["x"], r["y"], r["z"] or 0.0,
                  r["axial"], r["reference"])
-        for r in _rows(data, "CrankMass")
+        for r in rows
         if None not in (r["location"], r["throw"], r["kind"], r["mass"], r["x"], r["y"],
                         r["axial"], r["reference"])
     )
@@ -674,23 +764,26 @@ def _crank_mass(data: WorkbookData, p: Params, cylinders: list[Cylinder], comple
         if r["axial"] is not None and spacing is not None and r["axial"] > spacing:
             err("CrankMass", "axial", i, "axial position lies beyond the next main bearing"
                 " (main journal spacing)")
-    check_mass_planes(_rows(data, "CrankMass"), p, Params(data.params.get("Fatigue", {})),
-                      bearings, data.where, pr.warn)
+    check_mass_planes(_rows(data, "CrankMass"), p, fatigue, bearings, data.where, pr.warn)
     return crank_mass
 
 
-def _tv_model(data: WorkbookData, p: Params, pr: _Problems) -> list[TVStation]:
-    """Sheet TVModel: the stations front to rear, each cylinder on one station."""
+def _tv_model(tv_rows: list[dict[str, Any]], p: Params, pr: _Problems, has_crank: bool
+              ) -> list[TVStation]:
+    """Sheet TVModel (completed from sheet Crank where given): the stations front to rear,
+    each cylinder on one station."""
     err = pr.err
     n_cyl = p.get("cylinders")
-    tv_rows = _rows(data, "TVModel")
     tv = []
     station_of_cyl: dict[int, int] = {}
     for i, r in enumerate(tv_rows):
+        if r["inertia"] is None and not has_crank:
+            pr.blank_required("TVModel", "inertia", i, "inertia is required: expected an"
+                              " inertia with a unit (e.g. kg m^2), found an empty cell")
         if r["station"] is None or r["inertia"] is None or r["role"] is None:
             continue
         last = i == len(tv_rows) - 1
-        if not last and r["stiffness"] is None:
+        if not last and r["stiffness"] is None and not has_crank:
             err("TVModel", "stiffness", i, "stiffness to the next station is required for"
                 " every station but the last (expected a torsional stiffness, e.g. N m/rad)")
         if last and r["stiffness"] is not None:

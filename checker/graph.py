@@ -174,12 +174,19 @@ MODULES: dict[str, str] = {}
 its ``REGISTRY`` (the graph imports no module; modules import the graph)."""
 
 
-def register_module(name: str, title: str) -> None:
+QUIET_MODULES: set[str] = set()
+"""Modules that apply only when their sheet is given (``crank``: sheet Crank): listed when
+they run, never as skipped (a workbook without the sheet reads as before)."""
+
+
+def register_module(name: str, title: str, quiet: bool = False) -> None:
     """Register an analysis module. Registering it again keeps its place and must give the
-    same title."""
+    same title. ``quiet``: listed only when it runs (:data:`QUIET_MODULES`)."""
     if MODULES.get(name, title) != title:
         raise ValueError(f"module {name!r} registered as {MODULES[name]!r} and as {title!r}")
     MODULES[name] = title
+    if quiet:
+        QUIET_MODULES.add(name)
 
 
 def quantity(spec: QuantitySpec) -> QuantitySpec:
@@ -405,5 +412,5 @@ def run(engine: Engine, wanted: Iterable[str], progress: Callable[[str], None] |
     from_cache = {CALCULATIONS[c].module for c in reused}
     # a module whose results came from the cache counts as run (its results are used)
     ran_modules = [m for m in MODULES if m in timings or m in from_cache]
-    skipped = [m for m in MODULES if m not in ran_modules]
+    skipped = [m for m in MODULES if m not in ran_modules and m not in QUIET_MODULES]
     return RunOutcome(have, unavailable, timings, order, ran_modules, skipped, errors, reused)

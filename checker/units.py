@@ -155,6 +155,7 @@ KINDS: dict[str, Kind] = {
         Kind("area", "m**2", "mm^2"),
         Kind("mass", "kg", "kg"),
         Kind("inertia", "kg*m**2", "kg m^2"),
+        Kind("unbalance", "kg*m", "g mm"),
         Kind("force", "N", "kN"),
         Kind("torque", "N*m", "N m"),
         Kind("pressure", "Pa", "bar"),

@@ -103,7 +103,8 @@ RULES: dict[str, dict] = {
     "counterweight": {
         "rule": "each throw balanced within itself: the two counterweights (annular sectors of"
                 " 150 deg from the journal radius, web thickness; 180 deg, then up to 2 x the web"
-                " thickness where needed) balance 100 % of the throw's"
+                " thickness, thicker by at most 0.9 x the pin or journal length, where needed)"
+                " balance 100 % of the throw's"
                 " rotating unbalance (pin, webs, rods' rotating share); a 90-degree V also"
                 " its cylinder pair's primary reciprocating force m_rec R w^2 (a constant"
                 " rotating vector)",

@@ -20,6 +20,7 @@ REGISTRY: tuple[tuple[str, str, str], ...] = (
     ("balance", "Crankshaft balancing", "balance"),
     ("flywheel", "Flywheel and cyclic irregularity", "flywheel"),
     ("damper", "TV damper tuning", "damper_tuning"),
+    ("crank", "Crank geometry", "crank"),
 )
 """(module name, title, Python module) in report order; ``crank_nose`` adds calculations to
 the ``fatigue`` module."""
@@ -27,13 +28,17 @@ the ``fatigue`` module."""
 ORDER = tuple(name for name, _title, _file in REGISTRY)
 """Order of the modules in listings and in the report."""
 
+QUIET = ("crank",)
+"""Modules run only when their sheet is given (``crank``: sheet Crank), listed only then."""
+
 for _name, _title, _file in REGISTRY:
-    graph.register_module(_name, _title)
+    graph.register_module(_name, _title, quiet=_name in QUIET)
 
 from . import (  # noqa: E402, F401  (after the registry: their calculations name its modules)
     balance,
     bearing_performance,
     bearings,
+    crank,
     crank_nose,
     damper_tuning,
     fatigue,

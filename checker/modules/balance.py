@@ -248,9 +248,11 @@ def _balance(engine: Engine) -> dict[str, Quantity]:
             detail=_as(BalanceRatioDetail, common))
     else:
         n_on = np.bincount(pins, minlength=n_pins).astype(float)
+        # unbalances off the crank (pulley, flywheel: sheet CrankEnds) belong to no throw
+        on = np.array([it.kind != "unbalance" for it in crank], dtype=bool)
         try:
-            tb = bal.throw_balance(throw_angle=gamma, mass=cm, position=cpos,
-                                   throw_of_mass=cthrow, is_counterweight=cw,
+            tb = bal.throw_balance(throw_angle=gamma, mass=cm[on], position=cpos[on],
+                                   throw_of_mass=cthrow[on], is_counterweight=cw[on],
                                    pin_rotating_mass=m_big * n_on,
                                    pin_reciprocating_mass=m_rec * n_on, crank_radius=r)
         except ValueError as exc:

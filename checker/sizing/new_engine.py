@@ -42,17 +42,19 @@ def est(rule_key: str | None, text: str = "") -> str:
 
 MATERIALS = {  # density, E, nu, strengths [MPa] (Bell 2013 data for the steel)
     "forged steel": {
-        "density": 7850.0, "G": 80.8e9, "uts": 750, "fillet_uts": 920, "yield": 450,
+        "density": 7850.0, "E": 210e9, "nu": 0.3, "uts": 750, "fillet_uts": 920, "yield": 450,
         "fatigue": 375, "hydro": 543.75, "torsion": 217.5, "fillet_yield": 750,
         "pin_fillet": 619, "pin_hole": 326, "main_fillet": 611, "main_hole": 326,
         "source": "C38+N2BY forged steel, rolled fillets, induction-hardened oil holes: the"
-                  " material data of Bell, Ricardo 2013"},
+                  " strengths of Bell, Ricardo 2013; steel density 7850 kg/m^3, E 210 GPa,"
+                  " nu 0.3"},
     "nodular iron": {
-        "density": 7100.0, "G": 66e9, "uts": 800, "fillet_uts": 800, "yield": 480,
+        "density": 7100.0, "E": 174e9, "nu": 0.275, "uts": 800, "fillet_uts": 800, "yield": 480,
         "fatigue": 300, "hydro": 435, "torsion": 174, "fillet_yield": 600,
         "pin_fillet": 470, "pin_hole": 261, "main_fillet": 465, "main_hole": 258,
-        "source": "EN-GJS-800-2 nodular iron (EN 1563 minimum UTS 800, yield 480 MPa); fatigue"
-                  " 0.375 UTS, rolled fillets x 1.8 [factors not confirmed in a public source]"},
+        "source": "EN-GJS-800-2 nodular iron (EN 1563 minimum UTS 800, yield 480 MPa); density,"
+                  " E 174 GPa, nu 0.275, fatigue 0.375 UTS, rolled fillets x 1.8 [not confirmed"
+                  " in a public source]"},
 }
 
 INLINE_FIRING = {1: [1], 2: [1, 2], 3: [1, 2, 3], 4: [1, 3, 4, 2], 5: [1, 2, 4, 5, 3],
@@ -230,7 +232,7 @@ def layout(b: Brief) -> Layout:
     if b.layout == "V" and abs(math.degrees(b.bank_angle) - 90.0) < 1e-6:
         target += m_rec * R
     ro_max = rod_len - R - 0.25 * b.bore
-    ro, ang, tc = _cw_for_target(b, geo, target, mat, ro_max, tw + 0.45 * pin_len)
+    ro, ang, tc = _cw_for_target(b, geo, target, mat, ro_max, tw + 0.9 * min(pin_len, main_len))
     return Layout(b, n_thr, throws, cyl_throw, banks, firing, order, fnote, force, gas, dp,
                   dj, rod_land, pin_len, main_land, main_len, rf_p, rf_j, tw, bw, rod_len,
                   spacing, wp, piston, rod, dj / 2.0, ro, ang, tc, target, 5e-4 * dj,
@@ -262,55 +264,102 @@ def _mm(x: float) -> float:
     return round(x * 1e3, 2)
 
 
-def _crank_rows(L: Layout, mat: dict) -> tuple[list, Any]:
-    R = L.brief.stroke / 2.0
-    p = throw_mass_properties(journal_diameter=L.dj, journal_bore=0.0, journal_length=L.main_len,
-                              pin_diameter=L.dp, pin_bore=0.0, pin_length=L.pin_len,
-                              web_thickness=L.tw, web_width_journal=L.bw, web_width_pin=L.bw,
-                              crank_radius=R, density=mat["density"],
-                              cw_inner_radius=L.cw_ri, cw_outer_radius=L.cw_ro,
-                              cw_angle=L.cw_angle, cw_thickness=L.cw_thickness)
+NOSE = (0.75, 0.6)
+"""Crank nose diameter and length (to the first journal's mid-plane... from the damper hub's
+mid-plane) as fractions of the main journal diameter [not confirmed in a public source]."""
+FLANGE = (1.0, 0.5)
+"""Flywheel flange shaft diameter and length (last journal mid-plane to the flywheel) as
+fractions of the main journal diameter [not confirmed]."""
+
+
+def _throw_props(L: Layout, mat: dict) -> Any:
+    """The sized throw's mass properties (crank-geometry module of the crank branch)."""
+    return throw_mass_properties(journal_diameter=L.dj, journal_bore=0.0,
+                                 journal_length=L.main_len, pin_diameter=L.dp, pin_bore=0.0,
+                                 pin_length=L.pin_len, web_thickness=L.tw,
+                                 web_width_journal=L.bw, web_width_pin=L.bw,
+                                 crank_radius=L.brief.stroke / 2.0, density=mat["density"],
+                                 cw_inner_radius=L.cw_ri, cw_outer_radius=L.cw_ro,
+                                 cw_angle=L.cw_angle, cw_thickness=L.cw_thickness)
+
+
+def _crank_sheet(L: Layout, mat: dict) -> tuple[list, list]:
+    """Sheet Crank: one row 'all' (every throw alike)."""
+    p = _throw_props(L, mat)
     cw_u = float(-(p.mass[0, 2] * p.y[0, 2] + p.mass[0, 5] * p.y[0, 5]))
-    note = est(None, "mass and mass centre of the sized throw geometry (webs: convex hull of"
-               " the journal- and pin-side circles; counterweights: annular sectors) by the"
-               " crank-geometry module; " + fl.RULES["counterweight"]["rule"]
-               + f"; achieved {100 * cw_u / L.balance_target:.0f} % of the target"
-               f" ({L.balance_target * 1e3:.0f} kg mm per throw), counterweight"
-               f" {L.cw_ri * 1e3:.1f}-{L.cw_ro * 1e3:.1f} mm, {math.degrees(L.cw_angle):.0f} deg,"
-               f" {L.cw_thickness * 1e3:.1f} mm thick")
-    rows = []
-    names = {1: "web", 2: "counterweight", 3: "pin", 4: "web", 5: "counterweight"}
-    for t in range(L.throws):
-        a = math.radians(L.throw_angle[t])
-        for part in (1, 2, 3, 4, 5):
-            y = float(p.y[0, part])
-            side = "front" if part < 3 else ("rear" if part > 3 else "")
-            rows.append([f"T{t + 1} {names[part]}{' ' + side if side else ''}", t + 1,
-                         names[part], round(float(p.mass[0, part]), 4), 0.0,
-                         _mm(y * math.cos(a)), _mm(y * math.sin(a)),
-                         _mm(float(p.z[0, part])), "main axis", note])
-    return rows, p
+    hole = 0.1 * L.dp
+    note = est(None, "diameters: " + fl.RULES["pin_diameter"]["rule"] + " ("
+               + fl.RULES["pin_diameter"]["source"] + "), "
+               + fl.RULES["main_diameter"]["rule"] + " (" + fl.RULES["main_diameter"]["source"]
+               + "); lengths: " + fl.RULES["journal_length"]["rule"] + " ("
+               + fl.RULES["journal_length"]["source"] + "); web thickness: "
+               + fl.RULES["web_thickness"]["rule"] + " (" + fl.RULES["web_thickness"]["source"]
+               + "); web widths: " + fl.RULES["web_width"]["rule"] + " ("
+               + fl.RULES["web_width"]["source"] + ", not confirmed); counterweights: "
+               + fl.RULES["counterweight"]["rule"]
+               + f", achieved {100 * cw_u / L.balance_target:.0f} % of the target"
+               f" {L.balance_target * 1e3:.0f} kg mm per throw; fillets: "
+               + fl.RULES["fillet_radius"]["rule"] + " (" + fl.RULES["fillet_radius"]["source"]
+               + "); oil holes 0.1 x pin diameter [not confirmed]; material: " + mat["source"])
+    cols = [("throw", "-"), ("main journal diameter", "mm"), ("main journal bore", "mm"),
+            ("main journal length", "mm"), ("pin diameter", "mm"), ("pin bore", "mm"),
+            ("pin length", "mm"), ("web thickness", "mm"), ("web width at journal", "mm"),
+            ("web width at pin", "mm"), ("counterweight inner radius", "mm"),
+            ("counterweight outer radius", "mm"), ("counterweight angle", "deg"),
+            ("counterweight thickness", "mm"), ("pin fillet radius", "mm"),
+            ("pin fillet undercut", "mm"), ("pin fillet web undercut", "mm"),
+            ("main fillet radius", "mm"), ("main fillet undercut", "mm"),
+            ("main fillet web undercut", "mm"), ("pin oil hole diameter", "mm"),
+            ("main oil hole diameter", "mm"), ("density", "kg/m^3"), ("Young's modulus", "GPa"),
+            ("Poisson's ratio", "-"), ("note", "")]
+    row = ["all", _mm(L.dj), 0, _mm(L.main_len), _mm(L.dp), 0, _mm(L.pin_len), _mm(L.tw),
+           _mm(L.bw), _mm(L.bw), _mm(L.cw_ri), _mm(L.cw_ro), round(math.degrees(L.cw_angle), 3),
+           _mm(L.cw_thickness), _mm(L.fillet_p), 0, 0, _mm(L.fillet_j), 0, 0, _mm(hole),
+           _mm(hole), mat["density"], mat["E"] / 1e9, mat["nu"], note]
+    return cols, [row]
 
 
-def _tv_rows(L: Layout, mat: dict, p: Any, tune: Tuning) -> list:
+def _crank_ends(L: Layout) -> list:
+    note = est(None, "crank nose 0.75 x and 0.6 x the main journal diameter, flywheel flange 1.0"
+               " x and 0.5 x [ratios not confirmed in a public source]")
+    return [("Crank nose diameter", _mm(NOSE[0] * L.dj), "mm", note),
+            ("Crank nose length", _mm(NOSE[1] * L.dj + L.main_len / 2), "mm", note),
+            ("Flywheel flange diameter", _mm(FLANGE[0] * L.dj), "mm", note),
+            ("Flywheel flange length", _mm(FLANGE[1] * L.dj + L.main_len / 2), "mm", note)]
+
+
+def _stiffness_model() -> bool:
+    """Whether the crank branch's throw-stiffness model is installed (then the TVModel
+    stiffnesses are left blank: derived from sheet Crank)."""
+    try:
+        from ..calc import throw_stiffness  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+def _tv_rows(L: Layout, mat: dict, tune: Tuning) -> list:
+    """TVModel: damper ring, crank nose, one station per throw, flywheel. The crank stations'
+    inertias are left blank (derived from sheet Crank by the crank module); their stiffnesses
+    too when the throw-stiffness model is installed, else Ker Wilson's (ESTIMATE)."""
     b = L.brief
-    R = b.stroke / 2.0
-    G = mat["G"]
-    m_rot = L.rod.mass * (L.rod_len - L.rod.centre_from_big_end) / L.rod_len
-    m_rec = L.piston + L.rod.mass - m_rot
-    rods = b.cylinders // L.throws
-    j_throw = float(p.inertia_total[0]) + rods * (m_rot + 0.5 * m_rec) * R**2
-    k_throw = _ker_wilson(L, G)
-    nose_d = 0.75 * L.dj
-    m_n, jn, _ = cylinder(diameter=nose_d, bore=0.0, length=0.6 * L.dj,
-                          density=mat["density"])
-    k_nose = float(plain_shaft_stiffness(diameter=nose_d, bore=0.0,
-                                         length=0.6 * L.dj + L.main_len / 2,
+    G = mat["E"] / (2 * (1 + mat["nu"]))
+    derive_k = _stiffness_model()
+    kw = _ker_wilson(L, G)
+    nose_d, nose_l = NOSE[0] * L.dj, NOSE[1] * L.dj
+    _m, jn, _ = cylinder(diameter=nose_d, bore=0.0, length=nose_l, density=mat["density"])
+    half_j = float(plain_shaft_stiffness(diameter=L.dj, bore=0.0, length=L.main_len / 2,
                                          shear_modulus=G))
-    flange_d = 1.6 * L.dj
-    k_flange = float(plain_shaft_stiffness(diameter=L.dj, bore=0.0,
-                                           length=L.main_len / 2 + 0.2 * L.dj,
-                                           shear_modulus=G))
+    k_nose = 1 / (1 / float(plain_shaft_stiffness(diameter=nose_d, bore=0.0, length=nose_l,
+                                                  shear_modulus=G)) + 1 / half_j + 1 / (2 * kw))
+    k_flange = 1 / (1 / float(plain_shaft_stiffness(diameter=FLANGE[0] * L.dj, bore=0.0,
+                                                    length=FLANGE[1] * L.dj,
+                                                    shear_modulus=G)) + 1 / half_j + 1 / (2 * kw))
+    kw_note = ("" if derive_k else "; stiffness: Ker Wilson's equivalent length of the sized"
+               " throw (as usually reproduced; about 20 % stiffer than a 3D FE of a real throw),"
+               " halves of neighbouring throws in series, the nose and flange shafts and half"
+               " journals added at the ends (G Jp/L), typed until the throw-stiffness model of"
+               " the crank geometry is installed")
     hub = 4.0 * float(jn)  # pulley hub, timing sprocket and damper hub on the nose
     rows = [["Damper ring", "damper ring", None, round(tune.ring, 6), None,
              round(tune.ring_stiffness), None,
@@ -318,28 +367,23 @@ def _tv_rows(L: Layout, mat: dict, p: Any, tune: Tuning) -> list:
                  " modal inertia at the nose [ratio not confirmed in a public source];"
                  " rubber stiffness at the optimum tuning of the damper-tuning module (Den"
                  " Hartog, Mechanical Vibrations, 1956)")],
-            ["Crank nose", "crank nose", None, round(float(jn) + hub, 7), None, round(k_nose),
-             None, est(None, f"nose {nose_d * 1e3:.0f} mm x {0.6 * L.dj * 1e3:.0f} mm (0.75 x"
-                       " and 0.6 x the journal diameter) [ratios not confirmed in a public"
-                       " source] plus hubs 4 x its inertia [not confirmed]; stiffness G Jp/L to"
-                       " the first journal's mid-plane")]]
+            ["Crank nose", "crank nose", None, round(float(jn) + hub, 7), None,
+             None if derive_k else round(k_nose), None,
+             est(None, "nose shaft (sheet CrankEnds) plus hubs 4 x its inertia [not"
+                 " confirmed]" + kw_note)]]
+    rods = b.cylinders // L.throws
     for t in range(L.throws):
         cyl = [c + 1 for c in range(b.cylinders) if L.cyl_throw[c] == t + 1]
         last = t == L.throws - 1
-        k = k_flange if last else k_throw
-        note = est(None, "crank throw inertia of the sized geometry (crank-geometry module) +"
-                   " per rod the rotating share and half the reciprocating mass x R^2 (the"
-                   " cycle mean); stiffness: Ker Wilson's equivalent length (as usually"
-                   " reproduced; about 20 % stiffer than a 3D FE of a real throw)"
-                   + ("; last: half journal and flange as a plain shaft" if last else ""))
+        k = None if derive_k else round(k_flange if last else kw)
         rows.append([f"Throw {t + 1}" if rods > 1 else f"Cylinder {cyl[0]}", "cylinder",
-                     ", ".join(map(str, cyl)) if rods > 1 else cyl[0], round(j_throw, 7),
-                     None, round(k), None, note])
+                     ", ".join(map(str, cyl)) if rods > 1 else cyl[0], None, None, k, None,
+                     est(None, "inertia derived from sheet Crank (crank module)" + kw_note)
+                     if k is not None else "derived from sheet Crank (crank module)"])
     rows.append(["Flywheel", "flywheel", None, round(tune.flywheel, 5), None, None, None,
-                 est(None, "smallest flywheel meeting a cyclic irregularity of 1 % (Agostini 2019:"
-                     " 'kinematic irregularity <= 1 %') at the rated speed, full load, with the"
-                     " engine's inertias only (flywheel module, +5 %); flange"
-                     f" {flange_d * 1e3:.0f} mm (1.6 x journal) [not confirmed]")])
+                 est(None, "smallest flywheel meeting a cyclic irregularity of 1 % (Agostini"
+                     " 2019: 'kinematic irregularity <= 1 %') at the rated speed, full load,"
+                     " with the engine's inertias only (flywheel module, +5 %)")])
     return rows
 
 
@@ -486,24 +530,21 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
              ("note", "")]
     clr = est(None, "radial clearance 0.0005 x diameter (diametral 0.001 in per inch, the"
               " usual rule of thumb) [not confirmed in a public source]")
-    m_note = est("journal_length", f"diameter: {fl.RULES['main_diameter']['rule']}"
-                 f" ({fl.RULES['main_diameter']['source']}); " + clr
+    m_note = est("journal_length", "journal diameter and length from sheet Crank; groove 0.15"
+                 " x land [not confirmed]; " + clr
                  + f"; lining from the brief ({dflt('bearing_lining')})")
     brows = []
     groove_w = round(0.15 * L.main_land * 1e3, 1)
     for k in range(L.throws + 1):
-        brows.append([f"M{k + 1}", "main", _mm(L.dj), _mm(L.main_len), _mm(L.main_land - groove_w
-                                                                             * 1e-3),
+        brows.append([f"M{k + 1}", "main", None, None, _mm(L.main_land - groove_w * 1e-3),
                       round(L.clearance_main * 1e3, 4), "partial", groove_w, 270, 90, "bearing",
                       0, None, None, None, lining, m_note])
-    hole = round(0.1 * L.dp * 1e3, 1)
-    p_note = est("journal_length", f"per rod; pin {fl.RULES['pin_diameter']['rule']}; "
-                 + clr + "; oil hole 0.1 x pin diameter, 45 deg leading [not confirmed]")
+    p_note = est("journal_length", "per rod; journal diameter, length and oil hole diameter"
+                 " from sheet Crank; " + clr + "; oil hole 45 deg leading [not confirmed]")
     for c in range(b.cylinders):
-        brows.append([f"BE{c + 1}", "big end", _mm(L.dp), _mm(L.pin_len), _mm(L.rod_land),
+        brows.append([f"BE{c + 1}", "big end", None, None, _mm(L.rod_land),
                       round(L.clearance_pin * 1e3, 4), "none", None, None, None, "crank", 1,
-                      "leading", hole, 45, lining, p_note])
-    crank_rows, props = _crank_rows(L, mat)
+                      "leading", None, 45, lining, p_note])
     oil = [("Oil grade", "5W30" if b.fuel == "gasoline" else "10W40", "-",
             est(None, "a usual grade for the fuel")),
            ("Oil supply pressure", 4.0, "bar(g)", est(None, "usual gallery pressure at speed")),
@@ -516,7 +557,7 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
     tv_cols = [("station", "-"), ("role", "-"), ("cylinder", "-"), ("inertia", "kg m^2"),
                ("absolute damping", "N m s/rad"), ("stiffness to next", "N m/rad"),
                ("damping to next", "N m s/rad"), ("note", "")]
-    tv_rows = _tv_rows(L, mat, props, tune)
+    tv_rows = _tv_rows(L, mat, tune)
     damper = [("Rubber loss factor", round(tune.loss_factor, 3), "-",
                est(None, "Den Hartog's optimum loss factor for the ring/crank inertia ratio"
                    " (damper-tuning module)")),
@@ -525,30 +566,13 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
                    " (damper-tuning module) -10 % [band not confirmed]")),
               ("Tuning ratio, maximum", round(1.1 * tune.tuning, 3), "-",
                est(None, "Den Hartog's optimum tuning ratio +10 % [band not confirmed]"))]
-    rf = est("fillet_radius")
     src = f"{TAG}: {mat['source']}"
-    fatigue = [
-        ("Web reduced thickness", _mm(L.tw - 1e-3), "mm", est("web_thickness", "less 2 x 0.5"
-                                                              " mm lands")),
-        ("Web full thickness", _mm(L.tw), "mm", est("web_thickness")),
-        ("Web minimum width", _mm(L.bw), "mm", est("web_width")),
-        ("Web maximum width", _mm(L.bw), "mm", est("web_width")),
+    fatigue = [  # the web, fillet, oil-hole and bore dimensions come from sheet Crank
         ("Web offset", 0, "mm", est(None, "symmetric web")),
-        ("Crank pin fillet radius", _mm(L.fillet_p), "mm", rf),
-        ("Crank pin fillet undercut", 0, "mm", est(None, "plain (tangent) fillet")),
-        ("Crank pin fillet web undercut", 0, "mm", est(None, "none")),
-        ("Main journal fillet radius", _mm(L.fillet_j), "mm", rf),
-        ("Main journal fillet undercut", 0, "mm", est(None, "plain (tangent) fillet")),
-        ("Main journal web undercut", 0, "mm", est(None, "none")),
-        ("Pin journal oil hole diameter", hole, "mm", est(None, "0.1 x pin diameter [not"
-                                                          " confirmed]")),
         ("Pin journal oil hole height", _mm(L.dp / 2 * math.sin(math.radians(45))), "mm",
          est(None, "pin radius x sin 45 deg (hole 45 deg leading)")),
-        ("Main journal oil hole diameter", hole, "mm", est(None, "as the pin oil hole")),
         ("Main journal oil hole height", _mm(L.dj / 2 * math.sin(math.radians(20))), "mm",
          est(None, "journal radius x sin 20 deg [not confirmed]")),
-        ("Pin bore diameter", 0, "mm", est(None, "solid pin")),
-        ("Main journal bore diameter", 0, "mm", est(None, "solid journal")),
         ("Base material UTS", mat["uts"], "N/mm^2", src),
         ("Fillet UTS", mat["fillet_uts"], "N/mm^2", src),
         ("Base tensile yield strength", mat["yield"], "N/mm^2", src),
@@ -586,9 +610,11 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
                           ("note", "")], pp_rows),
         "BrakeTorque": ([("speed", "rpm"), ("brake torque", "N m"), ("note", "")], bt_rows),
         "Bearings": (bcols, brows),
+        "Crank": _crank_sheet(L, mat),
+        "CrankEnds": _crank_ends(L),
         "CrankMass": ([("location", "-"), ("throw", "-"), ("kind", "-"), ("mass", "kg"),
                        ("X", "mm"), ("Y", "mm"), ("Z", "mm"), ("axial position", "mm"),
-                       ("relative to", "-"), ("note", "")], crank_rows),
+                       ("relative to", "-"), ("note", "")], []),
         "Oil": oil,
         "TVModel": (tv_cols, tv_rows),
         "Damper": damper,
@@ -645,8 +671,7 @@ def size(b: Brief) -> tuple[Layout, dict[str, Any]]:
     with the checker's own models (three evaluation passes)."""
     L = layout(b)
     mat = MATERIALS[b.crank_material]
-    _, props = _crank_rows(L, mat)
-    crank_j = L.throws * float(props.inertia_total[0])
+    crank_j = L.throws * float(_throw_props(L, mat).inertia_total[0])
     od = 1.6 * L.dj
     joints0 = [{"name": "crank nose", "bolts": 1, "d": 12, "p": 1.25, "torque": 0.0,
                 "od": 0.75 * L.dj, "id": 0.0, "head_od": 24.0, "head_id": 13.2},

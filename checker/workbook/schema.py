@@ -620,7 +620,8 @@ BEARINGS = Sheet(
         F("type", "type", "choice", choices=("main", "big end"),
           aliases=(("main bearing", "main"), ("big end bearing", "big end"),
                    ("con rod", "big end"), ("conrod", "big end"), ("rod", "big end"))),
-        F("journal diameter", "diameter", "length", check=">0",
+        F("journal diameter", "diameter", "length", check=">0", required=False,
+          note="Required unless sheet Crank gives it (main journal or pin diameter).",
           valid=R(1, 10000, "mm"), usual=R(15, 1500, "mm")),
         F("journal length", "journal_length", "length", check=">0", required=False,
           note="Journal length between the webs (fillet geometry); a crank pin carrying two"
@@ -706,6 +707,138 @@ CRANK_MASS = Sheet(
     ),
 )
 
+def _len(label: str, attr: str, note: str, check: str = ">0", lo: float = 0.1,
+         hi: float = 10000, ulo: float = 1, uhi: float = 2000) -> Field:
+    """An optional length column of sheet Crank (mm ranges)."""
+    vlo = 0 if check == ">=0" else lo
+    return F(label, attr, "length", check=check, required=False, note=note,
+             valid=R(vlo, hi, "mm"), usual=R(0 if check == ">=0" else ulo, uhi, "mm"))
+
+
+CRANK = Sheet(
+    "Crank",
+    "table",
+    max_rows=65,
+    key="throw",
+    note="Crankshaft geometry, one source for every analysis (docs/crank-geometry.md): a row"
+         " 'all' for what every throw shares, and a row per throw number only for what differs"
+         " on that throw (its blank cells take the 'all' row's value); or one row per throw."
+         " Crank axis z, main axis at x = y = 0, pin axis at (0, stroke/2); a throw runs"
+         " between the mid-planes of its two main journals: half journal, web, pin, web, half"
+         " journal.",
+    fields=(
+        F("throw", "throw", "text",
+          note="'all' (every throw), or a throw (crank pin) number 1..n front to rear."),
+        _len("main journal diameter", "journal_diameter", "Main journal diameter Dj; also"
+             " the main bearings' journal diameter (sheet Bearings).", ulo=15, uhi=1500),
+        _len("main journal bore", "journal_bore", "Concentric bore through the journal's"
+             " length only; blank = solid.", check=">=0", uhi=1000),
+        _len("main journal length", "journal_length", "Main journal length Lj between the"
+             " webs (half of it belongs to each neighbouring throw); also the main bearings'"
+             " journal length.", ulo=3, uhi=1000),
+        _len("pin diameter", "pin_diameter", "Crank pin diameter Dp; also the big-end"
+             " bearings' journal diameter.", ulo=15, uhi=1500),
+        _len("pin bore", "pin_bore", "Concentric bore through the pin's length only (about"
+             " the pin axis); blank = solid.", check=">=0", uhi=1000),
+        _len("pin length", "pin_length", "Crank pin length Lp between the webs (the whole pin"
+             " when it carries two rods); also the big-end bearings' journal length.",
+             ulo=3, uhi=1000),
+        _len("web thickness", "web_thickness", "Web thickness tw along the crank axis (full"
+             " thickness; also the Fatigue sheet's 'Web full thickness').", uhi=1000),
+        _len("web width at journal", "web_width_journal", "Diameter Bj of the web outline's"
+             " circle about the main axis: the web outline is the convex hull of this circle"
+             " and the one about the pin axis.", uhi=3000),
+        _len("web width at pin", "web_width_pin", "Diameter Bp of the web outline's circle"
+             " about the pin axis.", uhi=3000),
+        _len("counterweight inner radius", "cw_inner_radius", "Counterweight: an annular"
+             " sector about the main axis opposite the pin, fused with its web (each web of"
+             " the throw); blank with the other counterweight cells = no counterweight.",
+             check=">=0", uhi=3000),
+        _len("counterweight outer radius", "cw_outer_radius", "Outer radius of the"
+             " counterweight sector.", uhi=3000),
+        F("counterweight angle", "cw_angle", "angle", check=">0", required=False,
+          note="Included angle of the counterweight sector, bisected by the direction"
+               " opposite the pin.",
+          valid=R(0, 360, "deg"), usual=R(30, 270, "deg")),
+        _len("counterweight thickness", "cw_thickness", "Axial thickness of the counterweight,"
+             " centred on its web's mid-plane; blank = the web thickness.", uhi=1000),
+        _len("pin fillet radius", "pin_fillet_radius", "Also the Fatigue sheet's 'Crank pin"
+             " fillet radius' (not part of the mass and stiffness solid).", lo=0.05,
+             uhi=100, ulo=0.5),
+        _len("pin fillet undercut", "pin_fillet_undercut", "Fatigue 'Crank pin fillet"
+             " undercut'.", check=">=0", uhi=20),
+        _len("pin fillet web undercut", "pin_fillet_web_undercut", "Fatigue 'Crank pin fillet"
+             " web undercut'.", check=">=0", uhi=20),
+        _len("main fillet radius", "main_fillet_radius", "Fatigue 'Main journal fillet"
+             " radius'.", lo=0.05, uhi=100, ulo=0.5),
+        _len("main fillet undercut", "main_fillet_undercut", "Fatigue 'Main journal fillet"
+             " undercut'.", check=">=0", uhi=20),
+        _len("main fillet web undercut", "main_fillet_web_undercut", "Fatigue 'Main journal"
+             " web undercut'.", check=">=0", uhi=20),
+        _len("pin oil hole diameter", "pin_oil_hole_diameter", "Fatigue 'Pin journal oil hole"
+             " diameter' and the big-end bearings' oil hole diameter.", uhi=50),
+        _len("main oil hole diameter", "main_oil_hole_diameter", "Fatigue 'Main journal oil"
+             " hole diameter'.", uhi=50),
+        F("density", "density", "density", check=">0", required=False,
+          note="Crank material (one for the whole crank).",
+          valid=R(500, 25000, "kg/m^3"), usual=R(6500, 8500, "kg/m^3")),
+        F("Young's modulus", "youngs_modulus", "stress", check=">0", required=False,
+          note="Crank material.", valid=R(1, 1e6, "GPa"), usual=R(100, 250, "GPa")),
+        F("Poisson's ratio", "poisson_ratio", "ratio", check=">=0", required=False,
+          note="Crank material.", valid=R(0, 0.49), usual=R(0.2, 0.35)),
+    ),
+)
+
+CRANK_ENDS = Sheet(
+    "CrankEnds",
+    "parameters",
+    note="The crank's ends (crank nose, flywheel flange) and the unbalances mounted on them"
+         " (pulley or damper hub, flywheel), with sheet Crank.",
+    fields=(
+        F("Crank nose diameter", "nose_diameter", "length", check=">0", required=False,
+          note="Plain-shaft diameter of the crank nose between the damper hub and the first"
+               " main journal; also the Fatigue sheet's 'Crank nose diameter'.",
+          valid=R(0.1, 10000, "mm"), usual=R(1, 1000, "mm")),
+        F("Crank nose bore", "nose_bore", "length", check=">=0", required=False,
+          note="Also the Fatigue sheet's 'Crank nose bore diameter'.",
+          valid=R(0, 5000, "mm"), usual=R(0, 1000, "mm")),
+        F("Crank nose length", "nose_length", "length", check=">0", required=False,
+          note="From the damper hub's mid-plane to the first main journal's mid-plane"
+               " (the twisted length; torsional stiffness G Jp / L with the half journal).",
+          valid=R(0.1, 10000, "mm"), usual=R(1, 2000, "mm")),
+        F("Flywheel flange diameter", "flange_diameter", "length", check=">0",
+          required=False, note="Plain-shaft diameter between the last main journal and the"
+                               " flywheel face.",
+          valid=R(0.1, 10000, "mm"), usual=R(1, 2000, "mm")),
+        F("Flywheel flange bore", "flange_bore", "length", check=">=0", required=False,
+          valid=R(0, 5000, "mm"), usual=R(0, 1000, "mm")),
+        F("Flywheel flange length", "flange_length", "length", check=">0", required=False,
+          note="From the last main journal's mid-plane to the flywheel's mid-plane.",
+          valid=R(0.1, 10000, "mm"), usual=R(1, 2000, "mm")),
+        F("Pulley unbalance", "pulley_unbalance", "unbalance", check=">=0", required=False,
+          note="Unbalance (mass x radius) on the pulley or damper hub, e.g. to balance a"
+               " first-order couple without a balance shaft (Ford 1.0 three-cylinder).",
+          valid=R(0, 1e9, "g mm"), usual=R(0, 1e7, "g mm")),
+        F("Pulley unbalance angle", "pulley_angle", "angle", required=False,
+          note="Direction of the pulley unbalance from throw 1, in the direction of rotation.",
+          valid=R(-720, 720, "deg")),
+        F("Pulley unbalance distance", "pulley_distance", "length", check=">=0",
+          required=False, note="Axial distance of the pulley unbalance ahead of (in front of)"
+                               " the first main journal's mid-plane.",
+          valid=R(0, 20000, "mm"), usual=R(0, 3000, "mm")),
+        F("Flywheel unbalance", "flywheel_unbalance", "unbalance", check=">=0",
+          required=False, note="Unbalance (mass x radius) on the flywheel.",
+          valid=R(0, 1e9, "g mm"), usual=R(0, 1e7, "g mm")),
+        F("Flywheel unbalance angle", "flywheel_angle", "angle", required=False,
+          note="Direction of the flywheel unbalance from throw 1, in the direction of"
+               " rotation.", valid=R(-720, 720, "deg")),
+        F("Flywheel unbalance distance", "flywheel_distance", "length", check=">=0",
+          required=False, note="Axial distance of the flywheel unbalance behind the last main"
+                               " journal's mid-plane.",
+          valid=R(0, 20000, "mm"), usual=R(0, 3000, "mm")),
+    ),
+)
+
 TV_MODEL = Sheet(
     "TVModel",
     "table",
@@ -724,7 +857,10 @@ TV_MODEL = Sheet(
                " crank pin (the usual V model: one station per throw). Each cylinder on one"
                " station only.",
           valid=R(1, 64)),
-        F("inertia", "inertia", "inertia", check=">0",
+        F("inertia", "inertia", "inertia", check=">0", required=False,
+          note="Required, except on a cylinder station when sheet Crank is given (derived"
+               " from the crank's geometry and the rod and piston masses; a typed value"
+               " wins).",
           valid=R(1e-9, 1e7, "kg m^2"), usual=R(1e-5, 1e6, "kg m^2")),
         F("absolute damping", "absolute_damping", "torsional_damping", check=">=0",
           required=False,
@@ -869,9 +1005,9 @@ DEFAULT_SPEED_STEP_RPM = 100.0
 SHEETS: dict[str, Sheet] = {
     s.name: s
     for s in (
-        ENGINE, CYLINDERS, PEAK_PRESSURE, PRESSURE_TRACES, BRAKE_TORQUE, BEARINGS, CRANK_MASS,
-        OIL, TV_MODEL, DAMPER, FATIGUE, JOINTS, JOINT_TORQUES, RULE_OVERRIDES, TOLERANCES,
-        NOTES,
+        ENGINE, CYLINDERS, PEAK_PRESSURE, PRESSURE_TRACES, BRAKE_TORQUE, BEARINGS, CRANK,
+        CRANK_ENDS, CRANK_MASS, OIL, TV_MODEL, DAMPER, FATIGUE, JOINTS, JOINT_TORQUES,
+        RULE_OVERRIDES, TOLERANCES, NOTES,
     )
 }
 
