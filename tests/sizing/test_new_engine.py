@@ -148,3 +148,20 @@ def test_options_without_brief_file(tmp_path):
     r = subprocess.run([sys.executable, "-m", "checker", "new", str(out), "--cylinders", "4"],
                        capture_output=True, text=True)
     assert r.returncode == 2 and "exists" in r.stderr
+
+
+def test_sizing_is_deterministic_and_writes_the_crank_geometry():
+    from checker.sizing.new_engine import size
+
+    b = parse_brief({"cylinders": 3, "bore": "71.9 mm", "stroke": "82 mm",
+                     "rated_power": "92 kW", "rated_speed": "6000 rpm"})
+    _l1, c1 = size(b)
+    _l2, c2 = size(b)
+    assert c1 == c2
+    cols, rows = c1["Crank"]
+    assert [r[0] for r in rows] == ["all"]
+    assert c1["CrankMass"][1] == []  # derived from sheet Crank, never typed
+    tv = c1["TVModel"][1]
+    assert all(r[3] is None for r in tv if r[1] == "cylinder")  # inertias derived
+    bearings = c1["Bearings"][1]
+    assert all(r[2] is None and r[3] is None for r in bearings)  # dimensions from Crank
