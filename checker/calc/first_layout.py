@@ -134,7 +134,7 @@ def resultant_force(gas: float, m_rec: float, crank_radius: float, rod_length: f
     few degrees after TDC where it occurs); at least half the gas force.
 
     >>> round(resultant_force(49.4e3, 0.9, 0.0473, 0.155, 628.3) / 1e3, 1)
-    27.8
+    27.5
     """
     inertia = m_rec * crank_radius * speed**2 * (1.0 + crank_radius / rod_length)
     return max(gas - inertia, 0.5 * gas)

@@ -3,13 +3,17 @@
 Every derived value carries a note ``ESTIMATE (checker new): <rule>; <source>``; the rules and
 their sources are those of :mod:`checker.calc.first_layout` (docs/new-engine.md). The
 estimates are made consistent with each other by running the checker's own models on the
-layout (:func:`size`): the flywheel is sized to the workbook's irregularity target by the
+layout (:func:`size`): the flywheel is sized for a 1 % irregularity at the rated speed by the
 flywheel module, the damper ring tuned to Den Hartog's optimum by the damper-tuning module, and
 the bolted joints sized for the torsional model's joint torques with the recommended preload.
 
-Crank masses (CrankMass rows, TVModel inertias) come from the crank geometry by
-:func:`checker.calc.crank_geometry.throw_mass_properties`; the throw stiffness by Ker Wilson's
-equivalent length (ESTIMATE, stated as about 20 % stiffer than a 3D FE of a real throw).
+The crank is written as its geometry (sheets Crank and CrankEnds, issue 33): the crank
+module derives its CrankMass rows and the crank stations' TVModel inertias, and Bearings and
+Fatigue take its dimensions. The counterweights are sized with the crank-geometry module's
+mass properties (:func:`checker.calc.crank_geometry.throw_mass_properties`). The throw
+stiffnesses are typed (Ker Wilson's equivalent length, ESTIMATE, stated as about 20 % stiffer
+than a 3D FE of a real throw) only while the throw-stiffness model
+(``checker.calc.throw_stiffness``) is not installed; then they are left blank and derived.
 """
 
 from __future__ import annotations
@@ -265,11 +269,12 @@ def _mm(x: float) -> float:
 
 
 NOSE = (0.75, 0.6)
-"""Crank nose diameter and length (to the first journal's mid-plane... from the damper hub's
-mid-plane) as fractions of the main journal diameter [not confirmed in a public source]."""
+"""Crank nose shaft diameter and length (damper hub mid-plane to the first journal's face) as
+fractions of the main journal diameter [not confirmed in a public source]; sheet CrankEnds
+measures the length to the journal's mid-plane (half the journal added)."""
 FLANGE = (1.0, 0.5)
-"""Flywheel flange shaft diameter and length (last journal mid-plane to the flywheel) as
-fractions of the main journal diameter [not confirmed]."""
+"""Flywheel flange shaft diameter and length (last journal's face to the flywheel) as fractions
+of the main journal diameter [not confirmed]; CrankEnds adds half the journal."""
 
 
 def _throw_props(L: Layout, mat: dict) -> Any:
