@@ -153,9 +153,10 @@ def main_diameter(pin_d: float) -> float:
 def land_length(force: float, diameter: float, p_adm: float = 21.5e6,
                 share: float = 1.0) -> float:
     """Loaded land length [m] ``L = share F / (d p_adm)`` (Agostini 2019; ``share`` = 1 for a
-    rod bearing, 0.5 for a main bearing)."""
-    if not 18e6 <= p_adm <= 25e6:
-        raise ValueError("p_adm outside the published 18-25 MPa")
+    rod bearing, 0.5 for a main bearing). Agostini's admissible pressure is about 18-25 MPa;
+    another value (a brief's ``bearing_pressure``) is the user's, stated by the caller."""
+    if not p_adm > 0:
+        raise ValueError("p_adm must be > 0")
     return share * force / (diameter * p_adm)
 
 

@@ -32,6 +32,8 @@ KEYS: dict[str, tuple[str, str, bool, str | None]] = {
     "min_speed": ("speed", '"1000 rpm"', False, "1000 rpm (gasoline) or 800 rpm (diesel)"),
     "peak_pressure": ("pressure", '"85 bar"', False, "typical by fuel: gasoline 85 bar,"
                       " diesel 180 bar"),
+    "bearing_pressure": ("pressure", '"21.5 MPa"', False, "21.5 MPa, the middle of Agostini"
+                         " 2019's admissible 18-25 MPa"),
     "fuel": ("choice", '"gasoline" or "diesel"', False, "gasoline"),
     "crank_material": ("choice", '"forged steel", "nodular iron"', False, "forged steel"),
     "bearing_lining": ("choice", '"aluminium bimetal", "tri-metal"...', False,
@@ -55,6 +57,7 @@ VALID = {  # (lo, hi) in SI: outside, no rule of checker new has data (stated)
     "bank_angle": (math.radians(15), math.radians(180)),
     "rated_speed": (500 * math.pi / 30, 12000 * math.pi / 30),
     "peak_pressure": (30e5, 300e5),
+    "bearing_pressure": (5e6, 120e6),
 }
 
 
@@ -73,6 +76,7 @@ class Brief:
     min_speed: float
     peak_pressure: float
     fuel: str
+    bearing_pressure: float
     crank_material: str
     bearing_lining: str
     name: str = "New engine (checker new)"
@@ -172,6 +176,7 @@ def parse_brief(raw: dict[str, Any], where: str = "brief") -> Brief:
             stroke=vals["stroke"], rated_power=vals["rated_power"], rated_speed=rated,
             max_speed=vmax, min_speed=vmin,
             peak_pressure=vals.get("peak_pressure", typical(fuel)), fuel=fuel,
+            bearing_pressure=vals.get("bearing_pressure", 21.5e6),
             crank_material=vals.get("crank_material", "forged steel"),
             bearing_lining=lining, name=vals.get("name", "New engine (checker new)"),
             defaults=defaults)
@@ -196,6 +201,8 @@ def _fmt(k: str, x: float) -> str:
         return f"{x * 30 / math.pi:g} rpm"
     if k == "peak_pressure":
         return f"{x / 1e5:g} bar"
+    if k == "bearing_pressure":
+        return f"{x / 1e6:g} MPa"
     return f"{x:g}"
 
 
@@ -207,6 +214,7 @@ def _no_data(k: str, x: float, lo: float, hi: float) -> str:
         "bank_angle": "V engines with two rods per pin",
         "rated_speed": "the sized joints and damper are car/truck-engine designs",
         "peak_pressure": "Agostini 2019's admissible bearing pressure is for engine pressures",
+        "bearing_pressure": "the journal-length rule sizes engine plain bearings",
     }[k]
     return (f"no rule of checker new has data for {_fmt(k, x)} (covered: {_fmt(k, lo)} to"
             f" {_fmt(k, hi)}; {why}): type this engine's workbook by hand (checker template)"

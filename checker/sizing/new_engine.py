@@ -66,6 +66,15 @@ INLINE_FIRING = {1: [1], 2: [1, 2], 3: [1, 2, 3], 4: [1, 3, 4, 2], 5: [1, 2, 4, 
 """Usual in-line firing orders (even firing, 720/n apart); the throw angles follow."""
 
 
+def padm_text(b: Brief) -> str:
+    """What the notes say of the admissible bearing pressure when the brief sets it."""
+    if "bearing_pressure" in b.defaults:
+        return ""
+    p = b.bearing_pressure / 1e6
+    out = "" if 18 <= p <= 25 else ", outside Agostini's 18-25 MPa"
+    return f" [p_adm = {p:g} MPa given in the brief{out}: the brief's value, not the rule's]"
+
+
 class NoRule(ValueError):
     """The brief needs a rule that has no data (the message says which)."""
 
@@ -206,18 +215,18 @@ def layout(b: Brief) -> Layout:
     rod_len = fl.rod_length(b.stroke, b.fuel)
     wp = fl.wrist_pin(b.bore)
     piston = fl.piston_mass(b.bore, b.fuel) + wp.mass
-    force, rod_land = gas, fl.land_length(gas, dp)
+    force, rod_land = gas, fl.land_length(gas, dp, b.bearing_pressure)
     for _ in range(20):  # the rod's big eye is as wide as the land the resultant needs
         rod = fl.con_rod(force=gas, length=rod_len, pin_d=dp, pin_land=rod_land, wrist=wp)
         m_rot = rod.mass * (rod_len - rod.centre_from_big_end) / rod_len
         force = fl.resultant_force(gas, piston + rod.mass - m_rot, b.stroke / 2.0, rod_len,
                                    b.rated_speed)
-        land = fl.land_length(force, dp)
+        land = fl.land_length(force, dp, b.bearing_pressure)
         if abs(land - rod_land) < 1e-7:
             break
         rod_land = land
     rod_land = land
-    main_land = fl.land_length(force, dj, share=0.5)
+    main_land = fl.land_length(force, dj, b.bearing_pressure, share=0.5)
     pin_len = rods_per_pin * rod_land + 2 * (rf_p + 1e-3) + (rods_per_pin - 1) * 1e-3
     main_len = main_land + 2 * (rf_j + 1e-3)
     tw = fl.web_thickness(b.bore)
@@ -296,7 +305,7 @@ def _crank_sheet(L: Layout, mat: dict) -> tuple[list, list]:
     note = est(None, "diameters: " + fl.RULES["pin_diameter"]["rule"] + " ("
                + fl.RULES["pin_diameter"]["source"] + "), "
                + fl.RULES["main_diameter"]["rule"] + " (" + fl.RULES["main_diameter"]["source"]
-               + "); lengths: " + fl.RULES["journal_length"]["rule"] + " ("
+               + "); lengths: " + fl.RULES["journal_length"]["rule"] + padm_text(L.brief) + " ("
                + fl.RULES["journal_length"]["source"] + "); web thickness: "
                + fl.RULES["web_thickness"]["rule"] + " (" + fl.RULES["web_thickness"]["source"]
                + "); web widths: " + fl.RULES["web_width"]["rule"] + " ("
@@ -535,8 +544,8 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
              ("note", "")]
     clr = est(None, "radial clearance 0.0005 x diameter (diametral 0.001 in per inch, the"
               " usual rule of thumb) [not confirmed in a public source]")
-    m_note = est("journal_length", "journal diameter and length from sheet Crank; groove 0.15"
-                 " x land [not confirmed]; " + clr
+    m_note = est("journal_length", "journal diameter and length from sheet Crank"
+                 + padm_text(b) + "; groove 0.15 x land [not confirmed]; " + clr
                  + f"; lining from the brief ({dflt('bearing_lining')})")
     brows = []
     groove_w = round(0.15 * L.main_land * 1e3, 1)
@@ -544,8 +553,9 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
         brows.append([f"M{k + 1}", "main", None, None, _mm(L.main_land - groove_w * 1e-3),
                       round(L.clearance_main * 1e3, 4), "partial", groove_w, 270, 90, "bearing",
                       0, None, None, None, lining, m_note])
-    p_note = est("journal_length", "per rod; journal diameter, length and oil hole diameter"
-                 " from sheet Crank; " + clr + "; oil hole 45 deg leading [not confirmed]")
+    p_note = est("journal_length", "per rod" + padm_text(b) + "; journal diameter, length and"
+                 " oil hole diameter from sheet Crank; " + clr
+                 + "; oil hole 45 deg leading [not confirmed]")
     for c in range(b.cylinders):
         brows.append([f"BE{c + 1}", "big end", None, None, _mm(L.rod_land),
                       round(L.clearance_pin * 1e3, 4), "none", None, None, None, "crank", 1,

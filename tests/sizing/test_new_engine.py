@@ -185,3 +185,16 @@ def test_throw_stiffness_left_to_the_crank_model_once_installed(monkeypatch):
     monkeypatch.setattr(ne, "_stiffness_model", lambda: True)
     derived = ne.content(lay, tune)["TVModel"][1]
     assert all(r[5] is None for r in derived[1:-1])  # derived from sheet Crank
+
+
+def test_bearing_pressure_of_the_brief_sizes_the_lands_and_is_stated():
+    base = {"cylinders": 6, "bore": "105 mm", "stroke": "137 mm", "rated_power": "150 kW",
+            "rated_speed": "2200 rpm", "fuel": "diesel"}
+    agostini = layout(parse_brief(base))
+    brief = parse_brief({**base, "bearing_pressure": "60 MPa"})
+    own = layout(brief)
+    assert own.rod_land == pytest.approx(agostini.rod_land * 21.5 / 60, rel=1e-3)
+    from checker.sizing.new_engine import padm_text
+
+    assert "60 MPa given in the brief, outside Agostini's 18-25 MPa" in padm_text(brief)
+    assert padm_text(parse_brief(base)) == ""
