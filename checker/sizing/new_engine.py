@@ -18,6 +18,7 @@ than a 3D FE of a real throw) only while the throw-stiffness model
 
 from __future__ import annotations
 
+import itertools
 import math
 import tempfile
 from dataclasses import dataclass, replace
@@ -148,20 +149,32 @@ def _throws_and_firing(b: Brief) -> tuple[list[float], list[int], list[float], l
     banks = [alpha / 2 if c % 2 == 0 else -alpha / 2 for c in range(n)]  # odd cyl left (+)
     cyl_pin = [c // 2 + 1 for c in range(n)]
     tdc = [((banks[c] - banks[0]) - pins[cyl_pin[c] - 1]) % 360.0 for c in range(n)]
-    firing = [0.0] * n
-    seen: dict[float, int] = {}
+    groups: dict[float, list[int]] = {}
     for c in range(n):
-        key = round(tdc[c], 6)
-        firing[c] = tdc[c] + 360.0 * seen.get(key, 0)
-        seen[key] = seen.get(key, 0) + 1
-    order = sorted(range(n), key=lambda c: firing[c])
+        groups.setdefault(round(tdc[c], 6), []).append(c)
+    free = [g for g in groups.values() if len(g) == 2 and 0 not in g]
+    best: tuple | None = None
+    for pick in itertools.product((0, 1), repeat=len(free)):  # which of a pair fires first
+        firing = [tdc[c] for c in range(n)]
+        for g in groups.values():
+            if len(g) == 2 and 0 in g:
+                firing[g[1] if g[0] == 0 else g[0]] += 360.0
+        for g, k in zip(free, pick):
+            firing[g[1 - k]] += 360.0
+        order = sorted(range(n), key=lambda c: firing[c])
+        alternations = sum(banks[order[i]] != banks[order[(i + 1) % n]] for i in range(n))
+        key = (-alternations, tuple(order))
+        if best is None or key < best[0]:
+            best = (key, firing, order)
+    _key, firing, order = best
     gaps = np.diff(sorted(firing) + [720.0])
     even = bool(np.allclose(gaps, 720.0 / n))
+    fire = (f"even firing every {720.0 / n:g} deg" if even else
+            "the layout does not allow even firing (firing intervals "
+            + "/".join(f"{g:g}" for g in gaps) + " deg)")
     note = (f"V{n}, {alpha:g} deg bank angle, two rods per pin, {how}; each pair of cylinders"
-            " reaching TDC at the same crank position fires 360 deg apart, the lower-numbered"
-            " first; " + ("even firing every " + f"{720.0 / n:g} deg" if even else
-                          "the layout does not allow even firing (firing intervals "
-                          + "/".join(f"{g:g}" for g in gaps) + " deg)"))
+            " reaching TDC at the same crank position fires 360 deg apart, the order chosen to"
+            " alternate the banks most often (then the lowest cylinder numbers first); " + fire)
     return (pins, cyl_pin, banks, firing, "-".join(str(c + 1) for c in order), note)
 
 
