@@ -198,3 +198,25 @@ def test_bearing_pressure_of_the_brief_sizes_the_lands_and_is_stated():
 
     assert "60 MPa given in the brief, outside Agostini's 18-25 MPa" in padm_text(brief)
     assert padm_text(parse_brief(base)) == ""
+
+
+def test_estimates_are_consistent_with_the_checkers_models(tmp_path):
+    """The first check agrees with what the sizing targeted: the counterweights balance 100 %
+    of each throw's rotating unbalance (balance module, from sheet Crank), the flywheel gives
+    at most 1 % irregularity at the rated speed, full load (flywheel module), the damper sits
+    in its tuning band around Den Hartog's optimum, the bolt heads within the contact limit."""
+    import numpy as np
+
+    assert _new(tmp_path, "i4", BRIEFS["i4"]).returncode == 0
+    res = api.check(str(tmp_path / "i4.xlsx"))
+    q = res.outcome.quantities
+    assert np.asarray(q["balance.balance_ratio"].values) == pytest.approx(1.0, abs=1e-3)
+    ci = q["flywheel.cyclic_irregularity"]
+    speeds = np.asarray(ci.coords["speed"])
+    k = int(np.argmin(np.abs(speeds - 6000 * math.pi / 30)))
+    assert ci.values[ci.coords["case"].index("full")][k] <= 0.01
+    status = {(r.rule, r.item): r.status for r in res.results}
+    assert status[("DMP-004", "Damper ring")] == "pass"
+    assert status[("JNT-002", "crank nose")] == "pass"
+    assert status[("JNT-002", "flywheel")] == "pass"
+    assert status[("BAL-006", "static")] == "pass"
