@@ -122,13 +122,17 @@ FATIGUE_SAME = {
     "main_bore": "journal_bore",
 }
 """Fatigue parameter -> the same dimension on sheet Crank."""
-FATIGUE_ENDS = {"nose_diameter": "nose_diameter", "nose_bore": "nose_bore"}
+FATIGUE_ENDS: dict[str, str] = {}
+"""(The Fatigue sheet's crank nose diameter is the smallest section at the critical fillet,
+another section than the nose shaft of sheet CrankEnds: not the same dimension.)"""
 
 
 def fatigue_from_crank(fatigue: dict[str, Any], crank: CrankGeometry, err: Err,
-                       where: dict[tuple, str]) -> tuple[dict[str, Any], list[ModelValue]]:
+                       where: dict[tuple, str], filled: dict[tuple, str]
+                       ) -> tuple[dict[str, Any], list[ModelValue]]:
     """The Fatigue parameters with the crank's dimensions (the smallest over the throws where
-    they differ, conservative) and the derived M53 web geometry; the values' origins."""
+    they differ, conservative) and the derived M53 web geometry; the values' origins.
+    ``filled`` receives the Crank cell of each Fatigue parameter taken from the crank."""
     from .calc.crank_geometry import web_width_at_pin_centre
 
     out = dict(fatigue)
@@ -148,6 +152,7 @@ def fatigue_from_crank(fatigue: dict[str, Any], crank: CrankGeometry, err: Err,
         typed = fatigue.get(fattr)
         if typed is None:
             out[fattr] = value
+            filled[("Fatigue", fattr)] = cell
         elif not _same(typed, value):
             err("Fatigue", fattr, None, f"{_mm(typed)} differs from the crank's {_mm(value)}"
                 f" ({cell}): the dimension is given twice; leave this cell blank (it is taken"
@@ -284,8 +289,8 @@ def throw_stiffness(crank: CrankGeometry) -> ThrowStiffnessInfo:
         cw_inner_radius=np.array(crank.column("cw_inner_radius")),
         cw_outer_radius=np.array(crank.column("cw_outer_radius")),
         cw_angle=np.array(crank.column("cw_angle")),
-        cw_thickness=np.array([t.cw_thickness if t.has_counterweight else 0.0
-                               for t in crank.throws]))
+        cw_thickness=np.array([(t.cw_thickness or t.web_thickness) if t.has_counterweight
+                               else 0.0 for t in crank.throws]))  # 0: no counterweight
     return ThrowStiffnessInfo(np.asarray(res.stiffness, dtype=float),
                               np.asarray(res.in_range, dtype=bool), str(res.method),
                               None if res.model_error is None else float(res.model_error))

@@ -518,11 +518,12 @@ def build_engine(data: WorkbookData,
     _engine_geometry(p, pr)
     crank = _crank(data, p, cylinders, pr)
     rows = _crank_rows(data, crank, cylinders, pr)
-    bearings = _bearings(rows["Bearings"], pr, crank is not None)
+    has_crank = bool(_rows(data, "Crank"))  # a Crank sheet (its problems are reported)
+    bearings = _bearings(rows["Bearings"], pr, has_crank)
     fatigue = rows["Fatigue"]
     crank_mass = _crank_mass(data, p, cylinders, complete, bearings, pr, rows["CrankMass"],
-                             fatigue)
-    tv = _tv_model(rows["TVModel"], p, pr, crank is not None)
+                             fatigue, rows["where"])
+    tv = _tv_model(rows["TVModel"], p, pr, has_crank)
     joints = _joints(data, pr)
     jt = _joint_torques(data, joints, pr)
     pk = _peak_pressure(data, pr)
@@ -552,6 +553,11 @@ def build_engine(data: WorkbookData,
     )
 
 
+SPACING_SLIP = 0.05
+"""A throw's length (main journal + 2 webs + pin) more than 5 % from the main journal spacing
+is a warning (a slip: recesses, thrust faces and rounding explain a few percent)."""
+
+
 def _crank(data: WorkbookData, p: Params, cylinders: list[Cylinder], pr: _Problems
            ) -> CrankGeometry | None:
     """Sheets Crank and CrankEnds: the crank's geometry, checked (None without sheet Crank)."""
@@ -570,7 +576,7 @@ def _crank(data: WorkbookData, p: Params, cylinders: list[Cylinder], pr: _Proble
                         data.where, pr.err, pr.sheet_error, pr.blank_required)
     if crank is not None and p.get("main_spacing") is not None:
         for t in crank.throws:
-            if abs(t.length - p["main_spacing"]) > 0.005 * p["main_spacing"]:
+            if abs(t.length - p["main_spacing"]) > SPACING_SLIP * p["main_spacing"]:
                 pr.warn("Engine", "main_spacing", None, f"main journal spacing"
                         f" {p['main_spacing'] * 1e3:.6g} mm differs from throw {t.number}'s"
                         f" length {t.length * 1e3:.6g} mm (main journal + 2 webs + pin,"
@@ -589,7 +595,7 @@ def _crank_rows(data: WorkbookData, crank: CrankGeometry | None, cylinders: list
     out: dict[str, Any] = {
         "Bearings": _rows(data, "Bearings"), "CrankMass": _rows(data, "CrankMass"),
         "TVModel": _rows(data, "TVModel"),
-        "Fatigue": Params(data.params.get("Fatigue", {})), "model": []}
+        "Fatigue": Params(data.params.get("Fatigue", {})), "model": [], "where": data.where}
     if crank is None:
         return out
     from . import crank_derive as cd
@@ -597,7 +603,9 @@ def _crank_rows(data: WorkbookData, crank: CrankGeometry | None, cylinders: list
     pin_of = {c.number: c.pin for c in cylinders}
     bearings = [dict(r) for r in out["Bearings"]]
     cd.bearings_from_crank(bearings, crank, pin_of, data.where, pr.err)
-    fatigue, model = cd.fatigue_from_crank(dict(out["Fatigue"]), crank, pr.err, data.where)
+    filled: dict[tuple, str] = {}
+    fatigue, model = cd.fatigue_from_crank(dict(out["Fatigue"]), crank, pr.err, data.where,
+                                           filled)
     typed_throws = {r["throw"] for r in out["CrankMass"] if r.get("throw") is not None}
     gamma = {}
     for c in sorted(cylinders, key=lambda c: c.number):
@@ -605,10 +613,10 @@ def _crank_rows(data: WorkbookData, crank: CrankGeometry | None, cylinders: list
     crank_mass = list(out["CrankMass"]) + cd.crank_mass_rows(crank, gamma, typed_throws)
     tv = [dict(r) for r in out["TVModel"]]
     stiff = cd.throw_stiffness(crank)
-    model += cd.tv_from_crank(tv, crank, data.params["Engine"], pin_of, data.where, pr.err,
-                              stiff)
+    model += cd.tv_from_crank(tv, crank, data.params["Engine"], pin_of, data.where,
+                              pr.blank_required, stiff)
     out.update(Bearings=bearings, Fatigue=Params(fatigue), CrankMass=crank_mass, TVModel=tv,
-               model=model, stiffness=stiff)
+               model=model, stiffness=stiff, where={**data.where, **filled})
     return out
 
 
@@ -689,11 +697,10 @@ def _bearings(rows: list[dict[str, Any]], pr: _Problems, has_crank: bool) -> lis
     bearings = []
     counts = {"main": 0, "big end": 0}
     for i, r in enumerate(rows):
-        if r["diameter"] is None:
+        if r["diameter"] is None and not has_crank:
             pr.blank_required("Bearings", "diameter", i, "journal diameter is required:"
                               " expected a length with a unit (e.g. mm)"
-                              + (", found an empty cell" if not has_crank else
-                                 "; sheet Crank does not give it for this row"))
+                              + ", found an empty cell (or give sheet Crank)")
         if None in (r["name"], r["type"], r["diameter"], r["length"], r["clearance"]):
             continue
         counts[r["type"]] += 1
@@ -726,7 +733,7 @@ def _bearings(rows: list[dict[str, Any]], pr: _Problems, has_crank: bool) -> lis
 
 def _crank_mass(data: WorkbookData, p: Params, cylinders: list[Cylinder], complete: bool,
                 bearings: list[Bearing], pr: _Problems, rows: list[dict[str, Any]],
-                fatigue: Params) -> tuple[MassItem, ...]:
+                fatigue: Params, where: dict[tuple, str]) -> tuple[MassItem, ...]:
     """Sheet CrankMass (and the rows derived from sheet Crank for throws it does not give),
     with the crank's bearing count (a main on each side of every throw, a big end per rod) and
     the mass planes checked against the crank."""
@@ -764,7 +771,7 @@ def _crank_mass(data: WorkbookData, p: Params, cylinders: list[Cylinder], comple
         if r["axial"] is not None and spacing is not None and r["axial"] > spacing:
             err("CrankMass", "axial", i, "axial position lies beyond the next main bearing"
                 " (main journal spacing)")
-    check_mass_planes(_rows(data, "CrankMass"), p, fatigue, bearings, data.where, pr.warn)
+    check_mass_planes(_rows(data, "CrankMass"), p, fatigue, bearings, where, pr.warn)
     return crank_mass
 
 

@@ -16,6 +16,31 @@ def example_path(tmp_path: Path, name: str = "engine.xlsx") -> Path:
     return p
 
 
+def analyses_run(outcome) -> list[str]:
+    """The modules a check ran for its rules: the crank module runs whenever the workbook has
+    sheet Crank (its quantities are always reported) and is left out here."""
+    return [m for m in outcome.modules_run if m != "crank"]
+
+
+def without_crank(wb) -> None:
+    """The example workbook typed as before sheet Crank: Crank and CrankEnds removed, the
+    journal diameters and lengths in Bearings and the web thickness in Fatigue."""
+    ws = wb["Crank"]
+    head = [c.value for c in ws[1]]
+    vals = {h: ws.cell(3, j + 1).value for j, h in enumerate(head)}
+    del wb["Crank"]
+    if "CrankEnds" in wb.sheetnames:
+        del wb["CrankEnds"]
+    b = wb["Bearings"]
+    jd, jl, ty = (column(b, n) for n in ("journal diameter", "journal length", "type"))
+    for r in range(3, b.max_row + 1):
+        main = b.cell(r, ty).value == "main"
+        b.cell(r, jd).value = vals["main journal diameter" if main else "pin diameter"]
+        b.cell(r, jl).value = vals["main journal length" if main else "pin length"]
+    f = wb["Fatigue"]
+    f.append(["Web full thickness", vals["web thickness"], "mm", "as sheet Crank gave it"])
+
+
 def param_row(ws, label: str) -> int:
     """Row number of a parameter on a parameter sheet."""
     for row in ws.iter_rows(min_col=1, max_col=1):

@@ -60,7 +60,7 @@ def test_centre_of_mass_outside_the_web_is_a_warning_with_cell(bad_i6):
     assert "CrankMass!E8" in by_cell  # Web3 (throw 2, first row of throw 2)
     msg = by_cell["CrankMass!E8"]
     assert "X = -32.65 mm puts the centre of mass of 'Web3' axially outside the web" in msg
-    assert "half the web thickness 25 mm (Fatigue!B3)" in msg
+    assert "half the web thickness 25 mm (Crank!F3)" in msg
     assert "belongs in Z" in msg
 
 
@@ -72,9 +72,13 @@ def test_consistent_data_give_no_warning(good_i6, tmp_path):
 
 
 def test_bound_without_web_thickness_is_a_fraction_of_the_spacing(tmp_path):
-    # I4 example without web thicknesses: the bound is 15 % of the 96 mm main spacing = 14.4 mm
+    # I4 example without web thicknesses (nor sheet Crank, which gives the web's): the bound
+    # is 15 % of the 96 mm main spacing = 14.4 mm
     def edit(x):
         def apply(wb):
+            del wb["Crank"]
+            for row in wb["Bearings"].iter_rows(min_row=3):
+                row[2].value = 55.0 if row[1].value == "main" else 48.0
             for row in wb["Fatigue"].iter_rows(min_row=2):
                 if row[0].value in ("Web reduced thickness", "Web full thickness"):
                     row[1].value = None

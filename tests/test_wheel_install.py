@@ -62,6 +62,8 @@ def test_wheel_holds_every_package_and_the_data(installed):
     assert {f"checker/_rules/{p.name}" for p in (ROOT / "rules").glob("*.toml")} <= names
     assert {f"checker/_templates/{p.name}" for p in (ROOT / "templates").iterdir()} <= names
     assert "checker/calc/data/reynolds_map.npz" in names
+    assert "checker/calc/data/throw_stiffness.json" in names
+    assert "checker/calc/data/throw_stiffness_fe.csv" in names
 
 
 def test_installed_commands_run_from_outside_the_source_tree(installed, tmp_path):

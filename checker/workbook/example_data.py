@@ -238,9 +238,13 @@ def without_tv_role(content: dict[str, Any], role: str) -> dict[str, Any]:
 def split_tv_stations(content: dict[str, Any], link: float) -> dict[str, Any]:
     """``content`` with every TVModel station that carries two cylinders (``"1, 2"``) split
     into two stations, one per cylinder, joined by the stiffness ``link`` [N m/rad], each with
-    half the inertia and absolute damping (the V8's equivalent model in the tests)."""
+    half the inertia and absolute damping (the V8's equivalent model in the tests; a split
+    station is not a whole throw, so inertias derived from sheet Crank are typed in first)."""
     cols, rows = content["TVModel"]
     ix = {n: j for j, (n, _u) in enumerate(cols)}
+    if any(r[ix["inertia"]] is None for r in rows):
+        raise ValueError("split_tv_stations needs typed inertias (checker.workbook.example_v8."
+                         "tv_completed types in the values derived from sheet Crank)")
     out = []
     for r in rows:
         cyl = r[ix["cylinder"]]

@@ -22,8 +22,8 @@ V8 (GM LS1, see :mod:`checker.workbook.example_v8`)
     * Cylinders: firing angles at 720/8 deg intervals from the firing order; GM numbering (odd
       cylinders on the left bank at +45 deg, even on the right at -45 deg, cylinders 2k-1 and
       2k on pin k); throw = bank - firing angle, relative to throw 1.
-    * Fatigue: web thickness = (spacing - main length - pin length) / 2; oil-hole heights as
-      the I6.
+    * Crank (web thickness) and Fatigue (reduced thickness, 1 mm less): web thickness =
+      (spacing - main length - pin length) / 2; oil-hole heights as the I6.
     * CrankMass: 1.00 kg webs along their throws, a solid nodular-iron pin, and the
       counterweights of :func:`v8_counterweights`.
 """
@@ -61,9 +61,40 @@ def column(content: dict[str, Any], sheet: str, name: str) -> int:
     return [n for n, _u in content[sheet][0]].index(name)
 
 
+CRANK_OF_BEARING = {("main", "journal diameter"): "main journal diameter",
+                    ("main", "journal length"): "main journal length",
+                    ("big end", "journal diameter"): "pin diameter",
+                    ("big end", "journal length"): "pin length"}
+"""Bearings columns that sheet Crank gives (the examples type them once, there)."""
+
+
+def crank(content: dict[str, Any], name: str) -> Any:
+    """Value of column ``name`` of sheet Crank's ``all`` row."""
+    cols, rows = content["Crank"]
+    j = [n for n, _u in cols].index(name)
+    return next(r[j] for r in rows if str(r[0]).lower() == "all")
+
+
+def _set_crank(content: dict[str, Any], name: str, value: Any) -> None:
+    cols, rows = content["Crank"]
+    j = [n for n, _u in cols].index(name)
+    for r in rows:
+        if str(r[0]).lower() == "all":
+            r[j] = value
+
+
+def web_thickness(content: dict[str, Any]) -> float:
+    """The web (full) thickness: sheet Crank, else the Fatigue sheet's."""
+    if "Crank" in content:
+        return crank(content, "web thickness")
+    return param(content, "Fatigue", "Web full thickness")
+
+
 def bearing(content: dict[str, Any], kind: str, name: str) -> Any:
     """Value of column ``name`` of the first bearing of type ``kind`` (``main``,
-    ``big end``)."""
+    ``big end``); a journal's diameter and length from sheet Crank where it is given."""
+    if "Crank" in content and (kind, name) in CRANK_OF_BEARING:
+        return crank(content, CRANK_OF_BEARING[(kind, name)])
     rows = content["Bearings"][1]
     t, j = column(content, "Bearings", "type"), column(content, "Bearings", name)
     return next(r[j] for r in rows if r[t] == kind)
@@ -118,7 +149,7 @@ def i6_crank_mass_rows(content: dict[str, Any]) -> list[list[Any]]:
     throws = i6_throw_angles(content)
     spacing = param(content, "Engine", "Cylinder spacing")
     main_l = bearing(content, "main", "journal length")
-    web_t = param(content, "Fatigue", "Web full thickness")
+    web_t = web_thickness(content)
     front = main_l / 2 + web_t / 2
     rear = spacing - front
     ax_note = (ASSUMPTION + f": web centre at half main journal + half web ({main_l / 2:g} +"
@@ -319,7 +350,10 @@ def derived_v8(content: dict[str, Any]) -> dict[str, Any]:
         [c, cyl["throw"][c], cyl["firing"][c], cyl["bank"][c], cyl["pin"][c], V8_CYLINDERS_NOTE]
         for c in sorted(cyl["pin"])])
     web_t = _v8_geometry(out)["web_t"]
-    _set_param(out, "Fatigue", "Web full thickness", web_t)
+    if "Crank" in out:
+        _set_crank(out, "web thickness", web_t)
+    else:
+        _set_param(out, "Fatigue", "Web full thickness", web_t)
     _set_param(out, "Fatigue", "Web reduced thickness", web_t - 1.0)
     _oil_hole_heights(out)
     out["CrankMass"] = (out["CrankMass"][0], v8_crank_mass_rows(out))

@@ -50,14 +50,14 @@ away from their own throws. The crank then leaves no first-order free force or m
 
 Torsional model
 ---------------
-Throw station inertias: the point-mass estimate of each throw's CrankMass rows (sum m rho^2)
-x 1.227 for the parts' own inertia and the journals (the ratio of the station inertia of
-Bell's example I4 (Ricardo 2013), less its rod, to the point-mass estimate of its CrankMass
-rows), plus both rods,
-m_b r^2 + m_rec r^2/2 each (the mean inertia of the reciprocating parts, Ker Wilson). The
-rubber stiffness is Den Hartog tuned to the first mode of the chain without the ring
-(372.3 Hz): J_eq = 0.0317 kg m^2 (modal inertia at the nose), mu = 0.0065/0.0317 = 0.205,
-f_ring = 372.3/(1 + mu) = 308.9 Hz, k = J_ring (2 pi f_ring)^2 = 24.5 kN m/rad.
+Derived from the crank's geometry (sheet Crank, issue 33; docs/crank-geometry.md): each throw
+station's inertia is the throw about the main axis plus both rods' rotating share and
+reciprocating mean ``m_b r^2 + m_rec r^2 (1/2 + lambda^2/8)``; the stiffnesses between throws
+are the halves of neighbouring throws in series (:mod:`checker.calc.throw_stiffness`), the
+crank nose and the flywheel flange plain shafts (sheet CrankEnds, assumed) in series with half
+a throw. The rubber stiffness is Den Hartog tuned to the first mode of that chain without the
+ring (334.5 Hz): mu = 0.0065 kg m^2 / modal inertia at the nose = 0.120, f_ring = 334.5/(1 +
+mu) = 298.7 Hz, k = J_ring (2 pi f_ring)^2 = 22.9 kN m/rad.
 """
 
 from __future__ import annotations
@@ -75,7 +75,10 @@ def v8_content(split_stations: bool = False, link: float = 1e13) -> dict[str, An
     a stiffness ``link`` [N m/rad] instead of one station carrying both cylinders.
     """
     content = load_example("v8")
-    return split_tv_stations(content, link) if split_stations else content
+    if not split_stations:
+        return content
+    cols, _rows = content["TVModel"]
+    return split_tv_stations({**content, "TVModel": (cols, tv_completed(content))}, link)
 
 
 def throw_unbalance() -> dict[str, float]:
@@ -99,3 +102,36 @@ def __getattr__(name: str) -> Any:
 
 
 __all__ = ["v8_content", "counterweights", "throw_unbalance"]
+
+
+def tv_completed(content: dict[str, Any]) -> list[list[Any]]:
+    """The TVModel rows with the values derived from sheet Crank typed in (inertia and
+    stiffness cells left blank take the engine's derived values, in the sheet's units kg m^2
+    and N m/rad)."""
+    cols, rows = content["TVModel"]
+    ix = {n: j for j, (n, _u) in enumerate(cols)}
+    if not any(r[ix["inertia"]] is None or (r[ix["stiffness to next"]] is None and i < len(
+            rows) - 1) for i, r in enumerate(rows)):
+        return [list(r) for r in rows]
+    import tempfile
+    from pathlib import Path
+
+    from ..engine import load_engine
+    from .example import write_workbook
+
+    units = {n: u for n, u in cols}
+    assert units["inertia"] == "kg m^2" and units["stiffness to next"] == "N m/rad"
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "engine.xlsx"
+        write_workbook(path, content)
+        stations = {s.station: s for s in load_engine(path).tv_model}
+    out = []
+    for r in rows:
+        s = list(r)
+        st = stations[r[ix["station"]]]
+        if s[ix["inertia"]] is None:
+            s[ix["inertia"]] = st.inertia
+        if s[ix["stiffness to next"]] is None and st.stiffness is not None:
+            s[ix["stiffness to next"]] = st.stiffness
+        out.append(s)
+    return out

@@ -756,10 +756,10 @@ CRANK = Sheet(
              check=">=0", uhi=3000),
         _len("counterweight outer radius", "cw_outer_radius", "Outer radius of the"
              " counterweight sector.", uhi=3000),
-        F("counterweight angle", "cw_angle", "angle", check=">0", required=False,
+        F("counterweight angle", "cw_angle", "angle", check=">=0", required=False,
           note="Included angle of the counterweight sector, bisected by the direction"
-               " opposite the pin.",
-          valid=R(0, 360, "deg"), usual=R(30, 270, "deg")),
+               " opposite the pin; 0 on a throw's row: that throw has no counterweight.",
+          valid=R(0, 360, "deg"), usual=R(0, 270, "deg")),
         _len("counterweight thickness", "cw_thickness", "Axial thickness of the counterweight,"
              " centred on its web's mid-plane; blank = the web thickness.", uhi=1000),
         _len("pin fillet radius", "pin_fillet_radius", "Also the Fatigue sheet's 'Crank pin"
@@ -797,10 +797,10 @@ CRANK_ENDS = Sheet(
     fields=(
         F("Crank nose diameter", "nose_diameter", "length", check=">0", required=False,
           note="Plain-shaft diameter of the crank nose between the damper hub and the first"
-               " main journal; also the Fatigue sheet's 'Crank nose diameter'.",
+               " main journal (its torsional stiffness; the Fatigue sheet's 'Crank nose"
+               " diameter' is the smallest section at the critical fillet).",
           valid=R(0.1, 10000, "mm"), usual=R(1, 1000, "mm")),
         F("Crank nose bore", "nose_bore", "length", check=">=0", required=False,
-          note="Also the Fatigue sheet's 'Crank nose bore diameter'.",
           valid=R(0, 5000, "mm"), usual=R(0, 1000, "mm")),
         F("Crank nose length", "nose_length", "length", check=">0", required=False,
           note="From the damper hub's mid-plane to the first main journal's mid-plane"

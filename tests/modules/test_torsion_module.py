@@ -14,9 +14,19 @@ from checker import api
 from checker.calc import torsional as tv
 from checker.engine import load_engine
 from checker.workbook.example import TV_MODEL
-from tests.helpers import column, edited, example_path, param_row, set_param, table_row
+from tests.helpers import (
+    analyses_run,
+    column,
+    edited,
+    example_path,
+    param_row,
+    set_param,
+    table_row,
+)
 
 RPM = 2 * np.pi / 60
+
+
 
 
 def _workbook_chain() -> tuple[np.ndarray, np.ndarray]:
@@ -200,7 +210,7 @@ def test_joint_rules_from_tv_torques_when_rows_removed(tmp_path):
 
     path = edited(tmp_path, edit)
     res = api.check(path, select=["JNT"])
-    assert res.outcome.modules_run == ["loads", "torsion", "joints"]
+    assert analyses_run(res.outcome) == ["loads", "torsion", "joints"]
     app = res.outcome.quantities["joint.applied_torque"]
     tq = res.outcome.quantities["tv.joint_torque"]
     assert np.all(app.detail.source == "torsional vibration module")
@@ -243,7 +253,7 @@ def test_tv_module_skipped_when_joint_torques_given(tmp_path):
 
     # the torsional module only runs for JNT-008 (the given torques against the model's)
     res = api.check(edited(tmp_path, edit), select=["JNT"], ignore=["JNT-008"])
-    assert res.outcome.modules_run == ["joints"]
+    assert analyses_run(res.outcome) == ["joints"]
     app = res.outcome.quantities["joint.applied_torque"]
     assert np.all(app.detail.source == "workbook (JointTorques)")
 
@@ -295,13 +305,14 @@ def test_v8_paired_stations_equal_split_stations_with_a_stiff_link(v8_models):
     n_p, n_s = paired["tv.nose_amplitude"].values, split["tv.nose_amplitude"].values
     assert np.all(n_p > 0)
     np.testing.assert_allclose(n_s, n_p, rtol=1e-6)
-    # per order too, where the amplitude matters (above 1e-9 of the largest); 1e-5 here: the
+    # per order too, where the amplitude matters (above 1e-9 of the largest); 2e-5 here: the
     # stiff link conditions the per-order solve at the lowest orders and speeds (k_link /
-    # (w^2 J) ~ 1e10, so ~1e-6 of round-off), which the synthesis averages out
+    # (w^2 J) ~ 1e10, so ~1e-6 of round-off, up to 1.1e-5 with the V8's station inertias
+    # derived from its crank geometry), which the synthesis averages out
     o_p = paired["tv.nose_order_amplitude"].values
     o_s = split["tv.nose_order_amplitude"].values
     big = o_p > 1e-9 * o_p.max()
-    np.testing.assert_allclose(o_s[big], o_p[big], rtol=1e-5)
+    np.testing.assert_allclose(o_s[big], o_p[big], rtol=2e-5)
 
 
 def test_v8_station_takes_both_cylinders_phased_by_their_own_firing_angles(v8_models):

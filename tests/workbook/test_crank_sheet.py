@@ -25,15 +25,18 @@ ALL = ["all", 55, 27, 48, None, 24.4, 22.3, 80, 70, 30, 64, 150, 7850, 210, 0.3,
 
 
 def i4_with_crank(rows=None, ends=None, edit=None) -> dict:
-    """The I4 example with a Crank sheet (and CrankEnds), sheets in the schema's order."""
+    """The I4 example (described by sheet Crank) with the Crank rows ``rows`` in place of its
+    own (default: the example's), and sheet CrankEnds."""
     base = copy.deepcopy(example_content())
     out = {}
     for k, v in base.items():
+        if k == "CrankEnds" and ends:
+            continue
         out[k] = v
-        if k == "Bearings":
-            out["Crank"] = (CRANK_COLS, [list(r) for r in (rows or [ALL])])
-            if ends:
-                out["CrankEnds"] = ends
+        if k == "Crank" and rows is not None:
+            out["Crank"] = (CRANK_COLS, [list(r) for r in rows])
+        if k == "Crank" and ends:
+            out["CrankEnds"] = ends
     if edit:
         edit(out)
     return out
@@ -61,30 +64,26 @@ def _set_table(content, sheet, col, value, where=lambda r: True):
             r[j] = value
 
 
-def test_same_results_when_every_dimension_agrees(tmp_path):
+def test_same_results_when_a_dimension_given_twice_agrees(tmp_path):
+    def twice(c):
+        _set_table(c, "Bearings", "journal diameter", 55.0, lambda r: r[1] == "main")
+        _set_table(c, "Bearings", "journal length", 24.4, lambda r: r[1] == "big end")
+        c["Fatigue"].append(("Web full thickness", 22.3, "mm", "test"))
+
     plain = api.check(_write(tmp_path, example_content(), "plain.xlsx"))
-    with_crank = api.check(_write(tmp_path, i4_with_crank()))
+    with_crank = api.check(_write(tmp_path, i4_with_crank(edit=twice)))
     a = [(r.rule, r.item, r.case, r.status, r.value) for r in plain.results]
     b = [(r.rule, r.item, r.case, r.status, r.value) for r in with_crank.results]
     assert a == b
     e = with_crank.engine
     assert e.crank is not None and len(e.crank.throws) == 4
+    assert [b.diameter for b in e.bearings] == [0.055] * 5 + [0.048] * 4
     assert e.crank.throws[0].length == pytest.approx(0.096)
 
 
 def test_bearings_and_fatigue_take_the_crank_dimensions(tmp_path):
-    def blank(c):
-        _set_table(c, "Bearings", "journal diameter", None)
-        _set_table(c, "Bearings", "journal length", None)
-        c["Fatigue"] = [r for r in c["Fatigue"] if r[0] not in (
-            "Web full thickness", "Crank pin fillet radius")]
-
-    def fillet(c):
-        blank(c)
-        c["Crank"] = (CRANK_COLS + [("pin fillet radius", "mm")],
-                      [list(ALL) + [1.6]])
-
-    e = load_engine(_write(tmp_path, i4_with_crank(edit=fillet)))
+    # the I4 example types its journals, pin, web thickness and fillets once, on sheet Crank
+    e = load_engine(_write(tmp_path, example_content()))
     mains = [b for b in e.bearings if b.type == "main"]
     bigs = [b for b in e.bearings if b.type == "big end"]
     assert [b.diameter for b in mains] == [0.055] * 5
@@ -96,14 +95,13 @@ def test_bearings_and_fatigue_take_the_crank_dimensions(tmp_path):
 def test_a_dimension_given_twice_and_different_names_both_cells(tmp_path):
     def edit(c):
         _set_table(c, "Bearings", "journal diameter", 56.0, lambda r: r[0] == "M2")
-        c["Fatigue"] = [(r[0], 23.0, *r[2:]) if r[0] == "Web full thickness" else r
-                        for r in c["Fatigue"]]
+        c["Fatigue"].append(("Web full thickness", 23.0, "mm", "test"))
 
     errs = _errors(_write(tmp_path, i4_with_crank(edit=edit)))
     bearing = next(m for w, m in errs.items() if w.startswith("Bearings!C"))
     assert "56 mm differs from the crank's 55 mm (Crank!B3)" in bearing
     fat = next(m for w, m in errs.items() if w.startswith("Fatigue!"))
-    assert "23 mm differs from the crank's 22.3 mm (Crank!G3)" in fat
+    assert "23 mm differs from the crank's 22.3 mm (Crank!F3)" in fat
 
 
 def test_bad_geometry_every_problem_at_its_cell_in_one_pass(tmp_path):
@@ -240,8 +238,11 @@ def test_tv_stiffness_derived_where_blank_typed_wins(tmp_path, stand_in):
 
 
 def test_no_crank_sheet_no_crank_quantities_or_module(tmp_path):
-    d = api.check(_write(tmp_path, example_content(), "plain.xlsx"),
-                  select=["BAL"]).to_dict(timings=False)
+    c = copy.deepcopy(example_content())
+    del c["Crank"]
+    _set_table(c, "Bearings", "journal diameter", 55.0, lambda r: r[1] == "main")
+    _set_table(c, "Bearings", "journal diameter", 48.0, lambda r: r[1] == "big end")
+    d = api.check(_write(tmp_path, c, "plain.xlsx"), select=["BAL"]).to_dict(timings=False)
     assert not [k for k in d["quantities"] if k.startswith("crank.")]
     assert "crank" not in d["modules"]["run"] + d["modules"]["skipped"]
     assert "crank_model" not in d

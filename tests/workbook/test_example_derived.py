@@ -68,5 +68,5 @@ def test_v8_firing_and_throws_follow_the_firing_order():
     assert cyl["firing"] == {1: 0, 8: 90, 7: 180, 2: 270, 6: 360, 5: 450, 4: 540, 3: 630}
     assert dv.v8_pin_throw(c) == {1: 0.0, 2: 90.0, 3: 270.0, 4: 180.0}  # cross-plane
     d = dv.derived_v8(c)
-    assert dv.param(d, "Fatigue", "Web full thickness") == pytest.approx(
+    assert dv.web_thickness(d) == pytest.approx(
         (111.76 - 26.0 - 48.0) / 2, abs=0.005)
