@@ -10,10 +10,9 @@ the bolted joints sized for the torsional model's joint torques with the recomme
 The crank is written as its geometry (sheets Crank and CrankEnds, issue 33): the crank
 module derives its CrankMass rows and the crank stations' TVModel inertias, and Bearings and
 Fatigue take its dimensions. The counterweights are sized with the crank-geometry module's
-mass properties (:func:`checker.calc.crank_geometry.throw_mass_properties`). The throw
-stiffnesses are typed (Ker Wilson's equivalent length, ESTIMATE, stated as about 20 % stiffer
-than a 3D FE of a real throw) only while the throw-stiffness model
-(``checker.calc.throw_stiffness``) is not installed; then they are left blank and derived.
+mass properties (:func:`checker.calc.crank_geometry.throw_mass_properties`); the crank
+stations' inertias and stiffnesses are left blank in TVModel and derived by the crank module
+(its throw stiffness fitted to a 3D FE, :mod:`checker.calc.throw_stiffness`).
 """
 
 from __future__ import annotations
@@ -29,7 +28,7 @@ import numpy as np
 
 from ..calc import first_layout as fl
 from ..calc.bolted_joint import PRELOAD_FRACTIONS, effective_friction_diameter, tensile_stress_area
-from ..calc.crank_geometry import cylinder, plain_shaft_stiffness, throw_mass_properties
+from ..calc.crank_geometry import cylinder, throw_mass_properties
 from .brief import Brief
 
 TAG = "ESTIMATE (checker new)"
@@ -265,14 +264,6 @@ def layout(b: Brief) -> Layout:
                   5e-4 * dp)
 
 
-def _ker_wilson(L: Layout, G: float) -> float:
-    """Throw stiffness [N m/rad] by Ker Wilson's equivalent length (as usually reproduced)."""
-    R = L.brief.stroke / 2.0
-    le = L.dj**4 * ((L.main_len + 0.4 * L.dj) / L.dj**4 + (L.pin_len + 0.4 * L.dp) / L.dp**4
-                    + (R - 0.2 * (L.dj + L.dp)) / (L.tw * L.bw**3))
-    return G * math.pi * L.dj**4 / (32.0 * le)
-
-
 @dataclass
 class Tuning:
     """What the second pass sets from the checker's own models."""
@@ -355,58 +346,30 @@ def _crank_ends(L: Layout) -> list:
             ("Flywheel flange length", _mm(FLANGE[1] * L.dj + L.main_len / 2), "mm", note)]
 
 
-def _stiffness_model() -> bool:
-    """Whether the crank branch's throw-stiffness model is installed (then the TVModel
-    stiffnesses are left blank: derived from sheet Crank)."""
-    try:
-        from ..calc import throw_stiffness  # noqa: F401
-    except ImportError:
-        return False
-    return True
-
-
 def _tv_rows(L: Layout, mat: dict, tune: Tuning) -> list:
     """TVModel: damper ring, crank nose, one station per throw, flywheel. The crank stations'
-    inertias are left blank (derived from sheet Crank by the crank module); their stiffnesses
-    too when the throw-stiffness model is installed, else Ker Wilson's (ESTIMATE)."""
+    inertias and every stiffness along the crank are left blank: the crank module derives them
+    from sheets Crank and CrankEnds."""
     b = L.brief
-    G = mat["E"] / (2 * (1 + mat["nu"]))
-    derive_k = _stiffness_model()
-    kw = _ker_wilson(L, G)
     nose_d, nose_l = NOSE[0] * L.dj, NOSE[1] * L.dj
     _m, jn, _ = cylinder(diameter=nose_d, bore=0.0, length=nose_l, density=mat["density"])
-    half_j = float(plain_shaft_stiffness(diameter=L.dj, bore=0.0, length=L.main_len / 2,
-                                         shear_modulus=G))
-    k_nose = 1 / (1 / float(plain_shaft_stiffness(diameter=nose_d, bore=0.0, length=nose_l,
-                                                  shear_modulus=G)) + 1 / half_j + 1 / (2 * kw))
-    k_flange = 1 / (1 / float(plain_shaft_stiffness(diameter=FLANGE[0] * L.dj, bore=0.0,
-                                                    length=FLANGE[1] * L.dj,
-                                                    shear_modulus=G)) + 1 / half_j + 1 / (2 * kw))
-    kw_note = ("" if derive_k else "; stiffness: Ker Wilson's equivalent length of the sized"
-               " throw (as usually reproduced; about 20 % stiffer than a 3D FE of a real throw),"
-               " halves of neighbouring throws in series, the nose and flange shafts and half"
-               " journals added at the ends (G Jp/L), typed until the throw-stiffness model of"
-               " the crank geometry is installed")
     hub = 4.0 * float(jn)  # pulley hub, timing sprocket and damper hub on the nose
+    derived = "derived from sheets Crank and CrankEnds (crank module)"
     rows = [["Damper ring", "damper ring", None, round(tune.ring, 6), None,
              round(tune.ring_stiffness), None,
              est(None, "Den Hartog tuned absorber: ring inertia 0.25 x the first crank mode's"
                  " modal inertia at the nose [ratio not confirmed in a public source];"
                  " rubber stiffness at the optimum tuning of the damper-tuning module (Den"
                  " Hartog, Mechanical Vibrations, 1956)")],
-            ["Crank nose", "crank nose", None, round(float(jn) + hub, 7), None,
-             None if derive_k else round(k_nose), None,
-             est(None, "nose shaft (sheet CrankEnds) plus hubs 4 x its inertia [not"
-                 " confirmed]" + kw_note)]]
+            ["Crank nose", "crank nose", None, round(float(jn) + hub, 7), None, None, None,
+             est(None, "inertia of the nose shaft (sheet CrankEnds) plus hubs 4 x its inertia"
+                 f" [not confirmed]; stiffness {derived}")]]
     rods = b.cylinders // L.throws
     for t in range(L.throws):
         cyl = [c + 1 for c in range(b.cylinders) if L.cyl_throw[c] == t + 1]
-        last = t == L.throws - 1
-        k = None if derive_k else round(k_flange if last else kw)
         rows.append([f"Throw {t + 1}" if rods > 1 else f"Cylinder {cyl[0]}", "cylinder",
-                     ", ".join(map(str, cyl)) if rods > 1 else cyl[0], None, None, k, None,
-                     est(None, "inertia derived from sheet Crank (crank module)" + kw_note)
-                     if k is not None else "derived from sheet Crank (crank module)"])
+                     ", ".join(map(str, cyl)) if rods > 1 else cyl[0], None, None, None, None,
+                     f"inertia and stiffness {derived}"])
     rows.append(["Flywheel", "flywheel", None, round(tune.flywheel, 5), None, None, None,
                  est(None, "smallest flywheel meeting a cyclic irregularity of 1 % (Agostini"
                      " 2019: 'kinematic irregularity <= 1 %') at the rated speed, full load,"

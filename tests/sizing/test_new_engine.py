@@ -163,28 +163,9 @@ def test_sizing_is_deterministic_and_writes_the_crank_geometry():
     assert c1["CrankMass"][1] == []  # derived from sheet Crank, never typed
     tv = c1["TVModel"][1]
     assert all(r[3] is None for r in tv if r[1] == "cylinder")  # inertias derived
+    assert all(r[5] is None for r in tv[1:-1])  # stiffnesses derived (crank module)
     bearings = c1["Bearings"][1]
     assert all(r[2] is None and r[3] is None for r in bearings)  # dimensions from Crank
-
-
-def test_throw_stiffness_left_to_the_crank_model_once_installed(monkeypatch):
-    from checker.sizing import new_engine as ne
-
-    b = parse_brief({"cylinders": 4, "bore": "86 mm", "stroke": "94.6 mm",
-                     "rated_power": "110 kW", "rated_speed": "6000 rpm"})
-    lay = ne.layout(b)
-    tune = ne.Tuning(flywheel=0.2, ring=0.005, ring_stiffness=2e4, loss_factor=0.2,
-                     joints=[{"name": "crank nose", "bolts": 1, "d": 16, "p": 1.5, "od": 0.04,
-                              "id": 0.018, "head_od": 24.0, "head_id": 17.6, "torque": 300.0},
-                             {"name": "flywheel", "bolts": 8, "d": 10, "p": 1.25, "od": 0.08,
-                              "id": 0.04, "head_od": 16.0, "head_id": 11.0, "torque": 1500.0}])
-    monkeypatch.setattr(ne, "_stiffness_model", lambda: False)
-    typed = ne.content(lay, tune)["TVModel"][1]
-    assert all(r[5] is not None for r in typed[1:-1])  # Ker Wilson, typed as ESTIMATE
-    assert all("ESTIMATE" in r[7] and "Ker Wilson" in r[7] for r in typed[1:-1])
-    monkeypatch.setattr(ne, "_stiffness_model", lambda: True)
-    derived = ne.content(lay, tune)["TVModel"][1]
-    assert all(r[5] is None for r in derived[1:-1])  # derived from sheet Crank
 
 
 def test_bearing_pressure_of_the_brief_sizes_the_lands_and_is_stated():
