@@ -181,8 +181,10 @@ class CheckResult:
         (:mod:`checker.caveats`): what page 1 shows beside the verdict."""
         from . import caveats
 
-        return caveats.applicable(caveats.collect(self.outcome), self.results,
-                                  {o.rule for o in self.table.overrides})
+        out = caveats.applicable(caveats.collect(self.outcome), self.results,
+                                 {o.rule for o in self.table.overrides})
+        est = caveats.estimate_caveat(self.engine, self.results)
+        return out + ([est] if est else [])
 
     def to_frame(self):
         """The rule results as a pandas DataFrame (one row per rule and item)."""

@@ -15,6 +15,7 @@ gathers them and adds the ones derived here from the computed quantities.
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 import numpy as np
@@ -81,6 +82,48 @@ def applicable(caveats: list[dict[str, Any]], results: list, overridden: set[str
     judged = {r.rule for r in results if r.status in ("pass", "fail")}
     return [c for c in caveats if not c.get("rules")
             or any(x in judged and x not in overridden for x in c["rules"])]
+
+
+ESTIMATE_SHEETS = {  # rule family -> the input sheets its results rest on
+    "BRG": ("Engine", "Cylinders", "PeakPressure", "BrakeTorque", "Bearings", "Oil"),
+    "TV": ("Engine", "Cylinders", "PeakPressure", "BrakeTorque", "TVModel", "Damper"),
+    "DMP": ("Engine", "Cylinders", "PeakPressure", "BrakeTorque", "TVModel", "Damper"),
+    "FAT": ("Engine", "Cylinders", "PeakPressure", "BrakeTorque", "Bearings", "TVModel",
+            "Fatigue"),
+    "JNT": ("Engine", "Cylinders", "PeakPressure", "BrakeTorque", "TVModel", "Joints",
+            "JointTorques"),
+    "BAL": ("Engine", "Cylinders", "CrankMass"),
+    "FLY": ("Engine", "Cylinders", "PeakPressure", "BrakeTorque", "TVModel"),
+}
+"""The sheets each rule family's results are computed from (an estimate on one of them makes
+every evaluated result of the family rest on estimates)."""
+
+
+def estimate_caveat(engine: Any, results: list) -> dict[str, Any] | None:
+    """The caveat of a workbook with inputs marked ESTIMATE (a first layout of ``checker
+    new``): how many inputs, on which sheets, and how many evaluated results rest on them."""
+    estimates = getattr(engine, "estimates", ())
+    if not estimates:
+        return None
+    by: dict[str, int] = {}
+    for e in estimates:  # "Sheet!B4 label: note" or "Sheet rows 3, 4: note"
+        sheet = e.split("!")[0].split(" ")[0]
+        head = e.split(":")[0]
+        k = 1 if "!" in head else len(re.findall(r"\d+", head.split(" ", 1)[1]))
+        by[sheet] = by.get(sheet, 0) + k
+    resting = [r for r in results if r.status in ("pass", "fail")
+               and set(ESTIMATE_SHEETS.get(r.rule.split("-")[0], ())) & set(by)]
+    rules = sorted({r.rule for r in resting})
+    n = sum(by.values())
+    return {"kind": "estimates", "severity": "high",
+            "text": (f"{len(resting)} of {sum(r.status in ('pass', 'fail') for r in results)}"
+                     f" evaluated results rest on estimates: {n} input"
+                     f"{'s' if n != 1 else ''} (parameters and table rows)"
+                     f" {'are' if n != 1 else 'is'} marked ESTIMATE (sized by a stated design"
+                     " rule, not data of this engine; sheets "
+                     + ", ".join(f"{k} {v}" for k, v in by.items())
+                     + "); replace them with the design's values as they become known."),
+            "rules": rules, "count": n, "results": len(resting)}
 
 
 def collect(outcome: Any) -> list[dict[str, Any]]:

@@ -1,4 +1,4 @@
-"""Command line: ``checker template | check | report | rules``.
+"""Command line: ``checker template | new | check | report | rules``.
 
 Exit codes: 0 no error-severity rule fails; 1 a rule fails; 2 bad input, bad rule file,
 unwritable output or usage error; 130 interrupted (SIGINT, Ctrl-C); 143 terminated (SIGTERM).
@@ -52,6 +52,7 @@ STEP_WORDS = {
     "joint_applied_torque": "the torques the joints must transmit",
     "joint_cover_factor": "the joints' slip safety (cover factors)",
     "joint_computed_torque": "the joint torques from the engine loads",
+    "crank_geometry": "the crank's masses, inertias and stiffnesses from its geometry",
 }
 
 
@@ -300,6 +301,65 @@ def template(path: str, force: bool, which: str) -> None:
         write_workbook(tmp, content)
         _atomic_write(p, tmp.read_bytes())
     click.echo(f"wrote {p}", err=True)
+
+
+@main.command("new")
+@click.argument("path", type=click.Path(dir_okay=False))
+@click.option("--brief", "brief_file", type=click.Path(exists=True, dir_okay=False),
+              help="Brief file (TOML): cylinders, layout, bore, stroke, rated_power... (see"
+              " docs/new-engine.md); options given as well win.")
+@click.option("--force", is_flag=True, help="Overwrite an existing file.")
+@click.option("--cylinders", type=int, default=None)
+@click.option("--layout", default=None, help='"inline" or "V".')
+@click.option("--bank-angle", "bank_angle", default=None, help='e.g. "90 deg" (V only).')
+@click.option("--bore", default=None, help='e.g. "86 mm".')
+@click.option("--stroke", default=None, help='e.g. "94.6 mm".')
+@click.option("--rated-power", "rated_power", default=None, help='e.g. "110 kW".')
+@click.option("--rated-speed", "rated_speed", default=None, help='e.g. "6000 rpm".')
+@click.option("--max-speed", "max_speed", default=None, help='e.g. "7000 rpm".')
+@click.option("--min-speed", "min_speed", default=None, help='e.g. "1000 rpm".')
+@click.option("--peak-pressure", "peak_pressure", default=None, help='e.g. "85 bar".')
+@click.option("--fuel", default=None, help='"gasoline" or "diesel".')
+@click.option("--crank-material", "crank_material", default=None,
+              help='"forged steel" or "nodular iron".')
+@click.option("--bearing-lining", "bearing_lining", default=None,
+              help='e.g. "aluminium bimetal", "tri-metal".')
+@click.option("--name", default=None, help="Engine name.")
+def new(path, brief_file, force, **options) -> None:
+    """Write a first crank-train layout to PATH (.xlsx) from a concept brief: every derived
+    value sized by a stated design rule with its source, marked ESTIMATE."""
+    from .errors import InputErrors
+    from .sizing.brief import load_brief
+    from .sizing.new_engine import NoRule, size
+    from .workbook.example import write_workbook
+
+    p = Path(path)
+    if p.suffix.lower() != ".xlsx":
+        raise click.UsageError(f"{p} is not an .xlsx file name; the workbook is an Excel file"
+                               f" (e.g. {p.with_suffix('.xlsx').name})")
+    if p.exists() and not force:
+        raise click.UsageError(f"{p} exists; use --force to overwrite it")
+    if brief_file is None and not any(v is not None for v in options.values()):
+        raise click.UsageError("give a brief: --brief brief.toml or the options --cylinders,"
+                               " --bore, --stroke, --rated-power, --rated-speed ...")
+    _outputs_writable([p])
+    try:
+        b = load_brief(brief_file, options)
+        _layout, content = size(b)
+    except InputErrors as exc:
+        click.echo(f"error: {exc}", err=True)
+        sys.exit(2)
+    except NoRule as exc:
+        click.echo(f"error: {exc}", err=True)
+        sys.exit(2)
+    except Exception as exc:  # noqa: BLE001 - reported without traceback
+        _fail(exc)
+    with tempfile.TemporaryDirectory() as d:
+        tmp = Path(d) / "engine.xlsx"
+        write_workbook(tmp, content)
+        _atomic_write(p, tmp.read_bytes())
+    click.echo(f"wrote {p} (first layout; every value marked ESTIMATE names its rule and"
+               " source)", err=True)
 
 
 @main.command()

@@ -158,6 +158,7 @@ class Engine:
     sha256: str = ""
     where: dict[tuple, str] = field(default_factory=dict)
     assumptions: tuple[str, ...] = ()  # workbook values marked as assumptions (with cells)
+    estimates: tuple[str, ...] = ()  # workbook values marked ESTIMATE (sized by a rule)
     #: The crank's geometry (sheets Crank, CrankEnds), None without a Crank sheet.
     crank: CrankGeometry | None = None
     #: Values of the crank model derived from the geometry or typed over it, with their
@@ -617,8 +618,8 @@ def build_engine(data: WorkbookData,
         oil=Params(data.params.get("Oil", {})), damper=damper,
         fatigue=fatigue, overrides=tuple(overrides),
         source=data.path, sha256=data.sha256, where=dict(data.where),
-        assumptions=tuple(data.assumptions), warnings=tuple(pr.warnings),
-        crank=crank, crank_model=tuple(rows["model"]),
+        assumptions=tuple(data.assumptions), estimates=tuple(data.estimates),
+        warnings=tuple(pr.warnings), crank=crank, crank_model=tuple(rows["model"]),
     )
 
 

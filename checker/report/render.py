@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 
 from .. import __version__
 from ..api import CheckResult
+from ..caveats import estimate_caveat
 from ..forked import Forked
 from ..resources import templates_dir
 from . import results_book, review, summary
@@ -411,6 +412,7 @@ def context(res: CheckResult, sections: list[dict] | None = None,
         "overrides": res.table.overrides,
         "assumptions": res.assumptions,
         "input_warnings": [str(w) for w in res.engine.warnings],
+        "estimates": estimate_caveat(res.engine, res.results),
         "modules_run": res.outcome.modules_run,
         "modules_skipped": [LABELS.get(m, m.replace("_", " "))
                             for m in res.outcome.modules_skipped],

@@ -280,6 +280,11 @@ def caveats(res: CheckResult) -> list[dict]:
         more = len(flags) - 6
         out.append({"title": "Model validity", "items": flags[:6] + (
             [f"... and {more} more in the module sections."] if more > 0 else [])})
+    from ..caveats import estimate_caveat
+
+    est = estimate_caveat(res.engine, res.results)
+    if est:
+        out.append({"title": "Results resting on estimates", "items": [est["text"]]})
     cls = _class_limits(res) + stated.pop("Limits outside their engine class", [])
     if cls:
         out.append({"title": "Limits outside their engine class", "items": cls})

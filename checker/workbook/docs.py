@@ -43,6 +43,9 @@ def workbook_markdown() -> str:
            " dimensionless, `%` = 0.01. A percent-formatted cell stores the fraction it shows"
            " (75 % = 0.75) and is only accepted for dimensionless values.",
            "* Notes that contain the word `ASSUMPTION` are listed in the report's assumptions.",
+           "* Notes that contain `ESTIMATE` (upper case; written by `checker new`, see"
+           " docs/new-engine.md) mark values sized by a stated design rule: the check counts"
+           " them and the results resting on them (page-1 caveat, JSON caveat `estimates`).",
            "* Unknown sheets, parameters and columns are errors (typos must not be ignored);"
            " the sheet `Notes` is free text.",
            "* **Choice** columns accept only the listed values, compared ignoring case, spaces,"

@@ -52,6 +52,9 @@ class WorkbookData:
     errors: list[InputError] = field(default_factory=list)
     warnings: list[InputError] = field(default_factory=list)
     assumptions: list[str] = field(default_factory=list)
+    estimates: list[str] = field(default_factory=list)
+    """Inputs whose note says ESTIMATE (sized by a stated rule, e.g. by ``checker new``), in
+    the format of :attr:`assumptions`."""
 
     def cell(self, sheet: str, attr: str, row: int | None = None) -> str:
         """The ``Sheet!A1`` address of a parameter (or of a table cell in data row ``row``)."""
@@ -390,6 +393,8 @@ class _Reader:
                 shown = f"{value_raw}" + (f" {unit_text}" if unit_text not in (None, "-")
                                           else "")
                 data.assumptions.append(f"{vwhere} {f.label} = {shown}: {note}")
+            elif note and "ESTIMATE" in str(note) and not _blank(value_raw):
+                data.estimates.append(f"{vwhere} {f.label}: {note}")
             if params[f.attr] is None and f.required and not self.has_error(vwhere):
                 self.err(vwhere, f"{f.label} is required: expected {_expected(f)}, found an"
                          " empty cell")
@@ -437,6 +442,7 @@ class _Reader:
             unit_of[attr] = None if u is None else str(u).strip()
         keys_seen: dict[Any, str] = {}
         notes: dict[str, list[int]] = {}
+        est_rows: dict[str, list[int]] = {}
         last_note = None
         formula_rows = {r for r, _ in raw.formulas}
         for r in sorted(set(raw.rows) | formula_rows):
@@ -476,6 +482,8 @@ class _Reader:
                 last_note = note
                 if note and "assumption" in str(note).lower():
                     notes.setdefault(str(note), []).append(r)
+                elif note and "ESTIMATE" in str(note):
+                    est_rows.setdefault(str(note), []).append(r)
         if spec.max_rows is not None and len(out) > spec.max_rows:
             self.err(name, f"{len(out)} data rows; at most {spec.max_rows} are accepted (the"
                      " calculation time grows with them)")
@@ -486,6 +494,9 @@ class _Reader:
         for text, rws in notes.items():
             rr = f"row {rws[0]}" if len(rws) == 1 else f"rows {', '.join(map(str, rws))}"
             data.assumptions.append(f"{name} {rr}: {text}")
+        for text, rws in est_rows.items():
+            rr = f"row {rws[0]}" if len(rws) == 1 else f"rows {', '.join(map(str, rws))}"
+            data.estimates.append(f"{name} {rr}: {text}")
 
 
 DITTO = ("as above", "ditto", "〃", '"')
@@ -616,6 +627,7 @@ class _SheetPart:
         data.where.update(part.where)
         data.units.update(part.units)
         data.assumptions.extend(part.assumptions)
+        data.estimates.extend(part.estimates)
         for e in self.errors:
             reader.err(e.where, e.message)
         reader.warnings.extend(self.warnings)

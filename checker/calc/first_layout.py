@@ -1,0 +1,231 @@
+"""First layout of a crank train from the concept brief: design rules with their sources (SI).
+
+Each rule is a small pure function of the brief's numbers (bore, stroke, peak pressure...) and
+states where it comes from in :data:`RULES` (``rule``: the formula in words, ``source``: the
+publication, ``scatter``: the published range of the ratio, ``confirmed``: whether the ratio was
+found stated in a public source; an unconfirmed ratio is a round value chosen here and says so).
+The rules are tuned on published design ratios, never on the example engines; the docs
+(docs/new-engine.md) table the sized dimensions against three real engines.
+
+Main sources:
+
+* Agostini, M., "Powertrain Components Design: Engine", course notes, Politecnico di Torino,
+  A.Y. 2018-2019 ("Agostini 2019"): crankshaft "Design Guidelines" (main and pin diameters
+  equal as a first approximation; journal lengths from the peak force and an admissible bearing
+  pressure of about 18-25 MPa, ``L_pin = F/(d p_adm)``, ``L_main = F/(2 d p_adm)``), wrist pin
+  "first attempt design" (outer diameter 0.35 bore, length = bore), con-rod stem
+  ``A = F S / R_p0.2`` (S = 1.5);
+* Khurmi, R.S., Gupta, J.K., "A Textbook of Machine Design", S. Chand, §32.19 "Design
+  procedure for crankshaft": web thickness 0.22-0.32 x bore (or 0.4-0.6 x shaft diameter);
+* the machine-design textbook rule for a centre crankshaft at TDC, web width 1.14 x pin
+  diameter (found stated only by public online design calculators; the textbook page, e.g.
+  Bhandari, "Design of Machine Elements", not seen: marked unconfirmed);
+* van Basshuysen, R., Schaefer, F., "Internal Combustion Engine Handbook" (2004/2010):
+  crank radius / rod length 0.28-0.33 for car engines, diesels lower (as quoted by the German
+  Wikipedia article "Pleuelstangenverhaeltnis"; the page was not seen);
+* IACS UR M53 (Rev. 3, 2017): validity range of the fillet radius, r/d 0.03-0.13.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+RULES: dict[str, dict] = {
+    "peak_pressure": {
+        "rule": "typical peak cylinder pressure by fuel: gasoline 85 bar, diesel 180 bar",
+        "source": "no public source confirmed: round values of current production engines",
+        "scatter": "gasoline 60-120 bar (turbocharged high), diesel 140-220 bar",
+        "confirmed": False},
+    "pin_diameter": {
+        "rule": "crank-pin diameter = 0.60 x bore",
+        "source": "no public source confirmed (Agostini 2019 only says 'semi-empirical formulas"
+                  " obtainable from literature')",
+        "scatter": "unknown (not published in the sources searched)", "confirmed": False},
+    "main_diameter": {
+        "rule": "main journal diameter = crank-pin diameter (first approximation)",
+        "source": "Agostini 2019, crankshaft 'Design Guidelines'",
+        "scatter": "real cranks have mains 0-20 % larger than pins", "confirmed": True},
+    "journal_length": {
+        "rule": "land length L_pin = F/(d p_adm) per rod, L_main = F/(2 d p_adm); F = the"
+                " resultant along the piston axis at TDC and the rated speed (peak gas force"
+                " p_max pi D^2/4 less the reciprocating inertia m_rec R w^2 (1 + R/l), at least"
+                " half the gas force), p_adm = 21.5 MPa (middle of 18-25 MPa); journal length"
+                " = land + 2 (fillet radius + 1 mm chamfer)",
+        "source": "Agostini 2019, crankshaft 'Design Guidelines' (admissible pressure about"
+                  " 18-25 MPa); the land-to-journal allowance is not from a source",
+        "scatter": "+19 %/-14 % over the 18-25 MPa range", "confirmed": True},
+    "fillet_radius": {
+        "rule": "fillet radius = 0.04 x journal diameter",
+        "source": "inside the validity range of IACS UR M53 (r/d 0.03-0.13); the value itself"
+                  " is not from a source",
+        "scatter": "0.03-0.13 x d (M53 validity range)", "confirmed": False},
+    "web_thickness": {
+        "rule": "web thickness = 0.27 x bore (middle of 0.22-0.32)",
+        "source": "Khurmi & Gupta, A Textbook of Machine Design, §32.19",
+        "scatter": "0.22-0.32 x bore (+-19 %)", "confirmed": True},
+    "web_width": {
+        "rule": "web width = 1.14 x crank-pin diameter (at the pin and at the journal)",
+        "source": "the machine-design textbook rule for a centre crankshaft at TDC (w = 1.14"
+                  " d_c, t = 0.7 d_c), found stated only by public online design calculators;"
+                  " the textbook page (e.g. Bhandari, Design of Machine Elements) not seen",
+        "scatter": "not stated", "confirmed": False},
+    "rod_length": {
+        "rule": "rod length = crank radius / lambda, lambda = 0.305 (gasoline, middle of"
+                " 0.28-0.33) or 0.28 (diesel, 'usually lower')",
+        "source": "van Basshuysen & Schaefer, Internal Combustion Engine Handbook (as quoted by"
+                  " Wikipedia 'Pleuelstangenverhaeltnis'; page not seen)",
+        "scatter": "lambda 0.28-0.33 (+-8 %)", "confirmed": True},
+    "wrist_pin": {
+        "rule": "wrist pin outer diameter 0.35 x bore, bore 0.40 x its outer diameter, length ="
+                " bore; steel",
+        "source": "Agostini 2019, wrist pin 'First attempt design'",
+        "scatter": "a first attempt, to be checked for bending and ovalisation",
+        "confirmed": True},
+    "piston_mass": {
+        "rule": "piston (with rings, without pin) = K D^3, apparent density K = 0.5 g/cm^3"
+                " (gasoline) or 1.0 g/cm^3 (diesel); plus the wrist pin",
+        "source": "method: Agostini 2019, piston 'Design Guidelines' (K = W/D^3); the K values"
+                  " are not from a source",
+        "scatter": "unknown", "confirmed": False},
+    "rod_mass": {
+        "rule": "steel rod: stem of section A = F S / R_p0.2 (S = 1.5, R_p0.2 = 600 MPa) over"
+                " the eye-to-eye length, big and small eyes as rings of wall 0.15 x their bore"
+                " and the bearing's width, + 20 % for bolts, shells and bushes",
+        "source": "stem: Agostini 2019, con-rod 'Design Guidelines - Stem'; the eye walls and"
+                  " the 20 % are not from a source",
+        "scatter": "unknown", "confirmed": False},
+    "rod_centre": {
+        "rule": "rod centre of mass from the big end: the centroid of the stem and eye masses;"
+                " inertia about it: the two-mass equivalent m a b (no inertia correction)",
+        "source": "two-mass con-rod model (Agostini 2019, 'Forces on the Connecting Rod')",
+        "scatter": "the real inertia is 5-15 % below m a b", "confirmed": True},
+    "counterweight": {
+        "rule": "each throw balanced within itself: the two counterweights (annular sectors of"
+                " 150 deg from the journal radius, web thickness; 180 deg, then up to 2 x the web"
+                " thickness, thicker by at most 0.9 x the pin or journal length, where needed)"
+                " balance 100 % of the throw's"
+                " rotating unbalance (pin, webs, rods' rotating share); a 90-degree V also"
+                " its cylinder pair's primary reciprocating force m_rec R w^2 (a constant"
+                " rotating vector)",
+        "source": "target chosen here (full in-throw balance: no rotating couple, least"
+                  " internal bending); the 90-degree V result is classical balancing theory;"
+                  " swing radius limit rod length - crank radius - 0.25 bore [not confirmed]",
+        "scatter": "industrial practice 50-100 % of the rotating unbalance", "confirmed": False},
+}
+
+
+def peak_pressure(fuel: str) -> float:
+    """Typical peak cylinder pressure [Pa] by fuel (:data:`RULES` ``peak_pressure``)."""
+    return {"gasoline": 85e5, "diesel": 180e5}[fuel]
+
+
+def peak_gas_force(bore: float, p_max: float) -> float:
+    """Peak gas force on the piston [N]: ``F = p_max pi D^2 / 4`` (gauge pressure taken as
+    absolute: conservative by 0.1 MPa)."""
+    return p_max * math.pi * bore**2 / 4.0
+
+
+def resultant_force(gas: float, m_rec: float, crank_radius: float, rod_length: float,
+                    speed: float) -> float:
+    """Resultant force along the piston axis at TDC [N] (Agostini 2019's ``F`` for the
+    journal lengths): the peak gas force less the reciprocating inertia force
+    ``m_rec R w^2 (1 + R/l)`` at ``speed`` (the gas peak taken at TDC: conservative by the
+    few degrees after TDC where it occurs); at least half the gas force.
+
+    >>> round(resultant_force(49.4e3, 0.9, 0.0473, 0.155, 628.3) / 1e3, 1)
+    27.5
+    """
+    inertia = m_rec * crank_radius * speed**2 * (1.0 + crank_radius / rod_length)
+    return max(gas - inertia, 0.5 * gas)
+
+
+def pin_diameter(bore: float) -> float:
+    """Crank-pin diameter [m] = 0.60 x bore (unconfirmed ratio, :data:`RULES`)."""
+    return 0.60 * bore
+
+
+def main_diameter(pin_d: float) -> float:
+    """Main journal diameter [m] = pin diameter (Agostini 2019)."""
+    return pin_d
+
+
+def land_length(force: float, diameter: float, p_adm: float = 21.5e6,
+                share: float = 1.0) -> float:
+    """Loaded land length [m] ``L = share F / (d p_adm)`` (Agostini 2019; ``share`` = 1 for a
+    rod bearing, 0.5 for a main bearing). Agostini's admissible pressure is about 18-25 MPa;
+    another value (a brief's ``bearing_pressure``) is the user's, stated by the caller."""
+    if not p_adm > 0:
+        raise ValueError("p_adm must be > 0")
+    return share * force / (diameter * p_adm)
+
+
+def fillet_radius(diameter: float) -> float:
+    """Fillet radius [m] = 0.04 d (inside IACS UR M53's r/d 0.03-0.13)."""
+    return 0.04 * diameter
+
+
+def web_thickness(bore: float) -> float:
+    """Web thickness [m] = 0.27 x bore (Khurmi & Gupta §32.19: 0.22-0.32 x bore)."""
+    return 0.27 * bore
+
+
+def web_width(pin_d: float) -> float:
+    """Web width [m] = 1.14 x pin diameter (Bhandari)."""
+    return 1.14 * pin_d
+
+
+def rod_length(stroke: float, fuel: str) -> float:
+    """Rod length [m] = (stroke / 2) / lambda; lambda 0.305 gasoline, 0.28 diesel."""
+    return stroke / 2.0 / (0.305 if fuel == "gasoline" else 0.28)
+
+
+STEEL_DENSITY = 7850.0
+
+
+@dataclass(frozen=True)
+class WristPin:
+    outer: float
+    inner: float
+    length: float
+    mass: float
+
+
+def wrist_pin(bore: float) -> WristPin:
+    """Wrist pin from the bore (Agostini 2019): outer 0.35 D, bore 0.40 x outer, length D."""
+    do = 0.35 * bore
+    di = 0.40 * do
+    m = STEEL_DENSITY * math.pi / 4.0 * (do**2 - di**2) * bore
+    return WristPin(do, di, bore, m)
+
+
+def piston_mass(bore: float, fuel: str) -> float:
+    """Piston with rings, without pin [kg] = K D^3, K 500 (gasoline) or 1000 kg/m^3 (diesel)."""
+    return (500.0 if fuel == "gasoline" else 1000.0) * bore**3
+
+
+@dataclass(frozen=True)
+class Rod:
+    mass: float
+    centre_from_big_end: float
+    inertia: float
+    stem_area: float
+
+
+def con_rod(*, force: float, length: float, pin_d: float, pin_land: float,
+            wrist: WristPin, rp02: float = 600e6, safety: float = 1.5) -> Rod:
+    """Steel con-rod (:data:`RULES` ``rod_mass``/``rod_centre``): stem ``A = F S / R_p0.2``
+    (Agostini 2019), eyes as rings of wall 0.15 x their bore, + 20 % bolts/shells/bushes;
+    centre of mass the centroid; inertia m a b (two-mass equivalent)."""
+    area = force * safety / rp02
+    r_be, r_se = pin_d / 2.0, wrist.outer / 2.0
+    t_be, t_se = 0.15 * pin_d, 0.15 * wrist.outer
+    w_se = 0.5 * wrist.length  # small eye between the piston bosses: half the pin length
+    m_be = STEEL_DENSITY * math.pi * ((r_be + t_be)**2 - r_be**2) * pin_land * 1.2
+    m_se = STEEL_DENSITY * math.pi * ((r_se + t_se)**2 - r_se**2) * w_se * 1.2
+    stem_len = max(length - (r_be + t_be) - (r_se + t_se), 0.2 * length)
+    m_st = STEEL_DENSITY * area * stem_len
+    m = m_be + m_se + m_st
+    z_st = r_be + t_be + stem_len / 2.0
+    a = (m_se * length + m_st * z_st) / m
+    return Rod(m, a, m * a * (length - a), area)

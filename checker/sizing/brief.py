@@ -1,0 +1,240 @@
+"""The concept brief of ``checker new``: a dozen numbers with units (TOML file or options).
+
+Values with units are strings, ``bore = "86 mm"``, converted to SI by :func:`checker.units.
+to_si` (the workbook's unit handling); every problem of a brief is reported at once
+(:class:`checker.errors.InputErrors`: key, expected with unit, found), exit code 2.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import re
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from ..errors import InputError, InputErrors
+from ..units import UnitProblem, to_si
+
+# key: (kind, example, required, default text or None)
+KEYS: dict[str, tuple[str, str, bool, str | None]] = {
+    "name": ("text", '"My engine"', False, "'New engine (checker new)'"),
+    "cylinders": ("int", "4", True, None),
+    "layout": ("choice", '"inline" or "V"', False, "inline"),
+    "bank_angle": ("angle", '"90 deg"', False, "V engines: the even-firing angle 720/cylinders"),
+    "bore": ("length", '"86 mm"', True, None),
+    "stroke": ("length", '"94.6 mm"', True, None),
+    "rated_power": ("power", '"110 kW"', True, None),
+    "rated_speed": ("speed", '"6000 rpm"', True, None),
+    "max_speed": ("speed", '"7000 rpm"', False, "1.1 x rated speed"),
+    "min_speed": ("speed", '"1000 rpm"', False, "1000 rpm (gasoline) or 800 rpm (diesel)"),
+    "peak_pressure": ("pressure", '"85 bar"', False, "typical by fuel: gasoline 85 bar,"
+                      " diesel 180 bar"),
+    "bearing_pressure": ("pressure", '"21.5 MPa"', False, "21.5 MPa, the middle of Agostini"
+                         " 2019's admissible 18-25 MPa"),
+    "fuel": ("choice", '"gasoline" or "diesel"', False, "gasoline"),
+    "crank_material": ("choice", '"forged steel", "nodular iron"', False, "forged steel"),
+    "bearing_lining": ("choice", '"aluminium bimetal", "tri-metal"...', False,
+                       "aluminium bimetal (gasoline), tri-metal (diesel)"),
+}
+CHOICES = {
+    "layout": {"inline": "inline", "straight": "inline", "v": "V", "vee": "V"},
+    "fuel": {"gasoline": "gasoline", "petrol": "gasoline", "diesel": "diesel"},
+    "crank_material": {"forged steel": "forged steel", "steel": "forged steel",
+                       "nodular iron": "nodular iron", "nodular cast iron": "nodular iron",
+                       "ductile iron": "nodular iron", "cast iron": "nodular iron"},
+    "bearing_lining": {"aluminium bimetal": "aluminium bimetal", "aluminum bimetal":
+                       "aluminium bimetal", "tri-metal": "tri-metal", "trimetal": "tri-metal",
+                       "as15": "AS15", "as16": "AS16", "sputter": "sputter",
+                       "polymer": "polymer"},
+}
+VALID = {  # (lo, hi) in SI: outside, no rule of checker new has data (stated)
+    "cylinders": (1, 16),
+    "bore": (0.04, 0.30),
+    "stroke": (0.04, 0.40),
+    "bank_angle": (math.radians(15), math.radians(180)),
+    "rated_speed": (500 * math.pi / 30, 12000 * math.pi / 30),
+    "peak_pressure": (30e5, 300e5),
+    "bearing_pressure": (5e6, 120e6),
+}
+
+
+@dataclass(frozen=True)
+class Brief:
+    """The brief in SI, and which values were defaults (``defaults``: key -> text)."""
+
+    cylinders: int
+    layout: str
+    bank_angle: float
+    bore: float
+    stroke: float
+    rated_power: float
+    rated_speed: float
+    max_speed: float
+    min_speed: float
+    peak_pressure: float
+    fuel: str
+    bearing_pressure: float
+    crank_material: str
+    bearing_lining: str
+    name: str = "New engine (checker new)"
+    defaults: dict[str, str] = field(default_factory=dict)
+
+
+_NUM = re.compile(r"^\s*([-+]?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?|[-+]?\.\d+(?:[eE][-+]?\d+)?)\s*(.*)$")
+
+
+def _norm(s: str) -> str:
+    return re.sub(r"[\s_\-]+", " ", s.strip().lower())
+
+
+def parse_brief(raw: dict[str, Any], where: str = "brief") -> Brief:
+    """Check and convert a brief (``{key: value}``, TOML types); all problems in one
+    :class:`InputErrors`."""
+    errs: list[InputError] = []
+    vals: dict[str, Any] = {}
+    for k in raw:
+        if k not in KEYS:
+            near = difflib.get_close_matches(k.lower(), list(KEYS), n=1, cutoff=0.7)
+            errs.append(InputError(f"{where}: {k}", "unknown key; expected one of "
+                                   + ", ".join(KEYS) + (f" (did you mean {near[0]}?)"
+                                                        if near else "")))
+    for k, (kind, example, required, _dflt) in KEYS.items():
+        if k not in raw:
+            if required:
+                errs.append(InputError(f"{where}: {k}", f"required: expected e.g. {k} = "
+                                       f"{example}, found nothing"))
+            continue
+        v = raw[k]
+        at = f"{where}: {k}"
+        if kind == "text":
+            vals[k] = str(v)
+        elif kind == "int":
+            if isinstance(v, bool) or not isinstance(v, int) or v <= 0:
+                errs.append(InputError(at, f"expected a whole number > 0, e.g. {example};"
+                                       f" found {v!r}"))
+            else:
+                vals[k] = v
+        elif kind == "choice":
+            c = CHOICES[k].get(_norm(str(v))) if isinstance(v, str) else None
+            if c is None:
+                errs.append(InputError(at, f"expected {example} (one of "
+                                       + ", ".join(sorted(set(CHOICES[k].values())))
+                                       + f"); found {v!r}"))
+            else:
+                vals[k] = c
+        else:
+            m = _NUM.match(v) if isinstance(v, str) else None
+            if m is None or not m.group(2).strip():
+                errs.append(InputError(at, f"expected a number with its unit as a string, e.g."
+                                       f" {k} = {example}; found {v!r}"))
+                continue
+            try:
+                x = to_si(float(m.group(1)), m.group(2).strip(), kind)
+            except UnitProblem as exc:
+                errs.append(InputError(at, f"expected a {kind} with its unit, e.g. {example};"
+                                       f" found {v!r} ({exc})"))
+                continue
+            if x <= 0:
+                errs.append(InputError(at, f"expected a {kind} > 0, e.g. {example}; found {v!r}"))
+                continue
+            vals[k] = x
+    defaults: dict[str, str] = {}
+    if not errs:
+        for k, (_kind, _ex, _req, dflt) in KEYS.items():
+            if k not in vals and dflt is not None:
+                defaults[k] = dflt
+        fuel = vals.get("fuel", "gasoline")
+        layout = vals.get("layout", "inline")
+        n = vals["cylinders"]
+        if layout == "V" and n % 2:
+            errs.append(InputError(f"{where}: cylinders", "a V engine needs an even number of"
+                                   f" cylinders (two banks, two rods per pin); found {n}"))
+        if layout == "inline" and "bank_angle" in vals:
+            errs.append(InputError(f"{where}: bank_angle", "only for layout = \"V\"; found a"
+                                   " bank angle with an in-line layout"))
+        bank = vals.get("bank_angle", 4 * math.pi / n if layout == "V" else 0.0)
+        if layout == "V" and n == 2 and "bank_angle" not in vals:
+            bank = math.pi / 2
+        rated = vals["rated_speed"]
+        vmax = vals.get("max_speed", 1.1 * rated)
+        vmin = vals.get("min_speed", (1000.0 if fuel == "gasoline" else 800.0) * math.pi / 30)
+        if vmax < rated:
+            errs.append(InputError(f"{where}: max_speed", "expected at least the rated speed"
+                                   f" ({rated * 30 / math.pi:.0f} rpm); found"
+                                   f" {vmax * 30 / math.pi:.0f} rpm"))
+        if vmin >= rated:
+            errs.append(InputError(f"{where}: min_speed", "expected below the rated speed"))
+        from ..calc.first_layout import peak_pressure as typical
+
+        lining = vals.get("bearing_lining",
+                          "aluminium bimetal" if fuel == "gasoline" else "tri-metal")
+        brief = Brief(
+            cylinders=n, layout=layout, bank_angle=bank, bore=vals["bore"],
+            stroke=vals["stroke"], rated_power=vals["rated_power"], rated_speed=rated,
+            max_speed=vmax, min_speed=vmin,
+            peak_pressure=vals.get("peak_pressure", typical(fuel)), fuel=fuel,
+            bearing_pressure=vals.get("bearing_pressure", 21.5e6),
+            crank_material=vals.get("crank_material", "forged steel"),
+            bearing_lining=lining, name=vals.get("name", "New engine (checker new)"),
+            defaults=defaults)
+        for k, (lo, hi) in VALID.items():
+            x = getattr(brief, k)
+            if layout != "V" and k == "bank_angle":
+                continue
+            if not lo <= x <= hi:
+                errs.append(InputError(f"{where}: {k}", _no_data(k, x, lo, hi)))
+        if errs:
+            raise InputErrors(errs, source=str(where))
+        return brief
+    raise InputErrors(errs, source=str(where))
+
+
+def _fmt(k: str, x: float) -> str:
+    if k in ("bore", "stroke"):
+        return f"{x * 1e3:g} mm"
+    if k == "bank_angle":
+        return f"{math.degrees(x):g} deg"
+    if k == "rated_speed":
+        return f"{x * 30 / math.pi:g} rpm"
+    if k == "peak_pressure":
+        return f"{x / 1e5:g} bar"
+    if k == "bearing_pressure":
+        return f"{x / 1e6:g} MPa"
+    return f"{x:g}"
+
+
+def _no_data(k: str, x: float, lo: float, hi: float) -> str:
+    why = {
+        "bore": "the piston and rod mass rules and the web ratio are car/truck-engine rules",
+        "stroke": "the rod-length ratio is a car/truck-engine ratio",
+        "cylinders": "firing orders are tabled for 1-16 cylinders",
+        "bank_angle": "V engines with two rods per pin",
+        "rated_speed": "the sized joints and damper are car/truck-engine designs",
+        "peak_pressure": "Agostini 2019's admissible bearing pressure is for engine pressures",
+        "bearing_pressure": "the journal-length rule sizes engine plain bearings",
+    }[k]
+    return (f"no rule of checker new has data for {_fmt(k, x)} (covered: {_fmt(k, lo)} to"
+            f" {_fmt(k, hi)}; {why}): type this engine's workbook by hand (checker template)"
+            " or change the brief")
+
+
+def load_brief(path: str | Path, options: dict[str, Any] | None = None) -> Brief:
+    """Read a brief file (TOML) and/or options (options win); all problems at once."""
+    raw: dict[str, Any] = {}
+    where = "options"
+    if path is not None:
+        where = Path(path).name
+        try:
+            with open(path, "rb") as fh:
+                raw = tomllib.load(fh)
+        except tomllib.TOMLDecodeError as exc:
+            raise InputErrors([InputError(where, f"not a valid TOML file: {exc}")],
+                              source=where) from None
+        except OSError as exc:
+            raise InputErrors([InputError(where, f"cannot be read: {exc.strerror}")],
+                              source=where) from None
+    raw.update({k: v for k, v in (options or {}).items() if v is not None})
+    return parse_brief(raw, where)
