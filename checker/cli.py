@@ -52,7 +52,6 @@ STEP_WORDS = {
     "joint_applied_torque": "the torques the joints must transmit",
     "joint_cover_factor": "the joints' slip safety (cover factors)",
     "joint_computed_torque": "the joint torques from the engine loads",
-    "crank_geometry": "the crank's masses, inertias and stiffnesses from its geometry",
 }
 
 
