@@ -18,7 +18,7 @@ import click
 
 from . import __version__
 from .errors import CheckerError, InternalError, OutputError, UsageProblem
-from .interrupt import EXIT_SIGINT, EXIT_SIGTERM, Terminated, sigterm_raises
+from .interrupt import EXIT_SIGINT, EXIT_SIGTERM, Terminated, checkpoint, sigterm_raises
 from .outputs_io import check_writable, write_files
 
 
@@ -70,6 +70,7 @@ class _Progress:
         self.page = 0
 
     def __call__(self, text: str) -> None:
+        checkpoint()  # an interruption a callback swallowed ends the command here
         if not self.enabled:
             return
         m = self.STEP.match(text)

@@ -42,22 +42,55 @@ def exit_code(exc: BaseException) -> int | None:
     return None
 
 
+_PENDING: list[type[BaseException] | None] = [None]  # an interruption not yet raised
+_CALLBACKS = ("weakref.py", "_weakrefset.py")
+"""Where an exception raised by a signal handler would be swallowed: the interpreter runs
+weakref and garbage-collection callbacks with their exceptions printed as "Exception ignored"
+and dropped (the command would then run to its end)."""
+
+
+def _raise(exc: type[BaseException], frame) -> None:
+    if frame is not None and (frame.f_code.co_filename.endswith(_CALLBACKS)
+                              or frame.f_code.co_name == "__del__"):
+        _PENDING[0] = exc  # raised here it would be dropped: raised at the next checkpoint
+        return
+    raise exc()
+
+
 def _raise_terminated(signum, frame) -> None:  # noqa: ARG001 - signal handler signature
-    raise Terminated()
+    _raise(Terminated, frame)
+
+
+def _raise_interrupt(signum, frame) -> None:  # noqa: ARG001 - signal handler signature
+    _raise(KeyboardInterrupt, frame)
+
+
+def checkpoint() -> None:
+    """Raise an interruption that arrived while the interpreter ran a weakref or
+    garbage-collection callback (where its exception would have been dropped). Long commands
+    call this at their progress points."""
+    exc, _PENDING[0] = _PENDING[0], None
+    if exc is not None:
+        raise exc()
 
 
 @contextmanager
 def sigterm_raises() -> Iterator[None]:
-    """While inside, SIGTERM raises :class:`Terminated` in the main thread (the previous
-    handler is restored on exit). Outside the main thread this does nothing."""
+    """While inside, SIGTERM raises :class:`Terminated` and SIGINT :class:`KeyboardInterrupt`
+    in the main thread, or at the next :func:`checkpoint` when they arrive in a callback whose
+    exceptions the interpreter drops (the previous handlers are restored on exit). Outside the
+    main thread this does nothing."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
+    _PENDING[0] = None
     old = signal.signal(signal.SIGTERM, _raise_terminated)
+    old_int = signal.signal(signal.SIGINT, _raise_interrupt)
     try:
         yield
     finally:
         signal.signal(signal.SIGTERM, old)
+        signal.signal(signal.SIGINT, old_int)
 
 
 def worker_signals() -> None:

@@ -113,6 +113,27 @@ _RESULT: CheckResult | None = None
 _ARG: CheckResult | None = None
 
 
+_SIGNALS = ("SIGINT", "SIGTERM")
+
+
+def _block_signals() -> tuple[str, ...]:
+    """Hold SIGINT and SIGTERM back in this thread (where the platform can): the names held."""
+    import signal
+
+    if not hasattr(signal, "pthread_sigmask"):
+        return ()
+    signal.pthread_sigmask(signal.SIG_BLOCK, [getattr(signal, n) for n in _SIGNALS])
+    return _SIGNALS
+
+
+def _unblock_signals(names: tuple[str, ...]) -> None:
+    """Deliver the signals :func:`_block_signals` held back (pending ones arrive now)."""
+    import signal
+
+    if names and hasattr(signal, "pthread_sigmask"):
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, [getattr(signal, n) for n in names])
+
+
 def _worker_start(nice: int) -> None:
     """In a drawing process: lower its priority by ``nice``."""
     import os
@@ -139,6 +160,8 @@ def _drawer(worker: int, tasks, conn, nice: int, defer: bool) -> None:
     from . import plots
 
     signal.signal(signal.SIGINT, signal.SIG_DFL)  # Ctrl-C: the parent handles it
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # ended by the parent: die quietly
+    _unblock_signals(_SIGNALS)  # held back by the parent while it forked
     _worker_start(nice)
     plots.DEFERRED = [] if defer else None
     plots.DRAWER = worker
@@ -217,6 +240,10 @@ class SectionJob:
 
         plots.pyplot()
         _RESULT = res
+        # SIGINT and SIGTERM held back while the processes are forked: a signal that reached
+        # a child between its fork and its own handlers (in _drawer) would raise the parent's
+        # exception there, with a traceback; each child takes them once its handlers are set
+        blocked = _block_signals()
         try:
             for w in range(n):
                 recv, send = ctx.Pipe(duplex=False)
@@ -232,6 +259,7 @@ class SectionJob:
             raise
         finally:
             _RESULT = None
+            _unblock_signals(blocked)
         if progress is not None:  # drawn in parallel from now on; told here (stderr is ours)
             for m in order:
                 progress(f"Drawing the {LABELS.get(m, m)} figures")
