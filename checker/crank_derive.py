@@ -302,11 +302,13 @@ def _shaft_compliance(d: float, bore: float, length: float, g: float) -> float:
 
 def tv_from_crank(rows: list[dict[str, Any]], crank: CrankGeometry, params: dict[str, Any],
                   pin_of_cylinder: dict[int, int], where: dict[tuple, str], err: Err,
-                  stiff: ThrowStiffnessInfo, warn: Err | None = None) -> list[ModelValue]:
+                  stiff: ThrowStiffnessInfo, warn: Err | None = None,
+                  viscous_ring: bool = False) -> list[ModelValue]:
     """Fill the TVModel rows' blank inertias of cylinder stations and blank stiffnesses
     between crank stations from the geometry (in place); every value's origin. A derived
     stiffness that uses a throw outside the stiffness model's fitted range is a warning
-    (``warn``) at its cell."""
+    (``warn``) at its cell. ``viscous_ring``: the damper is viscous, its ring row has no
+    stiffness to the next station (the silicone couples it)."""
     model: list[ModelValue] = []
     mp = crank.mass_properties
     share = rod_inertia_share(params)
@@ -345,6 +347,8 @@ def tv_from_crank(rows: list[dict[str, Any]], crank: CrankGeometry, params: dict
                                     where.get(("TVModel", i, "inertia"), "TVModel")))
     for i, r in enumerate(rows):
         if r not in complete or i == len(rows) - 1:
+            continue
+        if viscous_ring and r.get("role") == "damper ring":
             continue
         nxt = rows[i + 1]
         a, b = pin_of(r), pin_of(nxt)

@@ -727,8 +727,9 @@ def _crank_rows(data: WorkbookData, crank: CrankGeometry | None, cylinders: list
     crank_mass = list(out["CrankMass"]) + cd.crank_mass_rows(crank, gamma, typed_throws)
     tv = [dict(r) for r in out["TVModel"]]
     stiff = cd.throw_stiffness(crank)
-    model += cd.tv_from_crank(tv, crank, data.params["Engine"], pin_of, data.where,
-                              pr.blank_required, stiff, pr.warn)
+    model += cd.tv_from_crank(
+        tv, crank, data.params["Engine"], pin_of, data.where, pr.blank_required, stiff,
+        pr.warn, data.params.get("Damper", {}).get("damper_type") == "viscous")
     out.update(Bearings=bearings, Fatigue=Params(fatigue), CrankMass=crank_mass, TVModel=tv,
                model=model, stiffness=stiff, where={**data.where, **filled})
     return out
