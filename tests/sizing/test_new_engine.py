@@ -50,12 +50,14 @@ def test_brief_writes_a_workbook_that_checks(tmp_path, name):
     assert not res.nothing_checked
 
 
-def test_i4_through_report(tmp_path):
-    assert _new(tmp_path, "i4", BRIEFS["i4"]).returncode == 0
-    r = subprocess.run([sys.executable, "-m", "checker", "report", str(tmp_path / "i4.xlsx"),
-                        "-q"], capture_output=True, text=True)
+@pytest.mark.ci
+@pytest.mark.parametrize("name", sorted(BRIEFS))
+def test_new_engine_through_report(tmp_path, name):
+    assert _new(tmp_path, name, BRIEFS[name]).returncode == 0
+    r = subprocess.run([sys.executable, "-m", "checker", "report",
+                        str(tmp_path / f"{name}.xlsx"), "-q"], capture_output=True, text=True)
     assert r.returncode in (0, 1), r.stderr
-    assert (tmp_path / "i4.pdf").stat().st_size > 10000
+    assert (tmp_path / f"{name}.pdf").stat().st_size > 10000
 
 
 def test_check_json_names_the_estimates(tmp_path):
