@@ -90,3 +90,24 @@ def test_remedies_offer_the_crank_dimensions(tmp_path):
     found = [lv for r in out for lv in r["levers"]
              if lv["lever"].startswith("crank-") and lv["found"]]
     assert found and all(lv["value"] is not None for lv in found)
+
+
+def test_diameter_tolerance_at_the_corners(tmp_path):
+    """A Tolerances row on the crank's pin diameter (sheet Crank) is a corner like any other:
+    the worst corner of the pin fillets names it."""
+    import subprocess
+    import sys
+
+    p = tmp_path / "v8.xlsx"
+    write_workbook(p, v8_content())
+    wb = openpyxl.load_workbook(p)
+    ws = wb["Tolerances"]
+    r = ws.max_row + 1
+    for c, v in enumerate(["Crank", "all", "pin diameter", -0.1, 0.1, "% of nominal",
+                           "test: pin diameter tolerance"], 1):
+        ws.cell(r, c).value = v
+    wb.save(p)
+    out = subprocess.run([sys.executable, "-m", "checker", "check", str(p), "--corners",
+                          "--select", "FAT-001"], capture_output=True, text=True)
+    assert out.returncode in (0, 1), out.stderr
+    assert "Crank pin diameter (all)" in out.stdout
