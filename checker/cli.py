@@ -31,6 +31,8 @@ def _split(values: tuple[str, ...]) -> list[str] | None:
 STEP_WORDS = {
     "balance": "the balance of the rotating and reciprocating masses",
     "crank_geometry": "the crank's throws from its geometry",
+    "fillet_bending_ratio": "the fillet bending of the continuous beam against the"
+                            " determinate scheme",
     "pressure_traces": "the cylinder pressure traces",
     "bearing_loads": "the bearing loads",
     "specific_load": "the specific bearing loads",

@@ -354,7 +354,7 @@ def tv_from_crank(rows: list[dict[str, Any]], crank: CrankGeometry, params: dict
         a, b = pin_of(r), pin_of(nxt)
         derived = method = None
         why = ""
-        if a is not None and b is not None and abs(a - b) == 1:
+        if a is not None and b is not None and abs(a - b) == 1 and max(a, b) <= n:
             lo, hi = min(a, b), max(a, b)
             if np.isfinite(k[lo - 1]) and np.isfinite(k[hi - 1]):
                 derived = 1.0 / (1.0 / (2 * k[lo - 1]) + 1.0 / (2 * k[hi - 1]))

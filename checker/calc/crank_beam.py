@@ -40,6 +40,17 @@ product (:meth:`BeamSolution.bearing_loads`).
 
 Sign convention: as in :mod:`checker.calc.crank_forces`, a **bearing load is the force the
 journal exerts on the bearing** (the negative of the support reaction on the crank).
+
+References
+----------
+.. [1] J. S. Przemieniecki, "Theory of Matrix Structural Analysis", McGraw-Hill, 1968, ch. 5,
+   eq. 5.115 (3D beam element stiffness).
+.. [2] V. Piraner, A. Pflueger, B. Bouthier, "Cummins Crankshaft and Bearing Analysis
+   Process", MDI conference, 2002, Fig. 1 (determinate and indeterminate schemes).
+.. [3] M. Agostini, "Powertrain Components Design - Engine", course notes, Politecnico di
+   Torino, 2019, "Static Analysis" (isostatic and hyperstatic main-bearing reactions).
+.. [4] W. C. Young, R. G. Budynas, "Roark's Formulas for Stress and Strain", 7th ed., 2002,
+   Table 10.7 (torsion constant of a rectangle).
 """
 
 from __future__ import annotations
@@ -47,7 +58,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg
 from numpy.typing import ArrayLike
 
 from ._checks import finite, positive
@@ -313,6 +323,8 @@ def solve_frame(frame: Frame, load_nodes: ArrayLike) -> BeamSolution:
     for m in np.flatnonzero(~rigid):
         for c in (0, 1):
             kg[sup[m] * _DOF + c, sup[m] * _DOF + c] += ks[m]
+    import scipy.linalg  # only a continuous-beam check needs it (the check imports no scipy)
+
     kff = kg[np.ix_(free, free)]
     try:
         factor = scipy.linalg.cho_factor(kff)

@@ -39,6 +39,16 @@ Methods (all exact for the stated geometry):
   integrated by 32-point Gauss-Legendre quadrature, exact to rounding for these smooth
   integrands (tests: the closed form where the overlap is an annular sector, a convergence
   check and an independent Monte Carlo integration).
+
+References
+----------
+.. [1] J. L. Meriam, L. G. Kraige, "Engineering Mechanics: Dynamics", Wiley, Appendix B (mass
+   moments of inertia of cylinders; parallel-axis theorem).
+.. [2] G. Green's theorem for the area moments of a plane outline, e.g. in W. D. Pilkey,
+   "Analysis and Design of Elastic Beams", Wiley, 2002, ch. 1 (section properties by boundary
+   integrals).
+.. [3] M. Abramowitz, I. A. Stegun, "Handbook of Mathematical Functions", 1964, sec. 25.4.29
+   (Gauss-Legendre quadrature).
 """
 
 from __future__ import annotations

@@ -24,6 +24,18 @@ Main sources:
   crank radius / rod length 0.28-0.33 for car engines, diesels lower (as quoted by the German
   Wikipedia article "Pleuelstangenverhaeltnis"; the page was not seen);
 * IACS UR M53 (Rev. 3, 2017): validity range of the fillet radius, r/d 0.03-0.13.
+
+References
+----------
+.. [1] M. Agostini, "Powertrain Components Design - Engine", course notes, Politecnico di
+   Torino, 2019, "Design Guidelines" (crankshaft): journal lengths from the peak force and an
+   admissible bearing pressure of 18-25 MPa, equal pin and main diameters, the wrist pin.
+.. [2] R. S. Khurmi, J. K. Gupta, "A Textbook of Machine Design", S. Chand, 2005, sec. 32.19
+   (crank web thickness).
+.. [3] R. van Basshuysen, F. Schaefer, "Internal Combustion Engine Handbook", SAE, 2004 (rod
+   length ratio of car engines).
+.. [4] J. P. Den Hartog, "Mechanical Vibrations", 4th ed., McGraw-Hill, 1956, sec. 3.3 (damper
+   tuning).
 """
 
 from __future__ import annotations

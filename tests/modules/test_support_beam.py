@@ -150,12 +150,17 @@ def test_lever_rule_section_loads_are_m53s():
 
 
 def test_scheme_needs_what_it_uses(tmp_path):
-    from checker.workbook.example import example_content
 
-    base = example_content()
-    base["Engine"] = [*base["Engine"], ["Main bearing supports", "continuous beam", "-", ""]]
-    p = tmp_path / "nocrank.xlsx"
-    write_workbook(p, base)
+    from tests.helpers import edited, without_crank
+
+    def no_crank(wb):
+        without_crank(wb)
+        ws = wb["Engine"]
+        r = ws.max_row + 1
+        for c, v in enumerate(("Main bearing supports", "continuous beam", "-"), 1):
+            ws.cell(r, c).value = v
+
+    p = edited(tmp_path, no_crank)
     with pytest.raises(InputErrors) as exc:
         load_engine(p)
     assert any("needs the crank's dimensions" in e.message for e in exc.value.errors)
