@@ -44,9 +44,8 @@ References
 ----------
 .. [1] J. L. Meriam, L. G. Kraige, "Engineering Mechanics: Dynamics", Wiley, Appendix B (mass
    moments of inertia of cylinders; parallel-axis theorem).
-.. [2] G. Green's theorem for the area moments of a plane outline, e.g. in W. D. Pilkey,
-   "Analysis and Design of Elastic Beams", Wiley, 2002, ch. 1 (section properties by boundary
-   integrals).
+.. [2] W. D. Pilkey, "Analysis and Design of Elastic Beams", Wiley, 2002, ch. 1 (area moments
+   of a plane outline by boundary integrals, Green's theorem).
 .. [3] M. Abramowitz, I. A. Stegun, "Handbook of Mathematical Functions", 1964, sec. 25.4.29
    (Gauss-Legendre quadrature).
 """
