@@ -147,20 +147,29 @@ def crank_section(res: CheckResult) -> dict:
                    "columns": ["throw", "part", "mass [kg]", "y [mm]", "z [mm]",
                                "J main axis [kg m²]", "J own centre [kg m²]"],
                    "rows": parts, "detail": True, "sheet": "Crank parts"})
-    model = []
+    model, methods = [], []
     for m in ex.model:
         unit = {"inertia": "kg m²", "stiffness": "N m/rad"}.get(m["attr"], "mm")
         scale = 1e3 if unit == "mm" else 1.0
+        if m["method"] not in methods:  # one note per distinct method, below the table
+            methods.append(m["method"])
+        diff = ("" if m["derived"] in (None, 0) or m["origin"] != "typed"
+                else f"{(m['value'] / m['derived'] - 1) * 100:+.1f} %")
         model.append([f"{m['sheet']}: {m['item']}",
                       f"{m['attr'].replace('_', ' ')} [{unit}]",
                       fmt(m["value"] * scale, 5), f"{m['origin']} ({m['cell']})",
-                      fmt(None if m["derived"] is None else m["derived"] * scale, 5),
-                      m["method"]])
+                      fmt(None if m["derived"] is None else m["derived"] * scale, 5), diff,
+                      f"[{methods.index(m['method']) + 1}]"])
     blocks.append({"type": "table", "caption": "The crank model the analyses use: each value"
                    " typed in the workbook (it wins) or derived from sheet Crank, with the"
-                   " derived value beside a typed one and how it is derived",
+                   " derived value beside a typed one, the typed value's difference from it"
+                   " and how it is derived (the methods below)",
                    "columns": ["station / element", "quantity", "used", "origin (cell)",
-                               "derived", "method"], "rows": model})
+                               "derived", "typed vs derived", "method"], "rows": model})
+    if methods:
+        blocks.append({"type": "text", "text": "Methods: " + "; ".join(
+            f"[{k + 1}] {m or 'not derivable from the geometry'}"
+            for k, m in enumerate(methods)) + "."})
     return {"id": "crank", "title": title,
             "intro": "The crank described once, by its main dimensions (sheet Crank): crank"
                      " axis z, main axis at x = y = 0, pin axis at (0, stroke/2); a throw runs"
