@@ -159,12 +159,7 @@ def shaft_flexibility(D: float, L: float, *, E: float = 210e9, nu: float = 0.3,
         gmsh.option.setNumber("Mesh.MeshSizeMin", size * D)
         gmsh.option.setNumber("Mesh.ElementOrder", 2)
         gmsh.model.mesh.generate(3)
-        tags, coords, _ = gmsh.model.mesh.getNodes()
-        _, _, enodes = gmsh.model.mesh.getElements(3)
-        index = np.zeros(int(tags.max()) + 1, dtype=np.int64)
-        index[tags.astype(np.int64)] = np.arange(len(tags))
-        pts = coords.reshape(-1, 3)
-        tets = index[enodes[0].astype(np.int64)].reshape(-1, 10)
+        pts, tets = throw_fe._tet_arrays(gmsh)
     finally:
         gmsh.finalize()
     saved = throw_fe.build_mesh

@@ -176,6 +176,18 @@ def _size_expression(th: Throw, h: float, grade: float, quarter: bool) -> str:
     return f"Min({h!r},{hmin!r}+{grade!r}*{d})"
 
 
+def _tet_arrays(gmsh) -> tuple[np.ndarray, np.ndarray]:
+    """The generated mesh as arrays: node coordinates (n, 3) [m] and the 10-node tetrahedra
+    (m, 10) as indices into them (gmsh numbers nodes by tags)."""
+    tags, coords, _ = gmsh.model.mesh.getNodes()
+    etypes, _, enodes = gmsh.model.mesh.getElements(3)
+    if list(etypes) != [11]:
+        raise RuntimeError(f"expected only 10-node tetrahedra, got types {list(etypes)}")
+    index = np.zeros(int(tags.max()) + 1, dtype=np.int64)
+    index[tags.astype(np.int64)] = np.arange(len(tags))
+    return coords.reshape(-1, 3), index[enodes[0].astype(np.int64)].reshape(-1, 10)
+
+
 def build_mesh(th: Throw, size: float, *, full: bool = False, grade: float = 0.5,
                verbose: bool = False, half: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """Mesh the throw (or its quarter x >= 0, z <= L/2; ``half``: the half x >= 0 over the
@@ -221,15 +233,7 @@ def build_mesh(th: Throw, size: float, *, full: bool = False, grade: float = 0.5
         gmsh.option.setNumber("Mesh.ElementOrder", 2)
         gmsh.option.setNumber("Mesh.HighOrderOptimize", 1)
         gmsh.model.mesh.generate(3)
-        tags, coords, _ = gmsh.model.mesh.getNodes()
-        pts = coords.reshape(-1, 3)
-        etypes, _, enodes = gmsh.model.mesh.getElements(3)
-        if list(etypes) != [11]:
-            raise RuntimeError(f"expected only 10-node tetrahedra, got types {list(etypes)}")
-        index = np.zeros(int(tags.max()) + 1, dtype=np.int64)
-        index[tags.astype(np.int64)] = np.arange(len(tags))
-        tets = index[enodes[0].astype(np.int64)].reshape(-1, 10)
-        return pts, tets
+        return _tet_arrays(gmsh)
     finally:
         gmsh.finalize()
 
@@ -399,11 +403,7 @@ def shaft_mesh(D: float, d: float, L: float, size: float, full: bool = False):
         gmsh.option.setNumber("Mesh.MeshSizeMin", size * D)
         gmsh.option.setNumber("Mesh.ElementOrder", 2)
         gmsh.model.mesh.generate(3)
-        tags, coords, _ = gmsh.model.mesh.getNodes()
-        etypes, _, enodes = gmsh.model.mesh.getElements(3)
-        index = np.zeros(int(tags.max()) + 1, dtype=np.int64)
-        index[tags.astype(np.int64)] = np.arange(len(tags))
-        return coords.reshape(-1, 3), index[enodes[0].astype(np.int64)].reshape(-1, 10)
+        return _tet_arrays(gmsh)
     finally:
         gmsh.finalize()
 
@@ -434,11 +434,7 @@ def rect_bar(a: float, b: float, L: float, *, E: float = 210e9, nu: float = 0.3,
         gmsh.option.setNumber("Mesh.MeshSizeMin", h)
         gmsh.option.setNumber("Mesh.ElementOrder", 2)
         gmsh.model.mesh.generate(3)
-        tags, coords, _ = gmsh.model.mesh.getNodes()
-        etypes, _, enodes = gmsh.model.mesh.getElements(3)
-        index = np.zeros(int(tags.max()) + 1, dtype=np.int64)
-        index[tags.astype(np.int64)] = np.arange(len(tags))
-        pts, tets = coords.reshape(-1, 3), index[enodes[0].astype(np.int64)].reshape(-1, 10)
+        pts, tets = _tet_arrays(gmsh)
     finally:
         gmsh.finalize()
     k, _ = solve_mesh(pts, tets, E=E, nu=nu, length=L, quarter=True, variant=variant)
