@@ -13,7 +13,9 @@ table switched off (tests/test_unit_table.py compares every entry with pint agai
   accepts for the kind.
 * ``CONVERT[(src, dst)] = (a, b)``: :func:`checker.units.convert_affine` (rules and display
   conversions, ``x[dst] = a x[src] + b``): every shipped rule's unit against its quantity's
-  SI unit, the schema's range units and the usual spellings against the kinds' SI units.
+  SI unit, the schema's range units and the usual spellings against the kinds' SI units,
+  every quantity's display unit and the conversions of the templates' report sections and
+  results workbooks (so that the report's drawing processes do not import pint either).
 
 Run it again after adding a rule or a template unit (the test names a missing unit).
 """
@@ -80,13 +82,33 @@ def collect() -> tuple[dict, dict]:
     import checker.ruletable as rt
 
     rt.convert_affine = rec_convert
+    from_si = U.from_si
+
+    def rec_from_si(value, si_unit, display):
+        conv_keys.add((si_unit or "", display.replace("%", "percent")))
+        return from_si(value, si_unit, display)
+
+    U.from_si = rec_from_si  # the report's sections and results workbook import it late
+    from checker.graph import QUANTITIES
+    from checker.report import results_book
+    from checker.report.sections import SECTIONS, modules_with_sections
+
     tmp = Path(tempfile.mkdtemp(prefix="unit-table-"))
     for name, content in (("i4", example_content()), ("i6", i6_content()),
-                          ("v8", v8_content())):
+                          ("i6-ring", i6_content(damper_ring=True)), ("v8", v8_content())):
         p = tmp / f"{name}.xlsx"
         write_workbook(p, content)
         read_workbook(p, raise_errors=False)
-        api.check(str(p))
+        res = api.check(str(p))
+        # the report's display conversions (sections and results workbook), which the drawing
+        # and workbook processes would otherwise load pint for (about 0.35 s each)
+        results_book.build(res, [])
+        for m in modules_with_sections(res):
+            SECTIONS[m](res)
+    U.from_si = from_si
+    for q in QUANTITIES.values():
+        if q.display_unit and q.unit is not None:
+            conv_keys.add((q.unit, q.display_unit.replace("%", "percent")))
     load_rules(None)
     words = _spellings()
     for sheet in SHEETS.values():
