@@ -51,10 +51,18 @@ import json, sys, time
 t0 = time.perf_counter(); c0 = time.process_time()
 from checker import api
 from checker.report import render
+try:  # the PDF engine process started before the analysis, as `checker report` does
+    from checker.report.pdf_process import start
+except ImportError:  # a tree from before it
+    start = lambda: None  # noqa: E731
+engine = start()
 t1 = time.perf_counter(); c1 = time.process_time()
 res = api.check(sys.argv[1])
 t2 = time.perf_counter(); c2 = time.process_time()
-rep = render.build_report(res, want_html=False)
+rep = (render.build_report(res, want_html=False) if engine is None
+       else render.build_report(res, want_html=False, engine=engine))
+if engine is not None:
+    engine.close()
 with open(sys.argv[2], "wb") as f:
     f.write(rep.pdf)
 t3 = time.perf_counter()

@@ -426,47 +426,55 @@ def report(workbook, rules, select, ignore, fail_on, output, html_out, results_o
     pdf_path = Path(output) if output else Path(workbook).with_suffix(".pdf")
     outs = [pdf_path] + [Path(x) for x in (html_out, results_out) if x]
     _outputs_writable(outs, workbook)
-    prog("Reading the workbook and running the analyses")
-    cache: dict | None = {} if (remedies or corners) else None
-    res = _run_check(workbook, rules, select, ignore, fail_on, prog, cache)
-    if (res.engine.params.get("support_scheme") or "determinate") != "determinate":
-        from .api import compare_schemes
+    from .report.pdf_process import start as start_pdf_engine
 
-        prog("Checking the determinate scheme beside the continuous beam")
-        res.scheme_changes = compare_schemes(res)
-    drawing = None
-    if remedies or corners:
-        from .report.render import start_drawing
-
-        # the figures drawn with the processor time the search leaves idle
-        drawing = start_drawing(res, prog)
+    # WeasyPrint imported and set up in a process of its own while the analysis runs here
+    engine = start_pdf_engine()
     try:
-        _attach_extras(res, workbook, rules, select, ignore, remedies, corners, levers_file,
-                       cache, prog)
-    except BaseException:
-        if drawing is not None:  # a bad Tolerances sheet or lever file: no report to draw
-            drawing.close()
-        raise
-    try:
-        from .report.render import build_report
+        prog("Reading the workbook and running the analyses")
+        cache: dict | None = {} if (remedies or corners) else None
+        res = _run_check(workbook, rules, select, ignore, fail_on, prog, cache)
+        if (res.engine.params.get("support_scheme") or "determinate") != "determinate":
+            from .api import compare_schemes
 
-        rep = build_report(res, progress=prog, want_html=bool(html_out),
-                           results_file=Path(results_out).name if results_out else None,
-                           drawing=drawing)
-    except Exception as exc:  # noqa: BLE001
+            prog("Checking the determinate scheme beside the continuous beam")
+            res.scheme_changes = compare_schemes(res)
+        drawing = None
+        if remedies or corners:
+            from .report.render import start_drawing
+
+            # the figures drawn with the processor time the search leaves idle
+            drawing = start_drawing(res, prog)
+        try:
+            _attach_extras(res, workbook, rules, select, ignore, remedies, corners, levers_file,
+                           cache, prog)
+        except BaseException:
+            if drawing is not None:  # a bad Tolerances sheet or lever file: no report to draw
+                drawing.close()
+            raise
+        try:
+            from .report.render import build_report
+
+            rep = build_report(res, progress=prog, want_html=bool(html_out),
+                               results_file=Path(results_out).name if results_out else None,
+                               drawing=drawing, engine=engine)
+        except Exception as exc:  # noqa: BLE001
+            prog.done()
+            _fail(exc)
         prog.done()
-        _fail(exc)
-    prog.done()
-    files = [(pdf_path, rep.pdf)]
-    if html_out:
-        files.append((Path(html_out), rep.html.encode("utf-8")))
-    if results_out:
-        files.append((Path(results_out), rep.results))
-    _write_all(files)  # all or none
-    written = [str(p) for p, _ in files]
-    click.echo(f"wrote {', '.join(written)} ({rep.pages} pages): {res.summary_text()}",
-               err=True)
-    sys.exit(_exit_code(res))
+        files = [(pdf_path, rep.pdf)]
+        if html_out:
+            files.append((Path(html_out), rep.html.encode("utf-8")))
+        if results_out:
+            files.append((Path(results_out), rep.results))
+        _write_all(files)  # all or none
+        written = [str(p) for p, _ in files]
+        click.echo(f"wrote {', '.join(written)} ({rep.pages} pages): {res.summary_text()}",
+                   err=True)
+        sys.exit(_exit_code(res))
+    finally:
+        if engine is not None:
+            engine.close()
 
 
 @main.command()

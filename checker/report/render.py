@@ -19,6 +19,7 @@ import re
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from .. import __version__
 from ..api import CheckResult
@@ -27,6 +28,9 @@ from ..forked import Forked
 from ..resources import templates_dir
 from . import results_book, review, summary
 from .sections import SECTIONS, SectionJob, modules_with_sections
+
+if TYPE_CHECKING:
+    from .pdf_process import PdfEngine
 
 WEASYPRINT_HELP = (
     "WeasyPrint could not load its system libraries (Pango). Install them, e.g. on Debian/"
@@ -504,13 +508,16 @@ class Report:
 
 def build_report(res: CheckResult, progress: Progress | None = None,
                  results_file: str | None = None, want_html: bool = True,
-                 drawing: SectionJob | None = None) -> Report:
+                 drawing: SectionJob | None = None, engine: PdfEngine | None = None
+                 ) -> Report:
     """Figures, HTML, PDF layout and file, with the results workbook attached; the
     standalone HTML (figures as data URIs) when ``want_html``.
 
     ``drawing``: the module sections already being drawn (:func:`start_drawing`, started
     before the remedies' search); the sections it lacks (remedies and corners) are built
-    here."""
+    here. ``engine``: the PDF engine process started before the analysis
+    (:func:`checker.report.pdf_process.start`), which lays the PDF out and writes it (the
+    report's ``document`` is then None); without it, this process does."""
     say = progress or (lambda _text: None)
     clock = _Clock()
     # workers build the sections while this process imports the PDF engine, then draw their
@@ -518,7 +525,7 @@ def build_report(res: CheckResult, progress: Progress | None = None,
     job = drawing if drawing is not None else SectionJob(res, progress, defer=True)
     book_job = None
     try:
-        wp = _weasyprint()
+        wp = _weasyprint() if engine is None else None
         env = _environment()
         clock.stage("PDF engine import")
         children = _children_cpu()
@@ -542,6 +549,11 @@ def build_report(res: CheckResult, progress: Progress | None = None,
         html = env.get_template("report.html").render(**context(res, sections, results_file,
                                                                 figures, pending))
         clock.stage("HTML")
+        if engine is not None:
+            pdf, pages, book = _in_engine(engine, html, figures, pending, job, book_job, say,
+                                          clock)
+            return Report(pdf, standalone_html(html, figures) if want_html else "", book,
+                          pages, clock.wall, clock.cpu, None)
         images = _FigureCache()  # WeasyPrint's image cache (URL -> image, key -> image data)
         logger = logging.getLogger("weasyprint.progress")
         handler = _PageProgress(say)
@@ -576,6 +588,40 @@ def build_report(res: CheckResult, progress: Progress | None = None,
     clock.cpu["figures drawn during the layout"] = images.children_cpu
     return Report(pdf, standalone_html(html, figures) if want_html else "", book,
                   len(doc.pages), clock.wall, clock.cpu, doc)
+
+
+def _in_engine(engine: PdfEngine, html: str, figures: dict[str, bytes],
+               pending: dict[str, tuple[int, int]], job: SectionJob, book_job: Forked,
+               say: Progress, clock: _Clock) -> tuple[bytes, int, bytes]:
+    """The PDF laid out and written by the engine process: the HTML sent, then the results
+    workbook and the drawn figures (``figures`` gets them, for the standalone HTML) as they
+    are ready; the engine's progress told meanwhile. ``(pdf, pages, results workbook)``;
+    the engine's stage times in ``clock``."""
+    engine.lay_out(html, figures, pending)
+    children = _children_cpu()
+    book = book_job.result()
+    clock.stage("results workbook", extra_cpu=_children_cpu() - children)
+    engine.send("book", book)
+    got: list[tuple] = []
+
+    def from_engine() -> None:
+        r = engine.handle(say)
+        if r is not None:
+            got.append(r)
+
+    children = _children_cpu()
+    drawn = job.images(also=(engine.conn, from_engine))
+    clock.stage("figures drawn (beside the layout)", extra_cpu=_children_cpu() - children)
+    if pending and not got:
+        engine.send("images", {key: bytes(drawn[key]) for key in pending.values()})
+        for url, key in pending.items():
+            figures[url] = bytes(drawn[key])
+    pdf, pages, times = got[0] if got else engine.result(say)
+    clock.stage("waiting for the PDF engine")
+    for name, key in (("PDF layout", "layout"), ("PDF write", "write")):
+        clock.wall[name], clock.cpu[name] = times[key]
+    clock.wall["of which waiting for the figures"] = times["wait"][0]
+    return pdf, pages, book
 
 
 class _FigureCache(dict):

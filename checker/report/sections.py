@@ -264,14 +264,20 @@ class SectionJob:
             for m in order:
                 progress(f"Drawing the {LABELS.get(m, m)} figures")
 
-    def _receive(self, until) -> None:
-        """Messages of the drawing processes until ``until()`` holds."""
+    def _receive(self, until, also: tuple | None = None) -> None:
+        """Messages of the drawing processes until ``until()`` holds; ``also``: ``(connection,
+        handler)`` of another process whose messages are handled meanwhile (the PDF
+        engine's progress)."""
         from multiprocessing.connection import wait
 
         while not until():
             if not self._open:
                 raise RuntimeError("the drawing processes ended without every figure")
-            for conn in wait(list(self._open.values())):
+            extra = [also[0]] if also is not None else []
+            for conn in wait(list(self._open.values()) + extra):
+                if extra and conn is extra[0]:
+                    also[1]()
+                    continue
                 w = next(k for k, c in self._open.items() if c is conn)
                 try:
                     kind, module, value = conn.recv()
@@ -307,11 +313,12 @@ class SectionJob:
             self.images()
         return [self._sections[m] for m in self.mods]
 
-    def images(self) -> dict[tuple[int, int], bytes]:
+    def images(self, also: tuple | None = None) -> dict[tuple[int, int], bytes]:
         """The drawn figures of the placeholders, by ``png.key`` (waits for them; empty
-        without ``defer``). The drawing processes have ended when it returns."""
+        without ``defer``). The drawing processes have ended when it returns. ``also``: see
+        :meth:`_receive`."""
         if self.procs:
-            self._receive(lambda: len(self._done) == len(self.procs))
+            self._receive(lambda: len(self._done) == len(self.procs), also)
             for p in self.procs:
                 p.join()
             for c in self.conns:
