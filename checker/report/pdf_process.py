@@ -56,6 +56,7 @@ def _serve(conn) -> None:
     """The engine process: import and warm WeasyPrint, then lay out and write one report."""
     import signal
 
+    from ..gc_tuning import fewer_collections
     from .sections import _SIGNALS, _unblock_signals
 
     signal.signal(signal.SIGINT, signal.SIG_DFL)  # Ctrl-C: the command handles it
@@ -67,6 +68,7 @@ def _serve(conn) -> None:
         wp = render._weasyprint()
         html_class = render._html_class(wp)
         html_class(string=WARM_UP, base_url=str(render.templates_dir())).render()
+        fewer_collections()  # a short-lived process building many objects (see there)
         failed: BaseException | None = None
     except BaseException as exc:  # noqa: BLE001 - told when the report arrives
         failed = exc

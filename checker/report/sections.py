@@ -157,12 +157,14 @@ def _drawer(worker: int, tasks, conn, nice: int, defer: bool) -> None:
     None)``. An exception of a section is sent as ``("error", module, exception)``."""
     import signal
 
+    from ..gc_tuning import fewer_collections
     from . import plots
 
     signal.signal(signal.SIGINT, signal.SIG_DFL)  # Ctrl-C: the parent handles it
     signal.signal(signal.SIGTERM, signal.SIG_DFL)  # ended by the parent: die quietly
     _unblock_signals(_SIGNALS)  # held back by the parent while it forked
     _worker_start(nice)
+    fewer_collections()  # a short-lived process building many objects (see there)
     plots.DEFERRED = [] if defer else None
     plots.DRAWER = worker
     try:

@@ -87,3 +87,61 @@ def test_reasons_said_once_each_stay_in_their_rows():
     assert render._collapse_marked_reason(t) is t
     t = _table(["not judged: a"])
     assert render._collapse_marked_reason(t) is t
+
+
+def test_pdf_streams_at_the_chosen_zlib_level_and_pydyf_restored():
+    """The PDF's streams are compressed at FLATE_LEVEL while it is written, and pydyf's zlib
+    is zlib again afterwards (also after a failure)."""
+    import zlib
+
+    import pydyf
+    import pytest
+
+    wp = render._weasyprint()
+    doc = wp.HTML(string="<p>" + "text " * 2000 + "</p>").render()
+    pdf = render._write(wp, doc, "<p>x</p>", [])
+    assert pydyf.zlib is zlib
+    seen = []
+    real = zlib.compressobj
+
+    def spy(level=-1, *args, **kwargs):
+        seen.append(level)
+        return real(level, *args, **kwargs)
+
+    zlib.compressobj = spy
+    try:
+        again = render._write(wp, doc, "<p>x</p>", [])
+    finally:
+        zlib.compressobj = real
+    assert again == pdf and seen and set(seen) == {render.FLATE_LEVEL}
+    with pytest.raises(RuntimeError), render._flate_level(1):
+        assert pydyf.zlib is not zlib
+        raise RuntimeError
+    assert pydyf.zlib is zlib
+
+
+def test_fewer_collections_keeps_collecting_garbage():
+    """The workers' collector setting: the young generation less often, garbage still
+    collected (a reference cycle made afterwards is freed)."""
+    import gc
+    import weakref
+
+    from checker.gc_tuning import YOUNG_THRESHOLD, fewer_collections
+
+    old = gc.get_threshold()
+    try:
+        fewer_collections()
+        assert gc.get_threshold()[0] == YOUNG_THRESHOLD
+
+        class Node:
+            pass
+
+        a, b = Node(), Node()
+        a.other, b.other = b, a
+        gone = weakref.ref(a)
+        del a, b
+        kept = [[] for _ in range(3 * YOUNG_THRESHOLD)]  # net allocations: collections run
+        assert gone() is None and len(kept) == 3 * YOUNG_THRESHOLD
+    finally:
+        gc.unfreeze()
+        gc.set_threshold(*old)
