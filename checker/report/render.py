@@ -548,6 +548,13 @@ class Report:
     """The laid-out WeasyPrint document (page boxes), for layout checks."""
 
 
+DRAWING_NICE = 10
+"""Scheduling priority increment of the drawing processes (``os.nice``): the PDF layout is the
+longest piece of the report that cannot be split, and the figures are needed only when the
+laid-out PDF is written, so the layout takes a core of its own and the drawing processes share
+what is left (on two cores three processes would otherwise share them equally)."""
+
+
 def build_report(res: CheckResult, progress: Progress | None = None,
                  results_file: str | None = None, want_html: bool = True,
                  drawing: SectionJob | None = None, engine: PdfEngine | None = None
@@ -564,7 +571,8 @@ def build_report(res: CheckResult, progress: Progress | None = None,
     clock = _Clock()
     # workers build the sections while this process imports the PDF engine, then draw their
     # figures while it lays the PDF out (placeholders of the figures' size in the layout)
-    job = drawing if drawing is not None else SectionJob(res, progress, defer=True)
+    job = drawing if drawing is not None else SectionJob(res, progress, defer=True,
+                                                         nice=DRAWING_NICE)
     book_job = None
     try:
         wp = _weasyprint() if engine is None else None
