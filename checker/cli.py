@@ -14,7 +14,13 @@ import sys
 import tempfile
 from pathlib import Path
 
-import click
+# One BLAS thread unless the user asks for more (before NumPy is first imported): the check's
+# matrix products are small, and OpenBLAS's idle worker threads spin after each call (about
+# 0.2 s of processor time of an I4 check, 15 % of it, with no gain in wall time on 2 cores;
+# docs/benchmarks.md, issue 37). Processes forked or started from here inherit it.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import click  # noqa: E402
 
 from . import __version__
 from .errors import CheckerError, InternalError, OutputError, UsageProblem
