@@ -208,3 +208,27 @@ def test_check_imports_no_plotting_pdf_or_dask(example):
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout.strip().splitlines()[-1]
     assert out == "[]"
+
+
+def test_run_freezes_the_heap_after_the_command_and_keeps_its_exit_code(monkeypatch):
+    """The console script (checker.cli:run) runs the command, then freezes what is alive out
+    of the collector's exit-time passes, whatever the command's exit."""
+    import gc
+
+    import checker.cli as cli
+
+    frozen = []
+    monkeypatch.setattr(gc, "freeze", lambda: frozen.append(1))
+
+    def command():
+        raise SystemExit(3)
+
+    monkeypatch.setattr(cli, "main", command)
+    with pytest.raises(SystemExit) as got:
+        cli.run()
+    assert got.value.code == 3 and frozen == [1]
+    import tomllib
+    from pathlib import Path
+
+    project = tomllib.loads((Path(__file__).parents[1] / "pyproject.toml").read_text())
+    assert project["project"]["scripts"]["checker"] == "checker.cli:run"
