@@ -94,3 +94,53 @@ def test_bad_input_ends_the_engine_with_the_command(tmp_path):
     assert out.exit_code == 2
     assert not (tmp_path / "r.pdf").exists()
     assert set(mp.active_children()) <= before
+
+
+def _shm_files() -> set[str]:
+    import glob
+    import tempfile
+
+    return set(glob.glob("/dev/shm/checker-result-*")) | set(
+        glob.glob(f"{tempfile.gettempdir()}/checker-result-*"))
+
+
+def test_drawing_processes_started_before_the_analysis_draw_the_same_report(res):
+    from checker.report.sections import start_drawers
+
+    here = build_report(res, want_html=False)
+    before = _shm_files()
+    drawers = start_drawers(nice=10)
+    engine = pdf_process.start()
+    try:
+        there = build_report(res, want_html=False, engine=engine, drawers=drawers)
+    finally:
+        engine.close()
+        drawers.close()
+    assert there.pdf == here.pdf  # the result pickled to them: the same sections, figures
+    assert _shm_files() == before  # the pickled result removed
+    assert not [p for p in mp.active_children() if p.name.startswith("Process")]
+
+
+def test_a_result_that_does_not_pickle_is_drawn_by_processes_forked_then(res):
+    from checker.report.sections import SectionJob, start_drawers
+
+    drawers = start_drawers(nice=10)
+    started = list(drawers.procs)
+    res.unpicklable = lambda: None  # a result carrying something pickle refuses
+    try:
+        job = SectionJob(res, defer=True, drawers=drawers, modules=["joints", "balance"])
+        sections = job.result()
+        job.images()
+    finally:
+        del res.unpicklable
+        drawers.close()
+    assert [s["id"] for s in sections] and all(not p.is_alive() for p in started)
+
+
+def test_unused_drawing_processes_end_when_closed():
+    from checker.report.sections import start_drawers
+
+    drawers = start_drawers(nice=10)
+    procs = list(drawers.procs)
+    drawers.close()
+    assert procs and all(not p.is_alive() for p in procs)
