@@ -549,11 +549,13 @@ class Report:
     """The laid-out WeasyPrint document (page boxes), for layout checks."""
 
 
-DRAWING_NICE = 10
+DRAWING_NICE = 5
 """Scheduling priority increment of the drawing processes (``os.nice``): the PDF layout is the
 longest piece of the report that cannot be split, and the figures are needed only when the
 laid-out PDF is written, so the layout takes a core of its own and the drawing processes share
-what is left (on two cores three processes would otherwise share them equally)."""
+what is left (on two cores three processes would otherwise share them equally). Linux gives a
+process at nice 5 a third of the weight of one at 0: enough for the layout to keep its core,
+not so little that other work on a shared machine starves the drawing."""
 
 
 def build_report(res: CheckResult, progress: Progress | None = None,
