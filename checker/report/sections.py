@@ -149,46 +149,25 @@ SLOW_FIRST = ("torsion", "loads", "fatigue", "bearings")
 """Sections with the most figures, started first so that the workers stay busy."""
 
 
-def _drawer(worker: int, tasks, conn, nice: int, defer: bool | None) -> None:
+def _drawer(worker: int, tasks, conn, nice: int, defer: bool) -> None:
     """A drawing process: builds the sections of the modules it takes from ``tasks`` (None:
     no more) and sends each to the parent, ``("section", module, dict)``; with ``defer`` its
     figures are placeholders (:class:`checker.report.plots.Deferred`) and it draws them after
     the last section, ``("images", None, {(worker, index): image})``; then ``("done", None,
-    None)``. An exception of a section is sent as ``("error", module, exception)``.
-
-    ``defer=None``: a process started before the analysis (:func:`start_drawers`): it
-    imports matplotlib, then waits for ``("result", path, defer, nice)`` on ``conn`` (the
-    check result pickled in the file ``path``, a further priority increment); ``None`` ends
-    it."""
+    None)``. An exception of a section is sent as ``("error", module, exception)``."""
     import signal
 
     from ..gc_tuning import fewer_collections
     from . import plots
 
-    global _RESULT
     signal.signal(signal.SIGINT, signal.SIG_DFL)  # Ctrl-C: the parent handles it
     signal.signal(signal.SIGTERM, signal.SIG_DFL)  # ended by the parent: die quietly
     _unblock_signals(_SIGNALS)  # held back by the parent while it forked
     _worker_start(nice)
+    fewer_collections()  # a short-lived process building many objects (see there)
+    plots.DEFERRED = [] if defer else None
+    plots.DRAWER = worker
     try:
-        if defer is None:
-            import pickle
-
-            plots.pyplot()
-            load_sections()
-            try:
-                msg = conn.recv()
-            except EOFError:
-                return
-            if msg is None:
-                return
-            _, path, defer, more = msg
-            _worker_start(more)
-            with open(path, "rb") as f:
-                _RESULT = pickle.load(f)
-        fewer_collections()  # a short-lived process building many objects (see there)
-        plots.DEFERRED = [] if defer else None
-        plots.DRAWER = worker
         while (module := tasks.get()) is not None:
             # progress is told by the parent (it owns stderr)
             conn.send(("section", module, _one(module, None)))
@@ -224,13 +203,12 @@ class SectionJob:
 
     def __init__(self, res: CheckResult, progress: Callable[[str], None] | None = None,
                  workers: int | None = None, modules: list[str] | None = None,
-                 nice: int = 0, defer: bool = False, drawers: Drawers | None = None):
+                 nice: int = 0, defer: bool = False):
         """``modules``: the sections to build (default: every section of ``res``);
         ``nice``: the workers' scheduling priority increment (``os.nice``): drawing started
         before other work of the command (the remedies' search) takes only the processor time
         that work leaves idle; ``defer``: figures drawn after every section is built (see the
-        class); ``drawers``: processes started before the analysis (:func:`start_drawers`),
-        which take ``res`` pickled instead of being forked now (``workers`` is then theirs)."""
+        class)."""
         import multiprocessing as mp
         import os
 
@@ -246,20 +224,14 @@ class SectionJob:
         self._sections: dict[str, dict] = {}
         self._images: dict[tuple[int, int], bytes] = {}
         self._done: set[int] = set()
-        self._file: str | None = None
         cores = os.cpu_count() or 1
-        order = sorted(self.mods, key=lambda m: (m not in SLOW_FIRST,
-                                                 SLOW_FIRST.index(m) if m in SLOW_FIRST
-                                                 else 0))
-        if drawers is not None and self.mods and self._adopt(drawers, order, nice, defer):
-            if progress is not None:
-                for m in order:
-                    progress(f"Drawing the {LABELS.get(m, m)} figures")
-            return
         if not self.mods or cores < 2 or "fork" not in mp.get_all_start_methods():
             return
         n = max(1, min(len(self.mods), workers or cores))
         ctx = mp.get_context("fork")
+        order = sorted(self.mods, key=lambda m: (m not in SLOW_FIRST,
+                                                 SLOW_FIRST.index(m) if m in SLOW_FIRST
+                                                 else 0))
         tasks = ctx.SimpleQueue()
         for m in order + [None] * n:  # a few short items: they fit the pipe's buffer
             tasks.put(m)
@@ -293,49 +265,6 @@ class SectionJob:
         if progress is not None:  # drawn in parallel from now on; told here (stderr is ours)
             for m in order:
                 progress(f"Drawing the {LABELS.get(m, m)} figures")
-
-    def _adopt(self, drawers: Drawers, order: list[str], nice: int, defer: bool) -> bool:
-        """Give the sections to the drawing processes started before the analysis: ``res``
-        pickled into a temporary file (in memory where the system has /dev/shm) that each
-        loads. False (the processes ended) where ``res`` does not pickle: the caller forks
-        new ones."""
-        import os
-        import pickle
-        import tempfile
-
-        if not drawers.procs:
-            return False
-        shm = "/dev/shm" if os.path.isdir("/dev/shm") else None
-        fd, path = tempfile.mkstemp(prefix="checker-result-", suffix=".pickle", dir=shm)
-        try:
-            with os.fdopen(fd, "wb") as f:
-                pickle.dump(self.res, f, protocol=pickle.HIGHEST_PROTOCOL)
-        except Exception:  # noqa: BLE001 - something of the result does not pickle
-            os.unlink(path)
-            drawers.close()
-            return False
-        self._file = path
-        self.defer = defer
-        n = len(drawers.procs)
-        for m in order + [None] * n:
-            drawers.tasks.put(m)
-        more = max(0, nice - drawers.nice)
-        self.procs, self.conns = drawers.procs, drawers.conns
-        drawers.procs, drawers.conns = [], []  # now this job's (closed by it)
-        self._open = dict(enumerate(self.conns))
-        for c in self.conns:
-            c.send(("result", path, defer, more))
-        return True
-
-    def _forget_file(self) -> None:
-        import os
-
-        path, self._file = self._file, None
-        if path is not None:
-            try:
-                os.unlink(path)
-            except OSError:
-                pass
 
     def _receive(self, until, also: tuple | None = None) -> None:
         """Messages of the drawing processes until ``until()`` holds; ``also``: ``(connection,
@@ -397,75 +326,19 @@ class SectionJob:
             for c in self.conns:
                 c.close()
             self.procs, self._open = [], {}
-        self._forget_file()
         return self._images
 
     def close(self) -> None:
         """End the drawing processes without waiting for the sections (the command failed
         before it needed them)."""
         procs, self.procs, self._open = self.procs, [], {}
-        _end(procs, self.conns)
-        self._forget_file()
-
-
-def _end(procs: list, conns: list) -> None:
-    """End processes at once and close their connections."""
-    for p in procs:
-        if p.is_alive():
-            p.terminate()
-    for p in procs:
-        p.join()
-    for c in conns:
-        c.close()
-
-
-class Drawers:
-    """Drawing processes started before the analysis (:func:`start_drawers`): they import
-    matplotlib while the analysis runs, then a :class:`SectionJob` gives them the result."""
-
-    def __init__(self, procs: list, conns: list, tasks, nice: int):
-        self.procs, self.conns, self.tasks, self.nice = procs, conns, tasks, nice
-
-    def close(self) -> None:
-        """End the processes (not given to a job)."""
-        procs, conns, self.procs, self.conns = self.procs, self.conns, [], []
-        for c in conns:
-            try:
-                c.send(None)
-            except OSError:
-                pass
-        _end(procs, conns)
-
-
-def start_drawers(workers: int | None = None, nice: int = 10) -> Drawers | None:
-    """Drawing processes forked now, before the analysis, at priority increment ``nice``:
-    each imports matplotlib (about 0.3 s of processor time, otherwise spent by the command
-    between its analysis and the PDF layout) and waits for a :class:`SectionJob`. None where
-    the platform cannot fork or has one core."""
-    import multiprocessing as mp
-    import os
-
-    cores = os.cpu_count() or 1
-    if cores < 2 or "fork" not in mp.get_all_start_methods():
-        return None
-    ctx = mp.get_context("fork")
-    tasks = ctx.SimpleQueue()
-    procs, conns = [], []
-    blocked = _block_signals()  # see SectionJob: each child sets its handlers first
-    try:
-        for w in range(workers or cores):
-            mine, theirs = ctx.Pipe(duplex=True)
-            p = ctx.Process(target=_drawer, args=(w, tasks, theirs, nice, None), daemon=True)
-            p.start()
-            theirs.close()
-            procs.append(p)
-            conns.append(mine)
-    except BaseException:
-        _end(procs, conns)
-        raise
-    finally:
-        _unblock_signals(blocked)
-    return Drawers(procs, conns, tasks, nice)
+        for p in procs:
+            if p.is_alive():
+                p.terminate()
+        for p in procs:
+            p.join()
+        for c in self.conns:
+            c.close()
 
 
 def param_table(caption: str, items: list[tuple[str, str]], pairs: int = 2) -> dict:
