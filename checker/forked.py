@@ -15,12 +15,18 @@ _CALL: tuple | None = None
 in; the value comes back pickled)."""
 
 
-def _start() -> None:
+def _start(nice: int = 0) -> None:
     """In the forked process: an interrupt (Ctrl-C reaches the whole process group) ends it at
-    once; the parent handles the interrupt."""
+    once; the parent handles the interrupt. ``nice``: scheduling priority increment."""
+    import os
     import signal
 
     signal.signal(signal.SIGINT, signal.SIG_DFL)
+    if nice:
+        try:
+            os.nice(nice)
+        except OSError:
+            pass
 
 
 def _call():
@@ -32,9 +38,10 @@ class Forked:
     """``fn(*args)`` computed in a forked process while this one goes on; in this process
     (when :meth:`result` is asked) where fork is unavailable, with one core or with
     ``fork=False``. :meth:`result` waits for the value (or raises the call's exception);
-    :meth:`close` ends the process without waiting for the value."""
+    :meth:`close` ends the process without waiting for the value; ``nice``: the forked
+    process's scheduling priority increment (``os.nice``)."""
 
-    def __init__(self, fn: Callable[..., Any], *args: Any, fork: bool = True):
+    def __init__(self, fn: Callable[..., Any], *args: Any, fork: bool = True, nice: int = 0):
         import multiprocessing as mp
         import os
 
@@ -48,7 +55,7 @@ class Forked:
         _CALL = (fn, args)
         try:
             self.pool = ProcessPoolExecutor(1, mp_context=mp.get_context("fork"),
-                                            initializer=_start)
+                                            initializer=_start, initargs=(nice,))
             self.future = self.pool.submit(_call)  # forks now, with _CALL set
         finally:
             _CALL = None

@@ -588,7 +588,8 @@ def build_report(res: CheckResult, progress: Progress | None = None,
         sections, extra = _split_details(_plain_sections(sections))
         extra += _extra_sheets(res)
         say("Writing the results workbook")
-        book_job = Forked(results_book.build, res, extra)  # written while the PDF is laid out
+        # written while the PDF is laid out (the layout keeps its core: see DRAWING_NICE)
+        book_job = Forked(results_book.build, res, extra, nice=DRAWING_NICE)
         from .results_book import sheet_names
 
         sheets = sheet_names(res, extra)
