@@ -320,7 +320,8 @@ def _apply_envelope(outcome: graph.RunOutcome) -> None:
 def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = None,
           select: list[str] | None = None, ignore: list[str] | None = None,
           fail_on: str = "error", progress: Callable[[str], None] | None = None,
-          cache: dict | None = None, compare: bool = True) -> CheckResult:
+          cache: dict | None = None, compare: bool = True, parallel: bool = False
+          ) -> CheckResult:
     """Run the design-rule check.
 
     Parameters
@@ -342,6 +343,11 @@ def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = No
         Also compute the quantities a result is shown beside (the film thickness by the
         other method). ``False`` for variants judged on their margins only (remedies,
         tolerance corners): the same values, statuses and margins, without ``compare``.
+    parallel : bool
+        Compute the long calculations that others do not wait for (the bearings' heat
+        balance) in a forked process meanwhile (:func:`checker.graph.run`): for a command's
+        own process on a machine with two cores or more, not for the workers of a study. The
+        same result.
 
     Raises
     ------
@@ -381,7 +387,7 @@ def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = No
     # computed with compare=False (variants judged on their margins: remedies, corners)
     if compare:
         wanted |= {n for r in chosen for _, n in graph.QUANTITIES[r.quantity].compare}
-    outcome = graph.run(engine, wanted, progress=progress, cache=cache)
+    outcome = graph.run(engine, wanted, progress=progress, cache=cache, parallel=parallel)
     if cache is not None:  # cached quantities are shared between variants: judge on copies
         outcome.quantities = {k: replace(q)
                               for k, q in outcome.quantities.items()}

@@ -131,7 +131,7 @@ def _run_check(workbook, rules, select, ignore, fail_on, progress, cache=None):
     try:
         res = api.check(workbook, rules=rules, select=_split(select), ignore=_split(ignore),
                         fail_on=",".join(fail_on) if fail_on else None, progress=progress,
-                        cache=cache)
+                        cache=cache, parallel=True)
     except UsageProblem as exc:
         raise click.UsageError(str(exc)) from None
     except Exception as exc:  # noqa: BLE001 - reported without traceback

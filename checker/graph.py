@@ -167,6 +167,9 @@ class Calculation:
     damper's tuning for an engine with a viscous damper): :func:`applies_to`."""
     applies_why: Callable[[Engine], str] | None = None
     """Why it does not apply, in words (the not-applicable results' reason)."""
+    separate: bool = False
+    """Long and needed late: where the caller allows (:func:`run` with ``parallel``), it is
+    computed in a forked process while this one computes what does not depend on it."""
 
 
 UNAVAILABLE = "__unavailable__"
@@ -205,7 +208,7 @@ def calculation(name: str, module: str, provides: Iterable[str],
                 description: str = "", optional: Iterable[str] = (),
                 reads: Iterable[str] | None = None,
                 applies: Callable[[Engine], bool] | None = None,
-                applies_why: Callable[[Engine], str] | None = None):
+                applies_why: Callable[[Engine], str] | None = None, separate: bool = False):
     """Decorator registering a calculation function ``f(engine, inputs) -> {name: Quantity}``.
 
     ``reads`` names the engine inputs the calculation reads, for result caching across
@@ -215,7 +218,8 @@ def calculation(name: str, module: str, provides: Iterable[str],
     A test perturbs every input a calculation does not declare and checks its results stay
     identical. ``applies`` (engine -> bool): whether the calculation applies to the engine at
     all (:attr:`Calculation.applies`; it may read only what ``reads`` declares);
-    ``applies_why`` (engine -> str) says why not.
+    ``applies_why`` (engine -> str) says why not. ``separate``: see
+    :attr:`Calculation.separate`.
     """
     provides = tuple(provides)
     needs_f = needs if callable(needs) else (lambda engine, _n=tuple(needs): _n)
@@ -223,7 +227,7 @@ def calculation(name: str, module: str, provides: Iterable[str],
     def deco(func):
         calc = Calculation(name, module, provides, func, needs_f, description or func.__doc__
                            or "", tuple(optional), None if reads is None else tuple(reads),
-                           applies, applies_why)
+                           applies, applies_why, separate)
         CALCULATIONS[name] = calc
         for q in provides:
             if q not in QUANTITIES:
@@ -377,13 +381,24 @@ def plan(engine: Engine, wanted: Iterable[str]) -> list[str]:
     return order
 
 
+def _timed(func, engine: Engine, inputs: dict) -> tuple[dict, float]:
+    """``func(engine, inputs)`` and its run time [s] (in a forked process: see :func:`run`)."""
+    t0 = time.perf_counter()
+    return func(engine, inputs), time.perf_counter() - t0
+
+
 def run(engine: Engine, wanted: Iterable[str], progress: Callable[[str], None] | None = None,
-        cache: dict | None = None) -> RunOutcome:
+        cache: dict | None = None, parallel: bool = False) -> RunOutcome:
     """Compute the ``wanted`` quantities and only what they need.
 
     ``cache`` (a dict kept by the caller, e.g. across the variants of a study) stores each
     calculation's outputs under :func:`input_key`; a calculation whose key is in the cache is
     not run again. Cached quantities are shared: treat them as read-only.
+
+    ``parallel``: the calculations marked :attr:`Calculation.separate` are computed in a forked
+    process (:class:`checker.forked.ForkedCall`) while this one goes on with those that do not
+    need them, on a machine with two cores or more (a command's own process: not inside the
+    worker processes of a study, which use the cores already). The same numbers either way.
     """
     order = plan(engine, wanted)
     have: dict[str, Quantity] = {}
@@ -392,50 +407,84 @@ def run(engine: Engine, wanted: Iterable[str], progress: Callable[[str], None] |
     errors: dict[str, str] = {}
     keys: dict[str, str] = {}
     reused: list[str] = []
-    for cname in order:
-        calc = CALCULATIONS[cname]
-        deps = calc.needs(engine)
-        if cache is not None:
-            keys[cname] = input_key(engine, calc, [keys[PROVIDER[d]] for d in deps])
-            hit = cache.get(keys[cname])
-            if hit is not None:
-                out_q, out_u = hit
-                have.update(out_q)
-                unavailable.update(out_u)
-                reused.append(cname)
-                continue
-        blocked = [d for d in deps if d in unavailable and d not in calc.optional]
-        if blocked:
-            reasons = []
-            for d in blocked:
-                for r in unavailable[d]:
-                    if r not in reasons:
-                        reasons.append(r)
-            for q in calc.provides:
-                unavailable[q] = reasons
-            continue
-        if progress is not None:
-            progress(f"{calc.module}: {calc.name}")
-        t0 = time.perf_counter()
+    forked: dict[str, object] = {}  # calculation -> Forked computing it
+    emitted: dict[str, list[str]] = {}  # calculation -> its quantities, in their order
+    went_apart = False
+
+    def finish(calc: Calculation, compute: Callable[[], tuple[dict, float]]) -> None:
         try:
-            inputs: dict = {d: have[d] for d in deps if d in have}
-            gone = {d: unavailable[d] for d in deps if d in unavailable}
-            if gone:
-                inputs[UNAVAILABLE] = gone
-            out = calc.func(engine, inputs)
+            out, seconds = compute()
         except MissingInputs as exc:
             for q in calc.provides:
                 unavailable[q] = exc.reasons
-            out = {}
-        timings[calc.module] = timings.get(calc.module, 0.0) + time.perf_counter() - t0
+            out, seconds = {}, 0.0
+        timings[calc.module] = timings.get(calc.module, 0.0) + seconds
+        emitted[calc.name] = list(out)
         for q, val in out.items():
             have[q] = val
         for q in calc.provides:
             if q not in have and q not in unavailable:
                 unavailable[q] = [f"{calc.name} did not produce {q}"]
         if cache is not None:
-            cache[keys[cname]] = ({q: have[q] for q in calc.provides if q in have},
-                                  {q: unavailable[q] for q in calc.provides if q in unavailable})
+            cache[keys[calc.name]] = ({q: have[q] for q in calc.provides if q in have},
+                                      {q: unavailable[q] for q in calc.provides
+                                       if q in unavailable})
+
+    def settle(cname: str) -> None:
+        job = forked.pop(cname)
+        finish(CALCULATIONS[cname], job.result)
+
+    try:
+        for cname in order:
+            calc = CALCULATIONS[cname]
+            deps = calc.needs(engine)
+            for d in deps:  # a need being computed in a forked process: wait for it
+                if PROVIDER.get(d) in forked:
+                    settle(PROVIDER[d])
+            if cache is not None:
+                keys[cname] = input_key(engine, calc, [keys[PROVIDER[d]] for d in deps])
+                hit = cache.get(keys[cname])
+                if hit is not None:
+                    out_q, out_u = hit
+                    emitted[cname] = list(out_q)
+                    have.update(out_q)
+                    unavailable.update(out_u)
+                    reused.append(cname)
+                    continue
+            blocked = [d for d in deps if d in unavailable and d not in calc.optional]
+            if blocked:
+                reasons = []
+                for d in blocked:
+                    for r in unavailable[d]:
+                        if r not in reasons:
+                            reasons.append(r)
+                for q in calc.provides:
+                    unavailable[q] = reasons
+                continue
+            if progress is not None:
+                progress(f"{calc.module}: {calc.name}")
+            inputs: dict = {d: have[d] for d in deps if d in have}
+            gone = {d: unavailable[d] for d in deps if d in unavailable}
+            if gone:
+                inputs[UNAVAILABLE] = gone
+            if parallel and calc.separate:
+                from .forked import ForkedCall
+
+                job = ForkedCall(_timed, calc.func, engine, inputs)
+                if job.forked:
+                    forked[cname] = job
+                    went_apart = True
+                    continue
+            finish(calc, lambda calc=calc, inputs=inputs: _timed(calc.func, engine, inputs))
+        for cname in list(forked):
+            settle(cname)
+    finally:  # an exception or interruption: no forked calculation outlives the run
+        for job in forked.values():
+            job.close()
+    if went_apart:  # the quantities in the order of a run in one process (outputs list them)
+        have = {q: have[q] for c in order for q in emitted.get(c, ()) if q in have}
+        unavailable = {q: unavailable[q] for c in order for q in CALCULATIONS[c].provides
+                       if q in unavailable}
     from_cache = {CALCULATIONS[c].module for c in reused}
     # a module whose results came from the cache counts as run (its results are used)
     ran_modules = [m for m in MODULES if m in timings or m in from_cache]

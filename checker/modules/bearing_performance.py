@@ -168,7 +168,8 @@ def _feed(engine: Engine, b: Bearing) -> tuple[str, list[str]]:
                        "bearing.friction_torque_peak",
                        "bearing.side_flow", "bearing.feed_flow", "bearing.oil_flow",
                        "engine.bearing_friction_power"),
-             needs=("loads.bearing_load",), reads=("bearings", "oil", "params.stroke"))
+             needs=("loads.bearing_load",), reads=("bearings", "oil", "params.stroke"),
+             separate=True)  # its orbit sets beside the film calculations (both long)
 def bearing_heat_balance(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Oil flow, friction and effective film temperature of every bearing by a heat balance
     iterated with the viscosity-temperature law (short-bearing orbits at each iterate).
