@@ -357,12 +357,24 @@ def _extra_sheets(res: CheckResult) -> list[dict]:
 
 def context(res: CheckResult, sections: list[dict] | None = None,
             results_file: str | None = None, figures: dict[str, bytes] | None = None,
-            pending: dict[str, tuple[int, int]] | None = None) -> dict:
+            pending: dict[str, tuple[int, int]] | None = None,
+            front: dict | None = None) -> dict:
     """Everything the template shows (formatting only). ``sections``: built sections
     (default: built here); ``figures``: collects the figures served by URL, ``pending`` the
-    placeholders among them (see :func:`_figure_sources`; default: data URIs)."""
+    placeholders among them (see :func:`_figure_sources`; default: data URIs); ``front``:
+    :func:`front_context` of the same arguments, if computed already."""
     if sections is None:
         sections = SectionJob(res).result()
+    if front is None:
+        front = front_context(res, results_file)
+    return {**front,
+            "sections": [dict(x, groups=_groups(x["blocks"]))
+                         for x in _figure_sources(sections, figures, pending)]}
+
+
+def front_context(res: CheckResult, results_file: str | None = None) -> dict:
+    """What the template shows apart from the sections (see :func:`context`): computed while
+    the drawing processes build the sections."""
     from .section_loads import lining_text
 
     groups = summary.groups(res)
@@ -410,8 +422,6 @@ def context(res: CheckResult, sections: list[dict] | None = None,
         "doc_control": review.document_control(res),
         "rule_count": len(res.table.rules),
         "assumption_groups": _assumption_groups(res),
-        "sections": [dict(x, groups=_groups(x["blocks"]))
-                     for x in _figure_sources(sections, figures, pending)],
         "rule_rows": rule_rows,
         "rule_files": [f.replace("\\", "/").split("/")[-1] for f in res.table.files],
         "overrides": res.table.overrides,
@@ -578,15 +588,20 @@ def build_report(res: CheckResult, progress: Progress | None = None,
     book_job = None
     try:
         wp = _weasyprint() if engine is None else None
-        env = _environment()
-        clock.stage("PDF engine import")
+        # while the drawing processes build the sections: the template compiled, the pages
+        # before the sections and the sections the job was started without (the remedies and
+        # corners, found after it)
+        template = _environment().get_template("report.html")
+        front = front_context(res, results_file)
+        own = [SECTIONS[m](res) for m in modules_with_sections(res) if m not in job.mods]
+        extra_sheets = _extra_sheets(res)
+        clock.stage("template and front pages" if engine is not None
+                    else "PDF engine import, template and front pages")
         children = _children_cpu()
-        sections = job.result()
-        # the sections the job was started without (the remedies and corners, found after it)
-        sections += [SECTIONS[m](res) for m in modules_with_sections(res) if m not in job.mods]
+        sections = job.result() + own
         clock.stage("sections (figures set up)", extra_cpu=_children_cpu() - children)
         sections, extra = _split_details(_plain_sections(sections))
-        extra += _extra_sheets(res)
+        extra += extra_sheets
         say("Writing the results workbook")
         # written while the PDF is laid out (the layout keeps its core: see DRAWING_NICE)
         book_job = Forked(results_book.build, res, extra, nice=DRAWING_NICE)
@@ -599,8 +614,8 @@ def build_report(res: CheckResult, progress: Progress | None = None,
                     b["data_text"] = _data_text(b.get("data"), sheets)
         figures: dict[str, bytes] = {}
         pending: dict[str, tuple[int, int]] = {}
-        html = env.get_template("report.html").render(**context(res, sections, results_file,
-                                                                figures, pending))
+        html = template.render(**context(res, sections, results_file, figures, pending,
+                                         front))
         clock.stage("HTML")
         if engine is not None:
             pdf, pages, book = _in_engine(engine, html, figures, pending, job, book_job, say,
