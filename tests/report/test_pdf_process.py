@@ -94,3 +94,78 @@ def test_bad_input_ends_the_engine_with_the_command(tmp_path):
     assert out.exit_code == 2
     assert not (tmp_path / "r.pdf").exists()
     assert set(mp.active_children()) <= before
+
+
+def _result_files() -> set[str]:
+    import glob
+    import tempfile
+
+    return set(glob.glob("/dev/shm/checker-result-*")) | set(
+        glob.glob(f"{tempfile.gettempdir()}/checker-result-*"))
+
+
+def test_the_drawing_host_draws_the_same_report(res):
+    """Drawing processes forked by the host started before the analysis (matplotlib imported
+    there) give the PDF of drawing processes forked afterwards, byte for byte; the pickled
+    result is removed and no process is left."""
+    from checker.report.sections import start_host
+
+    here = build_report(res, want_html=False)
+    before = _result_files()
+    host = start_host(nice=5)
+    engine = pdf_process.start()
+    try:
+        there = build_report(res, want_html=False, engine=engine, host=host)
+    finally:
+        engine.close()
+        host.close()
+    assert there.pdf == here.pdf
+    assert _result_files() == before
+    assert not [p for p in mp.active_children() if p.name.startswith("Process")]
+
+
+def test_a_result_that_does_not_pickle_is_drawn_by_processes_forked_then(res):
+    from checker.report.sections import SectionJob, start_host
+
+    host = start_host(nice=5)
+    process = host.process
+    res.unpicklable = lambda: None  # a result carrying something pickle refuses
+    try:
+        job = SectionJob(res, defer=True, host=host, modules=["joints", "balance"])
+        sections = job.result()
+        job.images()
+    finally:
+        del res.unpicklable
+        host.close()
+    assert [s["id"] for s in sections] == ["joints", "balance"]
+    assert job.host is None and not process.is_alive()
+
+
+def test_a_failing_section_ends_the_host_and_its_drawing_processes(res):
+    from checker.report.sections import SECTIONS, SectionJob, start_host
+
+    def boom(_res):
+        raise ValueError("section failed on purpose")
+
+    SECTIONS["boom"] = boom
+    host = start_host(nice=5)
+    process = host.process
+    before = _result_files()
+    try:
+        job = SectionJob(res, defer=True, host=host, modules=["boom", "joints"])
+        with pytest.raises(ValueError, match="on purpose"):
+            job.result()
+    finally:
+        del SECTIONS["boom"]
+        host.close()
+    assert not process.is_alive() and _result_files() == before
+
+
+def test_an_unused_host_ends_when_closed():
+    from checker.report.sections import start_host
+
+    host = start_host(nice=5)
+    process = host.process
+    host.close()
+    assert not process.is_alive() and process.exitcode is not None
+    host.close()  # twice is harmless
