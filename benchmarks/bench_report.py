@@ -8,9 +8,8 @@ written by ``checker template``) it measures, each in a fresh process, ``--runs`
 * ``checker check`` whole process (process start to exit, output to a file);
 * ``checker report`` whole process (process start to PDF written);
 * a stage-timing run of the same report, as `checker report` runs it: the PDF engine
-  process (WeasyPrint imported and warmed) and the drawing host (matplotlib imported) started
-  before the analysis; imports, analysis (the heat balance in a forked process), template and
-  front pages, sections (the drawing processes forked by the host build them, figures as
+  process (WeasyPrint imported and warmed) started before the analysis; imports, analysis,
+  sections (the drawing processes, forked after the analysis, build them, figures as
   placeholders), HTML, results workbook (a forked process, while the engine
   lays the PDF out), figures drawn beside the layout (the wait for the drawing processes),
   waiting for the PDF engine, and the engine's own PDF layout and PDF write (of which:
@@ -54,22 +53,18 @@ import json, sys, time
 t0 = time.perf_counter(); c0 = time.process_time()
 from checker import api
 from checker.report import render
-try:  # the PDF engine and the drawing host started before the analysis, as `checker
-    # report` starts them
+try:  # the PDF engine process started before the analysis, as `checker report` does
     from checker.report.pdf_process import start
-    from checker.report.sections import start_host
-except ImportError:  # a tree from before them
-    start = start_host = lambda **k: None  # noqa: E731
+except ImportError:  # a tree from before it
+    start = lambda: None  # noqa: E731
 engine = start()
-host = start_host(nice=getattr(render, "DRAWING_NICE", 0))
 t1 = time.perf_counter(); c1 = time.process_time()
-res = api.check(sys.argv[1], parallel=True) if engine is not None else api.check(sys.argv[1])
+res = api.check(sys.argv[1])
 t2 = time.perf_counter(); c2 = time.process_time()
 rep = (render.build_report(res, want_html=False) if engine is None
-       else render.build_report(res, want_html=False, engine=engine, host=host))
-for p in (engine, host):
-    if p is not None:
-        p.close()
+       else render.build_report(res, want_html=False, engine=engine))
+if engine is not None:
+    engine.close()
 with open(sys.argv[2], "wb") as f:
     f.write(rep.pdf)
 t3 = time.perf_counter()
