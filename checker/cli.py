@@ -433,13 +433,9 @@ def report(workbook, rules, select, ignore, fail_on, output, html_out, results_o
     outs = [pdf_path] + [Path(x) for x in (html_out, results_out) if x]
     _outputs_writable(outs, workbook)
     from .report.pdf_process import start as start_pdf_engine
-    from .report.render import DRAWING_NICE
-    from .report.sections import start_host
 
-    # WeasyPrint and matplotlib imported and set up in processes of their own (the PDF
-    # engine, the drawing host) while the analysis runs here
+    # WeasyPrint imported and set up in a process of its own while the analysis runs here
     engine = start_pdf_engine()
-    host = start_host(nice=DRAWING_NICE)
     try:
         prog("Reading the workbook and running the analyses")
         cache: dict | None = {} if (remedies or corners) else None
@@ -454,7 +450,7 @@ def report(workbook, rules, select, ignore, fail_on, output, html_out, results_o
             from .report.render import start_drawing
 
             # the figures drawn with the processor time the search leaves idle
-            drawing = start_drawing(res, prog, host)
+            drawing = start_drawing(res, prog)
         try:
             _attach_extras(res, workbook, rules, select, ignore, remedies, corners, levers_file,
                            cache, prog)
@@ -467,7 +463,7 @@ def report(workbook, rules, select, ignore, fail_on, output, html_out, results_o
 
             rep = build_report(res, progress=prog, want_html=bool(html_out),
                                results_file=Path(results_out).name if results_out else None,
-                               drawing=drawing, engine=engine, host=host)
+                               drawing=drawing, engine=engine)
         except Exception as exc:  # noqa: BLE001
             prog.done()
             _fail(exc)
@@ -485,8 +481,6 @@ def report(workbook, rules, select, ignore, fail_on, output, html_out, results_o
     finally:
         if engine is not None:
             engine.close()
-        if host is not None:  # not given to a drawing job (the command failed before)
-            host.close()
 
 
 @main.command()

@@ -32,7 +32,6 @@ from .sections import SECTIONS, SectionJob, modules_with_sections
 
 if TYPE_CHECKING:
     from .pdf_process import PdfEngine
-    from .sections import DrawingHost
 
 WEASYPRINT_HELP = (
     "WeasyPrint could not load its system libraries (Pango). Install them, e.g. on Debian/"
@@ -570,8 +569,8 @@ not so little that other work on a shared machine starves the drawing."""
 
 def build_report(res: CheckResult, progress: Progress | None = None,
                  results_file: str | None = None, want_html: bool = True,
-                 drawing: SectionJob | None = None, engine: PdfEngine | None = None,
-                 host: DrawingHost | None = None) -> Report:
+                 drawing: SectionJob | None = None, engine: PdfEngine | None = None
+                 ) -> Report:
     """Figures, HTML, PDF layout and file, with the results workbook attached; the
     standalone HTML (figures as data URIs) when ``want_html``.
 
@@ -579,15 +578,13 @@ def build_report(res: CheckResult, progress: Progress | None = None,
     before the remedies' search); the sections it lacks (remedies and corners) are built
     here. ``engine``: the PDF engine process started before the analysis
     (:func:`checker.report.pdf_process.start`), which lays the PDF out and writes it (the
-    report's ``document`` is then None); without it, this process does. ``host``: the
-    drawing host started before the analysis (:func:`checker.report.sections.start_host`),
-    which forks the drawing processes (else they are forked here)."""
+    report's ``document`` is then None); without it, this process does."""
     say = progress or (lambda _text: None)
     clock = _Clock()
     # workers build the sections while this process imports the PDF engine, then draw their
     # figures while it lays the PDF out (placeholders of the figures' size in the layout)
     job = drawing if drawing is not None else SectionJob(res, progress, defer=True,
-                                                         nice=DRAWING_NICE, host=host)
+                                                         nice=DRAWING_NICE)
     book_job = None
     try:
         wp = _weasyprint() if engine is None else None
@@ -751,13 +748,12 @@ class _FigureCache(dict):
         self.filled = True
 
 
-def start_drawing(res: CheckResult, progress: Progress | None = None,
-                  host: DrawingHost | None = None) -> SectionJob:
+def start_drawing(res: CheckResult, progress: Progress | None = None) -> SectionJob:
     """The module sections of ``res`` drawn from now on in worker processes at the lowest
     priority: started before the remedies' and corners' search, they take the processor time
     that the search leaves idle (its rounds wait for their slowest variant) instead of
-    running after it. Give the job to :func:`build_report`. ``host``: see there."""
-    return SectionJob(res, progress, nice=19, defer=True, host=host)
+    running after it. Give the job to :func:`build_report`."""
+    return SectionJob(res, progress, nice=19, defer=True)
 
 
 def _children_cpu() -> float:

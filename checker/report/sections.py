@@ -203,13 +203,12 @@ class SectionJob:
 
     def __init__(self, res: CheckResult, progress: Callable[[str], None] | None = None,
                  workers: int | None = None, modules: list[str] | None = None,
-                 nice: int = 0, defer: bool = False, host: DrawingHost | None = None):
+                 nice: int = 0, defer: bool = False):
         """``modules``: the sections to build (default: every section of ``res``);
         ``nice``: the workers' scheduling priority increment (``os.nice``): drawing started
         before other work of the command (the remedies' search) takes only the processor time
         that work leaves idle; ``defer``: figures drawn after every section is built (see the
-        class); ``host``: a process started before the analysis with matplotlib imported
-        (:func:`start_host`), which forks the drawing processes (``workers`` is then its)."""
+        class)."""
         import multiprocessing as mp
         import os
 
@@ -225,20 +224,14 @@ class SectionJob:
         self._sections: dict[str, dict] = {}
         self._images: dict[tuple[int, int], bytes] = {}
         self._done: set[int] = set()
-        self.host: DrawingHost | None = None
         cores = os.cpu_count() or 1
-        order = sorted(self.mods, key=lambda m: (m not in SLOW_FIRST,
-                                                 SLOW_FIRST.index(m) if m in SLOW_FIRST
-                                                 else 0))
-        if host is not None and self.mods and host.take(self, order, nice, defer):
-            if progress is not None:
-                for m in order:
-                    progress(f"Drawing the {LABELS.get(m, m)} figures")
-            return
         if not self.mods or cores < 2 or "fork" not in mp.get_all_start_methods():
             return
         n = max(1, min(len(self.mods), workers or cores))
         ctx = mp.get_context("fork")
+        order = sorted(self.mods, key=lambda m: (m not in SLOW_FIRST,
+                                                 SLOW_FIRST.index(m) if m in SLOW_FIRST
+                                                 else 0))
         tasks = ctx.SimpleQueue()
         for m in order + [None] * n:  # a few short items: they fit the pipe's buffer
             tasks.put(m)
@@ -333,16 +326,12 @@ class SectionJob:
             for c in self.conns:
                 c.close()
             self.procs, self._open = [], {}
-            if self.host is not None:
-                self.host.close()
         return self._images
 
     def close(self) -> None:
         """End the drawing processes without waiting for the sections (the command failed
         before it needed them)."""
         procs, self.procs, self._open = self.procs, [], {}
-        if self.host is not None:  # it ends its drawing processes
-            self.host.close()
         for p in procs:
             if p.is_alive():
                 p.terminate()
@@ -350,180 +339,6 @@ class SectionJob:
             p.join()
         for c in self.conns:
             c.close()
-
-
-class _Grandchild:
-    """A drawing process forked by the :class:`DrawingHost` (not this process's child: the
-    host ends it); stands in for a ``multiprocessing.Process`` in :class:`SectionJob`."""
-
-    exitcode = None
-
-    def is_alive(self) -> bool:
-        return False
-
-    def terminate(self) -> None:
-        pass
-
-    def join(self, timeout: float | None = None) -> None:
-        pass
-
-
-def _host(control, tasks, sends: list, nice: int) -> None:
-    """The drawing host: imports matplotlib and the sections, waits for ``("draw", path,
-    defer, more_nice)`` (the check result pickled in the file ``path``), then forks one drawing
-    process per connection of ``sends`` (:func:`_drawer`) and waits for them. SIGTERM ends
-    it and them."""
-    import os
-    import pickle
-    import signal
-
-    from . import plots
-
-    global _RESULT
-    children: list[int] = []
-
-    def end(_signum, _frame) -> None:
-        for pid in children:
-            try:
-                os.kill(pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
-        os._exit(1)
-
-    signal.signal(signal.SIGINT, signal.SIG_DFL)  # Ctrl-C: the parent handles it
-    signal.signal(signal.SIGTERM, end)
-    _unblock_signals(_SIGNALS)  # held back by the parent while it forked
-    _worker_start(nice)
-    plots.pyplot()
-    load_sections()
-    try:
-        msg = control.recv()
-    except EOFError:
-        return
-    if msg is None:
-        return
-    _, path, defer, more = msg
-    _worker_start(more)
-    with open(path, "rb") as f:
-        _RESULT = pickle.load(f)
-    blocked = _block_signals()  # each drawing process sets its handlers first
-    try:
-        for w, conn in enumerate(sends):
-            pid = os.fork()
-            if pid == 0:
-                code = 0
-                try:
-                    for other in sends:
-                        if other is not conn:
-                            other.close()
-                    _drawer(w, tasks, conn, 0, defer)
-                except BaseException:  # noqa: BLE001 - _drawer sends its own errors
-                    code = 1
-                finally:
-                    os._exit(code)
-            children.append(pid)
-    finally:
-        _unblock_signals(blocked)
-    for conn in sends:
-        conn.close()  # the drawing processes' copies only: their end of file says they ended
-    for pid in children:
-        os.waitpid(pid, 0)
-
-
-class DrawingHost:
-    """A process forked before the analysis that imports matplotlib while the analysis runs
-    (about 0.3 s of processor time otherwise spent between the analysis and the PDF layout)
-    and then forks the drawing processes of a :class:`SectionJob`, which take the check result
-    pickled through a file in memory. :meth:`close` ends it and its drawing processes."""
-
-    def __init__(self, process, control, conns: list, tasks, nice: int):
-        self.process, self.control, self.conns, self.tasks = process, control, conns, tasks
-        self.nice = nice
-        self._file: str | None = None
-
-    def take(self, job: SectionJob, order: list[str], nice: int, defer: bool) -> bool:
-        """Give ``job``'s sections to the host; False (the host ended) where the result does
-        not pickle or the host is gone: the job then forks its own drawing processes."""
-        import os
-        import pickle
-        import tempfile
-
-        if self.process is None or not self.process.is_alive():
-            self.close()
-            return False
-        shm = "/dev/shm" if os.path.isdir("/dev/shm") else None
-        fd, path = tempfile.mkstemp(prefix="checker-result-", suffix=".pickle", dir=shm)
-        try:
-            with os.fdopen(fd, "wb") as f:
-                pickle.dump(job.res, f, protocol=pickle.HIGHEST_PROTOCOL)
-        except Exception:  # noqa: BLE001 - something of the result does not pickle
-            os.unlink(path)
-            self.close()
-            return False
-        self._file = path
-        for m in order + [None] * len(self.conns):
-            self.tasks.put(m)
-        self.control.send(("draw", path, defer, max(0, nice - self.nice)))
-        job.defer, job.host = defer, self
-        job.procs = [_Grandchild() for _ in self.conns]
-        job.conns = list(self.conns)
-        job._open = dict(enumerate(job.conns))
-        self.conns = []
-        return True
-
-    def close(self) -> None:
-        """End the host and its drawing processes (at once if they are still working); the
-        pickled result removed."""
-        import os
-
-        p, self.process = self.process, None
-        if p is not None:
-            if p.is_alive():
-                try:
-                    self.control.send(None)
-                except OSError:
-                    pass
-                p.join(timeout=0.05)
-            if p.is_alive():
-                p.terminate()
-            p.join()
-            self.control.close()
-        for c in self.conns:
-            c.close()
-        self.conns = []
-        path, self._file = self._file, None
-        if path is not None:
-            try:
-                os.unlink(path)
-            except OSError:
-                pass
-
-
-def start_host(workers: int | None = None, nice: int = 5) -> DrawingHost | None:
-    """The drawing host (:class:`DrawingHost`) forked now, at priority increment ``nice``, for
-    ``workers`` drawing processes (default: one per core); None where the platform cannot fork
-    or has one core."""
-    import multiprocessing as mp
-    import os
-
-    cores = os.cpu_count() or 1
-    if cores < 2 or "fork" not in mp.get_all_start_methods():
-        return None
-    ctx = mp.get_context("fork")
-    tasks = ctx.SimpleQueue()
-    pipes = [ctx.Pipe(duplex=False) for _ in range(workers or cores)]
-    control_recv, control_send = ctx.Pipe(duplex=False)
-    blocked = _block_signals()  # see SectionJob: the child sets its handlers first
-    try:
-        p = ctx.Process(target=_host, args=(control_recv, tasks, [s for _, s in pipes], nice),
-                        daemon=True)
-        p.start()
-    finally:
-        _unblock_signals(blocked)
-    control_recv.close()
-    for _, send in pipes:
-        send.close()  # the host's and its drawing processes' copies only
-    return DrawingHost(p, control_send, [r for r, _ in pipes], tasks, nice)
 
 
 def param_table(caption: str, items: list[tuple[str, str]], pairs: int = 2) -> dict:
