@@ -8,9 +8,9 @@ written by ``checker template``) it measures, each in a fresh process, ``--runs`
 * ``checker check`` whole process (process start to exit, output to a file);
 * ``checker report`` whole process (process start to PDF written);
 * a stage-timing run of the same report, as `checker report` runs it: the PDF engine
-  process (WeasyPrint imported and warmed) started before the analysis; imports, analysis,
-  sections (the drawing processes, forked after the analysis, build them, figures as
-  placeholders), HTML, results workbook (a forked process, while the engine
+  process (WeasyPrint imported and warmed) started before the analysis; imports, analysis
+  (the heat balance in a forked process), template and front pages, sections (the drawing
+  processes, forked after the analysis, build them, figures as placeholders), HTML, results workbook (a forked process, while the engine
   lays the PDF out), figures drawn beside the layout (the wait for the drawing processes),
   waiting for the PDF engine, and the engine's own PDF layout and PDF write (of which:
   waiting for the figures): wall time and processor time per stage.
@@ -59,7 +59,7 @@ except ImportError:  # a tree from before it
     start = lambda: None  # noqa: E731
 engine = start()
 t1 = time.perf_counter(); c1 = time.process_time()
-res = api.check(sys.argv[1])
+res = api.check(sys.argv[1], parallel=True) if engine is not None else api.check(sys.argv[1])
 t2 = time.perf_counter(); c2 = time.process_time()
 rep = (render.build_report(res, want_html=False) if engine is None
        else render.build_report(res, want_html=False, engine=engine))
