@@ -12,8 +12,9 @@ written by ``checker template``) it measures, each in a fresh process, ``--runs`
   (the heat balance in a forked process), template and front pages, sections (the drawing
   processes, forked after the analysis, build them, figures as placeholders), HTML, results
   workbook (a forked process, while the engine lays the PDF out), figures drawn beside the
-  layout (the wait for the drawing processes), waiting for the PDF engine, and the engine's own PDF layout and PDF write (of which:
-  waiting for the figures): wall time and processor time per stage.
+  layout (the wait for the drawing processes), waiting for the PDF engine, and the engine's
+  own PDF layout and PDF write (of which: waiting for the figures): wall time and processor
+  time per stage.
 
 With ``--before`` (an earlier source tree, the folder holding ``checker/``) the same commands
 run alternately with that tree and this one (before, after, before, after...), and it
