@@ -15,13 +15,41 @@ _CALL: tuple | None = None
 in; the value comes back pickled)."""
 
 
-def _start(nice: int = 0) -> None:
-    """In the forked process: an interrupt (Ctrl-C reaches the whole process group) ends it at
-    once; the parent handles the interrupt. ``nice``: scheduling priority increment."""
+SIGNALS = ("SIGINT", "SIGTERM")
+"""The interruptions a command handles itself (:mod:`checker.interrupt`) and its forked
+processes leave to it."""
+
+
+def hold_signals() -> tuple[str, ...]:
+    """Hold SIGINT and SIGTERM back in this thread while forking (where the platform can): a
+    signal reaching a child between its fork and :func:`child_start` would raise the parent's
+    exception there, with a traceback. Returns the names held, for :func:`release_signals`."""
+    import signal
+
+    if not hasattr(signal, "pthread_sigmask"):
+        return ()
+    signal.pthread_sigmask(signal.SIG_BLOCK, [getattr(signal, n) for n in SIGNALS])
+    return SIGNALS
+
+
+def release_signals(names: tuple[str, ...]) -> None:
+    """Deliver the signals :func:`hold_signals` held back (pending ones arrive now)."""
+    import signal
+
+    if names and hasattr(signal, "pthread_sigmask"):
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, [getattr(signal, n) for n in names])
+
+
+def child_start(nice: int = 0) -> None:
+    """In a forked process: an interrupt (Ctrl-C reaches the whole process group) or a SIGTERM
+    from the parent ends it at once, the parent handling the interruption; the signals held
+    while it was forked are delivered now; its scheduling priority lowered by ``nice``."""
     import os
     import signal
 
     signal.signal(signal.SIGINT, signal.SIG_DFL)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    release_signals(SIGNALS)
     if nice:
         try:
             os.nice(nice)
@@ -55,7 +83,7 @@ class Forked:
         _CALL = (fn, args)
         try:
             self.pool = ProcessPoolExecutor(1, mp_context=mp.get_context("fork"),
-                                            initializer=_start, initargs=(nice,))
+                                            initializer=child_start, initargs=(nice,))
             self.future = self.pool.submit(_call)  # forks now, with _CALL set
         finally:
             _CALL = None
@@ -103,21 +131,17 @@ class ForkedCall:
         self.fn, self.args, self.pid, self.fd = fn, args, None, None
         if not hasattr(os, "fork") or (os.cpu_count() or 1) < 2:
             return
-        import signal
-
-        held = [signal.SIGINT, signal.SIGTERM]
         read, write = os.pipe()
-        # signals held while forking: the child sets its own handlers first (see _child)
-        signal.pthread_sigmask(signal.SIG_BLOCK, held)
+        held = hold_signals()
         try:
             pid = os.fork()
             if pid == 0:  # the child never returns from here
                 os.close(read)
-                _child(write, fn, args, held)
+                _child(write, fn, args)
             os.close(write)
             self.pid, self.fd = pid, read
         finally:
-            signal.pthread_sigmask(signal.SIG_UNBLOCK, held)
+            release_signals(held)
 
     @property
     def forked(self) -> bool:
@@ -159,18 +183,15 @@ class ForkedCall:
             self.pid = None
 
 
-def _child(fd: int, fn: Callable[..., Any], args: tuple, held: list) -> None:
+def _child(fd: int, fn: Callable[..., Any], args: tuple) -> None:
     """In the forked child: compute, send ``(ok, value or exception)`` pickled, and leave at
     once (``os._exit``: no clean-up of the parent's state, no flush of its buffers)."""
     import os
     import pickle
-    import signal
 
     code = 0
     try:
-        signal.signal(signal.SIGINT, signal.SIG_DFL)  # Ctrl-C: the parent handles it
-        signal.signal(signal.SIGTERM, signal.SIG_DFL)
-        signal.pthread_sigmask(signal.SIG_UNBLOCK, held)
+        child_start()
         try:
             data = pickle.dumps((True, fn(*args)), protocol=pickle.HIGHEST_PROTOCOL)
         except BaseException as exc:  # noqa: BLE001 - every failure goes to the parent

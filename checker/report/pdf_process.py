@@ -54,14 +54,10 @@ class _ProgressToParent(logging.Handler):
 
 def _serve(conn) -> None:
     """The engine process: import and warm WeasyPrint, then lay out and write one report."""
-    import signal
-
+    from ..forked import child_start
     from ..gc_tuning import fewer_collections
-    from .sections import _SIGNALS, _unblock_signals
 
-    signal.signal(signal.SIGINT, signal.SIG_DFL)  # Ctrl-C: the command handles it
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # ended by the command: die quietly
-    _unblock_signals(_SIGNALS)  # held back by the command while it forked
+    child_start()  # Ctrl-C and SIGTERM: the command handles them
     try:
         from . import render
 
@@ -96,8 +92,6 @@ def _lay_out_and_write(conn, render, wp, html_class, html: str, figures: dict[st
                        pending: dict[str, tuple[int, int]]):
     """The PDF of ``html`` (figures served from ``figures``; those in ``pending`` replaced by
     the drawn ones the command sends): ``(pdf, pages, wall and processor times)``."""
-    from . import results_book
-
     t, c = time.perf_counter(), time.process_time()
     images = render._FigureCache()
     logger = logging.getLogger("weasyprint.progress")
@@ -118,12 +112,7 @@ def _lay_out_and_write(conn, render, wp, html_class, html: str, figures: dict[st
             raise RuntimeError(f"the PDF engine expected the drawn figures, got {kind!r}")
         return value
 
-    images.arm(figures, pending, drawn)
-    pdf = render._write(wp, doc, html, [(results_book.ATTACHMENT_NAME, book,
-                                         "Every computed quantity, the rule results and the"
-                                         " plot data of this report")])
-    if not images.filled:
-        raise RuntimeError("the PDF was written without its drawn figures")
+    pdf = render.write_with_figures(wp, doc, html, book, images, figures, pending, drawn)
     times["write"] = (time.perf_counter() - t, time.process_time() - c)
     times["wait"] = (images.wait, 0.0)
     return pdf, len(doc.pages), times
@@ -201,17 +190,17 @@ def start() -> PdfEngine | None:
     import multiprocessing as mp
     import os
 
-    from .sections import _block_signals, _unblock_signals
+    from ..forked import hold_signals, release_signals
 
     if (os.cpu_count() or 1) < 2 or "fork" not in mp.get_all_start_methods():
         return None
     ctx = mp.get_context("fork")
     mine, theirs = ctx.Pipe(duplex=True)
-    blocked = _block_signals()  # see SectionJob: the child sets its own handlers first
+    blocked = hold_signals()  # until the child has its own handlers
     try:
         p = ctx.Process(target=_serve, args=(theirs,), daemon=True)
         p.start()
     finally:
-        _unblock_signals(blocked)
+        release_signals(blocked)
     theirs.close()
     return PdfEngine(p, mine)

@@ -486,6 +486,21 @@ def _write(wp, doc, html: str, attachments) -> bytes:
         return doc.write_pdf(pdf_identifier=ident, attachments=files)
 
 
+def write_with_figures(wp, doc, html: str, book: bytes, images: _FigureCache,
+                       figures: dict[str, bytes], pending: dict[str, tuple[int, int]],
+                       drawn: Callable[[], dict[tuple[int, int], bytes]]) -> bytes:
+    """The laid-out report's PDF with the results workbook ``book`` attached; the figures
+    still being drawn (``pending``) are fetched from ``drawn()`` when the writer first reads
+    one (:meth:`_FigureCache.arm`). Never written with a placeholder."""
+    images.arm(figures, pending, drawn)
+    pdf = _write(wp, doc, html, [(results_book.ATTACHMENT_NAME, book,
+                                  "Every computed quantity, the rule results and the plot"
+                                  " data of this report")])
+    if not images.filled:
+        raise RuntimeError("the PDF was written without its drawn figures")
+    return pdf
+
+
 FLATE_LEVEL = 6
 """zlib level of the PDF's compressed streams. The PDF writer (pydyf) compresses each page's
 content stream at level 9; level 6 (zlib's default) gives a file 0.2 % larger in a fifth less
@@ -638,14 +653,8 @@ def build_report(res: CheckResult, progress: Progress | None = None,
         children = _children_cpu()
         book = book_job.result()
         clock.stage("results workbook", extra_cpu=_children_cpu() - children)
-        # the figures still being drawn are fetched when the PDF writer first reads one
-        images.arm(figures, pending, job.images)
         say(f"Writing the PDF ({len(doc.pages)} pages)")
-        pdf = _write(wp, doc, html, [(results_book.ATTACHMENT_NAME, book,
-                                      "Every computed quantity, the rule results and the"
-                                      " plot data of this report")])
-        if not images.filled:
-            raise RuntimeError("the PDF was written without its drawn figures")
+        pdf = write_with_figures(wp, doc, html, book, images, figures, pending, job.images)
     except BaseException:  # no drawing or workbook process outlives the report
         job.close()
         if book_job is not None:

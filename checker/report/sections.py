@@ -113,38 +113,6 @@ _RESULT: CheckResult | None = None
 _ARG: CheckResult | None = None
 
 
-_SIGNALS = ("SIGINT", "SIGTERM")
-
-
-def _block_signals() -> tuple[str, ...]:
-    """Hold SIGINT and SIGTERM back in this thread (where the platform can): the names held."""
-    import signal
-
-    if not hasattr(signal, "pthread_sigmask"):
-        return ()
-    signal.pthread_sigmask(signal.SIG_BLOCK, [getattr(signal, n) for n in _SIGNALS])
-    return _SIGNALS
-
-
-def _unblock_signals(names: tuple[str, ...]) -> None:
-    """Deliver the signals :func:`_block_signals` held back (pending ones arrive now)."""
-    import signal
-
-    if names and hasattr(signal, "pthread_sigmask"):
-        signal.pthread_sigmask(signal.SIG_UNBLOCK, [getattr(signal, n) for n in names])
-
-
-def _worker_start(nice: int) -> None:
-    """In a drawing process: lower its priority by ``nice``."""
-    import os
-
-    if nice:
-        try:
-            os.nice(nice)
-        except OSError:
-            pass
-
-
 SLOW_FIRST = ("torsion", "loads", "fatigue", "bearings")
 """Sections with the most figures, started first so that the workers stay busy."""
 
@@ -155,15 +123,11 @@ def _drawer(worker: int, tasks, conn, nice: int, defer: bool) -> None:
     figures are placeholders (:class:`checker.report.plots.Deferred`) and it draws them after
     the last section, ``("images", None, {(worker, index): image})``; then ``("done", None,
     None)``. An exception of a section is sent as ``("error", module, exception)``."""
-    import signal
-
+    from ..forked import child_start
     from ..gc_tuning import fewer_collections
     from . import plots
 
-    signal.signal(signal.SIGINT, signal.SIG_DFL)  # Ctrl-C: the parent handles it
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # ended by the parent: die quietly
-    _unblock_signals(_SIGNALS)  # held back by the parent while it forked
-    _worker_start(nice)
+    child_start(nice)  # Ctrl-C and SIGTERM: the parent handles them
     fewer_collections()  # a short-lived process building many objects (see there)
     plots.DEFERRED = [] if defer else None
     plots.DRAWER = worker
@@ -212,6 +176,8 @@ class SectionJob:
         import multiprocessing as mp
         import os
 
+        from ..forked import hold_signals, release_signals
+
         global _RESULT
         self.res = res
         load_sections()
@@ -245,7 +211,7 @@ class SectionJob:
         # SIGINT and SIGTERM held back while the processes are forked: a signal that reached
         # a child between its fork and its own handlers (in _drawer) would raise the parent's
         # exception there, with a traceback; each child takes them once its handlers are set
-        blocked = _block_signals()
+        blocked = hold_signals()
         try:
             for w in range(n):
                 recv, send = ctx.Pipe(duplex=False)
@@ -261,7 +227,7 @@ class SectionJob:
             raise
         finally:
             _RESULT = None
-            _unblock_signals(blocked)
+            release_signals(blocked)
         if progress is not None:  # drawn in parallel from now on; told here (stderr is ours)
             for m in order:
                 progress(f"Drawing the {LABELS.get(m, m)} figures")
