@@ -17,8 +17,9 @@ written by ``checker template``) it measures, each in a fresh process, ``--runs`
   time per stage.
 
 With ``--before`` (an earlier source tree, the folder holding ``checker/``) the same commands
-run alternately with that tree and this one (before, after, before, after...), and it
-prints the ratio after/before of each pair and their median: on a machine shared with other
+run alternately with that tree and this one (before, after, before, after...), each tree on
+the example workbook its own ``checker template`` writes (as a user of that version would),
+and it prints the ratio after/before of each pair and their median: on a machine shared with other
 work the ratio of a pair holds when the absolute times drift.
 
 Byte code is cached (``PYTHONPYCACHEPREFIX`` in a temporary folder), as after an ordinary
@@ -117,10 +118,10 @@ def _engine(eng: str, tree: Path, runs: int, d: Path, wb: Path) -> dict:
     pdf = d / f"{eng}.pdf"
     check, report, stage_runs, report_cpu, check_cpu = [], [], [], [], []
     for _ in range(runs):
-        check.append(_timed([py, "-m", "checker.cli", "check", str(wb), "-o",
+        check.append(_timed([py, "-m", "checker", "check", str(wb), "-o",
                              str(d / "out.txt")], tree))
         check_cpu.append(CPU[-1])
-        report.append(_timed([py, "-m", "checker.cli", "report", str(wb), "-o", str(pdf),
+        report.append(_timed([py, "-m", "checker", "report", str(wb), "-o", str(pdf),
                               "--quiet"], tree))
         report_cpu.append(CPU[-1])
         r = subprocess.run([py, "-c", DRIVER, str(wb), str(pdf)], env=_env(tree),
@@ -178,16 +179,20 @@ def main() -> None:
     out: dict[str, dict[str, dict]] = {t: {} for t in trees}
     with tempfile.TemporaryDirectory() as d:
         for eng in args.engines.split(","):
-            wb = Path(d) / f"engine-{eng}.xlsx"
-            subprocess.run([py, "-m", "checker.cli", "template", str(wb), "--engine", eng,
-                            "--force"], env=_env(), check=True, capture_output=True)
-            for tree in trees.values():  # warm-up: byte code written, files cached
-                _timed([py, "-m", "checker.cli", "check", str(wb), "-o",
+            # each tree checks its own example workbook (an earlier tree may not read the
+            # sheets a later one added)
+            wbs = {t: Path(d) / f"engine-{eng}-{t}.xlsx" for t in trees}
+            for t, tree in trees.items():
+                subprocess.run([py, "-m", "checker.cli", "template", str(wbs[t]), "--engine",
+                                eng, "--force"], env=_env(tree), check=True,
+                               capture_output=True, cwd=tempfile.gettempdir())
+            for t, tree in trees.items():  # warm-up: byte code written, files cached
+                _timed([py, "-m", "checker", "check", str(wbs[t]), "-o",
                         str(Path(d) / "out.txt")], tree)
             runs: dict[str, list[dict]] = {t: [] for t in trees}
             for _ in range(args.runs):  # alternately: before, after, before, after...
                 for t, tree in trees.items():
-                    runs[t].append(_engine(eng, tree, 1, Path(d), wb))
+                    runs[t].append(_engine(eng, tree, 1, Path(d), wbs[t]))
             for t in trees:
                 rs = runs[t]
                 merged = {k: statistics.median(r[k] for r in rs)

@@ -125,23 +125,52 @@ class ForkedCall:
     process where the platform cannot fork or has one core. :meth:`result` waits for the value
     (or raises the call's exception); :meth:`close` ends the child at once."""
 
-    def __init__(self, fn: Callable[..., Any], *args: Any):
+    def __init__(self, fn: Callable[..., Any], *args: Any, fed: bool = False, nice: int = 0):
+        """``fed``: ``fn`` takes one more argument, a function that returns the object this
+        process gives later with :meth:`feed` (waiting for it): the child starts on what it
+        can do before that object exists. ``nice``: the child's scheduling priority increment
+        (``os.nice``)."""
         import os
 
         self.fn, self.args, self.pid, self.fd = fn, args, None, None
+        self.fed, self.feed_fd, self._fed = fed, None, None
         if not hasattr(os, "fork") or (os.cpu_count() or 1) < 2:
             return
         read, write = os.pipe()
+        feed_read, feed_write = os.pipe() if fed else (None, None)
         held = hold_signals()
         try:
             pid = os.fork()
             if pid == 0:  # the child never returns from here
                 os.close(read)
-                _child(write, fn, args)
+                if fed:
+                    os.close(feed_write)
+                    args = (*args, _Receiver(feed_read))
+                _child(write, fn, args, nice)
             os.close(write)
-            self.pid, self.fd = pid, read
+            if fed:
+                os.close(feed_read)
+            self.pid, self.fd, self.feed_fd = pid, read, feed_write
         finally:
             release_signals(held)
+
+    def feed(self, value: Any) -> None:
+        """Give the child of a ``fed`` call its object (once)."""
+        import os
+        import pickle
+
+        if not self.fed:
+            raise RuntimeError("feed() of a call that takes nothing later")
+        if self.feed_fd is None:
+            self._fed = (value,)
+            return
+        fd, self.feed_fd = self.feed_fd, None
+        data = pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)
+        try:  # its length first: processes forked since hold the pipe too (no end of file)
+            with os.fdopen(fd, "wb") as f:
+                f.write(len(data).to_bytes(8, "little") + data)
+        except BrokenPipeError:  # the child failed before reading: result() says why
+            pass
 
     @property
     def forked(self) -> bool:
@@ -153,7 +182,13 @@ class ForkedCall:
         import pickle
 
         if self.pid is None:
-            return self.fn(*self.args)
+            if not self.fed:
+                return self.fn(*self.args)
+            if self._fed is None:
+                raise RuntimeError("result() of a fed call before feed()")
+            return self.fn(*self.args, lambda: self._fed[0])
+        if self.feed_fd is not None:
+            raise RuntimeError("result() of a fed call before feed()")
         with os.fdopen(self.fd, "rb") as f:
             self.fd = None
             data = f.read()
@@ -171,9 +206,10 @@ class ForkedCall:
         import os
         import signal
 
-        if self.fd is not None:
-            os.close(self.fd)
-            self.fd = None
+        for name in ("fd", "feed_fd"):
+            if getattr(self, name) is not None:
+                os.close(getattr(self, name))
+                setattr(self, name, None)
         if self.pid is not None:
             try:
                 os.kill(self.pid, signal.SIGKILL)
@@ -183,7 +219,37 @@ class ForkedCall:
             self.pid = None
 
 
-def _child(fd: int, fn: Callable[..., Any], args: tuple) -> None:
+class _Receiver:
+    """In the child of a fed call: reads what the parent gives from the start, in a thread
+    (the parent's write never waits for the child to be ready for it); calling it returns the
+    object (waiting for it)."""
+
+    def __init__(self, fd: int):
+        import threading
+
+        self._data = b""
+        self._thread = threading.Thread(target=self._read, args=(fd,), daemon=True)
+        self._thread.start()
+
+    def _read(self, fd: int) -> None:
+        import os
+
+        with os.fdopen(fd, "rb") as f:
+            head = f.read(8)
+            if len(head) == 8:
+                self._data = f.read(int.from_bytes(head, "little"))
+
+    def __call__(self) -> Any:
+        import pickle
+
+        self._thread.join()
+        if not self._data:
+            raise RuntimeError("the parent process ended without giving the forked call its"
+                               " input")
+        return pickle.loads(self._data)
+
+
+def _child(fd: int, fn: Callable[..., Any], args: tuple, nice: int = 0) -> None:
     """In the forked child: compute, send ``(ok, value or exception)`` pickled, and leave at
     once (``os._exit``: no clean-up of the parent's state, no flush of its buffers)."""
     import os
@@ -191,7 +257,7 @@ def _child(fd: int, fn: Callable[..., Any], args: tuple) -> None:
 
     code = 0
     try:
-        child_start()
+        child_start(nice)
         try:
             data = pickle.dumps((True, fn(*args)), protocol=pickle.HIGHEST_PROTOCOL)
         except BaseException as exc:  # noqa: BLE001 - every failure goes to the parent

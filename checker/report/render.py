@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING
 from .. import __version__
 from ..api import CheckResult
 from ..caveats import estimate_caveat
-from ..forked import Forked
+from ..forked import ForkedCall
 from ..resources import templates_dir
 from . import results_book, review, summary
 from .sections import SECTIONS, SectionJob, modules_with_sections
@@ -598,9 +598,15 @@ def build_report(res: CheckResult, progress: Progress | None = None,
     clock = _Clock()
     # workers build the sections while this process imports the PDF engine, then draw their
     # figures while it lays the PDF out (placeholders of the figures' size in the layout)
-    job = drawing if drawing is not None else SectionJob(res, progress, defer=True,
-                                                         nice=DRAWING_NICE)
-    book_job = None
+    # the results workbook's quantity sheets written from now on, in a process of its own
+    # (while pyplot is imported and the sections are built), the sections' tables given later
+    book_job = ForkedCall(results_book.build_fed, res, fed=True, nice=DRAWING_NICE)
+    try:
+        job = drawing if drawing is not None else SectionJob(res, progress, defer=True,
+                                                             nice=DRAWING_NICE)
+    except BaseException:
+        book_job.close()
+        raise
     try:
         wp = _weasyprint() if engine is None else None
         # while the drawing processes build the sections: the template compiled, the pages
@@ -618,8 +624,8 @@ def build_report(res: CheckResult, progress: Progress | None = None,
         sections, extra = _split_details(_plain_sections(sections))
         extra += extra_sheets
         say("Writing the results workbook")
-        # written while the PDF is laid out (the layout keeps its core: see DRAWING_NICE)
-        book_job = Forked(results_book.build, res, extra, nice=DRAWING_NICE)
+        # finished while the PDF is laid out (the layout keeps its core: see DRAWING_NICE)
+        book_job.feed(extra)
         from .results_book import sheet_names
 
         sheets = sheet_names(res, extra)
@@ -657,8 +663,7 @@ def build_report(res: CheckResult, progress: Progress | None = None,
         pdf = write_with_figures(wp, doc, html, book, images, figures, pending, job.images)
     except BaseException:  # no drawing or workbook process outlives the report
         job.close()
-        if book_job is not None:
-            book_job.close()
+        book_job.close()
         raise
     clock.stage("PDF write")
     clock.wall["of which waiting for the figures"] = images.wait
@@ -668,7 +673,7 @@ def build_report(res: CheckResult, progress: Progress | None = None,
 
 
 def _in_engine(engine: PdfEngine, html: str, figures: dict[str, bytes],
-               pending: dict[str, tuple[int, int]], job: SectionJob, book_job: Forked,
+               pending: dict[str, tuple[int, int]], job: SectionJob, book_job: ForkedCall,
                say: Progress, clock: _Clock) -> tuple[bytes, int, bytes]:
     """The PDF laid out and written by the engine process: the HTML sent, then the results
     workbook and the drawn figures (``figures`` gets them, for the standalone HTML) as they

@@ -9,6 +9,7 @@ says, under each plot, which sheet holds its data.
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 
 import numpy as np
 
@@ -199,7 +200,21 @@ def build(res: CheckResult, extra: list[dict] | None = None) -> bytes:
 
     ``extra``: further sheets ``{"sheet", "title", "columns", "rows"}`` (the curves of the
     report's crank-angle plots)."""
-    from .xlsx import write
+    return finish(prepare(res), res, extra)
+
+
+def build_fed(res: CheckResult, extra: Callable[[], list[dict]]) -> bytes:
+    """:func:`build` with the quantities' sheets written before ``extra()`` (which may wait
+    for the report's sections) gives the further sheets: the bulk of the workbook is done
+    while the sections are being built (:class:`checker.forked.ForkedCall` with ``fed``)."""
+    prepared = prepare(res)
+    return finish(prepared, res, extra())
+
+
+def prepare(res: CheckResult) -> dict:
+    """The quantities' sheets of the workbook, their XML written (most of :func:`build`'s
+    work), and the index rows naming them; :func:`finish` completes the workbook."""
+    from .xlsx import sheet_xml
 
     source = res.engine.source.replace("\\", "/").split("/")[-1]
     contents = [[f"Results of the design-rule check: {res.engine.name}"],
@@ -223,14 +238,24 @@ def build(res: CheckResult, extra: list[dict] | None = None) -> bytes:
         header, rows, disp = quantity_rows(res, q)
         if q.name == "loads.cycle":
             rows = rows + _cycle_rows(q)
-        sheets.append({"name": name, "rows": [[q.spec.description],
-                                              [f"unit: {unit_text(disp) or '-'}"], header,
-                                              *rows],
-                       "bold_rows": (0, 2), "widths": [18] * len(header[:1])})
+        sheets.append({"name": name, "xml": sheet_xml(
+            [[q.spec.description], [f"unit: {unit_text(disp) or '-'}"], header, *rows],
+            (0, 2), [18] * len(header[:1]))})
         desc = q.spec.description + ("; below: IMEP, its target and the pressure traces"
                                      if q.name == "loads.cycle" else "")
         contents.append([name, q.name, desc, unit_text(disp) or "-",
                          " x ".join(q.spec.dims)])
+    return {"contents": contents, "sheets": sheets, "used": used}
+
+
+def finish(prepared: dict, res: CheckResult, extra: list[dict] | None = None) -> bytes:
+    """The workbook from :func:`prepare`'s sheets, the further sheets ``extra`` (see
+    :func:`build`), the index and the rule results."""
+    from .xlsx import write
+
+    contents = list(prepared["contents"])
+    sheets = list(prepared["sheets"])
+    used = set(prepared["used"])
     for e in extra or []:
         name = sheet_name(e["sheet"])
         if name in used:

@@ -63,7 +63,11 @@ def _col(i: int) -> str:
 _COLS = [_col(i) for i in range(400)]
 
 
-def _sheet_xml(rows: list[list], bold_rows: set[int], widths: list[float] | None) -> str:
+def sheet_xml(rows: list[list], bold_rows: set[int] | tuple[int, ...] = (),
+              widths: list[float] | None = None) -> str:
+    """The XML of one sheet (``rows``, ``bold_rows``, ``widths``: see :func:`write`), for a
+    sheet written ahead of the workbook (``{"name", "xml"}`` in :func:`write`)."""
+    bold_rows = set(bold_rows)
     out = ['<?xml version="1.0" encoding="UTF-8" standalone="yes"?>\n<worksheet xmlns="'
            'http://schemas.openxmlformats.org/spreadsheetml/2006/main">']
     if widths:
@@ -96,7 +100,8 @@ def _sheet_xml(rows: list[list], bold_rows: set[int], widths: list[float] | None
 def write(sheets: list[dict]) -> bytes:
     """An .xlsx file from ``[{"name", "rows", "bold_rows" (row indices, optional),
     "widths" (column widths in characters, optional)}]``; values are str, int, float, bool
-    or None (an empty cell)."""
+    or None (an empty cell). A sheet may come as ``{"name", "xml"}``, its XML written
+    beforehand by :func:`sheet_xml`."""
     buf = io.BytesIO()
     with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED, compresslevel=6) as z:
         def put(name: str, text: str) -> None:
@@ -116,6 +121,6 @@ def write(sheets: list[dict]) -> bytes:
             '.xml"/>' for i in range(n))))
         put("xl/styles.xml", _STYLES)
         for i, s in enumerate(sheets):
-            put(f"xl/worksheets/sheet{i + 1}.xml",
-                _sheet_xml(s["rows"], set(s.get("bold_rows", ())), s.get("widths")))
+            put(f"xl/worksheets/sheet{i + 1}.xml", s["xml"] if "xml" in s else
+                sheet_xml(s["rows"], s.get("bold_rows", ()), s.get("widths")))
     return buf.getvalue()
