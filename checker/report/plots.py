@@ -260,7 +260,7 @@ def later(size_mm: tuple[float, float], draw: Callable[..., Png], *args) -> Png:
     is drawn: values that do not change after this call."""
     if DEFERRED is None:
         return draw(*args)
-    png = _placeholder(planned_size(*size_mm), size_mm[0])
+    png = _placeholder(planned_size(*size_mm), size_mm[0] * MM * 25.4)  # as figwidth * 25.4
     DEFERRED.append((draw, args))
     return png
 

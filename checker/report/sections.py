@@ -16,7 +16,11 @@ plots):
   texts drawn on it in ``png.texts``): ``data`` names where the numbers behind
   the plot are: quantity names (their sheets in the results workbook) and/or extra sheets
   ``{"sheet", "title", "columns", "rows"}`` for curves that are not quantities (crank-angle
-  traces); the report says so under the plot.
+  traces); the report says so under the plot. ``png`` comes from
+  :func:`checker.report.plots.later` with a module-level function that makes the figure from
+  its arguments and returns :func:`~checker.report.plots.to_image` of it: the report builds its
+  sections without matplotlib and draws the figures in other processes while the PDF is laid
+  out (each argument is used then: pass values, not something changed afterwards).
 * ``{"type": "equations", "items": [(name, equation, source)]}``, ``{"type": "text",
   "text"}``, ``{"type": "list", "items"}``, ``{"type": "heading", "text"}``.
 
@@ -112,7 +116,7 @@ def _one(module: str, res: CheckResult, progress: Callable[[str], None] | None =
 def _drawer(tasks, conn, nice: int) -> None:
     """A drawing process: draws the deferred figures (:data:`checker.report.plots.DEFERRED`,
     inherited by fork) whose places it takes from ``tasks`` (None: no more) and sends each
-    to the parent, ``("image", key, bytes)``; then ``("done", None, None)``. An exception is
+    to the parent, ``("image", key, image)``; then ``("done", None, None)``. An exception is
     sent as ``("error", None, exception)``."""
     from ..forked import child_start
     from ..gc_tuning import fewer_collections
@@ -122,7 +126,7 @@ def _drawer(tasks, conn, nice: int) -> None:
     fewer_collections()  # a short-lived process building many objects (see there)
     try:
         while (i := tasks.get()) is not None:
-            conn.send(("image", (plots.DRAWER, i), bytes(plots.draw_deferred(i))))
+            conn.send(("image", (plots.DRAWER, i), plots.draw_deferred(i)))
         conn.send(("done", None, None))
     except BaseException as exc:  # noqa: BLE001 - every failure goes to the parent
         try:
