@@ -596,30 +596,31 @@ def build_report(res: CheckResult, progress: Progress | None = None,
     report's ``document`` is then None); without it, this process does."""
     say = progress or (lambda _text: None)
     clock = _Clock()
+    # workers build the sections while this process imports the PDF engine, then draw their
+    # figures while it lays the PDF out (placeholders of the figures' size in the layout)
     # the results workbook's quantity sheets written from now on, in a process of its own
-    # (while the sections are built), the sections' tables given later
+    # (while pyplot is imported and the sections are built), the sections' tables given later
     book_job = ForkedCall(results_book.build_fed, res, fed=True, nice=DRAWING_NICE)
     try:
-        # the sections built here with their figures as placeholders of the figures' size
-        # (no matplotlib needed): the PDF is laid out from them while drawing processes,
-        # started once the HTML is sent, draw the figures
         job = drawing if drawing is not None else SectionJob(res, progress, defer=True,
                                                              nice=DRAWING_NICE)
     except BaseException:
         book_job.close()
         raise
     try:
-        clock.stage("sections (figures set up)")
         wp = _weasyprint() if engine is None else None
-        # the template compiled, the pages before the sections and the sections the job was
-        # made without (the remedies and corners, found after it)
+        # while the drawing processes build the sections: the template compiled, the pages
+        # before the sections and the sections the job was started without (the remedies and
+        # corners, found after it)
         template = _environment().get_template("report.html")
         front = front_context(res, results_file)
         own = [SECTIONS[m](res) for m in modules_with_sections(res) if m not in job.mods]
         extra_sheets = _extra_sheets(res)
         clock.stage("template and front pages" if engine is not None
                     else "PDF engine import, template and front pages")
+        children = _children_cpu()
         sections = job.result() + own
+        clock.stage("sections (figures set up)", extra_cpu=_children_cpu() - children)
         sections, extra = _split_details(_plain_sections(sections))
         extra += extra_sheets
         say("Writing the results workbook")
@@ -637,9 +638,7 @@ def build_report(res: CheckResult, progress: Progress | None = None,
         html = template.render(**context(res, sections, results_file, figures, pending,
                                          front))
         clock.stage("HTML")
-        if engine is None:
-            job.start()  # the figures drawn while this process lays the PDF out
-        else:
+        if engine is not None:
             pdf, pages, book = _in_engine(engine, html, figures, pending, job, book_job, say,
                                           clock)
             return Report(pdf, standalone_html(html, figures) if want_html else "", book,
@@ -681,8 +680,6 @@ def _in_engine(engine: PdfEngine, html: str, figures: dict[str, bytes],
     are ready; the engine's progress told meanwhile. ``(pdf, pages, results workbook)``;
     the engine's stage times in ``clock``."""
     engine.lay_out(html, figures, pending)
-    job.start()  # the figures drawn while the engine lays the PDF out
-    clock.stage("drawing processes started (pyplot imported)")
     children = _children_cpu()
     book = book_job.result()
     clock.stage("results workbook", extra_cpu=_children_cpu() - children)
@@ -770,9 +767,7 @@ def start_drawing(res: CheckResult, progress: Progress | None = None) -> Section
     priority: started before the remedies' and corners' search, they take the processor time
     that the search leaves idle (its rounds wait for their slowest variant) instead of
     running after it. Give the job to :func:`build_report`."""
-    job = SectionJob(res, progress, nice=19, defer=True)
-    job.start()
-    return job
+    return SectionJob(res, progress, nice=19, defer=True)
 
 
 def _children_cpu() -> float:

@@ -16,11 +16,7 @@ plots):
   texts drawn on it in ``png.texts``): ``data`` names where the numbers behind
   the plot are: quantity names (their sheets in the results workbook) and/or extra sheets
   ``{"sheet", "title", "columns", "rows"}`` for curves that are not quantities (crank-angle
-  traces); the report says so under the plot. ``png`` comes from
-  :func:`checker.report.plots.later` with a module-level function that makes the figure from
-  its arguments and returns :func:`~checker.report.plots.to_image` of it: the report builds its
-  sections without matplotlib and draws the figures in other processes while the PDF is laid
-  out (each argument is used then: pass values, not something changed afterwards).
+  traces); the report says so under the plot.
 * ``{"type": "equations", "items": [(name, equation, source)]}``, ``{"type": "text",
   "text"}``, ``{"type": "list", "items"}``, ``{"type": "heading", "text"}``.
 
@@ -102,31 +98,53 @@ def modules_with_sections(res: CheckResult) -> list[str]:
 
 def build_sections(res: CheckResult, progress: Callable[[str], None] | None = None
                    ) -> list[dict]:
-    """Sections of the modules that ran, in module order, their figures drawn."""
+    """Sections of the modules that ran, in module order (figures drawn in worker processes
+    where the platform can fork)."""
     return SectionJob(res, progress).result()
 
 
-def _one(module: str, res: CheckResult, progress: Callable[[str], None] | None = None
-         ) -> dict:
+def _one(module: str, progress: Callable[[str], None] | None = None) -> dict:
     if progress is not None:
         progress(f"Drawing the {LABELS.get(module, module)} figures")
-    return SECTIONS[module](res)
+    return SECTIONS[module](_RESULT if _RESULT is not None else _ARG)
 
 
-def _drawer(tasks, conn, nice: int) -> None:
-    """A drawing process: draws the deferred figures (:data:`checker.report.plots.DEFERRED`,
-    inherited by fork) whose places it takes from ``tasks`` (None: no more) and sends each
-    to the parent, ``("image", key, image)``; then ``("done", None, None)``. An exception is
-    sent as ``("error", None, exception)``."""
+_RESULT: CheckResult | None = None
+_ARG: CheckResult | None = None
+
+
+SLOW_FIRST = ("torsion", "loads", "fatigue", "bearings")
+"""Sections with the most figures, started first so that the workers stay busy."""
+
+
+def _drawer(worker: int, tasks, conn, nice: int, defer: bool) -> None:
+    """A drawing process: builds the sections of the modules it takes from ``tasks`` (None:
+    no more) and sends each to the parent, ``("section", module, dict)``; with ``defer`` its
+    figures are placeholders (:class:`checker.report.plots.Deferred`) and it draws them after
+    the last section, ``("images", None, {(worker, index): image})``; then ``("done", None,
+    None)``. An exception of a section is sent as ``("error", module, exception)``."""
     from ..forked import child_start
     from ..gc_tuning import fewer_collections
     from . import plots
 
     child_start(nice)  # Ctrl-C and SIGTERM: the parent handles them
     fewer_collections()  # a short-lived process building many objects (see there)
+    plots.DEFERRED = [] if defer else None
+    plots.DRAWER = worker
     try:
-        while (i := tasks.get()) is not None:
-            conn.send(("image", (plots.DRAWER, i), plots.draw_deferred(i)))
+        while (module := tasks.get()) is not None:
+            # progress is told by the parent (it owns stderr)
+            conn.send(("section", module, _one(module, None)))
+        if defer:
+            images = {}
+            for i in range(len(plots.DEFERRED)):
+                size = plots.pixel_size(plots.DEFERRED[i])
+                png = plots.draw_deferred(i)
+                if plots.image_size(png) != size:
+                    raise RuntimeError("a figure was drawn at another size than its"
+                                       " placeholder")
+                images[(worker, i)] = png
+            conn.send(("images", None, images))
         conn.send(("done", None, None))
     except BaseException as exc:  # noqa: BLE001 - every failure goes to the parent
         try:
@@ -138,72 +156,58 @@ def _drawer(tasks, conn, nice: int) -> None:
 
 
 class SectionJob:
-    """The report's sections, built in this process when the job is made.
+    """Sections being built in forked drawing processes (matplotlib is single-threaded and
+    drawing dominates a section's time) while the caller does other work; :meth:`result`
+    waits for the sections. Sequential where fork is unavailable or with one core.
 
-    With ``defer`` (where the platform can fork and has two cores or more) their figures are
-    placeholders of their exact pixel size (:class:`checker.report.plots.Deferred`, key
-    ``png.key``): the sections need no matplotlib and are ready at once, the PDF can be laid
-    out from them, and the figures are built and drawn by forked drawing processes from
-    :meth:`start` on (matplotlib is single-threaded); :meth:`images` waits for them. Without
-    ``defer`` the figures are drawn here while the sections are built."""
+    With ``defer`` the figures of the sections are placeholders of their exact pixel size
+    (:class:`checker.report.plots.Deferred`, key ``png.key``): the sections arrive when their
+    content is known and their figures built, and the processes draw the figures while the
+    caller lays the PDF out; :meth:`images` waits for them."""
 
     def __init__(self, res: CheckResult, progress: Callable[[str], None] | None = None,
                  workers: int | None = None, modules: list[str] | None = None,
                  nice: int = 0, defer: bool = False):
         """``modules``: the sections to build (default: every section of ``res``);
-        ``workers``: drawing processes (default: one per core); ``nice``: their scheduling
-        priority increment (``os.nice``): drawing started before other work of the command
-        (the remedies' search) takes only the processor time that work leaves idle;
-        ``defer``: figures drawn later, in other processes (see the class)."""
+        ``nice``: the workers' scheduling priority increment (``os.nice``): drawing started
+        before other work of the command (the remedies' search) takes only the processor time
+        that work leaves idle; ``defer``: figures drawn after every section is built (see the
+        class)."""
         import multiprocessing as mp
         import os
 
-        from . import plots
+        from ..forked import hold_signals, release_signals
 
+        global _RESULT
         self.res = res
         load_sections()
         self.mods = modules_with_sections(res) if modules is None else list(modules)
         self.progress = progress
-        self.nice = nice
-        cores = os.cpu_count() or 1
-        self.workers = max(1, workers or cores)
-        self.defer = defer and cores >= 2 and "fork" in mp.get_all_start_methods()
+        self.defer = False
         self.procs: list = []
         self.conns: list = []
         self._open: dict[int, object] = {}
+        self._sections: dict[str, dict] = {}
         self._images: dict[tuple[int, int], bytes] = {}
         self._done: set[int] = set()
-        self._started = False
-        self.figures: list = []
-        if self.defer:
-            plots.DEFERRED, plots.DRAWER = [], 0
-        try:
-            self._sections = [_one(m, res, None if self.defer else progress)
-                              for m in self.mods]
-        finally:
-            if self.defer:
-                self.figures, plots.DEFERRED = plots.DEFERRED, None
-
-    def start(self) -> None:
-        """Start drawing the deferred figures in forked processes (once)."""
-        if self._started or not self.figures:
-            self._started = True
+        cores = os.cpu_count() or 1
+        if not self.mods or cores < 2 or "fork" not in mp.get_all_start_methods():
             return
-        import multiprocessing as mp
-
-        from ..forked import hold_signals, release_signals
+        n = max(1, min(len(self.mods), workers or cores))
+        ctx = mp.get_context("fork")
+        order = sorted(self.mods, key=lambda m: (m not in SLOW_FIRST,
+                                                 SLOW_FIRST.index(m) if m in SLOW_FIRST
+                                                 else 0))
+        tasks = ctx.SimpleQueue()
+        for m in order + [None] * n:  # a few short items: they fit the pipe's buffer
+            tasks.put(m)
+        self.defer = defer
+        # pyplot imported once here, before the fork, rather than by each drawing process
+        # (about 0.3 s of processor time each; the processes start drawing at once)
         from . import plots
 
-        self._started = True
-        # pyplot imported once here, before the fork, rather than by each drawing process
-        # (about 0.3 s of processor time each)
         plots.pyplot()
-        n = min(len(self.figures), self.workers)
-        ctx = mp.get_context("fork")
-        tasks = ctx.SimpleQueue()
-        for i in list(range(len(self.figures))) + [None] * n:  # short items: the pipe holds them
-            tasks.put(i)
-        plots.DEFERRED = self.figures  # inherited by the drawing processes
+        _RESULT = res
         # SIGINT and SIGTERM held back while the processes are forked: a signal that reached
         # a child between its fork and its own handlers (in _drawer) would raise the parent's
         # exception there, with a traceback; each child takes them once its handlers are set
@@ -211,7 +215,8 @@ class SectionJob:
         try:
             for w in range(n):
                 recv, send = ctx.Pipe(duplex=False)
-                p = ctx.Process(target=_drawer, args=(tasks, send, self.nice), daemon=True)
+                p = ctx.Process(target=_drawer, args=(w, tasks, send, nice, defer),
+                                daemon=True)
                 p.start()
                 send.close()  # the child's copy only: its end of file says it ended
                 self.procs.append(p)
@@ -221,11 +226,11 @@ class SectionJob:
             self.close()
             raise
         finally:
-            plots.DEFERRED = None
+            _RESULT = None
             release_signals(blocked)
-        if self.progress is not None:  # drawn in parallel from now on (stderr is ours)
-            for m in self.mods:
-                self.progress(f"Drawing the {LABELS.get(m, m)} figures")
+        if progress is not None:  # drawn in parallel from now on; told here (stderr is ours)
+            for m in order:
+                progress(f"Drawing the {LABELS.get(m, m)} figures")
 
     def _receive(self, until, also: tuple | None = None) -> None:
         """Messages of the drawing processes until ``until()`` holds; ``also``: ``(connection,
@@ -243,7 +248,7 @@ class SectionJob:
                     continue
                 w = next(k for k, c in self._open.items() if c is conn)
                 try:
-                    kind, key, value = conn.recv()
+                    kind, module, value = conn.recv()
                 except EOFError:
                     del self._open[w]
                     if w not in self._done:
@@ -253,8 +258,10 @@ class SectionJob:
                         raise RuntimeError(f"a drawing process ended (exit code {code})"
                                            " before its figures were drawn") from None
                     continue
-                if kind == "image":
-                    self._images[key] = value
+                if kind == "section":
+                    self._sections[module] = value
+                elif kind == "images":
+                    self._images.update(value)
                 elif kind == "done":
                     self._done.add(w)
                 else:
@@ -262,14 +269,22 @@ class SectionJob:
                     raise value
 
     def result(self) -> list[dict]:
-        """The sections (with ``defer``: their figures placeholders, see :meth:`images`)."""
-        return self._sections
+        global _ARG
+        if not self.procs:
+            _ARG = self.res
+            try:
+                return [_one(m, self.progress) for m in self.mods]
+            finally:
+                _ARG = None
+        self._receive(lambda: len(self._sections) == len(self.mods))
+        if not self.defer:
+            self.images()
+        return [self._sections[m] for m in self.mods]
 
     def images(self, also: tuple | None = None) -> dict[tuple[int, int], bytes]:
-        """The drawn figures of the placeholders, by ``png.key`` (starts the drawing if not
-        started and waits for it; empty without ``defer``). The drawing processes have ended
-        when it returns. ``also``: see :meth:`_receive`."""
-        self.start()
+        """The drawn figures of the placeholders, by ``png.key`` (waits for them; empty
+        without ``defer``). The drawing processes have ended when it returns. ``also``: see
+        :meth:`_receive`."""
         if self.procs:
             self._receive(lambda: len(self._done) == len(self.procs), also)
             for p in self.procs:
@@ -280,10 +295,9 @@ class SectionJob:
         return self._images
 
     def close(self) -> None:
-        """End the drawing processes without waiting for the figures (the command failed
+        """End the drawing processes without waiting for the sections (the command failed
         before it needed them)."""
         procs, self.procs, self._open = self.procs, [], {}
-        self.figures = []
         for p in procs:
             if p.is_alive():
                 p.terminate()
