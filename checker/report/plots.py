@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import io
 import re
+from collections.abc import Callable
 
 LIMIT_STYLE = {"color": "#c0392b", "linestyle": "--", "linewidth": 1.1}
 STATUS_COLORS = {"PASS": "#1e8449", "FAIL": "#c0392b", "WARN": "#d68910",
@@ -49,7 +50,7 @@ _RC = {
     "figure.dpi": 100,
     "text.usetex": False,
     "path.simplify_threshold": 0.3,
-    # a drawing process of the report holds its figures until it draws them (DEFERRED)
+    # the report's sections may hold their built figures until they are drawn (DEFERRED)
     "figure.max_open_warning": 0,
 }
 _PLT = None
@@ -171,20 +172,21 @@ class Png(bytes):
 
 
 DEFERRED: list | None = None
-"""In a drawing process of the report (:class:`checker.report.sections.SectionJob` with
-``defer``): the figures whose drawing :func:`to_image` deferred, ``(figure, dpi)`` in order;
-None (the default): :func:`to_image` draws at once."""
+"""While the report's sections are built for drawing in other processes
+(:class:`checker.report.sections.SectionJob` with ``defer``): the figures deferred so far,
+each a call ``(function, args)`` that builds and draws it (:func:`later`) or a built figure
+(:func:`to_image`), in order; None (the default): figures are drawn at once."""
 
 DRAWER = 0
-"""Number of the drawing process (the first part of a :class:`Deferred` key)."""
+"""The first part of a :class:`Deferred` key (the process that deferred the figure)."""
 
 _PLACEHOLDERS: dict[tuple[int, int], bytes] = {}
 
 
 class Deferred(Png):
     """A figure not drawn yet (:data:`DEFERRED`): a white JPEG of the figure's exact pixel
-    size, so that the PDF can be laid out before the figure is drawn; ``key``: (drawing
-    process :data:`DRAWER`, place in :data:`DEFERRED`), ``size``: (width, height) [px]."""
+    size, so that the PDF can be laid out before the figure is drawn; ``key``: (:data:`DRAWER`,
+    place in :data:`DEFERRED`), ``size``: (width, height) [px]."""
 
     key: tuple[int, int]
     size: tuple[int, int]
@@ -195,6 +197,12 @@ def pixel_size(fig) -> tuple[int, int]:
     dpi (Agg's canvas: the figure's size in pixels, truncated)."""
     w, h = fig.bbox.size
     return int(w), int(h)
+
+
+def planned_size(width_mm: float, height_mm: float, dpi: float = PNG_DPI) -> tuple[int, int]:
+    """:func:`pixel_size` of a figure :func:`figure` makes ``width_mm`` x ``height_mm`` (the
+    same arithmetic as matplotlib's: inches times dpi, truncated), without matplotlib."""
+    return int(width_mm * MM * dpi), int(height_mm * MM * dpi)
 
 
 def image_size(data: bytes) -> tuple[int, int]:
@@ -213,17 +221,10 @@ def _prepare(fig, dpi: float) -> None:
     fig.patch.set_facecolor("white")
 
 
-def to_image(fig, dpi: float = PNG_DPI) -> Png:
-    """Draw and close a figure; returns its image (RGB JPEG; deterministic: no metadata).
-    Raster, because the PDF engine draws vector (SVG) figures in pure Python. In a drawing
-    process that defers its figures (:data:`DEFERRED`), a :class:`Deferred` placeholder of
-    the same size instead; :func:`draw_deferred` draws them later."""
-    _prepare(fig, dpi)
-    if DEFERRED is None:
-        return _draw(fig)
+def _placeholder(size: tuple[int, int], width_mm: float) -> Deferred:
+    """A :class:`Deferred` of ``size`` [px] for the next place in :data:`DEFERRED`."""
     from PIL import Image
 
-    size = pixel_size(fig)
     if size not in _PLACEHOLDERS:
         buf = io.BytesIO()
         Image.new("RGB", size, "white").save(buf, format="JPEG", quality=JPEG_QUALITY,
@@ -231,18 +232,53 @@ def to_image(fig, dpi: float = PNG_DPI) -> Png:
         _PLACEHOLDERS[size] = buf.getvalue()
     png = Deferred(_PLACEHOLDERS[size])
     png.texts = []
-    png.width_mm = fig.get_figwidth() * 25.4
+    png.width_mm = width_mm
     png.key = (DRAWER, len(DEFERRED))
     png.size = size
+    return png
+
+
+def to_image(fig, dpi: float = PNG_DPI) -> Png:
+    """Draw and close a figure; returns its image (RGB JPEG; deterministic: no metadata).
+    Raster, because the PDF engine draws vector (SVG) figures in pure Python. While figures
+    are deferred (:data:`DEFERRED`), a :class:`Deferred` placeholder of the same size instead;
+    :func:`draw_deferred` draws it later."""
+    _prepare(fig, dpi)
+    if DEFERRED is None:
+        return _draw(fig)
+    png = _placeholder(pixel_size(fig), fig.get_figwidth() * 25.4)
     DEFERRED.append(fig)
     return png
 
 
+def later(size_mm: tuple[float, float], draw: Callable[..., Png], *args) -> Png:
+    """The image ``draw(*args)`` returns (a function that makes a figure of ``size_mm``
+    (width, height) with :func:`figure` and returns :func:`to_image` of it). While figures are
+    deferred (:data:`DEFERRED`) the call is kept and a :class:`Deferred` placeholder of the
+    figure's size returned: matplotlib is then not needed to build a report's sections, and
+    the figure is built where it is drawn (:func:`draw_deferred`). ``args`` are used when it
+    is drawn: values that do not change after this call."""
+    if DEFERRED is None:
+        return draw(*args)
+    png = _placeholder(planned_size(*size_mm), size_mm[0] * MM * 25.4)  # as figwidth * 25.4
+    DEFERRED.append((draw, args))
+    return png
+
+
 def draw_deferred(index: int) -> Png:
-    """The image of the figure ``DEFERRED[index]`` (drawn and closed now; the entry freed)."""
-    fig = DEFERRED[index]
+    """The image of the figure ``DEFERRED[index]`` (built if it was deferred as a call, drawn
+    and closed now; the entry freed)."""
+    global DEFERRED
+    item = DEFERRED[index]
     DEFERRED[index] = None
-    return _draw(fig)
+    if not isinstance(item, tuple):
+        return _draw(item)
+    draw, args = item
+    kept, DEFERRED = DEFERRED, None  # the call's own to_image draws at once
+    try:
+        return draw(*args)
+    finally:
+        DEFERRED = kept
 
 
 def _draw(fig) -> Png:

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..api import CheckResult
-from .plots import LIMIT_STYLE, figure, to_image
+from .plots import LIMIT_STYLE, figure, later, to_image
 from .sections import fmt, in_unit, rpm, section
 
 ROUND_OFF = 1e-9
@@ -84,31 +84,8 @@ def balance_section(res: CheckResult) -> dict:
                                "direction [deg from cylinder axis]", "M max [N m]",
                                "crank angle at max [deg]"], "rows": rows})
     # bar chart, log scale, with the project's limits
-    fig, axes = figure(170, 60, ncols=2)
-    for ax, qq, scale, unit, lim_key in ((axes[0], ff, f_scale, "N", "force"),
-                                         (axes[1], fm, m_scale, "N m", "moment")):
-        v = np.where(np.isfinite(qq.values), qq.values, 0.0)
-        shown = np.where(v < ROUND_OFF * scale, np.nan, v)
-        lims = [qq.item_attrs.get(it, {}).get("limit") for it in qq.coords["item"]]
-        if np.isfinite(shown).any():
-            ax.bar(orders, np.nan_to_num(shown, nan=0.0), color="#34495e", width=0.6)
-            ax.set_yscale("log")
-            floor = max(np.nanmin(shown), 1e-3) / 3
-            ax.set_ylim(bottom=floor)
-        else:
-            floor = 0.0
-            ax.set_ylim(0, max([x[0] for x in lims if x is not None] + [1.0]) * 1.2)
-        for i, n in enumerate(orders):
-            if not np.isfinite(shown[i]):
-                ax.text(n, floor * 1.3, "0", ha="center", fontsize=6)
-        for n, lim in zip(orders, lims):
-            if lim is not None:
-                ax.plot([n - 0.4, n + 0.4], [lim[0]] * 2, **LIMIT_STYLE)
-        ax.set_xticks(orders)
-        ax.set_xlabel("Order")
-        ax.set_ylabel(f"Free {lim_key} [{unit}]")
-    fig.subplots_adjust(wspace=0.35)
-    blocks.append({"type": "figure", "png": to_image(fig),
+    blocks.append({"type": "figure",
+                   "png": later((170, 60), _draw_free, orders, ff, fm, f_scale, m_scale),
                    "data": ["balance.free_force", "balance.free_moment"],
                    "caption": f"Free forces and moments per order at {rpm(w):.0f} rpm (log"
                               " scale; '0' = zero to round-off; dashed: project limits)"})
@@ -140,40 +117,7 @@ def balance_section(res: CheckResult) -> dict:
                        " unbalance (negative: the rotating unbalance itself is not fully"
                        " balanced)."})
         # polar plot: per-throw unbalance in the crank frame (seen from the front)
-        fig = figure(130, 72)[0]
-        fig.clf()
-        ax = fig.add_axes((0.04, 0.1, 0.47, 0.8), projection="polar")
-        ax.set_theta_zero_location("N")
-        ax.set_theta_direction(-1)
-        net = bx.rotating + bx.counterweight
-
-        def polar(v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-            return np.arctan2(v[..., 0], v[..., 1]), _kg_mm(np.hypot(v[..., 0], v[..., 1]))
-
-        for vec in net:
-            ang, mag = polar(vec)
-            ax.annotate("", xy=(ang, mag), xytext=(0, 0),
-                        arrowprops={"arrowstyle": "->", "color": "#c0392b", "lw": 1.4})
-        ax.plot([], [], color="#c0392b", label="net (with counterweights)")
-        ax.plot(*polar(bx.rotating), "o", mfc="none", color="#7f8c8d",
-                label="rotating, without counterweights")
-        ax.plot(*polar(bx.counterweight), "x", color="#2c3e50", label="counterweights")
-        groups: dict[float, list[str]] = {}  # throws sharing a direction share a label
-        for j, vec in enumerate(bx.rotating):
-            groups.setdefault(round(float(polar(vec)[0]), 6), []).append(str(j + 1))
-        top = max(polar(bx.rotating)[1].max(), polar(bx.counterweight)[1].max())
-        for ang, labs in groups.items():
-            ax.text(ang, top * 1.12, "throw " + ", ".join(labs), fontsize=6, ha="center",
-                    bbox={"facecolor": "white", "edgecolor": "none", "pad": 0.5})
-        ax.set_rmax(top * 1.25)
-        ax.set_rlabel_position(22.5)
-        ax.tick_params(axis="y", labelsize=5.5)
-        ax.tick_params(axis="x", labelsize=6, pad=1)
-        fig.legend(*ax.get_legend_handles_labels(), loc="center left",
-                   bbox_to_anchor=(0.58, 0.55), frameon=False, fontsize=6.5,
-                   title="radius: unbalance [kg mm]\ncrank frame, seen from the front,"
-                         "\nthrow 1 up", title_fontsize=6.5, alignment="left")
-        blocks.append({"type": "figure", "png": to_image(fig),
+        blocks.append({"type": "figure", "png": later((130, 72), _draw_polar, bx),
                        "data": ["balance.balance_ratio", "balance.internal_moment"],
                        "caption": "Polar diagram of each throw's unbalance seen from the front:"
                                   " net (arrows), without counterweights (circles) and of the"
@@ -199,6 +143,75 @@ def balance_section(res: CheckResult) -> dict:
                      " forces and moments are judged only against the project's own limits"
                      " (warnings).",
             "blocks": blocks}
+
+
+def _draw_free(orders, ff, fm, f_scale: float, m_scale: float) -> bytes:
+    """Free forces and moments per order (bars, log scale) with the project's limits."""
+    fig, axes = figure(170, 60, ncols=2)
+    for ax, qq, scale, unit, lim_key in ((axes[0], ff, f_scale, "N", "force"),
+                                         (axes[1], fm, m_scale, "N m", "moment")):
+        v = np.where(np.isfinite(qq.values), qq.values, 0.0)
+        shown = np.where(v < ROUND_OFF * scale, np.nan, v)
+        lims = [qq.item_attrs.get(it, {}).get("limit") for it in qq.coords["item"]]
+        if np.isfinite(shown).any():
+            ax.bar(orders, np.nan_to_num(shown, nan=0.0), color="#34495e", width=0.6)
+            ax.set_yscale("log")
+            floor = max(np.nanmin(shown), 1e-3) / 3
+            ax.set_ylim(bottom=floor)
+        else:
+            floor = 0.0
+            ax.set_ylim(0, max([x[0] for x in lims if x is not None] + [1.0]) * 1.2)
+        for i, n in enumerate(orders):
+            if not np.isfinite(shown[i]):
+                ax.text(n, floor * 1.3, "0", ha="center", fontsize=6)
+        for n, lim in zip(orders, lims):
+            if lim is not None:
+                ax.plot([n - 0.4, n + 0.4], [lim[0]] * 2, **LIMIT_STYLE)
+        ax.set_xticks(orders)
+        ax.set_xlabel("Order")
+        ax.set_ylabel(f"Free {lim_key} [{unit}]")
+    fig.subplots_adjust(wspace=0.35)
+    return to_image(fig)
+
+
+def _polar(v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Unbalance vectors (x, y) [kg m] as polar angle from throw 1 [rad] and magnitude
+    [kg mm]."""
+    return np.arctan2(v[..., 0], v[..., 1]), _kg_mm(np.hypot(v[..., 0], v[..., 1]))
+
+
+def _draw_polar(bx) -> bytes:
+    """Polar diagram of each throw's unbalance in the crank frame, seen from the front."""
+    fig = figure(130, 72)[0]
+    fig.clf()
+    ax = fig.add_axes((0.04, 0.1, 0.47, 0.8), projection="polar")
+    ax.set_theta_zero_location("N")
+    ax.set_theta_direction(-1)
+    net = bx.rotating + bx.counterweight
+    for vec in net:
+        ang, mag = _polar(vec)
+        ax.annotate("", xy=(ang, mag), xytext=(0, 0),
+                    arrowprops={"arrowstyle": "->", "color": "#c0392b", "lw": 1.4})
+    ax.plot([], [], color="#c0392b", label="net (with counterweights)")
+    ax.plot(*_polar(bx.rotating), "o", mfc="none", color="#7f8c8d",
+            label="rotating, without counterweights")
+    ax.plot(*_polar(bx.counterweight), "x", color="#2c3e50", label="counterweights")
+    groups: dict[float, list[str]] = {}  # throws sharing a direction share a label
+    for j, vec in enumerate(bx.rotating):
+        groups.setdefault(round(float(_polar(vec)[0]), 6), []).append(str(j + 1))
+    top = max(_polar(bx.rotating)[1].max(), _polar(bx.counterweight)[1].max())
+    for ang, labs in groups.items():
+        ax.text(ang, top * 1.12, "throw " + ", ".join(labs), fontsize=6, ha="center",
+                bbox={"facecolor": "white", "edgecolor": "none", "pad": 0.5})
+    ax.set_rmax(top * 1.25)
+    ax.set_rlabel_position(22.5)
+    ax.tick_params(axis="y", labelsize=5.5)
+    ax.tick_params(axis="x", labelsize=6, pad=1)
+    fig.legend(*ax.get_legend_handles_labels(), loc="center left",
+               bbox_to_anchor=(0.58, 0.55), frameon=False, fontsize=6.5,
+               title="radius: unbalance [kg mm]\ncrank frame, seen from the front,"
+                     "\nthrow 1 up", title_fontsize=6.5, alignment="left")
+    return to_image(fig)
 
 
 def _mm(v):

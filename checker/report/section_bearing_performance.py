@@ -8,7 +8,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..api import CheckResult
-from .plots import figure, legend_below, literal, to_image
+from .plots import figure, later, legend_below, literal, to_image
 from .section_loads import (
     CURVE_COLORS,
     bearing_speed_figure,
@@ -160,30 +160,7 @@ def bearing_performance_section(res: CheckResult) -> dict:
     powq = qs.get("bearing.friction_power")
     if ef is not None and powq is not None:
         sp = rpm(np.array(ef.coords["speed"]))
-        fig, axes = figure(170, 70, ncols=2, legend_rows=2)
-        ax = axes[0]
-        for ci, c in enumerate(ef.coords["case"]):
-            ax.plot(sp, in_unit(ef.values[ci], "W", "kW"), label=f"{c} load",
-                    color=CURVE_COLORS[ci], ls="-" if ci == 0 else "--")
-        ax.set_xlabel("Engine speed [rpm]")
-        ax.set_ylabel("Bearing friction power [kW]")
-        ax.set_title("All main and big-end bearings")
-        ax.legend(fontsize=6, loc="upper left")
-        ax = axes[1]
-        k = 0
-        for i, n in enumerate(powq.coords["item"]):
-            typ = powq.item_attrs[n]["type"]
-            v = powq.values[i, 0]
-            if not np.isfinite(v).all():
-                continue
-            ax.plot(sp, v, label=literal(n), color=CURVE_COLORS[k % len(CURVE_COLORS)],
-                    ls="-" if typ == "main" else "--")
-            k += 1
-        ax.set_xlabel("Engine speed [rpm]")
-        ax.set_ylabel("Friction power [W]")
-        ax.set_title(f"Per bearing, {powq.coords['case'][0]} load")
-        legend_below(fig, ncols=9)
-        blocks.append({"type": "figure", "png": to_image(fig),
+        blocks.append({"type": "figure", "png": later((170, 70), _draw_friction, ef, powq, sp),
                        "data": ["engine.bearing_friction_power", "bearing.friction_power"],
                        "caption": "Friction power of the bearing oil films against speed"
                                   " (cycle means; hydrodynamic films only, no piston, valve"
@@ -216,3 +193,32 @@ def bearing_performance_section(res: CheckResult) -> dict:
                       f" {in_unit(ex.t_supply, 'K', '°C'):.0f} °C), converged to"
                       f" {ex.change_max:.2g} K in {ex.evaluations} orbit evaluations.")
     return {"id": "bearing_performance", "title": title, "intro": intro, "blocks": blocks}
+
+
+def _draw_friction(ef, powq, sp) -> bytes:
+    """Bearing friction power of the engine (``ef``) and per bearing (``powq``, first load
+    case) against the speeds ``sp`` [rpm]."""
+    fig, axes = figure(170, 70, ncols=2, legend_rows=2)
+    ax = axes[0]
+    for ci, c in enumerate(ef.coords["case"]):
+        ax.plot(sp, in_unit(ef.values[ci], "W", "kW"), label=f"{c} load",
+                color=CURVE_COLORS[ci], ls="-" if ci == 0 else "--")
+    ax.set_xlabel("Engine speed [rpm]")
+    ax.set_ylabel("Bearing friction power [kW]")
+    ax.set_title("All main and big-end bearings")
+    ax.legend(fontsize=6, loc="upper left")
+    ax = axes[1]
+    k = 0
+    for i, n in enumerate(powq.coords["item"]):
+        typ = powq.item_attrs[n]["type"]
+        v = powq.values[i, 0]
+        if not np.isfinite(v).all():
+            continue
+        ax.plot(sp, v, label=literal(n), color=CURVE_COLORS[k % len(CURVE_COLORS)],
+                ls="-" if typ == "main" else "--")
+        k += 1
+    ax.set_xlabel("Engine speed [rpm]")
+    ax.set_ylabel("Friction power [W]")
+    ax.set_title(f"Per bearing, {powq.coords['case'][0]} load")
+    legend_below(fig, ncols=9)
+    return to_image(fig)

@@ -7,7 +7,7 @@ import numpy as np
 from ..api import CheckResult
 from . import judged as jd
 from .film_methods import film_method_blocks
-from .plots import every, figure, to_image
+from .plots import every, figure, later, to_image
 from .section_loads import (
     bearing_speed_figure,
     lining_text,
@@ -103,47 +103,25 @@ def bearings_section(res: CheckResult) -> dict:
         a = int(np.where(orb.rows == i)[0][0])
         exx, eyy = orb.eps_x[a, ci, k], orb.eps_y[a, ci, k]
         th = np.degrees(orb.theta)
-        fig = figure(170, 72, ncols=2)[0]
-        fig.clf()
-        ax0 = fig.add_axes((0.11, 0.16, 0.28, 0.72), aspect="equal")
-        t = np.linspace(0, 2 * np.pi, 181)
-        ax0.plot(np.cos(t), np.sin(t), color="0.5", lw=0.8, label="clearance circle")
-        ev = every(exx.size, 2)
-        ax0.plot(exx[ev], eyy[ev], lw=1.0, color="#1f77b4", label="journal centre")
-        ax0.set_xlim(-1.05, 1.05)
-        ax0.set_ylim(-1.05, 1.05)
-        ax0.set_xlabel("ε_x (eccentricity / clearance) [-]")
-        ax0.set_ylabel("ε_y [-]")
-        ax0.set_title("Journal orbit")
-        ax1 = fig.add_axes((0.52, 0.16, 0.38, 0.72))
         c_ = bearings[names[i]].clearance
         h = in_unit(c_ * (1 - np.hypot(exx, eyy)), "m", "um")
-        ax1.plot(th[ev], h[ev], color="#1f77b4", label="film thickness h")
-        ax1.set_xlim(0, 720)
-        ax1.set_xticks(np.arange(0, 721, 180))
         bl = res.outcome.quantities.get("loads.bearing_load")
         cols = {"crank angle [°]": th, "eps_x [-]": exx, "eps_y [-]": eyy, "h [µm]": h}
+        load = None
         if bl is not None:
             le = bl.detail
             f = in_unit(np.hypot(le.fx[i, ci, k], le.fy[i, ci, k]), "N", "kN")
-            ax2 = ax1.twinx()
-            fv = every(f.size)
-            ax2.plot(np.degrees(le.theta)[fv], f[fv], color="#c0392b", lw=0.8)
-            ax2.set_ylabel("Bearing load |F| [kN]", color="#c0392b")
-            ax2.tick_params(axis="y", colors="#c0392b")
-            ax2.spines["right"].set_visible(True)
-            ax2.grid(False)
+            load = (np.degrees(le.theta), f)
             if len(le.theta) == th.size:
                 cols["|F| [kN]"] = f
-        ax1.set_xlabel("Crank angle [°]")
-        ax1.set_ylabel("Film thickness h [µm]", color="#1f77b4")
-        ax1.set_title("Film thickness (blue) and load (red) over the cycle")
         names_ = list(cols)
         data = {"sheet": "orbit of the worst case",
                 "title": f"Journal orbit and film of {names[i]}, {cases[ci]} load,"
                          f" {sp[k]:.0f} rpm", "columns": names_,
                 "rows": [[float(cols[n][j]) for n in names_] for j in range(th.size)]}
-        blocks.append({"type": "figure", "png": to_image(fig), "data": [data],
+        blocks.append({"type": "figure", "png": later((170, 72), _draw_orbit, exx, eyy, th, h,
+                                                      load),
+                       "data": [data],
                        "caption": f"Judged worst case (the thinnest film the rules judge):"
                                   f" {names[i]}, {cases[ci]} load, {sp[k]:.0f} rpm; journal"
                                   " orbit (eccentricity ratio in the bearing's frame) and film"
@@ -154,3 +132,38 @@ def bearings_section(res: CheckResult) -> dict:
                      " mean cold clearance: the concept-stage assumptions of Bell,"
                      " Ricardo 2013), at full and no load across the speed range.",
             "blocks": blocks}
+
+
+def _draw_orbit(exx, eyy, th, h, load) -> bytes:
+    """The worst case's journal orbit (eccentricity ratios ``exx``, ``eyy``) and its film
+    thickness ``h`` [µm] over the crank angle ``th`` [°], with the bearing load ``load``
+    ((crank angle [°], |F| [kN]) or None) on a second axis."""
+    fig = figure(170, 72, ncols=2)[0]
+    fig.clf()
+    ax0 = fig.add_axes((0.11, 0.16, 0.28, 0.72), aspect="equal")
+    t = np.linspace(0, 2 * np.pi, 181)
+    ax0.plot(np.cos(t), np.sin(t), color="0.5", lw=0.8, label="clearance circle")
+    ev = every(exx.size, 2)
+    ax0.plot(exx[ev], eyy[ev], lw=1.0, color="#1f77b4", label="journal centre")
+    ax0.set_xlim(-1.05, 1.05)
+    ax0.set_ylim(-1.05, 1.05)
+    ax0.set_xlabel("ε_x (eccentricity / clearance) [-]")
+    ax0.set_ylabel("ε_y [-]")
+    ax0.set_title("Journal orbit")
+    ax1 = fig.add_axes((0.52, 0.16, 0.38, 0.72))
+    ax1.plot(th[ev], h[ev], color="#1f77b4", label="film thickness h")
+    ax1.set_xlim(0, 720)
+    ax1.set_xticks(np.arange(0, 721, 180))
+    if load is not None:
+        lth, f = load
+        ax2 = ax1.twinx()
+        fv = every(f.size)
+        ax2.plot(lth[fv], f[fv], color="#c0392b", lw=0.8)
+        ax2.set_ylabel("Bearing load |F| [kN]", color="#c0392b")
+        ax2.tick_params(axis="y", colors="#c0392b")
+        ax2.spines["right"].set_visible(True)
+        ax2.grid(False)
+    ax1.set_xlabel("Crank angle [°]")
+    ax1.set_ylabel("Film thickness h [µm]", color="#1f77b4")
+    ax1.set_title("Film thickness (blue) and load (red) over the cycle")
+    return to_image(fig)

@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..api import CheckResult
-from .plots import figure, to_image
+from .plots import figure, later, to_image
 from .sections import fmt, section
 
 
@@ -111,7 +111,8 @@ def crank_section(res: CheckResult) -> dict:
                 break
         else:
             distinct.append((str(t.number), t))
-    blocks: list[dict] = [{"type": "figure", "png": _drawing(crank, distinct),
+    drawing = later((170, 62 * len(distinct)), _drawing, crank, list(distinct))
+    blocks: list[dict] = [{"type": "figure", "png": drawing,
                            "data": ["crank.throw_mass"],
                            "caption": "Each distinct throw to scale as the check models it:"
                                       " webs (convex hull of the two web circles),"

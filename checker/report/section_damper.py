@@ -9,7 +9,7 @@ import numpy as np
 from ..api import CheckResult
 from ..display import case_text
 from . import judged as jd
-from .plots import figure, legend_below, to_image
+from .plots import figure, later, legend_below, to_image
 from .sections import display_values, fmt, in_unit, rpm, section
 
 
@@ -98,6 +98,12 @@ def _ends_rows(d, q, cols) -> list[list[str]]:
 
 def _ends_figure(d, caption: str, what: str, data: list[str]) -> dict:
     """Damper temperature and crank-nose amplitude against speed, cold and hot end."""
+    return {"type": "figure", "png": later((170, 64), _draw_ends, d, what), "caption": caption,
+            "data": data}
+
+
+def _draw_ends(d, what: str) -> bytes:
+    """The figure of :func:`_ends_figure`."""
     sp = rpm(d.speeds)
     fig, axes = figure(170, 64, ncols=2, legend_rows=1)
     for c, case in enumerate(d.cases):
@@ -114,7 +120,7 @@ def _ends_figure(d, caption: str, what: str, data: list[str]) -> dict:
     for ax in axes:
         ax.set_xlabel("Engine speed [rpm]")
     legend_below(fig, axes=[axes[0]], ncols=4)
-    return {"type": "figure", "png": to_image(fig), "caption": caption, "data": data}
+    return to_image(fig)
 
 
 def _rubber_ends_blocks(res: CheckResult, q: dict) -> list[dict]:
@@ -313,23 +319,8 @@ def damper_section(res: CheckResult) -> dict:
     on = q.get("damper.optimum_nose_amplitude")
     if on is not None:
         sp = rpm(np.array(on.coords["speed"]))
-        k = ex.cylinder_order_index
-        fig, axes = figure(170, 64, ncols=2, legend_rows=1)
-        for c_i, c in enumerate(on.coords["case"]):
-            for ax, act, opt in ((axes[0], np.abs(ex.actual_theta[c_i, :, k]),
-                                  np.abs(ex.optimum_theta[c_i, :, k])),
-                                 (axes[1], ex.actual_nose_amplitude[c_i],
-                                  on.values[c_i])):
-                line = ax.plot(sp, _deg(act), label=f"actual, {case_text(c)}")[0]
-                ax.plot(sp, _deg(opt), ls="--", color=line.get_color(),
-                        label=f"optimum, {case_text(c)}")
-        axes[0].set_ylabel(f"Nose amplitude, order {ex.cylinder_order:g} [deg]")
-        axes[1].set_ylabel("Nose amplitude, all orders [deg]")
-        axes[1].set_yscale("log")
-        for ax in axes:
-            ax.set_xlabel("Engine speed [rpm]")
-        legend_below(fig, axes=[axes[0]], ncols=4)
-        blocks.append({"type": "figure", "png": to_image(fig),
+        png = later((170, 64), _draw_optimum, sp, list(on.coords["case"]), ex, on.values)
+        blocks.append({"type": "figure", "png": png,
                        "data": ["tv.nose_amplitude", "damper.optimum_nose_amplitude"],
                        "caption": "Crank-nose amplitude, actual damper (solid) and optimum"
                                   " rubber (dashed): the cylinder-count order and all orders"
@@ -349,3 +340,25 @@ def damper_section(res: CheckResult) -> dict:
                      " crank-nose amplitude with the optimum rubber comes from the same"
                      " torsional model with only the rubber changed.",
             "blocks": blocks}
+
+
+def _draw_optimum(sp, cases: list[str], ex, optimum_nose) -> bytes:
+    """Crank-nose amplitude against speed, actual damper and optimum rubber: the
+    cylinder-count order (left) and all orders (right)."""
+    k = ex.cylinder_order_index
+    fig, axes = figure(170, 64, ncols=2, legend_rows=1)
+    for c_i, c in enumerate(cases):
+        for ax, act, opt in ((axes[0], np.abs(ex.actual_theta[c_i, :, k]),
+                              np.abs(ex.optimum_theta[c_i, :, k])),
+                             (axes[1], ex.actual_nose_amplitude[c_i],
+                              optimum_nose[c_i])):
+            line = ax.plot(sp, _deg(act), label=f"actual, {case_text(c)}")[0]
+            ax.plot(sp, _deg(opt), ls="--", color=line.get_color(),
+                    label=f"optimum, {case_text(c)}")
+    axes[0].set_ylabel(f"Nose amplitude, order {ex.cylinder_order:g} [deg]")
+    axes[1].set_ylabel("Nose amplitude, all orders [deg]")
+    axes[1].set_yscale("log")
+    for ax in axes:
+        ax.set_xlabel("Engine speed [rpm]")
+    legend_below(fig, axes=[axes[0]], ncols=4)
+    return to_image(fig)

@@ -12,7 +12,7 @@ from ..modules.fatigue import FACTORS_OF, LOCATIONS, SCF_FIELDS
 from ..results.fatigue import FatigueDetail, GoodmanDetail
 from ..ruletable import not_evaluated_message
 from . import judged as jd
-from .plots import LIMIT_STYLE, figure, legend_below, limit_line, literal, to_image
+from .plots import LIMIT_STYLE, figure, later, legend_below, limit_line, literal, to_image
 from .sections import fmt, in_unit, rpm, section
 
 COLORS = {"pin fillet": "#1f77b4", "main fillet": "#2ca02c", "pin oil hole": "#d62728",
@@ -32,10 +32,6 @@ def _limit(res: CheckResult, quantity: str) -> float | None:
 def mpa(v):
     """Stress(es) in Pa as MPa."""
     return in_unit(v, "Pa", "MPa")
-
-
-def _svg(fig) -> bytes:
-    return to_image(fig)
 
 
 def _inputs(res: CheckResult, ex: FatigueDetail, m53q) -> list[dict]:
@@ -209,6 +205,39 @@ def _plots(res: CheckResult, q) -> list[dict]:
     note = jd.shade_caption([] if judged[list(gov.values())].all() else [jd.reason(q)])
     # Goodman SF vs speed with the limit
     lim = _limit(res, "fatigue.goodman_sf")
+    blocks.append({"type": "figure", "png": later((170, 66), _draw_goodman, q, sp, gov, judged,
+                                                  lim), "data": [q.name], "caption": (
+        f"Lowest Goodman safety factor of each location type against speed (axis clipped at"
+        f" {SF_PLOT_MAX:g}).{note}")})
+    # normalised Haigh (Goodman) diagram
+    grey = False
+    cols: dict[str, list] = {}
+    for i in gov.values():
+        for ci, c in enumerate(cases):
+            grey = grey or bool((~judged[i, ci]).any())
+            name = f"{q.coords['item'][i]}, {case_text(c)}"
+            cols[f"{name}: mean / S_u"] = list(ex.haigh_x[i, ci])
+            cols[f"{name}: alternating / S_e"] = list(ex.haigh_y[i, ci])
+    names = list(cols)
+    data = {"sheet": "Haigh diagram", "title": "Normalised Haigh diagram points per speed",
+            "columns": ["speed [rpm]", *names],
+            "rows": [[float(sp[k]), *[float(cols[n][k]) for n in names]]
+                     for k in range(sp.size)]}
+    blocks.append({"type": "figure", "png": later((170, 80), _draw_haigh, q, gov, judged, lim),
+                   "data": [data], "caption": (
+        "Normalised Haigh (Goodman) diagram: the operating points over the speed range of the"
+        " location of each type with the lowest safety factor (solid: full load, dashed: no"
+        " load; marker: the judged lowest factor). Compressive means are not credited: the"
+        " line is flat for σ_m < 0."
+        + ("" if not grey else f" Grey dotted: computed but not judged ({jd.reason(q)}).")
+        )})
+    return blocks
+
+
+def _draw_goodman(q, sp, gov: dict[str, int], judged, lim: float | None) -> bytes:
+    """Lowest Goodman safety factor of each location type against speed, per load case."""
+    ex: GoodmanDetail = q.detail
+    cases = q.coords["case"]
     fig, axes = figure(170, 66, ncols=len(cases), squeeze=False, sharey=True, wgap=8,
                        legend_rows=1)
     by_loc = ex.sf_by_location
@@ -226,10 +255,13 @@ def _plots(res: CheckResult, q) -> list[dict]:
         ax.set_xlabel("Engine speed [rpm]")
     axes[0, 0].set_ylabel("Goodman safety factor [-]")
     legend_below(fig, ncols=6)
-    blocks.append({"type": "figure", "png": _svg(fig), "data": [q.name], "caption": (
-        f"Lowest Goodman safety factor of each location type against speed (axis clipped at"
-        f" {SF_PLOT_MAX:g}).{note}")})
-    # normalised Haigh (Goodman) diagram
+    return to_image(fig)
+
+
+def _draw_haigh(q, gov: dict[str, int], judged, lim: float | None) -> bytes:
+    """Normalised Haigh (Goodman) diagram of the governing location of each type."""
+    ex: GoodmanDetail = q.detail
+    cases = q.coords["case"]
     fig, ax = figure(170, 80, legend_rows=2)
     x_max = max(1.05, float(np.nanmax(ex.haigh_x[list(gov.values())])) * 1.1)
     xs = np.linspace(min(-0.5, float(np.nanmin(ex.haigh_x[list(gov.values())])) * 1.1),
@@ -239,7 +271,6 @@ def _plots(res: CheckResult, q) -> list[dict]:
         ax.plot(xs, goodman_line(xs, 1.0, 1.0, lim), **LIMIT_STYLE,
                 label=f"SF = {lim:g} (FAT-001)")
     grey = False
-    cols: dict[str, list] = {}
     for loc, i in gov.items():
         for ci, c in enumerate(cases):
             j = judged[i, ci]
@@ -258,28 +289,13 @@ def _plots(res: CheckResult, q) -> list[dict]:
                 k = p.index[-1]
                 ax.plot([hx[k]], [hy[k]], "o" if c == "full" else "^", ms=4,
                         color=COLORS[loc], mfc=COLORS[loc] if c == "full" else "white")
-            name = f"{q.coords['item'][i]}, {case_text(c)}"
-            cols[f"{name}: mean / S_u"] = list(ex.haigh_x[i, ci])
-            cols[f"{name}: alternating / S_e"] = list(ex.haigh_y[i, ci])
     ax.axvline(0, color="k", lw=0.5)
     ax.set_xlim(xs[0], xs[-1])
     ax.set_ylim(0, max(1.1, float(np.nanmax(ex.haigh_y[list(gov.values())])) * 1.1))
     ax.set_xlabel("Equivalent mean stress / S_u [-]")
     ax.set_ylabel("Equivalent alternating stress / S_e [-]")
     legend_below(fig, ncols=4)
-    names = list(cols)
-    data = {"sheet": "Haigh diagram", "title": "Normalised Haigh diagram points per speed",
-            "columns": ["speed [rpm]", *names],
-            "rows": [[float(sp[k]), *[float(cols[n][k]) for n in names]]
-                     for k in range(sp.size)]}
-    blocks.append({"type": "figure", "png": _svg(fig), "data": [data], "caption": (
-        "Normalised Haigh (Goodman) diagram: the operating points over the speed range of the"
-        " location of each type with the lowest safety factor (solid: full load, dashed: no"
-        " load; marker: the judged lowest factor). Compressive means are not credited: the"
-        " line is flat for σ_m < 0."
-        + ("" if not grey else f" Grey dotted: computed but not judged ({jd.reason(q)}).")
-        )})
-    return blocks
+    return to_image(fig)
 
 
 def _worst(res: CheckResult, q, m53q) -> list[dict]:

@@ -7,7 +7,7 @@ import numpy as np
 from ..api import CheckResult
 from ..display import case_text
 from . import judged as jd
-from .plots import figure, legend_below, limit_line, to_image
+from .plots import figure, later, legend_below, limit_line, to_image
 from .sections import display_values, fmt, in_unit, rpm, section
 
 
@@ -90,26 +90,8 @@ def flywheel_section(res: CheckResult) -> dict:
                    "columns": ["case", "speed [rpm]", "ΔE [J]", "Δω [rpm]", "δ [%]",
                                "ΔE/(Jω²) [%]", "min. flywheel [kg m²]"], "rows": rows,
                    "detail": True, "sheet": "Flywheel per speed"})
-    fig, axes = figure(170, 65, ncols=2, legend_rows=1)
-    ax = axes[0]
-    for c_i, c in enumerate(cases):
-        ax.plot(rpm(sp), ci_pct[c_i], label=case_text(c), color=f"C{c_i}")
-    if target is not None:
-        limit_line(ax, _pct(target), f"target δ ≤ {_pct(target):g} %")
-    ax.set_yscale("log")
-    ax.set_xlabel("Engine speed [rpm]")
-    ax.set_ylabel("Cyclic irregularity δ [%]")
-    ax = axes[1]
-    th = in_unit(ex.theta, "rad", "deg")
-    for c_i in range(len(cases)):
-        ax.plot(th, rpm(ex.omega[c_i, k0]), color=f"C{c_i}")
-    ax.axhline(rpm(sp[k0]), color="0.5", lw=0.6, label="mean speed")
-    ax.set_xlabel("Crank angle [deg]")
-    ax.set_ylabel("Speed [rpm]")
-    ax.set_xticks(np.arange(0, 721, 180))
-    ax.set_xlim(0, 720)
-    legend_below(fig, ncols=4)
-    blocks.append({"type": "figure", "png": to_image(fig),
+    blocks.append({"type": "figure", "png": later(
+        (170, 65), _draw_irregularity, sp, cases, ci_pct, target, ex.theta, ex.omega, k0),
                    "data": ["flywheel.cyclic_irregularity"],
                    "caption": "Left: cyclic irregularity against speed (dashed: target)."
                               f" Right: speed over the cycle at {rpm(sp[k0]):.0f} rpm"})
@@ -127,3 +109,28 @@ def flywheel_section(res: CheckResult) -> dict:
 def _pct(v):
     """A dimensionless fraction in percent."""
     return in_unit(v, "", "%")
+
+
+def _draw_irregularity(sp, cases, ci_pct, target, theta, omega, k0) -> bytes:
+    """Cyclic irregularity ``ci_pct`` [%] against the speeds ``sp`` [rad/s] per load case
+    (dashed: ``target``), and the speed ``omega`` over the cycle ``theta`` at speed ``k0``."""
+    fig, axes = figure(170, 65, ncols=2, legend_rows=1)
+    ax = axes[0]
+    for c_i, c in enumerate(cases):
+        ax.plot(rpm(sp), ci_pct[c_i], label=case_text(c), color=f"C{c_i}")
+    if target is not None:
+        limit_line(ax, _pct(target), f"target δ ≤ {_pct(target):g} %")
+    ax.set_yscale("log")
+    ax.set_xlabel("Engine speed [rpm]")
+    ax.set_ylabel("Cyclic irregularity δ [%]")
+    ax = axes[1]
+    th = in_unit(theta, "rad", "deg")
+    for c_i in range(len(cases)):
+        ax.plot(th, rpm(omega[c_i, k0]), color=f"C{c_i}")
+    ax.axhline(rpm(sp[k0]), color="0.5", lw=0.6, label="mean speed")
+    ax.set_xlabel("Crank angle [deg]")
+    ax.set_ylabel("Speed [rpm]")
+    ax.set_xticks(np.arange(0, 721, 180))
+    ax.set_xlim(0, 720)
+    legend_below(fig, ncols=4)
+    return to_image(fig)

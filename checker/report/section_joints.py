@@ -6,7 +6,7 @@ import numpy as np
 
 from ..api import CheckResult
 from ..display import case_text
-from .plots import STATUS_COLORS, figure, legend_below, literal, to_image
+from .plots import STATUS_COLORS, figure, later, legend_below, literal, to_image
 from .sections import display_values, fmt, in_unit, rpm, section
 
 BELL = "Bell, Cranktrain Analysis Using ENGDYN and VALDYN, Ricardo, 2013"
@@ -176,35 +176,42 @@ def _torques(res: CheckResult, cf, tq, comp, comp_cf) -> list[dict]:
                            and np.isfinite(comp_cf.values[i, k]))
                 alt.append(comp_cf.values[i, k] if differs else np.nan)
     if vals:
-        fig, ax = figure(170, 22 + 8 * len(vals), left=34, bottom=10, legend_rows=2)
-        y = np.arange(len(vals))
-        ax.barh(y, vals, color=colors, height=0.55)
-        for yi, ls in zip(y, lims):
-            for v in ls:
-                ax.plot([v, v], [yi - 0.42, yi + 0.42], color="#c0392b", lw=1.4)
-        if np.isfinite(alt).any():
-            ax.plot(alt, y, "D", color="#34495e", ms=3.5, ls="none")
-        ax.set_yticks(y, [literal(x) for x in labels])
-        ax.set_xlabel("Cover factor (slip torque capacity / applied torque)")
-        ax.set_ylim(len(vals) - 0.5, -0.5)
-        ax.grid(axis="x", alpha=0.3)
-        ax.grid(axis="y", visible=False)
-        from matplotlib.lines import Line2D
-        from matplotlib.patches import Patch
-
-        used = dict.fromkeys(c for c in colors)
-        names = {v: k.lower() for k, v in STATUS_COLORS.items()}
-        handles = [Patch(color=c, label=f"{names[c]} (at the torque the rules used)"
-                         if names[c] != "not judged" else "no rule at this point")
-                   for c in used]
-        handles.append(Line2D([], [], color="#c0392b", lw=1.4, label="limit of the rule"))
-        if np.isfinite(alt).any():
-            handles.append(Line2D([], [], marker="D", color="#34495e", ms=3.5, ls="none",
-                                  label="at the torsional model's torque"))
-        legend_below(fig, handles=handles, labels=[h.get_label() for h in handles], ncols=3)
-        blocks.append({"type": "figure", "png": to_image(fig),
+        blocks.append({"type": "figure", "png": later(
+            (170, 22 + 8 * len(vals)), _draw_cover_factors, vals, labels, colors, lims, alt),
                        "data": ["joint.cover_factor", "joint.computed_cover_factor"],
                        "caption": "Joint cover factors coloured by the result of their rules,"
                                   " with each rule's limit (red mark); diamonds: at the"
                                   " torsional model's torque where a given torque was used."})
     return blocks
+
+
+def _draw_cover_factors(vals, labels, colors, lims, alt) -> bytes:
+    """Bars of the joints' cover factors ``vals`` (``labels``; ``colors`` by the status of
+    their rules; ``lims``: each bar's rule limits; ``alt``: at the torsional model's torque)."""
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    fig, ax = figure(170, 22 + 8 * len(vals), left=34, bottom=10, legend_rows=2)
+    y = np.arange(len(vals))
+    ax.barh(y, vals, color=colors, height=0.55)
+    for yi, ls in zip(y, lims):
+        for v in ls:
+            ax.plot([v, v], [yi - 0.42, yi + 0.42], color="#c0392b", lw=1.4)
+    if np.isfinite(alt).any():
+        ax.plot(alt, y, "D", color="#34495e", ms=3.5, ls="none")
+    ax.set_yticks(y, [literal(x) for x in labels])
+    ax.set_xlabel("Cover factor (slip torque capacity / applied torque)")
+    ax.set_ylim(len(vals) - 0.5, -0.5)
+    ax.grid(axis="x", alpha=0.3)
+    ax.grid(axis="y", visible=False)
+    used = dict.fromkeys(c for c in colors)
+    names = {v: k.lower() for k, v in STATUS_COLORS.items()}
+    handles = [Patch(color=c, label=f"{names[c]} (at the torque the rules used)"
+                     if names[c] != "not judged" else "no rule at this point")
+               for c in used]
+    handles.append(Line2D([], [], color="#c0392b", lw=1.4, label="limit of the rule"))
+    if np.isfinite(alt).any():
+        handles.append(Line2D([], [], marker="D", color="#34495e", ms=3.5, ls="none",
+                              label="at the torsional model's torque"))
+    legend_below(fig, handles=handles, labels=[h.get_label() for h in handles], ncols=3)
+    return to_image(fig)

@@ -9,7 +9,7 @@ import numpy as np
 from ..api import CheckResult
 from ..display import unit_text
 from . import judged as jd
-from .plots import every, figure, legend_below, limit_line, literal, to_image
+from .plots import every, figure, later, legend_below, limit_line, literal, to_image
 from .sections import fmt, in_unit, merge_items, param_table, rpm, section
 
 
@@ -49,7 +49,15 @@ def bearing_speed_figure(res: CheckResult, q, scale: float, ylabel: str, unit: s
     """Per-bearing curves (values x ``scale``) against speed, mains / big ends x load cases,
     with the rule limit of each lining (named in the legend below the panels); ``q`` has dims
     (item, case, speed) and item attributes type and lining. The y axis starts at 0 unless
-    ``from_zero`` is false (then just below the lowest curve)."""
+    ``from_zero`` is false (then just below the lowest curve). Built and drawn by
+    :func:`_draw_bearing_speed` through :func:`plots.later` (deferred while the sections are
+    built)."""
+    return later((170, 100), _draw_bearing_speed, res, q, scale, ylabel, unit, from_zero)
+
+
+def _draw_bearing_speed(res: CheckResult, q, scale: float, ylabel: str, unit: str,
+                        from_zero: bool):
+    """The figure of :func:`bearing_speed_figure`, drawn."""
     names = q.coords["item"]
     sp = rpm(np.array(q.coords["speed"]))
     judged = jd.mask(q)
@@ -261,33 +269,42 @@ ATTACHMENT = "results.xlsx"
 
 
 def _pressure_figure(cyc, sp, cs_judged, ref) -> dict:
-    fig, axes = figure(170, 62, ncols=len(cyc.cases), wgap=14, legend_rows=1)
     deg = in_unit(cyc.theta, "rad", "deg")
-    th = every(deg.size)
     pick = sorted({0, int(np.argmin(abs(sp - 0.5 * (sp[0] + sp[-1])))), sp.size - 1})
     cols = {"crank angle [°]": deg}
+    for ci, c in enumerate(cyc.cases):
+        for i in pick:
+            cols[f"{c} load, {sp[i]:.0f} rpm [bar]"] = in_unit(cyc.pressure[ci, i], "Pa", "bar")
+    png = later((170, 62), _draw_pressure, cyc, sp, cs_judged, deg, pick)
+    names = list(cols)
+    data = {"sheet": "pressure traces", "title": "Cylinder pressure traces of the report's"
+            " plot", "columns": names,
+            "rows": [[float(cols[k][j]) for k in names] for j in range(deg.size)]}
+    return {"type": "figure", "png": png, "data": ["loads.cycle", data],
+            "caption": "Cylinder pressure at the lowest, middle and highest speed (own cycle"
+                       " angle)" + ("" if cs_judged.all() else
+                                    f"; dotted: not judged by the rules ({jd.reason(ref)})")
+                       + "."}
+
+
+def _draw_pressure(cyc, sp, cs_judged, deg, pick: list[int]):
+    """The cylinder pressure figure of :func:`_pressure_figure` (traces at the speeds
+    ``pick``, crank angle ``deg``), drawn."""
+    fig, axes = figure(170, 62, ncols=len(cyc.cases), wgap=14, legend_rows=1)
+    th = every(deg.size)
     for ci, (ax, c) in enumerate(zip(np.atleast_1d(axes), cyc.cases)):
         for n, i in enumerate(pick):
             lab = f"{sp[i]:.0f} rpm" + ("" if cs_judged[ci, i] else " (not judged)")
             ax.plot(deg[th], in_unit(cyc.pressure[ci, i, th], "Pa", "bar"),
                     ls="-" if cs_judged[ci, i] else ":",
                     color=CURVE_COLORS[n], label=lab)
-            cols[f"{c} load, {sp[i]:.0f} rpm [bar]"] = in_unit(cyc.pressure[ci, i], "Pa", "bar")
         ax.set_xlim(0, 720)
         ax.set_xticks(np.arange(0, 721, 180))
         ax.set_xlabel("Crank angle from firing TDC [°]")
         ax.set_ylabel("Cylinder pressure [bar]")
         ax.set_title(f"{c} load")
     legend_below(fig, axes=[np.atleast_1d(axes)[0]], ncols=6)
-    names = list(cols)
-    data = {"sheet": "pressure traces", "title": "Cylinder pressure traces of the report's"
-            " plot", "columns": names,
-            "rows": [[float(cols[k][j]) for k in names] for j in range(deg.size)]}
-    return {"type": "figure", "png": to_image(fig), "data": ["loads.cycle", data],
-            "caption": "Cylinder pressure at the lowest, middle and highest speed (own cycle"
-                       " angle)" + ("" if cs_judged.all() else
-                                    f"; dotted: not judged by the rules ({jd.reason(ref)})")
-                       + "."}
+    return to_image(fig)
 
 
 def _polar(res: CheckResult, sl, bl) -> list[dict]:
@@ -297,30 +314,63 @@ def _polar(res: CheckResult, sl, bl) -> list[dict]:
     ex = bl.detail
     names = sl.coords["item"]
     sp = rpm(np.array(sl.coords["speed"]))
-    cases = sl.coords["case"]
-    sl_judged = jd.mask(sl)
     bes = [n for n in names if sl.item_attrs[n]["type"] == "big end"]
     mains = [n for n in names if sl.item_attrs[n]["type"] == "main"]
     choose = bes[:1] + mains[len(mains) // 2:][:1]
     if not choose:
         return []
-    fig, axes = figure(170, 96, ncols=len(choose), subplot_kw={"projection": "polar"},
-                       squeeze=False, left=10, right=10, top=12, bottom=20, wgap=34)
+    curves = _polar_curves(sl, ex, choose)
     cols: dict[str, np.ndarray] = {"crank angle [°]": in_unit(ex.theta, "rad", "deg")}
-    deg = in_unit(ex.theta, "rad", "deg") % 720
-    marks = np.array([int(np.argmin(np.abs(deg - a))) for a in range(0, 720, 90)])
-    for a, n in enumerate(choose):
+    for n, per_case in zip(choose, curves):
+        for c, k, fx, fy, _ in per_case:
+            cols[f"{n} {c} load {sp[k]:.0f} rpm Fx [kN]"] = in_unit(fx, "N", "kN")
+            cols[f"{n} {c} load {sp[k]:.0f} rpm Fy [kN]"] = in_unit(fy, "N", "kN")
+    png = later((170, 96), _draw_polar, choose, curves, sp, ex.theta,
+                [ex.frames[n] for n in choose])
+    names_ = list(cols)
+    data = {"sheet": "polar loads", "title": "Bearing load components of the polar diagrams",
+            "columns": names_, "rows": [[float(cols[k][j]) for k in names_]
+                                        for j in range(cols["crank angle [°]"].size)]}
+    return [{"type": "figure", "png": png, "data": [data],
+             "caption": "Polar load diagrams: force of the journal on the bearing in kN (0° ="
+                        " frame y axis, angle in the direction of rotation), each load case at"
+                        " the speed of its highest judged peak specific load; dots every 90° of"
+                        " crank angle over the 720° cycle (the first labelled 0°); dotted: not"
+                        f" judged ({jd.reason(sl)})."}]
+
+
+def _polar_curves(sl, ex, choose: list[str]) -> list[list[tuple]]:
+    """Per bearing of ``choose``, per load case: ``(case, speed index, fx, fy, judged)``, the
+    bearing load over the cycle at the speed of the highest judged peak specific load (the
+    highest of all if none is judged)."""
+    names = sl.coords["item"]
+    sl_judged = jd.mask(sl)
+    out = []
+    for n in choose:
         i = names.index(n)
-        ax = axes[0, a]
-        k_col = 0
-        angles, radii = [], []
-        for ci, c in enumerate(cases):
+        per_case = []
+        for ci, c in enumerate(sl.coords["case"]):
             vals = np.where(sl_judged[i, ci], sl.values[i, ci], -np.inf)
             if not np.isfinite(vals).any():
                 vals = sl.values[i, ci]
             k = int(np.nanargmax(vals))
-            fx, fy = ex.fx[i, ci, k], ex.fy[i, ci, k]
-            judged = sl_judged[i, ci, k]
+            per_case.append((c, k, ex.fx[i, ci, k], ex.fy[i, ci, k], sl_judged[i, ci, k]))
+        out.append(per_case)
+    return out
+
+
+def _draw_polar(choose: list[str], curves: list[list[tuple]], sp, theta, frames: list[str]):
+    """The polar load diagrams of :func:`_polar` (``curves`` of :func:`_polar_curves`, crank
+    angle ``theta`` [rad], ``frames``: the frame of each bearing), drawn."""
+    fig, axes = figure(170, 96, ncols=len(choose), subplot_kw={"projection": "polar"},
+                       squeeze=False, left=10, right=10, top=12, bottom=20, wgap=34)
+    deg = in_unit(theta, "rad", "deg") % 720
+    marks = np.array([int(np.argmin(np.abs(deg - a))) for a in range(0, 720, 90)])
+    for a, (n, per_case, frame) in enumerate(zip(choose, curves, frames)):
+        ax = axes[0, a]
+        k_col = 0
+        angles, radii = [], []
+        for c, k, fx, fy, judged in per_case:
             th = every(fx.size)
             ang = np.append(np.arctan2(fx, fy)[th], np.arctan2(fx[0], fy[0]))  # closed
             rad = in_unit(np.append(np.hypot(fx, fy)[th], np.hypot(fx[0], fy[0])), "N", "kN")
@@ -337,8 +387,6 @@ def _polar(res: CheckResult, sl, bl) -> list[dict]:
             angles.append(ang)
             radii.append(rad)
             k_col += 1
-            cols[f"{n} {c} load {sp[k]:.0f} rpm Fx [kN]"] = in_unit(fx, "N", "kN")
-            cols[f"{n} {c} load {sp[k]:.0f} rpm Fy [kN]"] = in_unit(fy, "N", "kN")
         ax.set_theta_zero_location("N")
         ax.set_theta_direction(-1)
         ax.set_thetagrids(np.arange(0, 360, 45))
@@ -348,19 +396,10 @@ def _polar(res: CheckResult, sl, bl) -> list[dict]:
         for t in ax.get_yticklabels():
             t.set_bbox({"facecolor": "white", "edgecolor": "none", "pad": 0.3, "alpha": 0.8})
         ax.grid(True, alpha=0.3)
-        ax.set_title(literal(f"{n} ({ex.frames[n]}), load [kN]"), pad=10)
+        ax.set_title(literal(f"{n} ({frame}), load [kN]"), pad=10)
         ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.1), ncols=1, frameon=False,
                   fontsize=6)
-    names_ = list(cols)
-    data = {"sheet": "polar loads", "title": "Bearing load components of the polar diagrams",
-            "columns": names_, "rows": [[float(cols[k][j]) for k in names_]
-                                        for j in range(cols["crank angle [°]"].size)]}
-    return [{"type": "figure", "png": to_image(fig), "data": [data],
-             "caption": "Polar load diagrams: force of the journal on the bearing in kN (0° ="
-                        " frame y axis, angle in the direction of rotation), each load case at"
-                        " the speed of its highest judged peak specific load; dots every 90° of"
-                        " crank angle over the 720° cycle (the first labelled 0°); dotted: not"
-                        f" judged ({jd.reason(sl)})."}]
+    return to_image(fig)
 
 
 def _free_direction(ang: np.ndarray, rad: np.ndarray) -> float:
@@ -434,36 +473,22 @@ def _support_scheme(res: CheckResult, bl) -> list[dict]:
     si = int(np.argmin(np.abs(np.array(bl.coords["speed"]) - beam.speed)))
     ncols = min(len(mains), 4)
     nrows = -(-len(mains) // ncols)
-    fig, axes = figure(170, 62 * nrows, nrows=nrows, ncols=ncols, squeeze=False,
-                       subplot_kw={"projection": "polar"}, left=8, right=8, top=10,
-                       bottom=14, wgap=18)
-    th = every(ex.theta.size)
+    height = 62 * nrows
+    curves = [(names[i], (
+        ("determinate", det.x[ci, si, j], det.y[ci, si, j], CURVE_COLORS[1], "--"),
+        ("continuous beam", ex.fx[i, ci, si], ex.fy[i, ci, si], CURVE_COLORS[0], "-")))
+        for j, i in enumerate(mains)]
     cols: dict[str, np.ndarray] = {"crank angle [°]": in_unit(ex.theta, "rad", "deg")}
-    for j, i in enumerate(mains):
-        ax = axes[j // ncols, j % ncols]
-        for label, fx, fy, color, ls in (
-                ("determinate", det.x[ci, si, j], det.y[ci, si, j], CURVE_COLORS[1], "--"),
-                ("continuous beam", ex.fx[i, ci, si], ex.fy[i, ci, si], CURVE_COLORS[0], "-")):
-            ang = np.append(np.arctan2(fx, fy)[th], np.arctan2(fx[0], fy[0]))
-            rad = in_unit(np.append(np.hypot(fx, fy)[th], np.hypot(fx[0], fy[0])), "N", "kN")
-            ax.plot(ang, rad, lw=0.8, color=color, ls=ls, label=label)
-            cols[f"{names[i]} {label} Fx [kN]"] = in_unit(fx, "N", "kN")
-            cols[f"{names[i]} {label} Fy [kN]"] = in_unit(fy, "N", "kN")
-        ax.set_theta_zero_location("N")
-        ax.set_theta_direction(-1)
-        ax.set_thetagrids(np.arange(0, 360, 90))
-        ax.yaxis.set_major_locator(_max_ticks(3))
-        ax.tick_params(labelsize=5.5)
-        ax.grid(True, alpha=0.3)
-        ax.set_title(literal(f"{names[i]} [kN]"), pad=6, fontsize=7)
-    for j in range(len(mains), nrows * ncols):
-        axes[j // ncols, j % ncols].set_visible(False)
-    legend_below(fig, axes=[axes[0, 0]], ncols=2)
+    for name, both in curves:
+        for label, fx, fy, _, _ in both:
+            cols[f"{name} {label} Fx [kN]"] = in_unit(fx, "N", "kN")
+            cols[f"{name} {label} Fy [kN]"] = in_unit(fy, "N", "kN")
+    png = later((170, height), _draw_main_loads, height, nrows, ncols, curves, ex.theta.size)
     names_ = list(cols)
     data = {"sheet": "main loads both schemes", "title": "Main-bearing loads of both schemes"
             f" at {beam.case} load, {rpm(beam.speed):.0f} rpm", "columns": names_,
             "rows": [[float(cols[n][r]) for n in names_] for r in range(ex.theta.size)]}
-    blocks.append({"type": "figure", "png": to_image(fig), "data": [data, *_beam_sheets(beam)],
+    blocks.append({"type": "figure", "png": png, "data": [data, *_beam_sheets(beam)],
                    "caption": f"Main-bearing loads at {beam.case} load, {rpm(beam.speed):.0f}"
                               " rpm (the operating point of the largest main load): the"
                               " continuous beam (solid) over the statically determinate scheme"
@@ -502,6 +527,34 @@ def _support_scheme(res: CheckResult, bl) -> list[dict]:
                            " scheme: the determinate scheme gives every rule the status of"
                            " the continuous beam."})
     return blocks
+
+
+def _draw_main_loads(height: float, nrows: int, ncols: int, curves: list[tuple],
+                     n_theta: int):
+    """The polar diagrams of every main of :func:`_support_scheme`, both schemes (``curves``:
+    per main its name and its (label, fx, fy, colour, line style) per scheme; ``n_theta``
+    crank angles), drawn."""
+    fig, axes = figure(170, height, nrows=nrows, ncols=ncols, squeeze=False,
+                       subplot_kw={"projection": "polar"}, left=8, right=8, top=10,
+                       bottom=14, wgap=18)
+    th = every(n_theta)
+    for j, (name, both) in enumerate(curves):
+        ax = axes[j // ncols, j % ncols]
+        for label, fx, fy, color, ls in both:
+            ang = np.append(np.arctan2(fx, fy)[th], np.arctan2(fx[0], fy[0]))
+            rad = in_unit(np.append(np.hypot(fx, fy)[th], np.hypot(fx[0], fy[0])), "N", "kN")
+            ax.plot(ang, rad, lw=0.8, color=color, ls=ls, label=label)
+        ax.set_theta_zero_location("N")
+        ax.set_theta_direction(-1)
+        ax.set_thetagrids(np.arange(0, 360, 90))
+        ax.yaxis.set_major_locator(_max_ticks(3))
+        ax.tick_params(labelsize=5.5)
+        ax.grid(True, alpha=0.3)
+        ax.set_title(literal(f"{name} [kN]"), pad=6, fontsize=7)
+    for j in range(len(curves), nrows * ncols):
+        axes[j // ncols, j % ncols].set_visible(False)
+    legend_below(fig, axes=[axes[0, 0]], ncols=2)
+    return to_image(fig)
 
 
 def _beam_sheets(beam) -> list[dict]:

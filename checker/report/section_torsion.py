@@ -10,18 +10,13 @@ from .. import display
 from ..api import CheckResult
 from ..display import case_text
 from . import judged as jd
-from .plots import figure, legend_below, limit_line, literal, to_image
+from .plots import figure, later, legend_below, limit_line, literal, to_image
 from .sections import display_values, fmt, in_unit, rpm, section
 
 
 def _deg(rad):
     """Angle(s) in rad as degrees."""
     return in_unit(rad, "rad", "deg")
-
-
-def _svg(fig) -> bytes:
-    """SVG of a figure (margins fixed in :func:`plots.figure`)."""
-    return to_image(fig)
 
 
 def _limit(res: CheckResult, quantity: str, unit: str) -> float | None:
@@ -95,27 +90,51 @@ def _modes(res: CheckResult, nf, sp: np.ndarray) -> list[dict]:
                            "columns": ["mode", "f [Hz]", "ζ [%]",
                                        "major order: critical speed [rpm]"], "rows": rows,
                            "widths": [12, 12, 10, 66]}]
-    modes = ex.modes
-    stations = ex.stations
     n_show = min(3, f.size)
     if n_show:
-        fig, ax = figure(170, 58, bottom=17, legend_rows=1)
-        x = np.arange(len(stations))
-        for i in range(n_show):
-            phi = modes[:, i] / np.max(np.abs(modes[:, i]))
-            ax.plot(x, phi, marker="o", ms=3, label=f"mode {i + 1}: {f[i]:.0f} Hz")
-        ax.axhline(0, color="k", lw=0.6)
-        ax.set_xticks(x, [literal(s) for s in stations], rotation=15, ha="right")
-        ax.set_ylabel("Relative amplitude [-]")
-        ax.set_xlabel("Station of the torsional model (front to rear)", labelpad=1)
-        legend_below(fig, ncols=3)
-        blocks.append({"type": "figure", "png": _svg(fig), "data": [nf.name],
+        blocks.append({"type": "figure", "png": later((170, 58), _draw_mode_shapes, ex.modes,
+                                                      ex.stations, f, n_show),
+                       "data": [nf.name],
                        "caption": "Mode shapes of the first flexible modes, normalised to the"
                                   " largest station amplitude."})
     # Campbell diagram
-    fig, ax = figure(170, 78, right=12, legend_rows=1)
     lo_rpm, hi_rpm = rpm(lo), rpm(hi)
-    x_max = hi_rpm * 1.1
+    drawn, f_show, above, y_max = _campbell_range(f, orders, n_cyl, hi_rpm)
+    png = later((170, 78), _draw_campbell, orders, major, ex.critical_speed, drawn, f_show,
+                y_max, lo_rpm, hi_rpm)
+    note = ""
+    if above.size:
+        note = (" Modes above the frequency axis (no drawn order reaches them inside the speed"
+                " range): " + ", ".join(f"mode {int(np.flatnonzero(f == x)[0]) + 1}"
+                                        f" {x:.0f} Hz" for x in above) + ".")
+    blocks.append({"type": "figure", "png": png, "data": [nf.name],
+                   "caption": "Campbell diagram: engine orders (numbered at the ends of the"
+                              " lines; half orders dotted) against the natural frequencies;"
+                              " filled dots: major-order resonances inside the speed range,"
+                              " open dots: resonances of the other orders drawn." + note})
+    return blocks
+
+
+def _draw_mode_shapes(modes: np.ndarray, stations: list[str], f: np.ndarray, n_show: int):
+    """The first ``n_show`` mode shapes (columns of ``modes``, natural frequencies ``f``) over
+    the ``stations``, drawn."""
+    fig, ax = figure(170, 58, bottom=17, legend_rows=1)
+    x = np.arange(len(stations))
+    for i in range(n_show):
+        phi = modes[:, i] / np.max(np.abs(modes[:, i]))
+        ax.plot(x, phi, marker="o", ms=3, label=f"mode {i + 1}: {f[i]:.0f} Hz")
+    ax.axhline(0, color="k", lw=0.6)
+    ax.set_xticks(x, [literal(s) for s in stations], rotation=15, ha="right")
+    ax.set_ylabel("Relative amplitude [-]")
+    ax.set_xlabel("Station of the torsional model (front to rear)", labelpad=1)
+    legend_below(fig, ncols=3)
+    return to_image(fig)
+
+
+def _campbell_range(f: np.ndarray, orders, n_cyl: int, hi_rpm: float
+                    ) -> tuple[list, np.ndarray, np.ndarray, float]:
+    """What the Campbell diagram shows: the orders drawn, the natural frequencies on its
+    frequency axis, those above it and the top of the axis [Hz]."""
     drawn = [o for o in orders if o <= 2 * n_cyl + 4 and (float(o).is_integer()
                                                          or float(o * 2).is_integer())]
     o_top = max(drawn) if drawn else max(orders)
@@ -125,6 +144,15 @@ def _modes(res: CheckResult, nf, sp: np.ndarray) -> list[dict]:
     f_show = crossed if crossed.size else f[:1]
     above = f[f > (f_show.max() if f_show.size else 0)]
     y_max = (f_show.max() if f_show.size else f.min()) * 1.15
+    return drawn, f_show, above, y_max
+
+
+def _draw_campbell(orders, major: list, critical_speed: np.ndarray, drawn: list,
+                   f_show: np.ndarray, y_max: float, lo_rpm: float, hi_rpm: float):
+    """The Campbell diagram of :func:`_modes` (``drawn``, ``f_show``, ``y_max`` of
+    :func:`_campbell_range`; speed range ``lo_rpm`` to ``hi_rpm``), drawn."""
+    fig, ax = figure(170, 78, right=12, legend_rows=1)
+    x_max = hi_rpm * 1.1
     ax.axvspan(lo_rpm, hi_rpm, color="#3498db", alpha=0.08, label="speed range")
     seen: set[str] = set()
     placed: list[tuple[str, float]] = []  # order labels already placed (edge, position)
@@ -162,7 +190,7 @@ def _modes(res: CheckResult, nf, sp: np.ndarray) -> list[dict]:
                     color="#c0392b",
                     bbox={"boxstyle": "square,pad=0.1", "fc": "white", "ec": "none",
                           "alpha": 0.85})
-        crit = rpm(ex.critical_speed[i])
+        crit = rpm(critical_speed[i])
         pick = [(c, o) for o, c in zip(orders, crit) if o in major and lo_rpm <= c <= hi_rpm]
         other = [(c, o) for o, c in zip(orders, crit) if o in drawn and o not in major
                  and lo_rpm <= c <= hi_rpm]
@@ -179,17 +207,7 @@ def _modes(res: CheckResult, nf, sp: np.ndarray) -> list[dict]:
     ax.set_xlabel("Engine speed [rpm]")
     ax.set_ylabel("Frequency [Hz]")
     legend_below(fig, ncols=4)
-    note = ""
-    if above.size:
-        note = (" Modes above the frequency axis (no drawn order reaches them inside the speed"
-                " range): " + ", ".join(f"mode {int(np.flatnonzero(f == x)[0]) + 1}"
-                                        f" {x:.0f} Hz" for x in above) + ".")
-    blocks.append({"type": "figure", "png": _svg(fig), "data": [nf.name],
-                   "caption": "Campbell diagram: engine orders (numbered at the ends of the"
-                              " lines; half orders dotted) against the natural frequencies;"
-                              " filled dots: major-order resonances inside the speed range,"
-                              " open dots: resonances of the other orders drawn." + note})
-    return blocks
+    return to_image(fig)
 
 
 def _judged_rows(res: CheckResult, items: list[tuple[str, object, list[tuple], str]],
@@ -224,44 +242,26 @@ def _nose(res: CheckResult, q: dict) -> list[dict]:
     tot_j = jd.mask(tot)
     hi_labels = list(hi_q.coords["order"]) if hi_q is not None else []
     k_cyl = int(np.argmin(np.abs(orders - n_cyl)))
-    fig, axes = figure(170, 82, ncols=len(cases), sharey=True, squeeze=False, wgap=8,
-                       legend_rows=2)
     # the same orders in both panels (one legend): the cylinder-count order and the five
     # largest others over both load cases
     peak = per.values.max(axis=(1, 2))
     top = [k for k in np.argsort(-peak) if k != k_cyl][:5]
     show = [k_cyl] + sorted(top, key=lambda k: orders[k])
-    colors = ["#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#17becf"]
-    marked = shaded = False
-    for ci, c in enumerate(cases):
-        ax = axes[0, ci]
-        shaded |= jd.shade(ax, sp, tot_j[ci])
-        ax.plot(sp, _deg(tot.values[ci]), color="k", lw=1.6, label="total (synthesis)")
-        for n, k in enumerate(show):
-            (ln,) = ax.plot(sp, _deg(per.values[k, ci]), lw=1.4 if k == k_cyl else 0.9,
-                            color=colors[n % len(colors)], label=literal(labels[k]))
+    # per case and shown order: the points the rules judge (None: no rule on the order)
+    marks = []
+    for ci in range(len(cases)):
+        marks.append([])
+        for k in show:
             jm = None
             if k == k_cyl and cyl is not None:
                 jm = jd.mask(cyl)[ci]
             elif labels[k] in hi_labels:
                 jm = jd.mask(hi_q)[hi_labels.index(labels[k]), ci]
-            if jm is not None and jm.any():
-                ax.plot(sp[jm], _deg(per.values[k, ci, jm]), "o", ms=3.5, mfc="none",
-                        color=ln.get_color())
-                marked = True
-        if lim_cyl is not None:
-            limit_line(ax, lim_cyl, f"limit, order {n_cyl}: {lim_cyl:g}°")
-        if lim_hi is not None:
-            limit_line(ax, lim_hi, f"limit, higher orders: {lim_hi:g}°", ls=":")
-        ax.set_yscale("log")
-        ax.set_ylim(1e-3, None)
-        ax.set_title(case_text(c))
-        ax.set_xlabel("Engine speed [rpm]")
-    if marked:
-        axes[0, 0].plot([], [], "o", ms=3.5, mfc="none", color="0.3",
-                        label="points the rules judge")
-    axes[0, 0].set_ylabel("Crank-nose amplitude [°]")
-    legend_below(fig, ncols=6)
+            marks[-1].append(jm)
+    marked = any(jm is not None and jm.any() for row in marks for jm in row)
+    shaded = any(_shades(sp, tot_j[ci]) for ci in range(len(cases)))
+    png = later((170, 82), _draw_nose, sp, cases, tot, per, labels, show, k_cyl, marks, marked,
+                tot_j, n_cyl, lim_cyl, lim_hi)
     why = [jd.reason(x) for x in (cyl, hi_q) if x is not None]
     caption = (
         "Crank-nose TV amplitude against speed (relative to a node rotating at the mean speed,"
@@ -270,7 +270,7 @@ def _nose(res: CheckResult, q: dict) -> list[dict]:
         + (" Circles: the points the rules judge; the rest of each order curve is computed"
            " but not judged (" + "; ".join(dict.fromkeys(why)) + ")." if marked else "")
         + (jd.shade_caption([jd.reason(tot)]) if shaded else ""))
-    blocks: list[dict] = [{"type": "figure", "png": _svg(fig), "caption": caption,
+    blocks: list[dict] = [{"type": "figure", "png": png, "caption": caption,
                            "data": [x.name for x in (tot, per, cyl, hi_q) if x is not None]}]
 
     low_q = q.get("tv.nose_lower_order_elastic_amplitude")
@@ -308,6 +308,47 @@ def _nose(res: CheckResult, q: dict) -> list[dict]:
     return blocks
 
 
+def _shades(x, judged_1d: np.ndarray) -> bool:
+    """Whether :func:`judged.shade` shades anything of ``x`` (points not judged)."""
+    return np.asarray(x).size >= 2 and bool(jd.runs(judged_1d))
+
+
+def _draw_nose(sp: np.ndarray, cases: list[str], tot, per, labels: list[str], show: list[int],
+               k_cyl: int, marks: list[list], marked: bool, tot_j: np.ndarray, n_cyl: int,
+               lim_cyl: float | None, lim_hi: float | None):
+    """The crank-nose amplitude figure of :func:`_nose`: the total and the orders ``show``
+    (``k_cyl`` the cylinder-count order) per load case, circles at the judged points
+    ``marks`` (per case and shown order; ``marked``: any), drawn."""
+    fig, axes = figure(170, 82, ncols=len(cases), sharey=True, squeeze=False, wgap=8,
+                       legend_rows=2)
+    colors = ["#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#17becf"]
+    for ci, c in enumerate(cases):
+        ax = axes[0, ci]
+        jd.shade(ax, sp, tot_j[ci])
+        ax.plot(sp, _deg(tot.values[ci]), color="k", lw=1.6, label="total (synthesis)")
+        for n, k in enumerate(show):
+            (ln,) = ax.plot(sp, _deg(per.values[k, ci]), lw=1.4 if k == k_cyl else 0.9,
+                            color=colors[n % len(colors)], label=literal(labels[k]))
+            jm = marks[ci][n]
+            if jm is not None and jm.any():
+                ax.plot(sp[jm], _deg(per.values[k, ci, jm]), "o", ms=3.5, mfc="none",
+                        color=ln.get_color())
+        if lim_cyl is not None:
+            limit_line(ax, lim_cyl, f"limit, order {n_cyl}: {lim_cyl:g}°")
+        if lim_hi is not None:
+            limit_line(ax, lim_hi, f"limit, higher orders: {lim_hi:g}°", ls=":")
+        ax.set_yscale("log")
+        ax.set_ylim(1e-3, None)
+        ax.set_title(case_text(c))
+        ax.set_xlabel("Engine speed [rpm]")
+    if marked:
+        axes[0, 0].plot([], [], "o", ms=3.5, mfc="none", color="0.3",
+                        label="points the rules judge")
+    axes[0, 0].set_ylabel("Crank-nose amplitude [°]")
+    legend_below(fig, ncols=6)
+    return to_image(fig)
+
+
 def _elements(res: CheckResult, q: dict) -> list[dict]:
     et = q["tv.element_torque"]
     tw = q.get("tv.crank_twist")
@@ -316,28 +357,9 @@ def _elements(res: CheckResult, q: dict) -> list[dict]:
     cases = et.coords["case"]
     names = et.coords["item"]
     et_j = jd.mask(et)
-    fig, axes = figure(170, 70, ncols=2, squeeze=False, legend_rows=2)
-    ax = axes[0, 0]
-    for ci, c in enumerate(cases):
-        if tw is not None:
-            jd.line(ax, sp, _deg(tw.values[ci]), jd.mask(tw)[ci], color=("k", "0.5")[ci % 2],
-                    label=f"twist, {case_text(c)}")
-    ax.set_xlabel("Engine speed [rpm]")
-    ax.set_ylabel("Twist, nose to flywheel [°]")
-    ax.set_title("crank twist, half peak-to-peak")
-    ax = axes[0, 1]
-    ci = cases.index("full") if "full" in cases else 0
-    colors = ["#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#17becf", "#e377c2",
-              "#7f7f7f", "#bcbd22"]
-    for e, n in enumerate(names):
-        jd.line(ax, sp, et.values[e, ci], et_j[e, ci], label=literal(n), lw=0.9,
-                color=colors[e % len(colors)])
-    ax.set_xlabel("Engine speed [rpm]")
-    ax.set_ylabel("Vibratory torque [N·m]")
-    ax.set_title("element torque, half peak-to-peak, full load")
-    legend_below(fig, ncols=5)
+    png = later((170, 70), _draw_elements, sp, cases, names, tw, et, et_j)
     dotted = not et_j.all() or (tw is not None and not jd.mask(tw).all())
-    blocks: list[dict] = [{"type": "figure", "png": _svg(fig), "caption": (
+    blocks: list[dict] = [{"type": "figure", "png": png, "caption": (
         "Crankshaft twist (crank nose to flywheel) and vibratory torque in every element of"
         " the TV model against speed"
         + (f"; dotted: computed but not judged ({jd.reason(et)})" if dotted else "") + "."),
@@ -367,6 +389,33 @@ def _elements(res: CheckResult, q: dict) -> list[dict]:
     return blocks
 
 
+def _draw_elements(sp: np.ndarray, cases: list[str], names: list[str], tw, et,
+                   et_j: np.ndarray):
+    """The figure of :func:`_elements`: crank twist ``tw`` (or None) per load case and the
+    vibratory torque of every element (``et``, judged points ``et_j``) at full load, drawn."""
+    fig, axes = figure(170, 70, ncols=2, squeeze=False, legend_rows=2)
+    ax = axes[0, 0]
+    for ci, c in enumerate(cases):
+        if tw is not None:
+            jd.line(ax, sp, _deg(tw.values[ci]), jd.mask(tw)[ci], color=("k", "0.5")[ci % 2],
+                    label=f"twist, {case_text(c)}")
+    ax.set_xlabel("Engine speed [rpm]")
+    ax.set_ylabel("Twist, nose to flywheel [°]")
+    ax.set_title("crank twist, half peak-to-peak")
+    ax = axes[0, 1]
+    ci = cases.index("full") if "full" in cases else 0
+    colors = ["#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#17becf", "#e377c2",
+              "#7f7f7f", "#bcbd22"]
+    for e, n in enumerate(names):
+        jd.line(ax, sp, et.values[e, ci], et_j[e, ci], label=literal(n), lw=0.9,
+                color=colors[e % len(colors)])
+    ax.set_xlabel("Engine speed [rpm]")
+    ax.set_ylabel("Vibratory torque [N·m]")
+    ax.set_title("element torque, half peak-to-peak, full load")
+    legend_below(fig, ncols=5)
+    return to_image(fig)
+
+
 def _damper(res: CheckResult, q: dict) -> list[dict]:
     pw = q.get("damper.power")
     if pw is None or not np.isfinite(pw.values).any():
@@ -379,42 +428,10 @@ def _damper(res: CheckResult, q: dict) -> list[dict]:
     heat, heat_pk, tau = (q.get(n) for n in ("damper.heat_density", "damper.heat_density_peak",
                                              "damper.shear_stress"))
     geo = heat is not None and np.isfinite(heat.values).any()
-    fig, axes = figure(170, 62, ncols=3 if geo else 1, squeeze=False, wgap=16, legend_rows=1)
-    case_color = {c: ("#1f77b4", "#ff7f0e", "#2ca02c")[i % 3] for i, c in enumerate(cases)}
-    ax = axes[0, 0]
-    for ci, c in enumerate(cases):
-        jd.line(ax, sp, pw.values[ci], jd.mask(pw)[ci], color=case_color[c],
-                label=case_text(c))
-    ax.set_ylabel("Dissipated power [W]")
-    ax.set_title("dissipated power")
-    ax.set_xlabel("Engine speed [rpm]")
-    if geo:
-        ax = axes[0, 1]
-        for ci, c in enumerate(cases):
-            jd.line(ax, sp, display_values(heat, heat.values[ci])[0], jd.mask(heat)[ci],
-                    color=case_color[c])
-            jd.line(ax, sp, display_values(heat_pk, heat_pk.values[ci])[0],
-                    jd.mask(heat_pk)[ci], ls="--",
-                    lw=0.8, color=case_color[c])
-        ax.plot([], [], color="0.3", label="mean (solid)")
-        ax.plot([], [], color="0.3", ls="--", lw=0.8, label="peak at the inner radius")
-        if d.get("heat_limit") is not None:
-            limit_line(ax, in_unit(d["heat_limit"], "W/m**3", "W/cm**3"), "supplier limit")
-        ax.set_ylabel("Heat per rubber volume [W/cm³]")
-        ax.set_title("heat per unit volume")
-        ax.set_xlabel("Engine speed [rpm]")
-        ax = axes[0, 2]
-        for ci, c in enumerate(cases):
-            jd.line(ax, sp, display_values(tau, tau.values[ci])[0], jd.mask(tau)[ci],
-                    color=case_color[c])
-        if d.get("shear_stress_limit") is not None:
-            limit_line(ax, in_unit(d["shear_stress_limit"], "Pa", "MPa"), "supplier limit")
-        ax.set_ylabel("Shear stress amplitude [MPa]")
-        ax.set_title("shear stress at the inner radius")
-        ax.set_xlabel("Engine speed [rpm]")
-    legend_below(fig, ncols=6)
+    png = later((170, 62), _draw_damper, sp, cases, geo, pw, heat, heat_pk, tau,
+                d.get("heat_limit"), d.get("shear_stress_limit"))
     faint = not jd.mask(pw).all()
-    blocks: list[dict] = [{"type": "figure", "png": _svg(fig), "caption": (
+    blocks: list[dict] = [{"type": "figure", "png": png, "caption": (
         ("TV damper silicone (viscous damper): dissipated power (sum of orders)"
          if d.get("damper_type") == "viscous" else
          "TV damper rubber: dissipated power (sum of orders), heat per unit rubber volume (mean"
@@ -478,6 +495,48 @@ def _damper(res: CheckResult, q: dict) -> list[dict]:
             " limits (Damper sheet; rules DMP-001..003).",
         ]})
     return blocks
+
+
+def _draw_damper(sp: np.ndarray, cases: list[str], geo: bool, pw, heat, heat_pk, tau,
+                 heat_limit: float | None, shear_stress_limit: float | None):
+    """The figure of :func:`_damper`: dissipated power and, with the rubber's geometry
+    (``geo``), heat per unit volume and shear stress against the supplier's limits (SI),
+    drawn."""
+    fig, axes = figure(170, 62, ncols=3 if geo else 1, squeeze=False, wgap=16, legend_rows=1)
+    case_color = {c: ("#1f77b4", "#ff7f0e", "#2ca02c")[i % 3] for i, c in enumerate(cases)}
+    ax = axes[0, 0]
+    for ci, c in enumerate(cases):
+        jd.line(ax, sp, pw.values[ci], jd.mask(pw)[ci], color=case_color[c],
+                label=case_text(c))
+    ax.set_ylabel("Dissipated power [W]")
+    ax.set_title("dissipated power")
+    ax.set_xlabel("Engine speed [rpm]")
+    if geo:
+        ax = axes[0, 1]
+        for ci, c in enumerate(cases):
+            jd.line(ax, sp, display_values(heat, heat.values[ci])[0], jd.mask(heat)[ci],
+                    color=case_color[c])
+            jd.line(ax, sp, display_values(heat_pk, heat_pk.values[ci])[0],
+                    jd.mask(heat_pk)[ci], ls="--",
+                    lw=0.8, color=case_color[c])
+        ax.plot([], [], color="0.3", label="mean (solid)")
+        ax.plot([], [], color="0.3", ls="--", lw=0.8, label="peak at the inner radius")
+        if heat_limit is not None:
+            limit_line(ax, in_unit(heat_limit, "W/m**3", "W/cm**3"), "supplier limit")
+        ax.set_ylabel("Heat per rubber volume [W/cm³]")
+        ax.set_title("heat per unit volume")
+        ax.set_xlabel("Engine speed [rpm]")
+        ax = axes[0, 2]
+        for ci, c in enumerate(cases):
+            jd.line(ax, sp, display_values(tau, tau.values[ci])[0], jd.mask(tau)[ci],
+                    color=case_color[c])
+        if shear_stress_limit is not None:
+            limit_line(ax, in_unit(shear_stress_limit, "Pa", "MPa"), "supplier limit")
+        ax.set_ylabel("Shear stress amplitude [MPa]")
+        ax.set_title("shear stress at the inner radius")
+        ax.set_xlabel("Engine speed [rpm]")
+    legend_below(fig, ncols=6)
+    return to_image(fig)
 
 
 def _joints(res: CheckResult, q: dict) -> list[dict]:
