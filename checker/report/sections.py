@@ -16,7 +16,11 @@ plots):
   texts drawn on it in ``png.texts``): ``data`` names where the numbers behind
   the plot are: quantity names (their sheets in the results workbook) and/or extra sheets
   ``{"sheet", "title", "columns", "rows"}`` for curves that are not quantities (crank-angle
-  traces); the report says so under the plot.
+  traces); the report says so under the plot. ``png`` comes from
+  :func:`checker.report.plots.later` with a module-level function that makes the figure from
+  its arguments and returns :func:`~checker.report.plots.to_image` of it: a drawing process
+  of the report sends its sections before it builds a figure, and builds and draws them
+  while the PDF is laid out (each argument is used then: pass values that do not change).
 * ``{"type": "equations", "items": [(name, equation, source)]}``, ``{"type": "text",
   "text"}``, ``{"type": "list", "items"}``, ``{"type": "heading", "text"}``.
 
@@ -120,9 +124,9 @@ SLOW_FIRST = ("torsion", "loads", "fatigue", "bearings")
 def _drawer(worker: int, tasks, conn, nice: int, defer: bool) -> None:
     """A drawing process: builds the sections of the modules it takes from ``tasks`` (None:
     no more) and sends each to the parent, ``("section", module, dict)``; with ``defer`` its
-    figures are placeholders (:class:`checker.report.plots.Deferred`) and it draws them after
-    the last section, ``("images", None, {(worker, index): image})``; then ``("done", None,
-    None)``. An exception of a section is sent as ``("error", module, exception)``."""
+    figures are placeholders (:class:`checker.report.plots.Deferred`) and it builds and draws
+    them after the last section, ``("images", None, {(worker, index): image})``; then
+    ``("done", None, None)``. An exception of a section is sent as ``("error", module, exception)``."""
     from ..forked import child_start
     from ..gc_tuning import fewer_collections
     from . import plots
@@ -157,8 +161,9 @@ class SectionJob:
 
     With ``defer`` the figures of the sections are placeholders of their exact pixel size
     (:class:`checker.report.plots.Deferred`, key ``png.key``): the sections arrive when their
-    content is known and their figures built, and the processes draw the figures while the
-    caller lays the PDF out; :meth:`images` waits for them."""
+    content is known (a figure made by :func:`checker.report.plots.later` is not even built
+    yet), and the processes build and draw the figures while the caller lays the PDF out;
+    :meth:`images` waits for them."""
 
     def __init__(self, res: CheckResult, progress: Callable[[str], None] | None = None,
                  workers: int | None = None, modules: list[str] | None = None,

@@ -98,3 +98,59 @@ def test_a_drawing_process_that_dies_fails_the_job(res, monkeypatch):
     with pytest.raises(RuntimeError, match="exit code 3"):
         job.images()
     assert job.procs == []
+
+
+def _failing_figure() -> bytes:
+    raise ValueError("figure failed on purpose")
+
+
+def test_a_failing_figure_fails_the_job_and_ends_its_processes(res):
+    """A figure is built where it is drawn (plots.later): its failure there fails the job."""
+    def with_bad_figure(_res):
+        return {"id": "bad", "title": "bad", "intro": "", "blocks": [
+            {"type": "figure", "png": plots.later((170, 60), _failing_figure),
+             "caption": "never drawn"}]}
+
+    SECTIONS["bad"] = with_bad_figure
+    try:
+        job = SectionJob(res, modules=["bad", "joints"], defer=True)
+        sections = job.result()  # the sections arrive: the figure is only a placeholder
+        assert isinstance(sections[0]["blocks"][0]["png"], plots.Deferred)
+        with pytest.raises(ValueError, match="figure failed on purpose"):
+            job.images()
+        assert job.procs == []
+    finally:
+        del SECTIONS["bad"]
+
+
+def test_sections_are_built_without_matplotlib(tmp_path):
+    """While figures are deferred a section needs no matplotlib (plots.later): the drawing
+    processes send the sections before they build a figure, so the PDF engine gets the HTML
+    sooner, and build and draw the figures while it lays the pages out."""
+    import subprocess
+    import sys
+
+    from checker.workbook.example_i6 import i6_content
+    from checker.workbook.example_v8 import v8_content
+
+    paths = []
+    for name, content in (("i4", example_content()), ("i6", i6_content(damper_ring=True)),
+                          ("v8", v8_content())):
+        p = tmp_path / f"{name}.xlsx"
+        write_workbook(p, content)
+        paths.append(str(p))
+    code = ("import sys; from checker import api\n"
+            "from checker.report import plots\n"
+            "from checker.report.sections import SECTIONS, modules_with_sections\n"
+            "n = 0\n"
+            "for p in " + repr(paths) + ":\n"
+            "    r = api.check(p)\n"
+            "    plots.DEFERRED = []\n"
+            "    for m in modules_with_sections(r):\n"
+            "        n += sum(isinstance(b.get('png'), plots.Deferred)\n"
+            "                 for b in SECTIONS[m](r)['blocks'])\n"
+            "    assert all(isinstance(x, tuple) for x in plots.DEFERRED)\n"
+            "print('matplotlib' in sys.modules, n)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.split()
+    assert out[0] == "False" and int(out[1]) > 40
