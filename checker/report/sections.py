@@ -126,7 +126,8 @@ def _drawer(worker: int, tasks, conn, nice: int, defer: bool) -> None:
     no more) and sends each to the parent, ``("section", module, dict)``; with ``defer`` its
     figures are placeholders (:class:`checker.report.plots.Deferred`) and it builds and draws
     them after the last section, ``("images", None, {(worker, index): image})``; then
-    ``("done", None, None)``. An exception of a section is sent as ``("error", module, exception)``."""
+    ``("done", None, None)``. An exception of a section is sent as ``("error", module,
+    exception)``."""
     from ..forked import child_start
     from ..gc_tuning import fewer_collections
     from . import plots
