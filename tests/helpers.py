@@ -16,6 +16,21 @@ def example_path(tmp_path: Path, name: str = "engine.xlsx") -> Path:
     return p
 
 
+def template_paths(tmp_path: Path, damper_ring: bool = True) -> list[str]:
+    """The three example engines (I4, I6 with its damper ring unless ``damper_ring`` is
+    false, V8) written as workbooks in ``tmp_path``; their paths."""
+    from checker.workbook.example_i6 import i6_content
+    from checker.workbook.example_v8 import v8_content
+
+    paths = []
+    for name, content in (("i4", example_content()), ("i6", i6_content(damper_ring)),
+                          ("v8", v8_content())):
+        p = tmp_path / f"{name}.xlsx"
+        write_workbook(p, content)
+        paths.append(str(p))
+    return paths
+
+
 def analyses_run(outcome) -> list[str]:
     """The modules a check ran for its rules: the crank module runs whenever the workbook has
     sheet Crank (its quantities are always reported) and is left out here."""

@@ -10,6 +10,7 @@ import pytest
 
 import checker.units as U
 from checker import unit_table
+from tests.helpers import template_paths
 
 
 class _Empty:
@@ -65,16 +66,7 @@ def test_check_of_the_templates_imports_neither_pint_nor_openpyxl(tmp_path):
     """The template workbooks and the shipped rules use only units of the table (run
     scripts/make_unit_table.py after adding a unit), and the workbook is read without
     openpyxl: ``checker check`` pays for neither import."""
-    from checker.workbook.example import example_content, write_workbook
-    from checker.workbook.example_i6 import i6_content
-    from checker.workbook.example_v8 import v8_content
-
-    paths = []
-    for name, content in (("i4", example_content()), ("i6", i6_content()),
-                          ("v8", v8_content())):
-        p = tmp_path / f"{name}.xlsx"
-        write_workbook(p, content)
-        paths.append(str(p))
+    paths = template_paths(tmp_path, damper_ring=False)
     code = ("import sys; from checker import api, outputs\n"
             f"for p in {paths!r}:\n"
             "    r = api.check(p); outputs.to_json(r); outputs.to_text(r)\n"
@@ -88,16 +80,7 @@ def test_report_of_the_templates_converts_without_pint(tmp_path):
     """The report's display conversions (every section and the results workbook) of the
     template workbooks are in the table too: the drawing and workbook processes of
     ``checker report`` do not load pint (about 0.35 s of processor time each)."""
-    from checker.workbook.example import example_content, write_workbook
-    from checker.workbook.example_i6 import i6_content
-    from checker.workbook.example_v8 import v8_content
-
-    paths = []
-    for name, content in (("i4", example_content()), ("i6", i6_content(damper_ring=True)),
-                          ("v8", v8_content())):
-        p = tmp_path / f"{name}.xlsx"
-        write_workbook(p, content)
-        paths.append(str(p))
+    paths = template_paths(tmp_path)
     code = ("import sys; from checker import api, units\n"
             "from checker.report import results_book, plots\n"
             "from checker.report.sections import SECTIONS, modules_with_sections\n"

@@ -15,6 +15,7 @@ from checker.report import plots
 from checker.report.render import build_report
 from checker.report.sections import SECTIONS, SectionJob
 from checker.workbook.example import example_content, write_workbook
+from tests.helpers import template_paths
 
 
 @pytest.fixture(scope="module")
@@ -130,15 +131,7 @@ def test_sections_are_built_without_matplotlib(tmp_path):
     import subprocess
     import sys
 
-    from checker.workbook.example_i6 import i6_content
-    from checker.workbook.example_v8 import v8_content
-
-    paths = []
-    for name, content in (("i4", example_content()), ("i6", i6_content(damper_ring=True)),
-                          ("v8", v8_content())):
-        p = tmp_path / f"{name}.xlsx"
-        write_workbook(p, content)
-        paths.append(str(p))
+    paths = template_paths(tmp_path)
     code = ("import sys; from checker import api\n"
             "from checker.report import plots\n"
             "from checker.report.sections import SECTIONS, modules_with_sections\n"
