@@ -16,6 +16,16 @@ def example_path(tmp_path: Path, name: str = "engine.xlsx") -> Path:
     return p
 
 
+def fresh_python(code: str) -> str:
+    """What ``code`` prints when run in a fresh interpreter (which modules a command imports
+    can only be seen there), stripped."""
+    import subprocess
+    import sys
+
+    return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          check=True).stdout.strip()
+
+
 def template_paths(tmp_path: Path, damper_ring: bool = True) -> list[str]:
     """The three example engines (I4, I6 with its damper ring unless ``damper_ring`` is
     false, V8) written as workbooks in ``tmp_path``; their paths."""

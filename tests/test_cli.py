@@ -9,7 +9,7 @@ import pytest
 from click.testing import CliRunner
 
 from checker.cli import main
-from tests.helpers import compliant_joints, edited, example_path
+from tests.helpers import compliant_joints, edited, example_path, fresh_python
 
 
 @pytest.fixture()
@@ -198,15 +198,11 @@ def test_report_progress_in_words_only_when_asked(example, tmp_path):
 
 
 def test_check_imports_no_plotting_pdf_or_dask(example):
-    import subprocess
-    import sys
-
     code = ("import sys; from click.testing import CliRunner; from checker.cli import main;"
             f" CliRunner().invoke(main, ['check', {str(example)!r}]);"
             " print(sorted(m for m in ('matplotlib', 'weasyprint', 'dask',"
             " 'scipy', 'pandas') if m in sys.modules))")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         check=True).stdout.strip().splitlines()[-1]
+    out = fresh_python(code).splitlines()[-1]
     assert out == "[]"
 
 

@@ -3,14 +3,11 @@ conversion exactly, and a check of the template workbooks needs no pint at all."
 
 from __future__ import annotations
 
-import subprocess
-import sys
-
 import pytest
 
 import checker.units as U
 from checker import unit_table
-from tests.helpers import template_paths
+from tests.helpers import fresh_python, template_paths
 
 
 class _Empty:
@@ -71,8 +68,7 @@ def test_check_of_the_templates_imports_neither_pint_nor_openpyxl(tmp_path):
             f"for p in {paths!r}:\n"
             "    r = api.check(p); outputs.to_json(r); outputs.to_text(r)\n"
             "print(sorted(m for m in ('pint', 'openpyxl') if m in sys.modules))")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         check=True).stdout.strip()
+    out = fresh_python(code)
     assert out == "[]"
 
 
@@ -90,6 +86,5 @@ def test_report_of_the_templates_converts_without_pint(tmp_path):
             "    for m in modules_with_sections(r):\n"
             "        SECTIONS[m](r)\n"
             "print('pint' in sys.modules)")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         check=True).stdout.strip()
+    out = fresh_python(code)
     assert out == "False"

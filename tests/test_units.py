@@ -112,8 +112,7 @@ def test_pint_imported_without_metadata_keeps_versions():
     """checker.units imports pint with a stand-in for importlib.metadata (start-up time): the
     versions pint, flexcache and flexparser report (pint keys its definitions cache by its
     version) equal importlib.metadata's, and importlib.metadata stays importable."""
-    import subprocess
-    import sys
+    from tests.helpers import fresh_python
 
     code = ("import sys, checker.units; checker.units.ureg;"
             " import pint, flexcache, flexparser;"
@@ -121,8 +120,7 @@ def test_pint_imported_without_metadata_keeps_versions():
             " import importlib.metadata as m;"
             " print([(p.__version__, m.version(p.__name__))"
             " for p in (pint, flexcache, flexparser)])")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         check=True).stdout.strip()
+    out = fresh_python(code)
     pairs = eval(out)  # noqa: S307 - our own repr of a list of string pairs
     assert len(pairs) == 3
     assert all(a == b and a != "unknown" for a, b in pairs)

@@ -596,12 +596,12 @@ def build_report(res: CheckResult, progress: Progress | None = None,
     report's ``document`` is then None); without it, this process does."""
     say = progress or (lambda _text: None)
     clock = _Clock()
-    # workers build the sections while this process imports the PDF engine, then draw their
-    # figures while it lays the PDF out (placeholders of the figures' size in the layout)
     # the results workbook's quantity sheets written from now on, in a process of its own
     # (while pyplot is imported and the sections are built), the sections' tables given later
     book_job = ForkedCall(results_book.build_fed, res, fed=True, nice=DRAWING_NICE)
     try:
+        # workers build the sections, then build and draw their figures while the PDF is
+        # laid out (placeholders of the figures' size in the layout)
         job = drawing if drawing is not None else SectionJob(res, progress, defer=True,
                                                              nice=DRAWING_NICE)
     except BaseException:

@@ -207,8 +207,7 @@ def build_fed(res: CheckResult, extra: Callable[[], list[dict]]) -> bytes:
     """:func:`build` with the quantities' sheets written before ``extra()`` (which may wait
     for the report's sections) gives the further sheets: the bulk of the workbook is done
     while the sections are being built (:class:`checker.forked.ForkedCall` with ``fed``)."""
-    prepared = prepare(res)
-    return finish(prepared, res, extra())
+    return finish(prepare(res), res, extra())
 
 
 def prepare(res: CheckResult) -> dict:

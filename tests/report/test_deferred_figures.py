@@ -15,7 +15,7 @@ from checker.report import plots
 from checker.report.render import build_report
 from checker.report.sections import SECTIONS, SectionJob
 from checker.workbook.example import example_content, write_workbook
-from tests.helpers import template_paths
+from tests.helpers import fresh_python, template_paths
 
 
 @pytest.fixture(scope="module")
@@ -128,9 +128,6 @@ def test_sections_are_built_without_matplotlib(tmp_path):
     """While figures are deferred a section needs no matplotlib (plots.later): the drawing
     processes send the sections before they build a figure, so the PDF engine gets the HTML
     sooner, and build and draw the figures while it lays the pages out."""
-    import subprocess
-    import sys
-
     paths = template_paths(tmp_path)
     code = ("import sys; from checker import api\n"
             "from checker.report import plots\n"
@@ -144,6 +141,5 @@ def test_sections_are_built_without_matplotlib(tmp_path):
             "                 for b in SECTIONS[m](r)['blocks'])\n"
             "    assert all(isinstance(x, tuple) for x in plots.DEFERRED)\n"
             "print('matplotlib' in sys.modules, n)")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         check=True).stdout.split()
+    out = fresh_python(code).split()
     assert out[0] == "False" and int(out[1]) > 40
