@@ -672,7 +672,9 @@ def run() -> None:
     in :func:`main` itself, which tests call in one long-lived process."""
     import gc
 
+    from . import frame_stack
+
     try:
-        main()
+        frame_stack.call(main)
     finally:
         gc.freeze()
