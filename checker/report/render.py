@@ -444,8 +444,10 @@ def render_html(res: CheckResult) -> str:
 
 
 def _weasyprint():
+    from .pdf_engine_import import import_weasyprint
+
     try:
-        import weasyprint
+        weasyprint = import_weasyprint()
     except OSError as exc:  # missing Pango
         raise RuntimeError(WEASYPRINT_HELP + f" ({exc})") from None
     return weasyprint

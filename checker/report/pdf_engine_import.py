@@ -1,0 +1,61 @@
+"""WeasyPrint imported without a search of the system's libraries where their usual names load.
+
+WeasyPrint loads Pango, HarfBuzz, fontconfig and GObject through cffi, trying several names
+per library for the different platforms (``weasyprint/text/ffi.py``: ``libgobject-2.0-0``,
+``gobject-2.0-0``, ``gobject-2.0``, ``libgobject-2.0.so.0``, ...). For every name that is not
+a loadable file name, cffi asks :func:`ctypes.util.find_library`, which on Linux runs
+``ldconfig -p`` and then the C compiler or linker to look for it: about fifteen programs
+started before the usual name (``libgobject-2.0.so.0``) is tried, 0.13 s of processor time
+and 0.15 s of the import's 0.39 s (benchmarks/bench_report.py, docs/benchmarks.md, "Report
+speed, fourth round"). The libraries loaded are the same.
+
+:func:`import_weasyprint` imports WeasyPrint with that search answered "not found", so each
+library loads under the first of its names the dynamic loader knows; if that fails for a
+library WeasyPrint requires, or HarfBuzz's subsetting library (which the PDF's fonts use) is
+left out, the import is done again in WeasyPrint's own way. Only on Linux (elsewhere the
+search starts no programs).
+"""
+
+from __future__ import annotations
+
+import sys
+from contextlib import contextmanager
+from types import ModuleType
+
+
+@contextmanager
+def _no_library_search():
+    import ctypes.util
+
+    real = ctypes.util.find_library
+    ctypes.util.find_library = lambda name: None  # noqa: ARG005 - "not found", at once
+    try:
+        yield
+    finally:
+        ctypes.util.find_library = real
+
+
+def _forget_weasyprint() -> None:
+    for name in [m for m in sys.modules if m == "weasyprint" or m.startswith("weasyprint.")]:
+        del sys.modules[name]
+
+
+def import_weasyprint() -> ModuleType:
+    """The ``weasyprint`` module (see the module docstring); raises what WeasyPrint's own
+    import raises (``OSError`` without Pango)."""
+    if "weasyprint" in sys.modules or not sys.platform.startswith("linux"):
+        import weasyprint
+
+        return weasyprint
+    try:
+        with _no_library_search():
+            import weasyprint
+            from weasyprint.text import ffi
+        if ffi.harfbuzz_subset is not None:
+            return weasyprint
+    except OSError:
+        pass
+    _forget_weasyprint()
+    import weasyprint
+
+    return weasyprint
