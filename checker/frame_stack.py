@@ -5,9 +5,9 @@ CPython (3.11 and later) keeps the frames of Python calls on a stack of 16 KiB c
 in the current chunk maps a new one, and the chunk is unmapped again as soon as that call
 returns. A deep recursion that goes up and down across a chunk boundary, as the PDF engine's
 layout of nested boxes and matplotlib's drawing of nested artists do, thus maps, touches and
-unmaps memory at every crossing: in the engine process of an I4 report about 50 000 page
-faults and twice as many system calls, a fifth of all page faults of the command
-(benchmarks/bench_report.py, ``docs/benchmarks.md``, "Report speed, fourth round").
+unmaps memory at every crossing (two system calls and a page fault or more each): in the
+engine process of an I4 report about 50 000 page faults, a fifth of all page faults of the
+command (``docs/benchmarks.md``, "Report speed, fourth round").
 
 :func:`call` runs a function below a frame that reserves a large evaluation stack: the chunk
 mapped for that frame is sized for it (chunks double from 16 KiB until the frame fits), and
