@@ -49,9 +49,21 @@ weakref and garbage-collection callbacks with their exceptions printed as "Excep
 and dropped (the command would then run to its end)."""
 
 
+def _in_callback(frame) -> bool:
+    """Whether an exception raised in ``frame`` would pass through a finalizer (``__del__``)
+    or a weakref callback, where the interpreter drops it: the frame itself or any frame it
+    was called from (a signal often arrives in a function a finalizer calls, e.g. a
+    connection's ``_close`` under its ``__del__``)."""
+    while frame is not None:
+        code = frame.f_code
+        if code.co_name == "__del__" or code.co_filename.endswith(_CALLBACKS):
+            return True
+        frame = getattr(frame, "f_back", None)
+    return False
+
+
 def _raise(exc: type[BaseException], frame) -> None:
-    if frame is not None and (frame.f_code.co_filename.endswith(_CALLBACKS)
-                              or frame.f_code.co_name == "__del__"):
+    if _in_callback(frame):
         _PENDING[0] = exc  # raised here it would be dropped: raised at the next checkpoint
         return
     raise exc()

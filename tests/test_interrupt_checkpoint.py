@@ -33,3 +33,22 @@ def test_signal_elsewhere_raises_at_once():
     with pytest.raises(interrupt.Terminated):
         interrupt._raise_terminated(15, None)
     interrupt.checkpoint()  # nothing left pending
+
+
+def test_signal_in_a_function_a_finalizer_calls_is_raised_at_the_next_checkpoint():
+    """CI caught a SIGTERM that arrived in multiprocessing's ``_close``, called by a
+    connection's ``__del__``: the frame the handler gets is ``_close``, not ``__del__``."""
+    import sys
+
+    def close():  # the handler runs here, two frames below the finalizer
+        interrupt._raise_terminated(15, sys._getframe())
+
+    class Connection:
+        def __del__(self):
+            close()
+
+    interrupt.checkpoint()
+    Connection()  # finalized at once; nothing raised here
+    with pytest.raises(interrupt.Terminated):
+        interrupt.checkpoint()
+    interrupt.checkpoint()  # raised once only
