@@ -831,10 +831,14 @@ def connect_dask(address: str, workers: int | None = None) -> DaskEngine:
             with _sigint_ignored(), dask.config.set(
                     {"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
                 # the workers inherit SIG_IGN: a Ctrl-C is for this process
+                # the workers' own logs only for critical events: a variant's error reaches
+                # this process through its future; at an interruption a worker whose
+                # heartbeat meets the closed scheduler logs an error with a traceback
+                # ("Failed to communicate with scheduler during heartbeat")
                 cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1,
                                        threads_per_worker=1, processes=True,
                                        dashboard_address=None,
-                                       silence_logs=logging.ERROR)
+                                       silence_logs=logging.CRITICAL)
                 client = Client(cluster)
         except Exception as exc:  # noqa: BLE001 - e.g. no free port, no process allowed
             raise DaskUnreachable(f"cannot start a local Dask cluster ({_short(exc)})"

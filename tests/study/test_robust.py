@@ -178,6 +178,32 @@ def test_interrupted_dask_study_leaves_no_process(wb, tmp_path):
     assert kept and "Traceback" not in err
 
 
+def _log_in_worker(level: int, text: str) -> None:
+    import logging
+
+    logging.getLogger("distributed.worker").log(level, text)
+
+
+def test_local_cluster_workers_log_only_critical_events(capfd):
+    """A worker's error log (at an interruption: its heartbeat meeting the closed scheduler,
+    with a traceback; CI caught it in an interrupted study's output) stays out of the
+    command's stderr; a variant's own error reaches the command through its future."""
+    pytest.importorskip("distributed")
+    import logging
+
+    from checker.study.run import connect_dask
+
+    eng = connect_dask("local", 1)
+    try:
+        eng.client.run(_log_in_worker, logging.ERROR, "worker error noise")
+        eng.client.run(_log_in_worker, logging.CRITICAL, "worker critical event")
+    finally:
+        eng.close()
+    err = capfd.readouterr().err
+    assert "worker error noise" not in err
+    assert "worker critical event" in err
+
+
 def test_interruptible_maps_signals_to_exit_codes():
     assert exit_code(KeyboardInterrupt()) == 130 and exit_code(Terminated()) == 143
     lines: list[str] = []
