@@ -19,20 +19,16 @@ search starts no programs).
 from __future__ import annotations
 
 import sys
-from contextlib import contextmanager
+from contextlib import AbstractContextManager
 from types import ModuleType
 
+from .. import swapped
 
-@contextmanager
-def _no_library_search():
+
+def _no_library_search() -> AbstractContextManager[None]:
     import ctypes.util
 
-    real = ctypes.util.find_library
-    ctypes.util.find_library = lambda name: None  # noqa: ARG005 - "not found", at once
-    try:
-        yield
-    finally:
-        ctypes.util.find_library = real
+    return swapped.attribute(ctypes.util, "find_library", lambda _name: None)  # "not found"
 
 
 def _forget_weasyprint() -> None:

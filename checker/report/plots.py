@@ -22,6 +22,8 @@ import re
 from collections.abc import Callable
 from contextlib import contextmanager
 
+from .. import swapped
+
 LIMIT_STYLE = {"color": "#c0392b", "linestyle": "--", "linewidth": 1.1}
 STATUS_COLORS = {"PASS": "#1e8449", "FAIL": "#c0392b", "WARN": "#d68910",
                  "NOT EVALUATED": "#95a5a6", "NOT JUDGED": "#bdc3c7"}
@@ -83,15 +85,11 @@ def _property_lists_unwritten():
     function, nothing changes."""
     import matplotlib.artist as artist
 
-    real = getattr(artist, "kwdoc", None)
-    if real is None:
+    if not hasattr(artist, "kwdoc"):
         yield
         return
-    artist.kwdoc = lambda _artist: ""
-    try:
+    with swapped.attribute(artist, "kwdoc", lambda _artist: ""):
         yield
-    finally:
-        artist.kwdoc = real
 
 
 class _LazyPyplot:
@@ -318,11 +316,8 @@ def _draw(fig) -> Png:
         return orig(self, gc, x, y, s, prop, angle, ismath, mtext)
 
     canvas = FigureCanvasAgg(fig)
-    RendererAgg.draw_text = draw_text
-    try:
+    with swapped.attribute(RendererAgg, "draw_text", draw_text):
         canvas.draw()
-    finally:
-        RendererAgg.draw_text = orig
     rgba = canvas.buffer_rgba()
     img = Image.frombuffer("RGBA", (rgba.shape[1], rgba.shape[0]), rgba, "raw", "RGBA", 0,
                            1).convert("RGB")

@@ -22,7 +22,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from .. import __version__
+from .. import __version__, swapped
 from ..api import CheckResult
 from ..caveats import estimate_caveat
 from ..forked import ForkedCall
@@ -536,11 +536,8 @@ def _flate_level(level: int):
     if getattr(pydyf, "zlib", None) is not zlib:
         yield
         return
-    pydyf.zlib = _Zlib(zlib, level)
-    try:
+    with swapped.attribute(pydyf, "zlib", _Zlib(zlib, level)):
         yield
-    finally:
-        pydyf.zlib = zlib
 
 
 class _PageProgress(logging.Handler):

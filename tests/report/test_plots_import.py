@@ -1,19 +1,14 @@
 """checker.report.plots.pyplot: matplotlib imported with its help texts' property lists left
 empty works as matplotlib does and draws the same figures."""
 
-from tests.helpers import fresh_python
+from tests.helpers import example_path, fresh_python
 
 DRAW_ALL = """
 import hashlib, sys
 from checker import api
 from checker.report import plots, sections
-from checker.workbook.example import example_content, write_workbook
-import tempfile, pathlib
 {setup}
-d = tempfile.mkdtemp()
-p = pathlib.Path(d) / "i4.xlsx"
-write_workbook(p, example_content())
-res = api.check(str(p))
+res = api.check({path!r})
 sections.load_sections()
 plots.DEFERRED = []
 for m in sections.modules_with_sections(res):
@@ -39,9 +34,11 @@ print(line.get_color(), line.get_linewidth(), plt.getp(line, "color"))
     assert out.splitlines() == ["True True", "red 2.0 red"]
 
 
-def test_every_figure_of_the_i4_report_the_same_as_with_matplotlibs_own_import():
-    ours = fresh_python(DRAW_ALL.format(setup=""))
+def test_every_figure_of_the_i4_report_the_same_as_with_matplotlibs_own_import(tmp_path):
+    path = str(example_path(tmp_path))
+    ours = fresh_python(DRAW_ALL.format(setup="", path=path))
     own = fresh_python(DRAW_ALL.format(
-        setup="import contextlib\nplots._property_lists_unwritten = contextlib.nullcontext"))
+        setup="import contextlib\nplots._property_lists_unwritten = contextlib.nullcontext",
+        path=path))
     assert int(ours.split()[0]) > 15
     assert ours == own
