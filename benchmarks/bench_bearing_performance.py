@@ -27,8 +27,8 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from checker import graph  # noqa: E402
-from checker.engine import load_engine  # noqa: E402
+from checker.description.engine import load_engine  # noqa: E402
+from checker.evaluation import graph  # noqa: E402
 from checker.modules import bearing_performance as bpm  # noqa: E402
 from checker.workbook.example import example_content, write_workbook  # noqa: E402
 from checker.workbook.example_i6 import i6_content  # noqa: E402

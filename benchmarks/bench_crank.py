@@ -25,8 +25,8 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from checker import api  # noqa: E402
-from checker import crank_derive as cd  # noqa: E402
-from checker.engine import build_engine  # noqa: E402
+from checker.description import crank_derive as cd  # noqa: E402
+from checker.description.engine import build_engine  # noqa: E402
 from checker.workbook.example import write_workbook  # noqa: E402
 from checker.workbook.example_data import load_example  # noqa: E402
 from checker.workbook.loader import read_workbook  # noqa: E402

@@ -30,7 +30,7 @@ from test_crank_sheet import i4_with_crank  # noqa: E402
 
 from checker import api  # noqa: E402
 from checker.calc import crank_forces as cf  # noqa: E402
-from checker.engine import load_engine  # noqa: E402
+from checker.description.engine import load_engine  # noqa: E402
 from checker.modules import support_beam  # noqa: E402
 from checker.workbook.example import write_workbook  # noqa: E402
 

@@ -36,9 +36,9 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from checker import graph  # noqa: E402
 from checker.calc import orbit as ob  # noqa: E402
-from checker.engine import load_engine  # noqa: E402
+from checker.description.engine import load_engine  # noqa: E402
+from checker.evaluation import graph  # noqa: E402
 from checker.modules import bearings as m_bearings  # noqa: E402
 from checker.workbook.example import example_content, write_workbook  # noqa: E402
 from checker.workbook.example_i6 import i6_content  # noqa: E402

@@ -16,8 +16,8 @@ import tempfile
 import time
 from pathlib import Path
 
-from checker import graph
-from checker.engine import load_engine
+from checker.description.engine import load_engine
+from checker.evaluation import graph
 from checker.modules import bearing_performance, heat_memo
 from checker.workbook.example import example_content, write_workbook
 

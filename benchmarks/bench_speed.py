@@ -223,7 +223,7 @@ def orbits(i4: Path) -> None:
     """Run time against error of the periodicity tolerance and of shared orbits."""
     from checker import api
     from checker.calc import orbit as ob
-    from checker.engine import load_engine
+    from checker.description.engine import load_engine
 
     calls = []
     real = ob.solve_orbit
@@ -263,8 +263,8 @@ def _chunk_worker(args) -> tuple[int, float]:
     """Build the variant engines of one chunk and check them with check_batch."""
     wb, study_path, idx = args
     from checker import api
-    from checker.engine import build_engine
-    from checker.ruletable import load_rules, override_problems
+    from checker.description.engine import build_engine
+    from checker.evaluation.ruletable import load_rules, override_problems
     from checker.study.apply import apply_variant, resolve
     from checker.study.design import variants
     from checker.study.spec import load_study

@@ -30,8 +30,9 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from checker import api, graph  # noqa: E402
-from checker.engine import load_engine  # noqa: E402
+from checker import api  # noqa: E402
+from checker.description.engine import load_engine  # noqa: E402
+from checker.evaluation import graph  # noqa: E402
 from checker.modules import bearings as m_bearings  # noqa: E402
 from checker.modules import loads as m_loads  # noqa: E402
 from checker.modules import torsion as m_tv  # noqa: E402

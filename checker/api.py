@@ -15,11 +15,10 @@ from typing import Any
 
 import numpy as np
 
-from . import __version__, graph
-from .engine import Engine, load_engine
-from .results import assumptions_of
-from .results.loads import cycle_of
-from .ruletable import (
+from . import __version__
+from .description.engine import Engine, load_engine
+from .evaluation import graph
+from .evaluation.ruletable import (
     Rule,
     RuleResult,
     RuleTable,
@@ -29,7 +28,9 @@ from .ruletable import (
     not_applicable_result,
     override_problems,
 )
-from .ruletable import select_rules as _select
+from .evaluation.ruletable import select_rules as _select
+from .results import assumptions_of
+from .results.loads import cycle_of
 
 FAIL_ON = ("error", "warning", "not-evaluated")
 """Values of ``fail_on``: ``error`` (default), ``warning`` (also failed warnings),
@@ -178,8 +179,8 @@ class CheckResult:
     @property
     def caveats(self) -> list[dict[str, Any]]:
         """Model-validity flags and limits applied outside their engine class
-        (:mod:`checker.caveats`): what page 1 shows beside the verdict."""
-        from . import caveats
+        (:mod:`checker.results.caveats`): what page 1 shows beside the verdict."""
+        from .results import caveats
 
         out = caveats.applicable(caveats.collect(self.outcome), self.results,
                                  {o.rule for o in self.table.overrides})
@@ -338,14 +339,15 @@ def check(source: str | Path | Engine, rules: str | Path | RuleTable | None = No
         with commas, e.g. ``"warning,not-evaluated"``.
     cache : dict, optional
         Calculation results kept across calls (parametric studies): a calculation whose
-        inputs are unchanged is reused (:func:`checker.graph.input_key`).
+        inputs are unchanged is reused (:func:`checker.evaluation.graph.input_key`).
     compare : bool
         Also compute the quantities a result is shown beside (the film thickness by the
         other method). ``False`` for variants judged on their margins only (remedies,
         tolerance corners): the same values, statuses and margins, without ``compare``.
     parallel : bool
         Compute the long calculations that others do not wait for (the bearings' heat
-        balance) in a forked process meanwhile (:func:`checker.graph.run`): for a command's
+        balance) in a forked process meanwhile (:func:`checker.evaluation.graph.run`): for a
+        command's
         own process on a machine with two cores or more, not for the workers of a study. The
         same result.
 
@@ -421,14 +423,14 @@ def check_batch(engines: list[Engine], rules: str | Path | RuleTable | None = No
     MOFT) of all variants are solved in one orbit kernel call per model (the variants are one
     more batch axis: a clearance, oil or width study costs about one check's orbits, not one
     per variant); every other calculation is evaluated per variant with the calculation cache
-    (:func:`checker.graph.input_key`), so what the variants share (e.g. the loads of a
+    (:func:`checker.evaluation.graph.input_key`), so what the variants share (e.g. the loads of a
     clearance study) is computed once. Orbits are never shared between variants, so each
     variant's numbers are exactly those of its own :func:`check` (tests).
 
     Parameters
     ----------
     engines : list of Engine
-        The variants (e.g. :func:`checker.engine.build_engine` of each study variant).
+        The variants (e.g. :func:`checker.description.engine.build_engine` of each study variant).
     rules, select, ignore, fail_on
         As in :func:`check` (workbook limit overrides are applied per engine).
     cache : dict, optional
@@ -497,7 +499,7 @@ def compare_schemes(res: CheckResult) -> list[dict[str, Any]]:
     statuses and values). Empty under the determinate scheme."""
     from dataclasses import replace as _replace
 
-    from .engine import Params
+    from .description.engine import Params
 
     if (res.engine.params.get("support_scheme") or "determinate") == "determinate":
         return []

@@ -24,8 +24,8 @@ import click  # noqa: E402
 
 from . import __version__
 from .errors import CheckerError, InternalError, OutputError, UsageProblem
-from .interrupt import EXIT_SIGINT, EXIT_SIGTERM, Terminated, checkpoint, sigterm_raises
-from .outputs_io import check_writable, write_files
+from .outputs.files import check_writable, write_files
+from .plumbing.interrupt import EXIT_SIGINT, EXIT_SIGTERM, Terminated, checkpoint, sigterm_raises
 
 
 def _split(values: tuple[str, ...]) -> list[str] | None:
@@ -187,7 +187,7 @@ def _exit_code(res) -> int:
 
 def _atomic_write(path: Path, data: bytes) -> None:
     """Write one output whole (via a temporary file in the same folder); a problem writing it
-    is exit code 2 with one sentence (see :mod:`checker.outputs_io`)."""
+    is exit code 2 with one sentence (see :mod:`checker.outputs.files`)."""
     _write_all([(path, data)])
 
 
@@ -383,7 +383,7 @@ def new(path, brief_file, force, **options) -> None:
 def check(workbook, rules, select, ignore, fail_on, fmt, no_timings, output, progress,
           remedies, corners, levers_file) -> None:
     """Run the check as a CI gate: results on stdout, exit code 0/1/2, no PDF."""
-    from . import outputs
+    from .outputs import formats
 
     if output:
         _outputs_writable([output], workbook)
@@ -392,11 +392,11 @@ def check(workbook, rules, select, ignore, fail_on, fmt, no_timings, output, pro
     res = _run_check(workbook, rules, select, ignore, fail_on, prog, cache)
     _attach_extras(res, workbook, rules, select, ignore, remedies, corners, levers_file, cache)
     if fmt == "json":
-        text = outputs.to_json(res, timings=not no_timings)
+        text = formats.to_json(res, timings=not no_timings)
     elif fmt == "junit":
-        text = outputs.to_junit(res)
+        text = formats.to_junit(res)
     else:
-        text = outputs.to_text(res)
+        text = formats.to_text(res)
         if remedies or corners:
             from .remedies import to_text as _extra_text
 
@@ -503,7 +503,7 @@ def study(workbook, study_file, out_dir, workers, dask_address, no_pdf, progress
     Exit codes: 0 done (failing variants are results, not errors); 2 bad study file, base
     workbook, option or output folder; 130 interrupted (Ctrl-C), 143 terminated (SIGTERM),
     the finished variants kept for a re-run to resume."""
-    from .interrupt import interruptible
+    from .plumbing.interrupt import interruptible
     from .study.results import write_tables
     from .study.run import check_output, connect_dask, output_lock, plan_study, run_plan
     from .study.spec import load_study
@@ -585,7 +585,7 @@ def compare(baseline, variants, rules, select, ignore, fail_on, fmt, output) -> 
     Exit code 1 when a variant has a failing result the baseline does not have."""
     import json as _json
 
-    from . import compare as cmp
+    from .outputs import compare as cmp
 
     if output or fmt == "pdf":
         out = Path(output) if output else Path(baseline).with_name(
@@ -632,7 +632,7 @@ def compare(baseline, variants, rules, select, ignore, fail_on, fmt, output) -> 
 @click.option("--explain", metavar="ID", help="Show one rule in full.")
 def rules_cmd(rules, explain) -> None:
     """List the rule table, or explain one rule."""
-    from .ruletable import load_rules
+    from .evaluation.ruletable import load_rules
 
     try:
         table = load_rules(rules)
@@ -672,7 +672,7 @@ def run() -> None:
     in :func:`main` itself, which tests call in one long-lived process."""
     import gc
 
-    from . import frame_stack
+    from .plumbing import frame_stack
 
     try:
         frame_stack.call(main)

@@ -76,4 +76,4 @@ class InternalError(CheckerError):
 
 class OutputError(CheckerError):
     """An output cannot be written (read-only folder, a folder where a file is wanted):
-    exit code 2, found before any long work starts (:mod:`checker.outputs_io`)."""
+    exit code 2, found before any long work starts (:mod:`checker.outputs.files`)."""

@@ -18,8 +18,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from checker import graph  # noqa: E402
-from checker.ruletable import RuleTable, load_rules  # noqa: E402
+from checker.evaluation import graph  # noqa: E402
+from checker.evaluation.ruletable import RuleTable, load_rules  # noqa: E402
 
 OUT = ROOT / "docs" / "rules.md"
 
@@ -136,7 +136,7 @@ def render(table: RuleTable, rule_dir: Path) -> str:
 
 def rules_doc() -> str:
     """The rule reference of the default rule table."""
-    from checker.resources import rules_dir
+    from checker.plumbing.resources import rules_dir
 
     return render(load_rules(), rules_dir())
 

@@ -191,10 +191,10 @@ def confirm_failing_answers(ev, out) -> list:
     evaluation at its value (its lever bound to the item's cells anew, independent of the
     search's own binding): the margin lies in the accepted window. Returns the remedies
     checked."""
-    from checker.levers import ITEM
+    from checker.description.levers import ITEM
+    from checker.evaluation.ruletable import REL_TOL
     from checker.remedies.solve import TOL
     from checker.remedies.variants import bind, find
-    from checker.ruletable import REL_TOL
 
     done = []
     for rr in out:

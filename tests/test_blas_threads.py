@@ -1,4 +1,4 @@
-"""checker.blas_threads: one BLAS thread per process while checker's processes share the
+"""checker.plumbing.blas_threads: one BLAS thread per process while checker's processes share the
 cores (the remedies' helpers, the corners' process)."""
 
 from __future__ import annotations
@@ -6,8 +6,8 @@ from __future__ import annotations
 import numpy as np  # noqa: F401 - loads NumPy's BLAS
 from threadpoolctl import threadpool_info
 
-from checker.blas_threads import one_per_process
-from checker.forked import Forked
+from checker.plumbing.blas_threads import one_per_process
+from checker.plumbing.forked import Forked
 
 
 def _blas_threads() -> list[int]:

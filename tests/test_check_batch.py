@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from checker import api
-from checker.engine import Engine, load_engine
-from checker.outputs import to_json
+from checker.description.engine import Engine, load_engine
+from checker.outputs.formats import to_json
 from tests.helpers import example_path
 
 

@@ -19,7 +19,7 @@ from click.testing import CliRunner
 from checker.api import CheckResult
 from checker.cli import STEP_WORDS, _Progress, main
 from checker.errors import OutputError
-from checker.outputs_io import check_writable, check_writable_folder, write_files
+from checker.outputs.files import check_writable, check_writable_folder, write_files
 from tests.helpers import example_path, unwritable_folder
 
 ROOT = os.geteuid() == 0 if hasattr(os, "geteuid") else False
@@ -144,7 +144,7 @@ def test_summary_says_1_warning_not_1_warnings():
 
 def test_progress_names_every_calculation_in_words(capsys):
     import checker.modules  # noqa: F401 - registers the calculations
-    from checker.graph import CALCULATIONS
+    from checker.evaluation.graph import CALCULATIONS
 
     assert {c.name for c in CALCULATIONS.values()} <= set(STEP_WORDS)
     p = _Progress(True)

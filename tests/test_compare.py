@@ -12,7 +12,7 @@ import pytest
 from click.testing import CliRunner
 
 from checker.cli import main
-from checker.compare import compare, input_changes
+from checker.outputs.compare import compare, input_changes
 from checker.report.compare import render
 from checker.workbook.example import write_workbook
 from checker.workbook.example_i6 import i6_content

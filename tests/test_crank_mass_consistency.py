@@ -1,7 +1,7 @@
 """Crank mass data that contradict themselves are caught for every user: a centre of mass
 axially outside its component (a lateral coordinate entered in X instead of Z) is a warning
 with its cell; a resultant unbalance of the rotating masses in a layout that is balanced by
-its symmetry is a finding and fails BAL-006 (checker.engine.check_mass_planes,
+its symmetry is a finding and fails BAL-006 (checker.description.engine.check_mass_planes,
 checker.modules.balance)."""
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from checker import api
-from checker.engine import load_engine
+from checker.description.engine import load_engine
 from checker.workbook.example import write_workbook
 from checker.workbook.example_i6 import THROW_ANGLES, i6_content
 from tests.helpers import edited, example_path

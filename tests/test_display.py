@@ -1,11 +1,11 @@
 """Distances to limits in words: percent limits in percentage points, a zero value against an
-upper limit as the value and the limit (checker/display.py)."""
+upper limit as the value and the limit (checker/results/display.py)."""
 
 from __future__ import annotations
 
 import pytest
 
-from checker import display
+from checker.results import display
 
 
 @pytest.mark.parametrize(("check", "value", "limit", "margin", "passed", "unit", "words"), [

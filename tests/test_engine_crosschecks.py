@@ -1,4 +1,5 @@
-"""Cross-sheet checks of checker.engine: throw angles against firing and bank angles (the
+"""Cross-sheet checks of checker.description.engine: throw angles against firing and bank angles
+(the
 convention of checker.calc.crank_forces.throw_angles), pressure-trace spacing, speed grid, oil."""
 
 from __future__ import annotations
@@ -9,7 +10,7 @@ import numpy as np
 import pytest
 
 from checker.calc.crank_forces import throw_angles
-from checker.engine import Cylinder, check_cylinders, load_engine
+from checker.description.engine import Cylinder, check_cylinders, load_engine
 from checker.errors import InputErrors
 from tests.helpers import edited, example_path, set_cell, set_param
 
@@ -289,7 +290,7 @@ def test_cylinder_station_lighter_than_its_rod_and_piston_shares_is_a_warning(tm
     """The torsional model takes a station's inertia as given (it adds no con-rod or piston
     share): a cylinder station below those shares alone (the I4: 0.451 kg x 47.3^2 mm^2 +
     1/2 0.642 kg x 47.3^2 mm^2 = 1.73e-3 kg m^2) is warned about at its cell."""
-    from checker.engine import _rod_piston_inertia
+    from checker.description.engine import _rod_piston_inertia
 
     e = load_engine(example_path(tmp_path))
     r = 0.0946 / 2

@@ -1,11 +1,11 @@
-"""checker.forked: a call in a forked process gives what the direct call gives."""
+"""checker.plumbing.forked: a call in a forked process gives what the direct call gives."""
 
 import os
 import time
 
 import pytest
 
-from checker.forked import Forked
+from checker.plumbing.forked import Forked
 
 
 def test_forked_gives_the_same_value_as_a_direct_call():
@@ -39,7 +39,7 @@ def test_forked_call_runs_elsewhere_and_close_ends_it():
 
 
 def test_forked_call_gives_the_same_value_and_passes_an_error_on():
-    from checker.forked import ForkedCall
+    from checker.plumbing.forked import ForkedCall
 
     job = ForkedCall(sorted, [3, 1, 2])
     assert job.result() == [1, 2, 3]
@@ -49,7 +49,7 @@ def test_forked_call_gives_the_same_value_and_passes_an_error_on():
 
 @pytest.mark.skipif((os.cpu_count() or 1) < 2, reason="one core: nothing is forked")
 def test_forked_call_runs_elsewhere_and_close_ends_it_at_once():
-    from checker.forked import ForkedCall
+    from checker.plumbing.forked import ForkedCall
 
     job = ForkedCall(os.getpid)
     assert job.forked and job.result() != os.getpid()
@@ -70,7 +70,7 @@ def _before_and_after(first, later):
 
 
 def test_fed_call_starts_before_its_input_and_gives_the_value():
-    from checker.forked import ForkedCall
+    from checker.plumbing.forked import ForkedCall
 
     job = ForkedCall(_before_and_after, [3, 1, 2], fed=True)
     forked = job.forked
@@ -82,7 +82,7 @@ def test_fed_call_starts_before_its_input_and_gives_the_value():
 
 
 def test_fed_call_runs_here_without_fork(monkeypatch):
-    from checker.forked import ForkedCall
+    from checker.plumbing.forked import ForkedCall
 
     monkeypatch.setattr(os, "cpu_count", lambda: 1)  # one core: nothing is forked
     job = ForkedCall(_before_and_after, [2, 1], fed=True)
@@ -95,7 +95,7 @@ def test_fed_call_runs_here_without_fork(monkeypatch):
 
 @pytest.mark.skipif((os.cpu_count() or 1) < 2, reason="one core: nothing is forked")
 def test_fed_call_waiting_for_its_input_is_ended_by_close_and_passes_errors_on():
-    from checker.forked import ForkedCall
+    from checker.plumbing.forked import ForkedCall
 
     job = ForkedCall(_before_and_after, [1], fed=True)
     pid = job.pid

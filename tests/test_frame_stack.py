@@ -1,4 +1,4 @@
-"""checker.frame_stack: a call below a large frame gives what the plain call gives, and a
+"""checker.plumbing.frame_stack: a call below a large frame gives what the plain call gives, and a
 recursion going up and down inside it no longer maps fresh memory at every turn."""
 
 import resource
@@ -6,7 +6,7 @@ import sys
 
 import pytest
 
-from checker import frame_stack
+from checker.plumbing import frame_stack
 
 
 def _depth(n: int) -> int:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from checker.graph import resonant_peaks
+from checker.evaluation.graph import resonant_peaks
 
 
 def _resonance(speed: np.ndarray, critical: float, zeta: float) -> np.ndarray:

@@ -8,9 +8,10 @@ import json
 import numpy as np
 import pytest
 
-from checker import api, graph
-from checker.engine import Engine, Params, load_engine
-from checker.outputs import to_json
+from checker import api
+from checker.description.engine import Engine, Params, load_engine
+from checker.evaluation import graph
+from checker.outputs.formats import to_json
 from tests.helpers import example_path
 
 

@@ -1,4 +1,5 @@
-"""checker.graph.run with ``parallel``: the calculations marked ``separate`` (the bearings'
+"""checker.evaluation.graph.run with ``parallel``: the calculations marked ``separate`` (the
+bearings'
 heat balance) computed in a forked process give the outcome of a run in one process, value
 for value and in the same order (the outputs list quantities and assumptions in it)."""
 
@@ -9,7 +10,8 @@ import os
 import numpy as np
 import pytest
 
-from checker import api, graph
+from checker import api
+from checker.evaluation import graph
 from checker.workbook.example import example_content, write_workbook
 
 
@@ -36,7 +38,7 @@ def test_heat_balance_is_marked_separate():
 def test_parallel_run_gives_the_outcome_of_one_process(engine, monkeypatch):
     wanted = sorted(graph.PROVIDER)  # every quantity of the graph
     one = graph.run(engine, wanted)
-    from checker import forked
+    from checker.plumbing import forked
 
     started = []
     real = forked.ForkedCall.__init__

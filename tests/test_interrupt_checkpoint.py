@@ -8,7 +8,7 @@ import types
 
 import pytest
 
-from checker import interrupt
+from checker.plumbing import interrupt
 
 
 def _frame(filename: str, name: str = "remove"):

@@ -8,7 +8,7 @@ import pytest
 
 from checker import api
 from checker.errors import RuleFileError
-from checker.ruletable import load_rules
+from checker.evaluation.ruletable import load_rules
 from tests.helpers import example_path
 
 RULE = """

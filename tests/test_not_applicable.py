@@ -12,10 +12,10 @@ import numpy as np
 import pytest
 
 from checker import api
-from checker.graph import QUANTITIES, Quantity, ensure_registered
-from checker.outputs import to_json, to_junit, to_text
+from checker.evaluation.graph import QUANTITIES, Quantity, ensure_registered
+from checker.evaluation.ruletable import evaluate_rule, load_rules
+from checker.outputs.formats import to_json, to_junit, to_text
 from checker.report import summary
-from checker.ruletable import evaluate_rule, load_rules
 from tests.helpers import edited, example_path, set_cell
 
 

@@ -1,4 +1,4 @@
-"""The text, JSON and JUnit outputs (checker/outputs.py) and the report's rows say the same
+"""The text, JSON and JUnit outputs (checker/outputs/formats.py) and the report's rows say the same
 things in the same words (issue 37)."""
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ import xml.etree.ElementTree as ET
 import pytest
 
 from checker import api
-from checker.outputs import to_json, to_junit, to_text
+from checker.outputs.formats import to_json, to_junit, to_text
 from checker.report import results_book, summary
 from tests.helpers import example_path
 

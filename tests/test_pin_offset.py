@@ -8,7 +8,7 @@ import dataclasses
 import numpy as np
 
 from checker.calc.crank_forces import cylinder_loads
-from checker.engine import Params, load_engine
+from checker.description.engine import Params, load_engine
 from tests.helpers import example_path
 
 

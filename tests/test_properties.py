@@ -11,7 +11,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from checker import api
-from checker.engine import Engine, Params, load_engine
+from checker.description.engine import Engine, Params, load_engine
 from tests.helpers import example_path
 
 SETTINGS = settings(max_examples=12, deadline=None,

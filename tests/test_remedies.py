@@ -10,12 +10,12 @@ import math
 import pytest
 
 from checker import api
+from checker.description.levers import load_levers, merge
 from checker.errors import RuleFileError
-from checker.levers import load_levers, merge
+from checker.evaluation.ruletable import REL_TOL, load_rules
 from checker.remedies import attach
 from checker.remedies.solve import TOL, find_remedies
 from checker.remedies.variants import Evaluator, bind, find
-from checker.ruletable import REL_TOL, load_rules
 from checker.workbook.loader import read_raw_workbook
 from tests.helpers import confirm_failing_answers
 

@@ -10,9 +10,9 @@ import pytest
 
 from checker import api
 from checker.errors import InputErrors
+from checker.evaluation.ruletable import load_rules
 from checker.remedies.corners import Tolerance, evaluate_corners, read_tolerances
 from checker.remedies.variants import Evaluator
-from checker.ruletable import load_rules
 from checker.workbook.loader import read_raw_workbook
 
 

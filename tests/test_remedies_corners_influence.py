@@ -24,12 +24,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from checker import api, graph
-from checker.engine import build_engine
+from checker import api
+from checker.description.engine import build_engine
+from checker.evaluation import graph
+from checker.evaluation.ruletable import load_rules
 from checker.remedies import influence
 from checker.remedies.corners import Tolerance, evaluate_corners, read_tolerances
 from checker.remedies.variants import Evaluator
-from checker.ruletable import load_rules
 from checker.workbook.loader import convert_raw, read_raw_workbook
 from tests.test_remedies_corners import _R, _Bind, _Res  # the closed-form test doubles
 

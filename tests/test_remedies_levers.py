@@ -1,4 +1,5 @@
-"""Which levers a result is offered (checker.levers, rules/levers.toml): the oil grade's choices
+"""Which levers a result is offered (checker.description.levers, rules/levers.toml): the oil
+grade's choices
 cover every SAE J300 high-temperature grade in the order of their J300 viscosity, and a thin
 grade (5W-20, 0W-20) is offered a thicker one."""
 
@@ -10,10 +11,10 @@ import pytest
 
 from checker import api
 from checker.calc.viscosity import SAE_J300_2015, j300_grade, j300_order
-from checker.levers import load_levers
+from checker.description.levers import load_levers
+from checker.evaluation.ruletable import load_rules
 from checker.remedies.solve import _discrete_candidates, find_remedies
 from checker.remedies.variants import Evaluator
-from checker.ruletable import load_rules
 from checker.workbook.loader import read_raw_workbook
 
 

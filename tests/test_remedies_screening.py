@@ -9,11 +9,11 @@ import numpy as np
 import pytest
 
 from checker import api
+from checker.evaluation.ruletable import load_rules
 from checker.remedies import solve
 from checker.remedies.screening import screenable, screening_speeds
 from checker.remedies.solve import find_remedies
 from checker.remedies.variants import Evaluator, bind, find
-from checker.ruletable import load_rules
 from checker.workbook.loader import read_raw_workbook
 from tests.helpers import confirm_failing_answers, example_path
 
@@ -160,7 +160,7 @@ def test_value_failing_at_every_speed_goes_on_at_every_speed():
 def test_outputs_name_the_screening_speeds(i4):
     """The JSON, the text output and the report's remedies section say at which speeds the
     bearing results were searched and that each answer was checked at every speed."""
-    from checker.outputs import to_json
+    from checker.outputs.formats import to_json
     from checker.remedies import attach, to_text
     from checker.report.section_remedies import remedies_section
 

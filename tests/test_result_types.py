@@ -1,5 +1,5 @@
 """Typed results (issue 24): every quantity a check computes carries a detail of the type its
-spec declares (:attr:`checker.graph.QuantitySpec.detail`), every detail type is a frozen,
+spec declares (:attr:`checker.evaluation.graph.QuantitySpec.detail`), every detail type is a frozen,
 keyword-only subclass of :class:`checker.results.Detail`, and a wrong detail is refused when
 the quantity is made (not when a PDF is rendered)."""
 
@@ -10,7 +10,8 @@ import dataclasses
 import numpy as np
 import pytest
 
-from checker import api, graph
+from checker import api
+from checker.evaluation import graph
 from checker.results import Detail
 from tests.helpers import example_path
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 import importlib.util
 from pathlib import Path
 
-from checker.ruletable import load_rules
+from checker.evaluation.ruletable import load_rules
 
 ROOT = Path(__file__).resolve().parents[1]
 

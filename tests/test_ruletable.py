@@ -7,8 +7,8 @@ import pytest
 
 from checker import api
 from checker.errors import InputErrors, RuleFileError
-from checker.graph import Quantity
-from checker.ruletable import Rule, evaluate_rule, load_rules, select_rules
+from checker.evaluation.graph import Quantity
+from checker.evaluation.ruletable import Rule, evaluate_rule, load_rules, select_rules
 from tests.helpers import analyses_run, edited, example_path
 
 GOOD = '''
@@ -83,7 +83,7 @@ def test_select_and_ignore_prefixes():
 
 
 def _q(values, coords=None):
-    from checker.graph import QUANTITIES
+    from checker.evaluation.graph import QUANTITIES
     spec = QUANTITIES["joint.cover_factor"]
     coords = coords or {"item": ["a"], "point": ["tv peak", "max power", "overspeed"]}
     return Quantity(spec, np.array(values, float), coords,
@@ -154,12 +154,12 @@ def test_selection_skips_modules(tmp_path):
     res = api.check(edited(tmp_path, edit), select=["JNT"], ignore=["JNT-008"])
     assert analyses_run(res.outcome) == ["joints"]
     assert set(res.outcome.modules_skipped) == set(
-        m for m in __import__("checker.graph", fromlist=["MODULES"]).MODULES
+        m for m in __import__("checker.evaluation.graph", fromlist=["MODULES"]).MODULES
         if m not in ("joints", "crank"))  # crank: runs whenever sheet Crank is given
 
 
 def test_resonant_peak_mask_and_applies():
-    from checker.graph import resonant_peaks
+    from checker.evaluation.graph import resonant_peaks
 
     a = np.array([5.0, 4.0, 3.0, 3.5, 2.0, 1.0, 1.5])
     # rolling-mode fall from the lowest speed is not a peak; interior maximum and rising end are
@@ -198,7 +198,7 @@ def test_joints_only_workbook_uses_given_torques(tmp_path):
 def test_findings_of_the_judged_point_come_first():
     """A note shown beside a result describes its judged point (I6: the JNT-008 row at 'max
     power' carried the note of 'tv peak')."""
-    from checker.graph import ensure_registered
+    from checker.evaluation.graph import ensure_registered
 
     ensure_registered()
     rule = Rule("JNT-101", "x", "joint.cover_factor", ">=", "", "error", "s", "r", (1.8,))
@@ -231,7 +231,7 @@ def test_findings_of_the_judged_point_come_first():
      " Fatigue!B20: alpha_B (a number, no unit)"),
 ])
 def test_not_evaluated_reasons_compose_into_sentences(reasons, message):
-    from checker.ruletable import not_evaluated_message
+    from checker.evaluation.ruletable import not_evaluated_message
 
     assert not_evaluated_message(reasons) == message
 

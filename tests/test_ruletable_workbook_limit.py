@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from checker.errors import RuleFileError
-from checker.graph import Quantity, QuantitySpec
-from checker.ruletable import Rule, evaluate_rule, load_rules
+from checker.evaluation.graph import Quantity, QuantitySpec
+from checker.evaluation.ruletable import Rule, evaluate_rule, load_rules
 
 RULE = '''
 [[rule]]

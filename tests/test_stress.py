@@ -12,8 +12,9 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from checker import api, graph
-from checker.engine import Params, load_engine
+from checker import api
+from checker.description.engine import Params, load_engine
+from checker.evaluation import graph
 from tests.helpers import example_path
 
 RPM = np.pi / 30

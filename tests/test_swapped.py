@@ -1,10 +1,10 @@
-"""checker.swapped: an attribute replaced inside the block and restored after it."""
+"""checker.plumbing.swapped: an attribute replaced inside the block and restored after it."""
 
 import types
 
 import pytest
 
-from checker import swapped
+from checker.plumbing import swapped
 
 
 def test_replaced_inside_and_restored_after_also_on_an_error():

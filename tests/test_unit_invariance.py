@@ -9,8 +9,8 @@ import json
 import pytest
 
 from checker import api
-from checker.units import Q_
 from checker.workbook.example import example_content, write_workbook
+from checker.workbook.units import Q_
 
 # unit in the example -> (replacement unit, converter of the value)
 _PINT = {

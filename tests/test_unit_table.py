@@ -1,12 +1,13 @@
-"""The unit table (checker/unit_table.py) holds pint's own numbers: every entry equals pint's
+"""The unit table (checker/workbook/unit_table.py) holds pint's own numbers: every entry equals
+pint's
 conversion exactly, and a check of the template workbooks needs no pint at all."""
 
 from __future__ import annotations
 
 import pytest
 
-import checker.units as U
-from checker import unit_table
+import checker.workbook.units as U
+from checker.workbook import unit_table
 from tests.helpers import fresh_python, template_paths
 
 
@@ -17,7 +18,7 @@ class _Empty:
 
 @pytest.fixture
 def pint_only(monkeypatch):
-    """checker.units with the table switched off (every conversion through pint)."""
+    """checker.workbook.units with the table switched off (every conversion through pint)."""
     monkeypatch.setattr(U, "_table", lambda: _Empty)
     for f in (U._affine, U._scale, U.convert_affine):
         f.cache_clear()
@@ -64,7 +65,7 @@ def test_check_of_the_templates_imports_neither_pint_nor_openpyxl(tmp_path):
     scripts/make_unit_table.py after adding a unit), and the workbook is read without
     openpyxl: ``checker check`` pays for neither import."""
     paths = template_paths(tmp_path, damper_ring=False)
-    code = ("import sys; from checker import api, outputs\n"
+    code = ("import sys; from checker import api; from checker.outputs import formats as outputs\n"
             f"for p in {paths!r}:\n"
             "    r = api.check(p); outputs.to_json(r); outputs.to_text(r)\n"
             "print(sorted(m for m in ('pint', 'openpyxl') if m in sys.modules))")
@@ -77,7 +78,7 @@ def test_report_of_the_templates_converts_without_pint(tmp_path):
     template workbooks are in the table too: the drawing and workbook processes of
     ``checker report`` do not load pint (about 0.35 s of processor time each)."""
     paths = template_paths(tmp_path)
-    code = ("import sys; from checker import api, units\n"
+    code = ("import sys; from checker import api; from checker.workbook import units\n"
             "from checker.report import results_book, plots\n"
             "from checker.report.sections import SECTIONS, modules_with_sections\n"
             "plots.DEFERRED = []\n"  # figures set up, not drawn: the conversions are the test

@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from checker.units import ATMOSPHERE_PA, UnitProblem, from_si, to_si
+from checker.workbook.units import ATMOSPHERE_PA, UnitProblem, from_si, to_si
 
 
 @pytest.mark.parametrize("unit", ["Nm", "N m", "N·m", "N*m", "Nm ", "J"])
@@ -109,12 +109,13 @@ def test_delta_temperature_spellings():
 
 
 def test_pint_imported_without_metadata_keeps_versions():
-    """checker.units imports pint with a stand-in for importlib.metadata (start-up time): the
+    """checker.workbook.units imports pint with a stand-in for importlib.metadata (start-up time):
+    the
     versions pint, flexcache and flexparser report (pint keys its definitions cache by its
     version) equal importlib.metadata's, and importlib.metadata stays importable."""
     from tests.helpers import fresh_python
 
-    code = ("import sys, checker.units; checker.units.ureg;"
+    code = ("import sys, checker.workbook.units; checker.workbook.units.ureg;"
             " import pint, flexcache, flexparser;"
             " assert 'importlib.metadata' not in sys.modules;"
             " import importlib.metadata as m;"

@@ -13,11 +13,12 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from checker import api, graph
+from checker import api
 from checker.cli import main
 from checker.errors import InputErrors
-from checker.graph import Quantity, QuantitySpec
-from checker.ruletable import Rule, evaluate_rule
+from checker.evaluation import graph
+from checker.evaluation.graph import Quantity, QuantitySpec
+from checker.evaluation.ruletable import Rule, evaluate_rule
 from tests.helpers import edited, example_path, set_param
 
 

@@ -328,7 +328,7 @@ def throw_mass_properties(*, journal_diameter: ArrayLike, journal_bore: ArrayLik
 
     Valid for bores smaller than their diameters, positive lengths and a counterweight whose
     thickness does not exceed the web's unless it clears the journals (the caller's checks:
-    :mod:`checker.engine`); raises ValueError otherwise.
+    :mod:`checker.description.engine`); raises ValueError otherwise.
 
     >>> p = throw_mass_properties(journal_diameter=0.055, journal_bore=0.0,
     ...     journal_length=0.027, pin_diameter=0.048, pin_bore=0.0, pin_length=0.0244,

@@ -2,13 +2,14 @@
 
 :data:`REGISTRY` lists the analysis modules in the order of listings and of the report (each
 builds on the ones before): name, title and the Python module holding its calculations.
-Importing this package registers them with :mod:`checker.graph` in that order, then imports
+Importing this package registers them with :mod:`checker.evaluation.graph` in that order, then
+imports
 the Python modules, which register their quantities and calculations. The graph imports no
 module (``tests/test_import_cycles.py``): whoever runs it imports this package
-(:mod:`checker.ruletable`, and through it :mod:`checker.api`).
+(:mod:`checker.evaluation.ruletable`, and through it :mod:`checker.api`).
 """
 
-from .. import graph
+from ..evaluation import graph
 
 REGISTRY: tuple[tuple[str, str, str], ...] = (
     ("loads", "Crank-train loads", "loads"),

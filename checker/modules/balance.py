@@ -27,8 +27,8 @@ import numpy as np
 
 from ..calc import balance as bal
 from ..calc import crank_forces as cf
-from ..engine import Engine
-from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
+from ..description.engine import Engine
+from ..evaluation.graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
 from ..results.balance import (
     BalanceDetail,
     BalanceRatioDetail,
@@ -36,7 +36,7 @@ from ..results.balance import (
     FreeOrderDetail,
     InternalMomentDetail,
 )
-from ..units import RPM
+from ..workbook.units import RPM
 
 MAX_ORDER = bal.DEFAULT_MAX_ORDER
 ORDERS = tuple(str(n) for n in range(1, MAX_ORDER + 1))

@@ -11,8 +11,8 @@ from ..calc import bearing_performance as bp
 from ..calc import film_pressure as fp
 from ..calc import orbit as ob
 from ..calc import viscosity as vs
-from ..engine import Bearing, Engine
-from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
+from ..description.engine import Bearing, Engine
+from ..evaluation.graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
 from ..results.bearings import FilmPressureDetail, HeatBalanceDetail
 from . import heat_memo
 from .bearings import oil_fit

@@ -7,8 +7,8 @@ import numpy as np
 
 from ..calc import orbit as ob
 from ..calc import viscosity as vs
-from ..engine import Engine
-from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
+from ..description.engine import Engine
+from ..evaluation.graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
 from ..results.bearings import FilmDetail, FilmOrbit
 from .loads import CASES
 

@@ -6,7 +6,8 @@ between its journal mid-planes, :func:`checker.calc.crank_geometry.throw_mass_pr
 and ``crank.throw_stiffness`` (between the journal mid-planes, one face held, the other turned
 about the crank axis, axial motion free: :mod:`checker.calc.throw_stiffness`). The detail
 lists every value of the crank model the analyses use with its origin (typed or derived) and
-method (:class:`checker.crank_derive.ModelValue`). Runs only for a workbook with sheet Crank.
+method (:class:`checker.description.crank_derive.ModelValue`). Runs only for a workbook with sheet
+Crank.
 """
 
 from __future__ import annotations
@@ -14,8 +15,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..calc.crank_geometry import PARTS
-from ..engine import Engine
-from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
+from ..description.engine import Engine
+from ..evaluation.graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
 from ..results.crank import CrankDetail
 
 THROW_MASS = quantity(QuantitySpec(
@@ -37,7 +38,7 @@ PROVIDES = ("crank.throw_mass", "crank.throw_inertia", "crank.throw_stiffness")
 @calculation("crank_geometry", "crank", provides=PROVIDES, reads=("crank", "crank_model"))
 def crank_geometry(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Mass, inertia and stiffness of each throw from sheet Crank."""
-    from ..crank_derive import throw_stiffness
+    from ..description.crank_derive import throw_stiffness
 
     crank = engine.crank
     if crank is None:

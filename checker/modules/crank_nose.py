@@ -4,8 +4,8 @@ bending), Bell, Ricardo 2013, 'Crankshaft analysis (29)'. Part of the fatigue mo
 from __future__ import annotations
 
 from ..calc.crank_nose import crank_nose_safety_factor, crank_nose_stresses
-from ..engine import Engine
-from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
+from ..description.engine import Engine
+from ..evaluation.graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
 from ..results.crank_nose import CrankNoseDetail
 from .loads import CASES
 

@@ -2,7 +2,7 @@
 and damper modules: which damper (rubber, the default, or an untuned viscous one), the
 viscous damper's silicone coupling, the rubber's table against temperature, the operating
 temperature range and the heat path. Missing inputs are raised as
-:class:`~checker.graph.MissingInputs` naming the cells.
+:class:`~checker.evaluation.graph.MissingInputs` naming the cells.
 """
 
 from __future__ import annotations
@@ -14,8 +14,8 @@ import numpy as np
 from ..calc import damper as dmp
 from ..calc import damper_temperature as dtemp
 from ..calc import viscous_damper as vd
-from ..engine import Engine
-from ..graph import MissingInputs
+from ..description.engine import Engine
+from ..evaluation.graph import MissingInputs
 
 ENDS = ("cold", "hot")
 """The ends of the operating temperature range (sheet Damper) the damper is judged at."""

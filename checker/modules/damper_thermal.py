@@ -36,8 +36,8 @@ from ..calc import damper_temperature as dtemp
 from ..calc import damper_tuning as dt
 from ..calc import torsional as tv
 from ..calc import viscous_damper as vd
-from ..engine import Engine
-from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
+from ..description.engine import Engine
+from ..evaluation.graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
 from ..results.damper import DamperEndsDetail
 from . import damper_inputs as dinp
 

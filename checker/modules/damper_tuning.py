@@ -24,8 +24,8 @@ import numpy as np
 
 from ..calc import damper_tuning as dt
 from ..calc import torsional as tv
-from ..engine import Engine
-from ..graph import (
+from ..description.engine import Engine
+from ..evaluation.graph import (
     MissingInputs,
     Quantity,
     QuantitySpec,

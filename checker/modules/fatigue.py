@@ -74,8 +74,8 @@ from ..calc import crank_stress as cs
 from ..calc import fatigue as fat
 from ..calc import scf as scf_mod
 from ..calc import throw_fatigue as tf
-from ..engine import Engine
-from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
+from ..description.engine import Engine
+from ..evaluation.graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
 from ..results.fatigue import (
     FilletRatioDetail,
     GoodmanDetail,

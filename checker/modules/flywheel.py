@@ -20,8 +20,8 @@ from dataclasses import replace
 import numpy as np
 
 from ..calc import flywheel as fw
-from ..engine import Engine
-from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
+from ..description.engine import Engine
+from ..evaluation.graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
 from ..results.flywheel import FlywheelDetail
 
 CASES = ("full", "no")

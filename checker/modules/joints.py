@@ -5,9 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..calc import bolted_joint as bj
-from ..display import case_text
-from ..engine import Engine, Joint
-from ..graph import (
+from ..description.engine import Engine, Joint
+from ..evaluation.graph import (
     UNAVAILABLE,
     MissingInputs,
     Quantity,
@@ -15,6 +14,7 @@ from ..graph import (
     calculation,
     quantity,
 )
+from ..results.display import case_text
 from ..results.joints import AppliedTorqueDetail, ComputedTorqueDetail, JointBoltsDetail
 
 POINTS = ("tv peak", "max power", "overspeed")
@@ -171,7 +171,7 @@ def joint_bolts(engine: Engine, inputs: dict) -> dict[str, Quantity]:
 
 def _applied_needs(engine: Engine) -> tuple[str, ...]:
     """Upstream quantities the applied torque needs: none when the workbook gives them all."""
-    from ..graph import PROVIDER
+    from ..evaluation.graph import PROVIDER
 
     given = {(t.joint, t.point) for t in engine.joint_torques}
     complete = all((j.name, p) in given for j in engine.joints for p in POINTS)
@@ -248,7 +248,7 @@ RATIO_APPLIES = ("only torques given in JointTorques are compared with the torsi
 
 
 def _computed_needs(engine: Engine) -> tuple[str, ...]:
-    from ..graph import PROVIDER
+    from ..evaluation.graph import PROVIDER
 
     tv = ("tv.joint_torque",) if "tv.joint_torque" in PROVIDER else ()
     return ("joint.applied_torque", "joint.slip_capacity") + tv

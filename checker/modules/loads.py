@@ -10,10 +10,10 @@ from ..calc import operating_points as op
 from ..calc import pressure as pr
 from ..calc.kinematics import DEFAULT_STEP, cycle_grid
 from ..calc.specific_load import peak_specific_load
-from ..engine import Bearing, Engine
-from ..graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
+from ..description.engine import Bearing, Engine
+from ..evaluation.graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
 from ..results.loads import BearingLoadDetail, Cycle, CycleDetail, SpecificLoadDetail
-from ..units import RPM
+from ..workbook.units import RPM
 from . import support_beam
 
 CASES = ("full", "no")

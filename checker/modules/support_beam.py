@@ -23,7 +23,7 @@ import numpy as np
 from ..calc import crank_beam as cb
 from ..calc import crank_forces as cf
 from ..calc import crank_stress as cs
-from ..engine import Engine
+from ..description.engine import Engine
 from ..results.loads import CrankBeamDetail
 
 SCHEMES = ("determinate", "continuous beam, rigid supports", "continuous beam, elastic supports")

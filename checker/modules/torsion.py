@@ -84,8 +84,8 @@ from ..calc import excitation as exc
 from ..calc import torsion_post as tp
 from ..calc import torsional as tv
 from ..calc import viscous_damper as vd
-from ..engine import Engine
-from ..graph import (
+from ..description.engine import Engine
+from ..evaluation.graph import (
     MissingInputs,
     Quantity,
     QuantitySpec,
@@ -106,7 +106,7 @@ from ..results.torsion import (
     TVModelData,
     TwistDetail,
 )
-from ..units import RPM
+from ..workbook.units import RPM
 from . import damper_inputs as dinp
 from .joints import POINTS
 
@@ -626,7 +626,8 @@ def _lower_orders(model: tv.TorsionalModel, theta: np.ndarray, nose: int, orders
     orders move the whole engine as one body (the rolling motion of cyclic irregularity,
     FLY-001, which Bell 2013's targets leave out); where such an order meets a crank torsional
     mode inside the speed range the crank twists as at any other resonance. Judged: the
-    resonant peaks (:func:`checker.graph.resonant_peaks`, within each case's envelope) whose
+    resonant peaks (:func:`checker.evaluation.graph.resonant_peaks`, within each case's envelope)
+    whose
     order frequency lies within :data:`MODE_BAND` of an undamped natural frequency whose
     critical speed for that order (natural frequency / order) lies inside the swept speeds.
     ``common``: the fields of :class:`~checker.results.torsion.TorsionDetail`.

@@ -17,8 +17,8 @@ import time
 from pathlib import Path
 from typing import Any
 
-from ..display import item_label
 from ..errors import UsageProblem
+from ..results.display import item_label
 
 
 def attach(res, remedies: bool = False, corners: bool = False, levers_file: str | None = None,
@@ -40,8 +40,8 @@ def attach(res, remedies: bool = False, corners: bool = False, levers_file: str 
     :class:`checker.errors.InputErrors` for a bad Tolerances sheet and
     :class:`checker.errors.RuleFileError` for a bad lever file.
     """
-    from ..blas_threads import one_per_process
-    from ..ruletable import RuleTable, load_rules
+    from ..evaluation.ruletable import RuleTable, load_rules
+    from ..plumbing.blas_threads import one_per_process
     from ..workbook.loader import read_raw_workbook
     from .variants import Evaluator
 
@@ -68,7 +68,7 @@ def attach(res, remedies: bool = False, corners: bool = False, levers_file: str 
 
 def _attach_all(res, ev, table, remedies: bool, tols, levers_file: str | None,
                 workers: int | None) -> None:
-    from ..forked import Forked
+    from ..plumbing.forked import Forked
 
     corner_job = None
     if remedies:
@@ -99,7 +99,7 @@ def _corners_here(res, ev, tols) -> tuple[list, int, float]:
 
 def _attach(res, ev, table, remedies: bool, tols, levers_file: str | None,
             corner_job=None) -> None:
-    from ..levers import load_levers, merge
+    from ..description.levers import load_levers, merge
 
     if remedies:
         from .solve import find_remedies
@@ -124,7 +124,7 @@ def _attach(res, ev, table, remedies: bool, tols, levers_file: str | None,
                         "seconds": time.perf_counter() - t0}
         ev.stop_workers()
     if tols is not None:
-        from ..display import with_unit
+        from ..results.display import with_unit
 
         out_c, n_eval, seconds = (corner_job.result() if corner_job is not None
                                   else _corners_here(res, ev, tols))
@@ -219,7 +219,7 @@ def to_text(res) -> str:
         for c in res.corners["results"]:
             if not c.tolerances:
                 continue
-            from ..display import with_unit
+            from ..results.display import with_unit
 
             lines.append(f"  {c.rule} {item_label(c.item)}:"
                          f" nominal {with_unit(c.nominal_value, c.unit)}"

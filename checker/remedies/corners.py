@@ -42,7 +42,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ..errors import InputError, InputErrors
-from ..ruletable import REL_TOL
+from ..evaluation.ruletable import REL_TOL
 from ..workbook.schema import SHEETS
 from .variants import Binding, Evaluator, bind, find
 
@@ -70,7 +70,7 @@ class Tolerance:
         return self.low + u * (self.high - self.low)
 
     def end_text(self, u: float) -> str:
-        from ..display import with_unit
+        from ..results.display import with_unit
 
         v = self.value(u)
         end = "min" if u == 0 else "max" if u == 1 else f"{u:.2f}"
@@ -89,7 +89,7 @@ def _num(x) -> float | None:
 def read_tolerances(base: Any) -> list[Tolerance]:
     """The Tolerances sheet of the base workbook (raises InputErrors naming the cells)."""
     from ..study.apply import _cell, _text
-    from ..units import UnitProblem, to_si
+    from ..workbook.units import UnitProblem, to_si
 
     raw = base.sheets.get("Tolerances")
     if raw is None:
@@ -158,7 +158,7 @@ def read_tolerances(base: Any) -> list[Tolerance]:
                 continue
         if rel or tf:
             # relative: bind in the first cell's own unit through SI ("" unit = SI)
-            from ..units import KINDS
+            from ..workbook.units import KINDS
 
             bunit = KINDS[f.kind].example if f.kind in KINDS else ""
             bunit = "N m" if tf else bunit

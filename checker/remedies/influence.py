@@ -3,9 +3,10 @@
 A tolerance moves cells of one sheet. The engine built at each end of its range is compared
 with today's engine: the parts and fields that differ (``bearings.clearance`` of rows M1..M5,
 ``oil.supply_temperature``, ``peak_pressure``...) are what the tolerance changes. A calculation
-is affected when it reads a changed input (``reads=`` of :func:`checker.graph.calculation`,
+is affected when it reads a changed input (``reads=`` of
+:func:`checker.evaluation.graph.calculation`,
 ``None`` = every input) or needs a quantity of an affected calculation (the same rule as the
-calculation cache, :func:`checker.graph.input_key`: an unaffected calculation is reused
+calculation cache, :func:`checker.evaluation.graph.input_key`: an unaffected calculation is reused
 bitwise). A result is affected when its rule's quantity is, or, for a quantity over (case,
 speed), the load cycle whose operating envelope restricts it (:func:`checker.api.check`).
 
@@ -52,7 +53,7 @@ def engine_changes(e0: Any, e1: Any) -> dict[str, Any] | None:
     for tables of records, ``{"part.key": ALL}`` for parameter sheets, ``{"part": ALL}``
     otherwise; ``None`` when a change is not visible to the calculations' ``reads`` (cell
     addresses, rule overrides): everything may change."""
-    from ..graph import ENGINE_PARTS
+    from ..evaluation.graph import ENGINE_PARTS
 
     if e0.where != e1.where or repr(e0.overrides) != repr(e1.overrides):
         return None
@@ -105,7 +106,7 @@ def affected_quantities(engines: list[Any], changes: dict[str, Any],
     """Quantity -> ``ALL`` or the frozenset of item names it may change for, given the
     ``changes`` of :func:`engine_changes` between ``engines[0]`` (today's) and the others.
     ``calcs`` (a set) receives the names of the affected calculations."""
-    from .. import graph
+    from ..evaluation import graph
 
     e0 = engines[0]
     order: list[str] = []
@@ -209,8 +210,8 @@ class Influence:
 def affecting(nominal: Any, ev: Any, tols: list[Any]) -> Influence:
     """Per evaluated result ``(rule, item)`` of ``nominal``: the indices of the tolerances
     that can move it (all of them where the structure cannot tell)."""
-    from .. import graph
-    from ..engine import build_engine
+    from ..description.engine import build_engine
+    from ..evaluation import graph
     from ..workbook.loader import convert_raw
 
     keys = [(r.rule, r.item) for r in nominal.results

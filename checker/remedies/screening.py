@@ -86,7 +86,7 @@ def _rows(a: np.ndarray, q: Any, at: int) -> np.ndarray:
 
 def in_rpm(speeds: tuple[float, ...]) -> list[float]:
     """Screening speeds [rad/s] in rpm (for what users read)."""
-    from ..units import from_si
+    from ..workbook.units import from_si
 
     return [float(from_si(x, "rad/s", "rpm")) for x in speeds]
 

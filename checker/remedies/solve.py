@@ -1,7 +1,7 @@
 """What it takes to pass: per result and lever, the input value at which the margin is zero.
 
 For every failing result and every passing one within :data:`NEAR` of its limit, each lever
-of the lever table that applies to it (:mod:`checker.levers`) is moved from today's
+of the lever table that applies to it (:mod:`checker.description.levers`) is moved from today's
 value in its allowed direction until the result's margin reaches zero:
 
 * continuous levers: a starting guess from the proportionality of value and input (only a
@@ -39,9 +39,9 @@ from typing import Any
 
 from openpyxl.utils import get_column_letter
 
-from ..display import CELL_REF, with_unit
-from ..levers import ITEM, Lever, choice_order, row_default, row_needs
-from ..ruletable import REL_TOL
+from ..description.levers import ITEM, Lever, choice_order, row_default, row_needs
+from ..evaluation.ruletable import REL_TOL
+from ..results.display import CELL_REF, with_unit
 from ..workbook.schema import SHEETS
 from .screening import screenable, screening_speeds
 from .variants import Binding, Evaluator, bind, find

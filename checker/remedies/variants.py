@@ -4,7 +4,8 @@ Every remedy and tolerance-corner evaluation goes through :meth:`Evaluator.evalu
 a list of cell changes ``{(sheet, row, column): value in the cell's unit}`` (the mechanism of
 the parametric study, :func:`checker.study.apply.resolve` and
 :meth:`checker.workbook.loader.RawWorkbook.with_values`), each converted and built like a
-workbook and checked with a shared calculation cache (:func:`checker.graph.input_key`), so a
+workbook and checked with a shared calculation cache (:func:`checker.evaluation.graph.input_key`),
+so a
 joint-torque variant recomputes only the joints. The variants are checked in batches
 (:func:`checker.api.check_batch`: their film orbits in one kernel call; the film orbits of
 unchanged bearings are reused, :mod:`checker.modules.film_memo`) and without the compared
@@ -89,7 +90,7 @@ class Evaluator:
         """The engine of a variant, or the :class:`InputErrors` of one that is not a valid
         workbook (including values a calculation refuses while the engine is built);
         ``speeds``: its sweep restricted to them (:func:`checker.modules.loads.speed_sweep`)."""
-        from ..engine import Params, build_engine
+        from ..description.engine import Params, build_engine
         from ..workbook.loader import convert_raw
 
         try:
@@ -225,7 +226,7 @@ class Evaluator:
         import time
 
         from .. import api
-        from ..engine import Engine
+        from ..description.engine import Engine
 
         out: list[Any] = []
         t0 = time.perf_counter()
@@ -282,7 +283,7 @@ class Evaluator:
 
     def _evict(self) -> None:
         """Drop the oldest variant results beyond :attr:`keep_bytes`."""
-        from .. import graph
+        from ..evaluation import graph
 
         extra = [k for k in self.cache if k not in self._pinned]
         for k in extra:
@@ -355,7 +356,7 @@ def find(res: Any, rule: str, item: str):
 
 def _affine_from(unit: str | None, kind: str) -> tuple[float, float]:
     """``si = a x + b`` for values ``x`` in ``unit``."""
-    from ..units import to_si
+    from ..workbook.units import to_si
 
     b = to_si(0.0, unit or None, kind)
     return to_si(1.0, unit or None, kind) - b, b
@@ -427,7 +428,7 @@ def bind(base: Any, sheet: str, fields: tuple[Field, ...], unit: str, rows: tupl
     """Resolve the cells of (sheet, rows/where, fields) in the base workbook; a text saying
     why not (no such row or column) otherwise."""
     from ..errors import CheckerError
-    from ..units import to_si
+    from ..workbook.units import to_si
 
     spec = SHEETS[sheet]
     targets: list[Target] = []

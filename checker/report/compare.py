@@ -1,6 +1,6 @@
 """The design-review pack of ``checker compare``: input changes, result changes (status
 changes first), side-by-side worst cases and the key curves of baseline and variants
-overlaid. Formatting only: every number comes from the checks and :mod:`checker.compare`."""
+overlaid. Formatting only: every number comes from the checks and :mod:`checker.outputs.compare`."""
 
 from __future__ import annotations
 
@@ -13,10 +13,10 @@ from typing import Any
 import numpy as np
 
 from .. import __version__
-from ..compare import Comparison
-from ..display import item_label, with_unit
-from ..resources import templates_dir
-from ..units import from_si
+from ..outputs.compare import Comparison
+from ..plumbing.resources import templates_dir
+from ..results.display import item_label, with_unit
+from ..workbook.units import from_si
 
 # (quantity, case, title, y label, display unit, reduce over items)
 CURVES = (

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..api import CheckResult
-from ..display import case_text
+from ..results.display import case_text
 from .sections import fmt, in_unit, rpm
 
 

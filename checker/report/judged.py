@@ -1,6 +1,7 @@
 """Which computed points the rules judge, for the report's tables and plots.
 
-The single source is :attr:`checker.graph.Quantity.applies` (the quantity's own mask, e.g. the
+The single source is :attr:`checker.evaluation.graph.Quantity.applies` (the quantity's own mask,
+e.g. the
 resonant peaks of a TV amplitude, combined with the operating envelope by
 :func:`checker.api._apply_envelope`) with ``q.applies_text`` as the reason. The report
 never decides by itself which points count: these helpers only *locate* the judged worst point

@@ -54,8 +54,8 @@ class _ProgressToParent(logging.Handler):
 
 def _serve(conn) -> None:
     """The engine process: import and warm WeasyPrint, then lay out and write one report."""
-    from ..forked import child_start
-    from ..gc_tuning import fewer_collections
+    from ..plumbing.forked import child_start
+    from ..plumbing.gc_tuning import fewer_collections
 
     child_start()  # Ctrl-C and SIGTERM: the command handles them
     try:
@@ -190,7 +190,7 @@ def start() -> PdfEngine | None:
     import multiprocessing as mp
     import os
 
-    from ..forked import hold_signals, release_signals
+    from ..plumbing.forked import hold_signals, release_signals
 
     if (os.cpu_count() or 1) < 2 or "fork" not in mp.get_all_start_methods():
         return None

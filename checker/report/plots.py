@@ -22,7 +22,7 @@ import re
 from collections.abc import Callable
 from contextlib import contextmanager
 
-from .. import swapped
+from ..plumbing import swapped
 
 LIMIT_STYLE = {"color": "#c0392b", "linestyle": "--", "linewidth": 1.1}
 STATUS_COLORS = {"PASS": "#1e8449", "FAIL": "#c0392b", "WARN": "#d68910",

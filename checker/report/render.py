@@ -22,11 +22,12 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from .. import __version__, swapped
+from .. import __version__
 from ..api import CheckResult
-from ..caveats import estimate_caveat
-from ..forked import ForkedCall
-from ..resources import templates_dir
+from ..plumbing import swapped
+from ..plumbing.forked import ForkedCall
+from ..plumbing.resources import templates_dir
+from ..results.caveats import estimate_caveat
 from . import results_book, review, summary
 from .sections import SECTIONS, SectionJob, modules_with_sections
 
@@ -444,7 +445,7 @@ def render_html(res: CheckResult) -> str:
 
 
 def _weasyprint():
-    from .pdf_engine_import import import_weasyprint
+    from ..plumbing.pdf_engine_import import import_weasyprint
 
     try:
         weasyprint = import_weasyprint()

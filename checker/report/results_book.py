@@ -14,7 +14,7 @@ from collections.abc import Callable
 import numpy as np
 
 from ..api import CheckResult
-from ..display import case_text, item_label, unit_text
+from ..results.display import case_text, item_label, unit_text
 from ..results.loads import cycle_of
 
 ATTACHMENT_NAME = "results.xlsx"
@@ -59,11 +59,11 @@ def display_unit(res: CheckResult, q) -> str:
 
 
 def convert(values, si: str, disp: str) -> tuple[np.ndarray, str]:
-    """SI values in the display unit, through :func:`checker.units.from_si`, which converts
+    """SI values in the display unit, through :func:`checker.workbook.units.from_si`, which converts
     offset units affinely (K -> °C subtracts 273.15; a factor from ``from_si(1.0, ...)`` would
     turn 403.6 K into -109,846 °C). Returns ``(values, unit)``; an exotic unit that cannot be
     converted stays in SI."""
-    from ..units import from_si
+    from ..workbook.units import from_si
 
     v = np.asarray(values, dtype=float)
     if si in ("", "-") and disp in ("", "-"):
@@ -206,7 +206,8 @@ def build(res: CheckResult, extra: list[dict] | None = None) -> bytes:
 def build_fed(res: CheckResult, extra: Callable[[], list[dict]]) -> bytes:
     """:func:`build` with the quantities' sheets written before ``extra()`` (which may wait
     for the report's sections) gives the further sheets: the bulk of the workbook is done
-    while the sections are being built (:class:`checker.forked.ForkedCall` with ``fed``)."""
+    while the sections are being built (:class:`checker.plumbing.forked.ForkedCall` with
+    ``fed``)."""
     return finish(prepare(res), res, extra())
 
 

@@ -13,9 +13,9 @@ import datetime as _dt
 import re
 
 from ..api import CheckResult
+from ..evaluation.ruletable import RuleResult
 from ..results import caveats_of
 from ..results.loads import cycle_of
-from ..ruletable import RuleResult
 
 MECHANISMS: dict[str, str] = {
     "BAL-001": "Free forces of the reciprocating and rotating masses shake the engine mounts"
@@ -151,7 +151,7 @@ _VALIDITY = re.compile(r"validity|outside \[|taken as|collaps|did not converge|n
 CAVEAT_TITLES = {"model validity": "Model validity",
                  "limit outside its class": "Limits outside their engine class",
                  "assumption": "Assumptions behind the limits"}
-"""The heading of each caveat kind on page 1 (:mod:`checker.caveats`), in page order."""
+"""The heading of each caveat kind on page 1 (:mod:`checker.results.caveats`), in page order."""
 
 
 def _sentence(t: str) -> str:
@@ -178,7 +178,7 @@ def _validity_flags(res: CheckResult) -> list[str]:
 def _stated_caveats(res: CheckResult) -> dict[str, list[str]]:
     """The caveats the calculations state (:func:`checker.results.caveats_of`: dicts with a
     ``kind`` and a one-sentence ``text``), their sentences by page-1 heading."""
-    from ..caveats import applicable
+    from ..results.caveats import applicable
 
     out: dict[str, list[str]] = {}
     stated = [c for name in sorted(res.outcome.quantities)
@@ -280,7 +280,7 @@ def caveats(res: CheckResult) -> list[dict]:
         more = len(flags) - 6
         out.append({"title": "Model validity", "items": flags[:6] + (
             [f"... and {more} more in the module sections."] if more > 0 else [])})
-    from ..caveats import estimate_caveat
+    from ..results.caveats import estimate_caveat
 
     est = estimate_caveat(res.engine, res.results)
     if est:

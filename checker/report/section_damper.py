@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..api import CheckResult
-from ..display import case_text
+from ..results.display import case_text
 from . import judged as jd
 from .plots import figure, later, legend_below, to_image
 from .sections import display_values, fmt, in_unit, rpm, section

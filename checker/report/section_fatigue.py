@@ -7,10 +7,10 @@ import numpy as np
 from ..api import CheckResult
 from ..calc.fatigue import goodman_line
 from ..calc.scf import VALIDITY
-from ..display import case_text
+from ..evaluation.ruletable import not_evaluated_message
 from ..modules.fatigue import FACTORS_OF, LOCATIONS, SCF_FIELDS
+from ..results.display import case_text
 from ..results.fatigue import FatigueDetail, GoodmanDetail
-from ..ruletable import not_evaluated_message
 from . import judged as jd
 from .plots import LIMIT_STYLE, figure, later, legend_below, limit_line, literal, to_image
 from .sections import fmt, in_unit, rpm, section

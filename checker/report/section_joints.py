@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..api import CheckResult
-from ..display import case_text
+from ..results.display import case_text
 from .plots import STATUS_COLORS, figure, later, legend_below, literal, to_image
 from .sections import display_values, fmt, in_unit, rpm, section
 

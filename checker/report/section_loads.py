@@ -7,7 +7,7 @@ import re
 import numpy as np
 
 from ..api import CheckResult
-from ..display import unit_text
+from ..results.display import unit_text
 from . import judged as jd
 from .plots import every, figure, later, legend_below, limit_line, literal, to_image
 from .sections import fmt, in_unit, merge_items, param_table, rpm, section

@@ -16,7 +16,7 @@ import re
 from typing import Any
 
 from ..api import CheckResult
-from ..display import item_label, with_unit
+from ..results.display import item_label, with_unit
 from .sections import section
 
 REMEDIES_SHEET = "Remedies"

@@ -6,9 +6,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import display
 from ..api import CheckResult
-from ..display import case_text
+from ..results import display
+from ..results.display import case_text
 from . import judged as jd
 from .plots import figure, later, legend_below, limit_line, literal, to_image
 from .sections import display_values, fmt, in_unit, rpm, section

@@ -33,8 +33,8 @@ from collections.abc import Callable
 
 import numpy as np
 
-from .. import display
 from ..api import CheckResult
+from ..results import display
 
 SECTIONS: dict[str, Callable[[CheckResult], dict]] = {}
 LABELS: dict[str, str] = {}
@@ -61,9 +61,10 @@ def fmt(v, digits: int = display.SIG) -> str:
 
 def in_unit(values, si_unit: str, unit: str):
     """SI ``values`` (float or array) in a display ``unit``, through
-    :func:`checker.units.from_si` (offset units converted affinely: K -> °C subtracts 273.15).
+    :func:`checker.workbook.units.from_si` (offset units converted affinely: K -> °C subtracts
+    273.15).
     Every unit conversion of a section goes through here or :func:`display_values`."""
-    from ..units import from_si
+    from ..workbook.units import from_si
 
     return from_si(np.asarray(values, dtype=float) if not np.isscalar(values) else values,
                    si_unit, unit)
@@ -76,7 +77,7 @@ def rpm(speed):
 
 def display_values(q, values=None):
     """A quantity's SI values (or ``values`` of it) in its declared display unit
-    (:attr:`checker.graph.QuantitySpec.display_unit`), with that unit as displayed."""
+    (:attr:`checker.evaluation.graph.QuantitySpec.display_unit`), with that unit as displayed."""
     unit = q.spec.display_unit or q.spec.unit
     v = q.values if values is None else values
     return in_unit(v, q.spec.unit or "", unit) if unit else v, display.unit_text(unit)
@@ -128,8 +129,8 @@ def _drawer(worker: int, tasks, conn, nice: int, defer: bool) -> None:
     them after the last section, ``("images", None, {(worker, index): image})``; then
     ``("done", None, None)``. An exception of a section is sent as ``("error", module,
     exception)``."""
-    from ..forked import child_start
-    from ..gc_tuning import fewer_collections
+    from ..plumbing.forked import child_start
+    from ..plumbing.gc_tuning import fewer_collections
     from . import plots
 
     child_start(nice)  # Ctrl-C and SIGTERM: the parent handles them
@@ -177,7 +178,7 @@ class SectionJob:
         import multiprocessing as mp
         import os
 
-        from ..forked import hold_signals, release_signals
+        from ..plumbing.forked import hold_signals, release_signals
 
         global _RESULT
         self.res = res

@@ -14,8 +14,8 @@ import re
 from dataclasses import dataclass, field
 
 from ..api import CheckResult
-from ..display import CELL_REF, item_label
-from ..ruletable import RuleResult
+from ..evaluation.ruletable import RuleResult
+from ..results.display import CELL_REF, item_label
 
 GROUPS = (
     ("fail", "Failed", "fail"),
@@ -115,7 +115,7 @@ class _Extras:
         r = results[0]
         if r.status == "pass":
             return ""
-        from ..display import with_unit
+        from ..results.display import with_unit
         from .section_remedies import corner_text, effects_text
 
         mine = {(x.rule, x.item) for x in results}

@@ -1,10 +1,12 @@
 """Typed results of the calculation graph: what a node hands to the report and the outputs.
 
-Each graph node (a :func:`checker.graph.calculation`) returns named :class:`~checker.graph.
+Each graph node (a :func:`checker.evaluation.graph.calculation`) returns named
+:class:`~checker.evaluation.graph.
 Quantity` arrays (the numbers rules judge) and, beside them, one frozen *detail* object per
 quantity family: the curves, inputs and intermediate results a report section or the results
 workbook shows (for example the flywheel's angular-speed trace, total inertia and target). The
-detail's type is declared on the quantity (:attr:`checker.graph.QuantitySpec.detail`) and the
+detail's type is declared on the quantity (:attr:`checker.evaluation.graph.QuantitySpec.detail`)
+and the
 runner checks it, so a renamed or missing field fails in the check and in the type checker, not
 when a PDF is rendered.
 
@@ -16,7 +18,7 @@ Conventions of every detail type:
   axes are named in the comment (``(case, speed, angle)``...);
 * ``assumptions``: sentences stated in the report's assumptions list (citing their source);
   ``caveats``: limits of validity found in this run (dicts ``{"text", "rules", ...}``, see
-  :mod:`checker.caveats`).
+  :mod:`checker.results.caveats`).
 
 The detail types of one analysis live in ``checker/results/<analysis>.py``.
 """
@@ -34,7 +36,7 @@ class Detail:
     assumptions: tuple[str, ...] = ()
     """Sentences for the report's assumptions list, each citing its source."""
     caveats: tuple[dict[str, Any], ...] = ()
-    """Validity limits met in this run (:mod:`checker.caveats`)."""
+    """Validity limits met in this run (:mod:`checker.results.caveats`)."""
 
 
 def assumptions_of(q: Any) -> tuple[str, ...]:

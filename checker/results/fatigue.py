@@ -47,7 +47,7 @@ class PinOilHole:
 
     diameter: float | None  # D_O [m] (None: missing)
     angle: float | None  # phi [rad] from the throw axis, + leading (None: missing)
-    row: Any  # the Bearings row (checker.engine.Bearing) it was read from
+    row: Any  # the Bearings row (checker.description.engine.Bearing) it was read from
 
 
 class LocationStrength(NamedTuple):

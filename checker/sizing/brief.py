@@ -1,6 +1,6 @@
 """The concept brief of ``checker new``: a dozen numbers with units (TOML file or options).
 
-Values with units are strings, ``bore = "86 mm"``, converted to SI by :func:`checker.units.
+Values with units are strings, ``bore = "86 mm"``, converted to SI by :func:`checker.workbook.units.
 to_si` (the workbook's unit handling); every problem of a brief is reported at once
 (:class:`checker.errors.InputErrors`: key, expected with unit, found), exit code 2.
 """
@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError, InputErrors
-from ..units import UnitProblem, to_si
+from ..workbook.units import UnitProblem, to_si
 
 # key: (kind, example, required, default text or None)
 KEYS: dict[str, tuple[str, str, bool, str | None]] = {

@@ -129,11 +129,12 @@ def cell_value(target: Target, unit: str | None, value: Any, number_format: str 
                ) -> Any:
     """``value`` (in the study's unit) expressed in the cell's ``unit``.
 
-    Conversions go through the workbook's own unit reading (:func:`checker.units.to_si`), so
+    Conversions go through the workbook's own unit reading (:func:`checker.workbook.units.to_si`),
+    so
     every spreadsheet spelling it accepts works; the map is affine (offset units), solved
     from two points.
     """
-    from ..units import to_si
+    from ..workbook.units import to_si
 
     q = target.param
     if not q.numeric or value is None:

@@ -11,8 +11,8 @@ from typing import Any
 import numpy as np
 
 from .. import __version__
-from ..display import item_label
-from ..resources import templates_dir
+from ..plumbing.resources import templates_dir
+from ..results.display import item_label
 from .results import STATUS_ORDER, baseline_values, best_variant, sensitivity, variant_table
 from .run import StudyRun
 

@@ -105,7 +105,7 @@ def tidy(run: StudyRun):
 
 def baseline_values(run: StudyRun) -> dict[str, float | None]:
     """The workbook's own value of each parameter (first cell), in the study's unit."""
-    from ..units import to_si
+    from ..workbook.units import to_si
 
     out: dict[str, float | None] = {}
     for t in run.targets:
@@ -246,7 +246,7 @@ def _tmp(out, name: str) -> str:
     import os
     import tempfile
 
-    from ..outputs_io import file_mode
+    from ..outputs.files import file_mode
 
     fd, tmp = tempfile.mkstemp(prefix=f".{name}.", suffix=".tmp", dir=out)
     os.fchmod(fd, file_mode())

@@ -4,7 +4,8 @@ Execution engines (no home-made scheduling):
 
 * ``local`` (default): :class:`concurrent.futures.ProcessPoolExecutor` with one worker process
   per core; each worker loads the base workbook once (pool initializer) and keeps a
-  calculation cache (:func:`checker.graph.input_key`), so a variant that changes only bearing
+  calculation cache (:func:`checker.evaluation.graph.input_key`), so a variant that changes only
+  bearing
   clearances reuses the loads computed for an earlier variant in the same worker.
 * ``dask``: the same task on a Dask distributed cluster (``distributed.Client``, futures,
   ``as_completed``): a scheduler address, or ``"local"`` for a :class:`LocalCluster`.
@@ -27,7 +28,7 @@ Before any work: the study's size (:data:`checker.study.spec.MAX_VARIANTS`), the
 selection, the base workbook, the output folder (writable, a folder, not in use by another
 study: ``<out>/.checker-study.lock``, :func:`fcntl.flock`) and the Dask scheduler (reachable
 within :data:`DASK_CONNECT_TIMEOUT` seconds) are checked; each problem is one sentence.
-On Ctrl-C or SIGTERM (:mod:`checker.interrupt`) pending variants are cancelled, the worker
+On Ctrl-C or SIGTERM (:mod:`checker.plumbing.interrupt`) pending variants are cancelled, the worker
 processes ended, and the finished variants stay on disk.
 """
 
@@ -46,7 +47,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import CheckerError, InputErrors, UsageProblem
-from ..outputs_io import file_mode
+from ..outputs.files import file_mode
 from .apply import Target, apply_variant, resolve
 from .design import Variant, variants
 from .spec import Study, StudyFileError
@@ -134,7 +135,8 @@ def _setup(base, targets, select, ignore, fail_on) -> None:
 
 
 class CalcCache(OrderedDict):
-    """A worker's calculation cache (:func:`checker.graph.run` ``cache``), least recently used
+    """A worker's calculation cache (:func:`checker.evaluation.graph.run` ``cache``), least
+    recently used
     first out: after each chunk it is trimmed to :data:`CACHE_BYTES` of arrays.
 
     What variants share (the loads of a clearance study, the torsional model of an oil study)
@@ -155,7 +157,7 @@ class CalcCache(OrderedDict):
     def trim(self, limit: int) -> None:
         """Drop the least recently used entries until the arrays held are at most ``limit``
         bytes (an entry alone larger than ``limit`` is dropped too)."""
-        from .. import graph
+        from ..evaluation import graph
 
         for k in self:
             if k not in self.sizes:
@@ -183,7 +185,7 @@ def _where(variant: Variant, targets: list[Target], cell: str) -> str:
 
 
 def _table():
-    from ..ruletable import load_rules
+    from ..evaluation.ruletable import load_rules
 
     if "table" not in _WORKER:
         _WORKER["table"] = load_rules(None)
@@ -207,8 +209,8 @@ def _input_error(rec: dict, variant: Variant, exc: InputErrors) -> dict:
 def _build(variant: Variant):
     """The variant's engine (InputErrors for its bad values, workbook limit overrides
     included)."""
-    from ..engine import build_engine
-    from ..ruletable import override_problems
+    from ..description.engine import build_engine
+    from ..evaluation.ruletable import override_problems
     from ..workbook.loader import convert_raw
 
     w = _WORKER
@@ -247,8 +249,9 @@ def _films_batched(engine) -> bool:
     """Whether the study's rule selection needs a film calculation that
     :func:`checker.api.check_batch` batches (else batching only adds its planning)."""
     if "batched" not in _WORKER:
-        from .. import api, graph
-        from ..ruletable import select_rules
+        from .. import api
+        from ..evaluation import graph
+        from ..evaluation.ruletable import select_rules
 
         w = _WORKER
         wanted = {r.quantity for r in select_rules(_table(), w["select"], w["ignore"])}
@@ -312,7 +315,7 @@ def evaluate_chunk(items: list[tuple[Variant, str]]) -> list[dict]:
 
 
 def _init_local_worker(setup_args) -> None:
-    from ..interrupt import worker_signals
+    from ..plumbing.interrupt import worker_signals
 
     worker_signals()
     _die_with_parent()
@@ -501,8 +504,8 @@ def plan_study(study: Study, workbook: str | Path) -> StudyPlan:
     """Validate the study against ``workbook``: the base must be a valid workbook
     (InputErrors), the rule selection and the parameters' cells must exist
     (:class:`StudyFileError` naming the study lines). Writes nothing."""
-    from ..engine import build_engine
-    from ..ruletable import load_rules, select_rules
+    from ..description.engine import build_engine
+    from ..evaluation.ruletable import load_rules, select_rules
     from ..workbook.loader import convert_raw, read_raw_workbook
 
     base = read_raw_workbook(workbook)
@@ -519,7 +522,7 @@ def plan_study(study: Study, workbook: str | Path) -> StudyPlan:
 
 def _selection_error(study: Study, exc: UsageProblem) -> StudyFileError:
     """A rule selection problem, named by its study-file line (with a "did you mean")."""
-    from ..ruletable import load_rules
+    from ..evaluation.ruletable import load_rules
     from .spec import did_you_mean
 
     text = str(exc).strip()

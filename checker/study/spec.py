@@ -302,7 +302,7 @@ def load_study(path: str | Path) -> Study:
 
 
 def _parameter(rp: Any, i: int, at, problems: list[str], design: str) -> Parameter | None:
-    from ..units import KINDS, UnitProblem, to_si
+    from ..workbook.units import KINDS, UnitProblem, to_si
 
     where0 = at("parameter", i)
     if not isinstance(rp, dict):

@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from ..units import KINDS
 from .schema import MAX_SPEEDS, SHEETS, USUAL_SPEEDS, choice_key
+from .units import KINDS
 
 
 def _kind(kind: str) -> str:

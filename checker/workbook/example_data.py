@@ -37,7 +37,7 @@ ABOUT = "about"
 
 def example_file(engine: str) -> Path:
     """The data file of example ``engine`` (``i4``, ``i6``, ``v8``)."""
-    from ..resources import templates_dir
+    from ..plumbing.resources import templates_dir
 
     if engine not in ENGINES:
         raise ValueError(f"unknown example engine {engine!r} (one of {', '.join(ENGINES)})")

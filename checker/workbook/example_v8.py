@@ -116,7 +116,7 @@ def tv_completed(content: dict[str, Any]) -> list[list[Any]]:
     import tempfile
     from pathlib import Path
 
-    from ..engine import load_engine
+    from ..description.engine import load_engine
     from .example import write_workbook
 
     units = {n: u for n, u in cols}

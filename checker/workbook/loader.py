@@ -8,7 +8,8 @@ through empty formatted cells costs no more than its data, and the cost is linea
 and the problems (problem cells are looked up in a set). Everything zipfile, openpyxl or the XML
 parser raise while opening or reading is a file-level input error naming the file (a damaged,
 encrypted or non-workbook file), never an internal error. Values are converted to SI through
-:func:`checker.units.to_si`, choices through :func:`checker.workbook.schema.resolve_choice`,
+:func:`checker.workbook.units.to_si`, choices through
+:func:`checker.workbook.schema.resolve_choice`,
 and checked against the fields' declared ranges (``valid``: error, ``usual``: warning).
 Nothing is written and the file is never modified.
 """
@@ -24,8 +25,8 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError, InputErrors
-from ..units import KINDS, UnitProblem, from_si, to_si
 from .schema import SHEETS, ChoiceProblem, Field, Sheet, expected_choices, resolve_choice
+from .units import KINDS, UnitProblem, from_si, to_si
 from .xlsx import LAST_COLUMN, PackageProblem, SheetCells, open_package
 
 _PARAM_HEADER = ("parameter", "value", "unit")

@@ -8,7 +8,7 @@ Two sheet shapes:
 * **table sheets** (``Cylinders``, ``Bearings``, ``Joints``...): row 1 holds the column names,
   row 2 the unit of each column (``-`` or blank for text and dimensionless), data from row 3.
 
-Each field has a *kind* (a key of :data:`checker.units.KINDS`, or ``int``, ``text``,
+Each field has a *kind* (a key of :data:`checker.workbook.units.KINDS`, or ``int``, ``text``,
 ``choice``), whether it is required, a sign check, and two declared ranges (:class:`Span`):
 
 * ``valid``: outside it the calculations cannot run meaningfully (overflow, a grid that would
@@ -37,7 +37,7 @@ class Span:
     """A closed range ``lo..hi`` of a field, in the stated ``unit`` (``None`` = open end).
 
     ``unit`` is read like a workbook unit cell (``mm``, ``rpm``, ``°C``, ``-``...); the loader
-    converts the ends to SI with :func:`checker.units.to_si` (:meth:`si`).
+    converts the ends to SI with :func:`checker.workbook.units.to_si` (:meth:`si`).
     """
 
     lo: float | None
@@ -70,7 +70,7 @@ def _span_si(span: Span, kind: str) -> tuple[float, float]:
     if kind in ("int", "int_list"):
         conv = float
     else:
-        from ..units import to_si
+        from .units import to_si
 
         def conv(v: float) -> float:
             return to_si(v, span.unit, kind)

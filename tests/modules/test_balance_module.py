@@ -8,8 +8,9 @@ import dataclasses
 import numpy as np
 import pytest
 
-from checker import api, graph
-from checker.engine import MassItem, load_engine
+from checker import api
+from checker.description.engine import MassItem, load_engine
+from checker.evaluation import graph
 from checker.workbook.example import write_workbook
 from checker.workbook.example_i6 import i6_content
 from tests.helpers import analyses_run, edited, example_path, set_param

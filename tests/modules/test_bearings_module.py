@@ -9,9 +9,10 @@ import functools
 import numpy as np
 import pytest
 
-from checker import api, graph
+from checker import api
 from checker.calc import orbit as ob
-from checker.engine import Params, load_engine
+from checker.description.engine import Params, load_engine
+from checker.evaluation import graph
 from checker.modules import bearings as m_bearings
 from tests.helpers import example_path
 

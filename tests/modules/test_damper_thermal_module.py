@@ -221,7 +221,7 @@ def test_workbook_keeps_its_data(tmp_path):
     p = edited(tmp_path, lambda wb: None)
     wb = openpyxl.load_workbook(p)
     assert wb["DamperRubber"].cell(3, 1).value == -40
-    from checker.engine import load_engine
+    from checker.description.engine import load_engine
 
     e = load_engine(p)
     t = [x[0] for x in e.damper["rubber_table"]]

@@ -107,7 +107,7 @@ def test_den_hartog_optimum_is_in_the_json_and_the_results_workbook(result):
 
     import openpyxl
 
-    from checker.outputs import to_json
+    from checker.outputs.formats import to_json
     from checker.report import results_book
 
     rows = TV_MODEL[1]

@@ -112,7 +112,7 @@ def test_the_targets_extrapolated_to_another_layout_are_a_caveat():
     from dataclasses import replace
     from pathlib import Path
 
-    from checker.engine import load_engine
+    from checker.description.engine import load_engine
     from checker.modules.torsion import layout_caveats
     from checker.workbook.example import example_content
     from checker.workbook.example_v8 import v8_content
@@ -135,7 +135,7 @@ def test_the_layout_caveat_is_in_every_output_and_not_for_an_i4(tmp_path):
     import json
     import xml.etree.ElementTree as ET
 
-    from checker.outputs import to_json, to_junit, to_text
+    from checker.outputs.formats import to_json, to_junit, to_text
     from checker.report import review
     from checker.workbook.example_v8 import v8_content
 

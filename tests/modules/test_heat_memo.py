@@ -9,11 +9,11 @@ import numpy as np
 import pytest
 
 from checker import api
-from checker.engine import build_engine
+from checker.description.engine import build_engine
+from checker.evaluation.ruletable import load_rules
 from checker.modules import film_memo, heat_memo
-from checker.outputs import to_json
+from checker.outputs.formats import to_json
 from checker.remedies.variants import Evaluator, bind
-from checker.ruletable import load_rules
 from checker.workbook.loader import convert_raw, read_raw_workbook
 from checker.workbook.schema import SHEETS
 

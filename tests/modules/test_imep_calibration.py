@@ -8,10 +8,11 @@ import json
 
 import numpy as np
 
-from checker import api, caveats
-from checker.engine import load_engine
+from checker import api
+from checker.description.engine import load_engine
 from checker.modules.loads import build_cycle
-from checker.outputs import to_json
+from checker.outputs.formats import to_json
+from checker.results import caveats
 from checker.workbook.example import write_workbook
 from checker.workbook.example_i6 import i6_content
 from checker.workbook.example_v8 import v8_content

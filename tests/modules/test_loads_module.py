@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from checker import api
-from checker.engine import load_engine
+from checker.description.engine import load_engine
 from checker.modules.loads import build_cycle
-from checker.units import RPM
+from checker.workbook.units import RPM
 from tests.helpers import edited, example_path, set_param
 
 

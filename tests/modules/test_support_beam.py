@@ -16,7 +16,7 @@ import pytest
 
 from checker import api
 from checker.calc import crank_stress as cs
-from checker.engine import load_engine
+from checker.description.engine import load_engine
 from checker.errors import InputErrors
 from checker.workbook.example import write_workbook
 
@@ -211,7 +211,7 @@ def test_sweep_section_loads_of_the_lever_rule_are_m53s(checks):
 
 
 def test_determinate_json_is_byte_identical_to_no_scheme_row(checks, tmp_path):
-    from checker.outputs import to_json
+    from checker.outputs.formats import to_json
 
     plain = api.check(write_and_return(tmp_path))
     det = checks[("determinate", None)]

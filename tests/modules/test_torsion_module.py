@@ -12,7 +12,7 @@ import scipy.linalg
 
 from checker import api
 from checker.calc import torsional as tv
-from checker.engine import load_engine
+from checker.description.engine import load_engine
 from checker.workbook.example import TV_MODEL
 from tests.helpers import (
     analyses_run,

@@ -15,11 +15,12 @@ import openpyxl
 import pytest
 from click.testing import CliRunner
 
-from checker import api, graph
+from checker import api
 from checker.cli import main
-from checker.outputs import to_json, to_text
+from checker.evaluation import graph
+from checker.outputs.formats import to_json, to_text
 from checker.report import results_book
-from checker.units import Q_
+from checker.workbook.units import Q_
 from tests.helpers import edited, set_param
 
 RULE = "BRG-007"  # the effective film temperature, judged in °C

@@ -14,7 +14,7 @@ from __future__ import annotations
 import openpyxl
 import pytest
 
-from checker.resources import templates_dir
+from checker.plumbing.resources import templates_dir
 from checker.study.results import tidy
 from checker.study.run import run_study
 from checker.study.spec import load_study
@@ -114,7 +114,7 @@ def _study(kind: str, d):
 
 
 def _pack(d):
-    from checker.compare import compare
+    from checker.outputs.compare import compare
     from checker.report.compare import pack_html
 
     base = d / "engine.xlsx"

@@ -1,4 +1,4 @@
-"""checker.report.pdf_engine_import: WeasyPrint imported with the same system libraries as
+"""checker.plumbing.pdf_engine_import: WeasyPrint imported with the same system libraries as
 its own import, without starting programs to search for them, and in its own way when the
 usual names do not load."""
 
@@ -24,7 +24,7 @@ print(libs, ffi.harfbuzz_subset is not None, ffi.harfbuzz_vector is not None,
 
 def test_same_libraries_as_weasyprints_own_import_and_no_programs_started():
     own = fresh_python("import weasyprint\n" + LIBRARIES)
-    ours = fresh_python("from checker.report.pdf_engine_import import import_weasyprint\n"
+    ours = fresh_python("from checker.plumbing.pdf_engine_import import import_weasyprint\n"
                         "import_weasyprint()\n" + LIBRARIES)
     assert own.rsplit(" ", 1)[0] == ours.rsplit(" ", 1)[0]
     assert "libpango-1.0.so" in ours
@@ -37,7 +37,7 @@ def test_the_import_is_done_again_in_weasyprints_way_when_the_usual_names_fail()
     out = fresh_python("""
 from contextlib import contextmanager
 import ctypes.util
-from checker.report import pdf_engine_import as m
+from checker.plumbing import pdf_engine_import as m
 calls = []
 
 @contextmanager

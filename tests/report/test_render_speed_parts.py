@@ -126,7 +126,7 @@ def test_fewer_collections_keeps_collecting_garbage():
     import gc
     import weakref
 
-    from checker.gc_tuning import YOUNG_THRESHOLD, fewer_collections
+    from checker.plumbing.gc_tuning import YOUNG_THRESHOLD, fewer_collections
 
     old = gc.get_threshold()
     try:

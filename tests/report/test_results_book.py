@@ -66,7 +66,7 @@ def test_pdf_carries_the_workbook_and_results_option_writes_it(example, tmp_path
 def test_sheet_names_readable_unique_and_an_index():
     """Every quantity's sheet name fits Excel's 31 characters, is unique, and is shortened
     word by word, never cut mid-word (``tv.nose_cylinder_order_amplitud`` was)."""
-    from checker import graph
+    from checker.evaluation import graph
 
     graph.ensure_registered()
     names = {n: results_book.sheet_name(n) for n in graph.QUANTITIES}

@@ -7,8 +7,8 @@ from __future__ import annotations
 import pytest
 
 from checker import api
+from checker.evaluation.ruletable import RuleResult
 from checker.report import review, summary
-from checker.ruletable import RuleResult
 from tests.helpers import edited, example_path, param_row, program_internals
 
 
@@ -41,7 +41,7 @@ def test_predicted_failures_come_first_then_the_furthest_from_the_limit():
 
 
 def test_every_rule_has_a_mechanism_that_cites_a_publication():
-    from checker.ruletable import load_rules
+    from checker.evaluation.ruletable import load_rules
 
     for r in load_rules().rules:
         text = review.mechanism(r.id)

@@ -10,12 +10,12 @@ from types import SimpleNamespace
 
 import pytest
 
-from checker.levers import load_levers
+from checker.description.levers import load_levers
+from checker.evaluation.ruletable import RuleResult
 from checker.remedies.corners import CornerResult
 from checker.remedies.solve import Remedy, ResultRemedies
 from checker.report import section_remedies as sr
 from checker.report import summary
-from checker.ruletable import RuleResult
 
 LEVERS = {lv.id: lv for lv in load_levers(None)}
 

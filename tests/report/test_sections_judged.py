@@ -16,10 +16,10 @@ import numpy as np
 import pytest
 
 from checker import api
-from checker.graph import QUANTITIES, Quantity, QuantitySpec
+from checker.evaluation.graph import QUANTITIES, Quantity, QuantitySpec
+from checker.evaluation.ruletable import Rule, evaluate_rule
 from checker.report import judged as jd
 from checker.report import plots
-from checker.ruletable import Rule, evaluate_rule
 from tests.helpers import example_path, stub_section_images
 
 RPM = 2 * np.pi / 60
@@ -226,7 +226,7 @@ def test_worst_locates_the_point_the_rule_names(seed, check, monkeypatch):
     applies = rng.random((3, 2, 9)) < 0.5
     applies[:, :, 0] = True
     q = _quantity(vals, applies)
-    import checker.ruletable as rt
+    import checker.evaluation.ruletable as rt
 
     monkeypatch.setitem(rt.QUANTITIES, "test.q", q.spec)
     rule = Rule(id="TST-001", name="t", quantity="test.q", check=check, unit="", severity="error",

@@ -8,8 +8,10 @@ import json
 
 import pytest
 
-from checker import api, display, outputs
+from checker import api
+from checker.outputs import formats as outputs
 from checker.report import summary
+from checker.results import display
 from tests.helpers import edited, example_path
 
 

@@ -17,7 +17,7 @@ import pytest
 from click.testing import CliRunner
 
 from checker.cli import main
-from checker.interrupt import Terminated, exit_code, interruptible
+from checker.plumbing.interrupt import Terminated, exit_code, interruptible
 from checker.study.run import (
     LOCK_NAME,
     StudyOutputError,

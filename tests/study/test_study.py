@@ -10,7 +10,7 @@ from click.testing import CliRunner
 
 from checker import api
 from checker.cli import main
-from checker.outputs import to_json
+from checker.outputs.formats import to_json
 from checker.study.design import variants
 from checker.study.results import tidy
 from checker.study.run import run_study

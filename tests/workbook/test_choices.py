@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from checker.engine import load_engine
+from checker.description.engine import load_engine
 from checker.errors import InputErrors
 from checker.workbook.schema import (
     CHOICE_SETS,

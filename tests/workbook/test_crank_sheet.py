@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from checker import api
-from checker.engine import load_engine
+from checker.description.engine import load_engine
 from checker.errors import InputErrors
 from checker.workbook.example import example_content, write_workbook
 

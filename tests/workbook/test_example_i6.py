@@ -11,7 +11,7 @@ import pytest
 import scipy.linalg
 
 from checker.calc.crank_forces import throw_angles
-from checker.engine import load_engine
+from checker.description.engine import load_engine
 from checker.workbook.example import example_content, write_workbook
 from checker.workbook.example_i6 import i6_content
 

@@ -14,7 +14,7 @@ from click.testing import CliRunner
 
 from checker.calc.crank_forces import throw_angles
 from checker.cli import main
-from checker.engine import load_engine
+from checker.description.engine import load_engine
 from checker.workbook import example_v8 as v8
 from checker.workbook.example import example_content, write_workbook
 

@@ -10,12 +10,12 @@ import openpyxl
 import pytest
 
 from checker import api
-from checker.engine import load_engine
+from checker.description.engine import load_engine
 from checker.errors import InputErrors
-from checker.units import UnitProblem, to_si
 from checker.workbook.example import example_content, write_workbook
 from checker.workbook.example_i6 import i6_content
 from checker.workbook.example_v8 import v8_content
+from checker.workbook.units import UnitProblem, to_si
 from tests.helpers import column, edited, param_row, table_row
 
 

@@ -12,7 +12,7 @@ import openpyxl
 import pytest
 from openpyxl.styles import PatternFill
 
-from checker.engine import load_engine
+from checker.description.engine import load_engine
 from checker.errors import InputErrors
 from tests.helpers import example_path
 

@@ -10,7 +10,7 @@ import pytest
 from click.testing import CliRunner
 
 from checker.cli import main
-from checker.engine import load_engine
+from checker.description.engine import load_engine
 from checker.errors import InputErrors
 from tests.helpers import edited, example_path, param_row, set_cell, set_param
 

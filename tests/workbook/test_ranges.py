@@ -8,10 +8,10 @@ import math
 
 import pytest
 
-from checker.engine import load_engine
+from checker.description.engine import load_engine
 from checker.errors import InputErrors
-from checker.units import KINDS, to_si
 from checker.workbook.schema import SHEETS, Span
+from checker.workbook.units import KINDS, to_si
 from tests.helpers import edited, set_cell, set_param
 
 

@@ -9,7 +9,7 @@ from pathlib import Path
 import openpyxl
 import pytest
 
-from checker.engine import load_engine
+from checker.description.engine import load_engine
 from checker.workbook.example import example_content, write_workbook
 from checker.workbook.loader import DITTO
 from checker.workbook.schema import SHEETS

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from checker.engine import load_engine
+from checker.description.engine import load_engine
 from checker.errors import InputErrors
 from tests.helpers import edited, set_cell
 

@@ -19,8 +19,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from .errors import RuleFileError
-from .workbook.schema import SHEETS, Field
+from ..errors import RuleFileError
+from ..workbook.schema import SHEETS, Field
 
 DIRECTIONS = ("increase", "decrease", "either")
 ITEM = "{item}"
@@ -72,7 +72,7 @@ class Lever:
 
     def holds_for(self, row_values: dict[str, Any]) -> bool:
         """True when the row's values (``{field attr: raw cell value}``) meet ``when``."""
-        from .workbook.schema import ChoiceProblem, resolve_choice
+        from ..workbook.schema import ChoiceProblem, resolve_choice
 
         for f, allowed in self.when:
             v = row_values.get(f.attr)
@@ -95,7 +95,7 @@ class Lever:
 
 
 def _j300_order(grade: str) -> tuple[float, float]:
-    from .calc.viscosity import j300_order
+    from ..calc.viscosity import j300_order
 
     return j300_order(grade)
 
@@ -108,8 +108,8 @@ thicker whatever their order in the file, and today's grade need not be one of t
 
 
 def _preload_fraction_default(row_values: dict[str, Any]) -> float | None:
-    from .calc.bolted_joint import PRELOAD_FRACTIONS
-    from .workbook.schema import ChoiceProblem, resolve_choice
+    from ..calc.bolted_joint import PRELOAD_FRACTIONS
+    from ..workbook.schema import ChoiceProblem, resolve_choice
 
     try:
         method = resolve_choice(_field("Joints", "tightening"), row_values.get("tightening"))
@@ -170,7 +170,7 @@ def _pair(v: Any) -> tuple[float, float] | None:
 def parse_lever(raw: Any, origin: str, problems: list[str], rule_ids: set[str] | None = None
                 ) -> Lever | None:
     """Validate one ``[[lever]]`` table; problems are appended (with the file and lever id)."""
-    from .units import UnitProblem, to_si
+    from ..workbook.units import UnitProblem, to_si
 
     if not isinstance(raw, dict):
         problems.append(f"{origin}: [[lever]] entries must be tables")
@@ -300,7 +300,7 @@ def parse_lever(raw: Any, origin: str, problems: list[str], rule_ids: set[str] |
                 problems.append(f"{pre}: 'when': sheet {sheet} has no choice column '{k}'")
                 return None
             vals = [v] if isinstance(v, str) else v
-            from .workbook.schema import ChoiceProblem, resolve_choice
+            from ..workbook.schema import ChoiceProblem, resolve_choice
 
             try:
                 allowed = tuple(resolve_choice(wf, x) for x in vals)
@@ -354,7 +354,7 @@ def load_levers(path: str | Path | None = None, rule_ids: set[str] | None = None
     """Levers of a ``[[lever]]`` file (``None`` = ``rules/levers.toml`` of the default table).
 
     Raises :class:`RuleFileError` listing every problem."""
-    from .resources import rules_dir as default_rule_dir
+    from ..plumbing.resources import rules_dir as default_rule_dir
 
     p = Path(path) if path is not None else default_rule_dir() / "levers.toml"
     if not p.is_file():

@@ -133,7 +133,7 @@ def fatigue_from_crank(fatigue: dict[str, Any], crank: CrankGeometry, err: Err,
     """The Fatigue parameters with the crank's dimensions (the smallest over the throws where
     they differ, conservative) and the derived M53 web geometry; the values' origins.
     ``filled`` receives the Crank cell of each Fatigue parameter taken from the crank."""
-    from .calc.crank_geometry import web_width_at_pin_centre
+    from ..calc.crank_geometry import web_width_at_pin_centre
 
     out = dict(fatigue)
     model: list[ModelValue] = []
@@ -269,7 +269,7 @@ def throw_stiffness(crank: CrankGeometry) -> ThrowStiffnessInfo:
     item 4); NaN with the reason when that model is not available."""
     n = len(crank.throws)
     try:
-        from .calc.throw_stiffness import throw_torsional_stiffness
+        from ..calc.throw_stiffness import throw_torsional_stiffness
     except ImportError:
         return ThrowStiffnessInfo(np.full(n, np.nan), np.zeros(n, bool), "", None,
                                   "the throw stiffness model (checker.calc.throw_stiffness)"

@@ -20,9 +20,9 @@ from typing import Any
 
 import numpy as np
 
+from . import caveats_of
 from .display import case_text
-from .results import caveats_of
-from .results.loads import cycle_of
+from .loads import cycle_of
 
 IMEP_TOLERANCE = 0.02
 """Largest accepted relative miss of a synthesized trace's IMEP against its target (2 %);

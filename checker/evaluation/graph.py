@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from .engine import Engine
+from ..description.engine import Engine
 
 
 class MissingInputs(Exception):
@@ -256,7 +256,8 @@ def applies_to(engine: Engine, qname: str) -> bool:
 
 def ensure_registered() -> None:
     """Check that the calculation modules are registered: importing :mod:`checker.modules`
-    registers them (:mod:`checker.ruletable`, and through it :mod:`checker.api`, does)."""
+    registers them (:mod:`checker.evaluation.ruletable`, and through it :mod:`checker.api`,
+    does)."""
     if not CALCULATIONS:
         raise RuntimeError("no calculation is registered: import checker.modules first")
 
@@ -264,7 +265,8 @@ def ensure_registered() -> None:
 ENGINE_PARTS = ("params", "cylinders", "bearings", "crank_mass", "tv_model", "joints",
                 "joint_torques", "peak_pressure", "pressure_traces", "brake_torque", "oil",
                 "damper", "fatigue")
-"""Parts of :class:`checker.engine.Engine` that calculations read (``reads`` entries)."""
+"""Parts of :class:`checker.description.engine.Engine` that calculations read (``reads``
+entries)."""
 
 
 def engine_projection(engine: Engine, reads: tuple[str, ...] | None, where: bool = True
@@ -396,7 +398,8 @@ def run(engine: Engine, wanted: Iterable[str], progress: Callable[[str], None] |
     not run again. Cached quantities are shared: treat them as read-only.
 
     ``parallel``: the calculations marked :attr:`Calculation.separate` are computed in a forked
-    process (:class:`checker.forked.ForkedCall`) while this one goes on with those that do not
+    process (:class:`checker.plumbing.forked.ForkedCall`) while this one goes on with those that do
+    not
     need them, on a machine with two cores or more (a command's own process: not inside the
     worker processes of a study, which use the cores already). The same numbers either way.
     """
@@ -468,7 +471,7 @@ def run(engine: Engine, wanted: Iterable[str], progress: Callable[[str], None] |
             if gone:
                 inputs[UNAVAILABLE] = gone
             if parallel and calc.separate:
-                from .forked import ForkedCall
+                from ..plumbing.forked import ForkedCall
 
                 job = ForkedCall(_timed, calc.func, engine, inputs)
                 if job.forked:

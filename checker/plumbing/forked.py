@@ -16,7 +16,7 @@ in; the value comes back pickled)."""
 
 
 SIGNALS = ("SIGINT", "SIGTERM")
-"""The interruptions a command handles itself (:mod:`checker.interrupt`) and its forked
+"""The interruptions a command handles itself (:mod:`checker.plumbing.interrupt`) and its forked
 processes leave to it."""
 
 

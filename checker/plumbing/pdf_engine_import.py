@@ -22,7 +22,7 @@ import sys
 from contextlib import AbstractContextManager
 from types import ModuleType
 
-from .. import swapped
+from . import swapped
 
 
 def _no_library_search() -> AbstractContextManager[None]:

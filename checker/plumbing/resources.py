@@ -10,7 +10,7 @@ import importlib.util
 from importlib import resources
 from pathlib import Path
 
-_ROOT = Path(__file__).resolve().parent.parent
+_ROOT = Path(__file__).resolve().parents[2]
 
 
 def _find(folder: str, package: str) -> Path:

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import json
 
-from .api import CheckResult
-from .display import item_label
+from ..api import CheckResult
+from ..results.display import item_label
 
 _STATUS = {"pass": "PASS", "fail": "FAIL", "not_evaluated": "NOT EVALUATED",
            "not_applicable": "NOT APPLICABLE"}

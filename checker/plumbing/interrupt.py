@@ -7,7 +7,7 @@ instead, so the same clean-up path serves both. :func:`interruptible` wraps a co
 either exception it prints one line and exits 130 (SIGINT) or 143 (SIGTERM), the shell
 convention 128 + signal number, so CI can tell an interruption from a failed verdict (1)::
 
-    from checker.interrupt import interruptible
+    from checker.plumbing.interrupt import interruptible
 
     with interruptible(lambda: "3 variants kept; re-run to resume"):
         long_work()

@@ -112,8 +112,8 @@ def _pint():
 
     pint costs about 0.2 s of CPU per process (import and registry); the units of the
     template workbooks and of the shipped rules convert through the table of
-    :mod:`checker.unit_table` (pint's own numbers, tests check them against pint), so a
-    check of such a workbook never needs it. ``checker.units.pint``, ``.ureg`` and ``.Q_``
+    :mod:`checker.workbook.unit_table` (pint's own numbers, tests check them against pint), so a
+    check of such a workbook never needs it. ``checker.workbook.units.pint``, ``.ureg`` and ``.Q_``
     are still available as module attributes (importing pint then)."""
     pint = _import_pint()
     ureg = _registry(pint)
@@ -326,7 +326,8 @@ def _to_si(value: float, unit: str | None, kind: str, percent_formatted: bool = 
 def _affine(unit: str, kind: str, percent_formatted: bool) -> tuple[float, float] | str:
     """(scale, offset) of the conversion of ``unit`` to SI for ``kind``, or the problem text.
 
-    Units of the table :data:`checker.unit_table.TO_SI` (pint's own numbers for the units of
+    Units of the table :data:`checker.workbook.unit_table.TO_SI` (pint's own numbers for the units
+    of
     the template workbooks and the usual spellings; tests compare every entry with pint) are
     taken from it without importing pint."""
     if not percent_formatted:
@@ -486,7 +487,7 @@ def _table():
 def convert_affine(src: str, dst: str) -> tuple[float, float]:
     """``(a, b)`` with ``x[dst] = a x[src] + b`` (pint unit strings; offset units such as °C
     convert affinely): ``b = Q(0, src).to(dst)``, ``a = Q(1, src).to(dst) - b``. From the
-    table :data:`checker.unit_table.CONVERT` (the pairs of the shipped rules and of the
+    table :data:`checker.workbook.unit_table.CONVERT` (the pairs of the shipped rules and of the
     workbook ranges, pint's own numbers) or by pint. Raises :class:`UnitProblem` when the
     units do not fit each other."""
     got = _table().CONVERT.get((src, dst))

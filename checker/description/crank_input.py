@@ -115,7 +115,7 @@ class CrankGeometry:
     @functools.cached_property
     def mass_properties(self):
         """:class:`checker.calc.crank_geometry.ThrowMassProperties` of every throw."""
-        from .calc.crank_geometry import throw_mass_properties
+        from ..calc.crank_geometry import throw_mass_properties
 
         return throw_mass_properties(
             **{k: self.column(k) for k in (
@@ -333,8 +333,8 @@ def build_crank(rows: list[dict[str, Any]], ends: dict[str, Any], n_throws: int,
 
 
 def _labels() -> tuple[dict[str, str], dict[str, str]]:
-    from .units import KINDS
-    from .workbook.schema import SHEETS
+    from ..workbook.schema import SHEETS
+    from ..workbook.units import KINDS
 
     labels, expect = {}, {}
     for f in SHEETS["Crank"].fields:

@@ -11,10 +11,10 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..errors import InputError, InputErrors
+from ..workbook.loader import WorkbookData
+from ..workbook.schema import SHEETS
 from .crank_input import CrankGeometry
-from .errors import InputError, InputErrors
-from .workbook.loader import WorkbookData
-from .workbook.schema import SHEETS
 
 
 class Params(dict):
@@ -162,7 +162,7 @@ class Engine:
     #: The crank's geometry (sheets Crank, CrankEnds), None without a Crank sheet.
     crank: CrankGeometry | None = None
     #: Values of the crank model derived from the geometry or typed over it, with their
-    #: origins (:class:`checker.crank_derive.ModelValue`); empty without a Crank sheet.
+    #: origins (:class:`checker.description.crank_derive.ModelValue`); empty without a Crank sheet.
     crank_model: tuple = ()
     #: Inputs that can be computed with but are unusual for a crank-train engine (value
     #: outside a field's usual range, a very fine speed grid...), each with its cell.
@@ -200,7 +200,7 @@ class Engine:
 
 def _unit_words(f) -> str:
     """What to type in a missing input cell: " (a length, e.g. mm)", " (a number, no unit)"."""
-    from .units import KINDS
+    from ..workbook.units import KINDS
 
     if f is None or f.kind not in KINDS:
         return ""
@@ -351,7 +351,7 @@ def check_traces(rows: list[dict[str, Any]], err: Callable[[str, str, int | None
     above :data:`checker.calc.pressure.MAX_TRACE_GAP` (10 deg; exactly 10 deg passes) between
     neighbouring points, including the wrap-around from the last point to the first.
     """
-    from .calc.pressure import MAX_TRACE_GAP
+    from ..calc.pressure import MAX_TRACE_GAP
 
     groups: dict[tuple[str, float], list[tuple[float, float, int]]] = {}
     for i, r in enumerate(rows):
@@ -402,7 +402,7 @@ def check_speed_grid(p: Params, peak_pressure: list[tuple[str, float, float]],
                      err: Callable[[str, str, int | None, str], None],
                      warn: Callable[[str, str, int | None, str], None]) -> None:
     """Number of swept speeds (as :func:`checker.modules.loads.speed_sweep` builds them)."""
-    from .workbook.schema import DEFAULT_SPEED_STEP_RPM, MAX_SPEEDS, USUAL_SPEEDS
+    from ..workbook.schema import DEFAULT_SPEED_STEP_RPM, MAX_SPEEDS, USUAL_SPEEDS
 
     full = sorted(s for c, s, _ in peak_pressure if c == "full")
     lo = p.get("speed_min") or (full[0] if full else None)
@@ -481,7 +481,7 @@ def check_mass_planes(rows: list[dict[str, Any]], p: Params, fatigue: Params,
 
 def check_oil(oil: Params, err: Callable[[str, str, int | None, str], None]) -> None:
     """The oil data must give a viscosity curve that holds at the film temperature."""
-    from .calc import viscosity as vs
+    from ..calc import viscosity as vs
 
     fit, what = None, ""
     if oil.get("kv40") is not None and oil.get("kv100") is not None:
@@ -705,7 +705,8 @@ def _crank_rows(data: WorkbookData, crank: CrankGeometry | None, cylinders: list
                 pr: _Problems) -> dict[str, Any]:
     """The rows of Bearings, Fatigue, CrankMass and TVModel as the analyses use them: without
     a crank the workbook's own (unchanged); with one, completed from its geometry
-    (:mod:`checker.crank_derive`), a typed value winning, and the model values' origins."""
+    (:mod:`checker.description.crank_derive`), a typed value winning, and the model values'
+    origins."""
     out: dict[str, Any] = {
         "Bearings": _rows(data, "Bearings"), "CrankMass": _rows(data, "CrankMass"),
         "TVModel": _rows(data, "TVModel"),
@@ -1104,7 +1105,7 @@ def _overrides(data: WorkbookData, pr: _Problems) -> list[RuleOverride]:
 def load_engine(path, check_overrides: Callable[[list[RuleOverride]], list[InputError]]
                 | None = None) -> Engine:
     """Read, convert and check a workbook (raises :class:`InputErrors` with every problem)."""
-    from .workbook.loader import read_workbook
+    from ..workbook.loader import read_workbook
 
     return build_engine(read_workbook(path, raise_errors=False), check_overrides)
 

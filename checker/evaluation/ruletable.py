@@ -17,12 +17,12 @@ from typing import Any
 
 import numpy as np
 
-from . import display
-from . import modules as _modules  # noqa: F401  (registers the quantities rules name)
-from .engine import Engine
-from .errors import InputError, InputErrors, RuleFileError, UsageProblem
+from .. import modules as _modules  # noqa: F401  (registers the quantities rules name
+from ..description.engine import Engine
+from ..errors import InputError, InputErrors, RuleFileError, UsageProblem
+from ..results import display
+from ..workbook.units import convert_affine, from_si
 from .graph import QUANTITIES, Quantity, QuantitySpec, ensure_registered
-from .units import convert_affine, from_si
 
 ID_PATTERN = re.compile(r"^[A-Z]{2,5}-\d{3}$")
 CHECKS = (">=", "<=", ">", "<", "between")
@@ -95,7 +95,7 @@ class RuleTable:
     rules: list[Rule]
     files: list[str]
     overrides: list[Override] = field(default_factory=list)
-    levers: list = field(default_factory=list)  # design levers (checker.levers)
+    levers: list = field(default_factory=list)  # design levers (checker.description.levers)
 
     def get(self, rule_id: str) -> Rule:
         for r in self.rules:
@@ -106,7 +106,7 @@ class RuleTable:
 
 def default_rule_dir() -> Path:
     """The installed default rule table folder (``rules/`` of the project)."""
-    from .resources import rules_dir
+    from ..plumbing.resources import rules_dir
 
     return rules_dir()
 
@@ -282,7 +282,7 @@ def load_rules(path: str | Path | None = None) -> RuleTable:
         seen[r.id] = r.origin
     levers = []
     if lever_docs:
-        from .levers import parse_lever_doc
+        from ..description.levers import parse_lever_doc
 
         for doc, name in lever_docs:
             levers += parse_lever_doc(doc, name, problems, set(seen))

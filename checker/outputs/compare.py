@@ -10,9 +10,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from .api import CheckResult
-from .errors import InputErrors
-from .workbook.schema import SHEETS
+from ..api import CheckResult
+from ..errors import InputErrors
+from ..workbook.schema import SHEETS
 
 # status change classes, in the order a reviewer reads them
 CHANGE_ORDER = ("newly failing", "newly passing", "newly not evaluated", "now evaluated",
@@ -236,8 +236,8 @@ def _side(r) -> dict[str, Any] | None:
 def compare(baseline: str | Path, variants: list[str | Path], select=None, ignore=None,
             fail_on: str = "error") -> list[Comparison]:
     """Check the baseline and every variant with the same rules; one comparison per variant."""
-    from . import api
-    from .workbook.loader import read_raw_workbook
+    from .. import api
+    from ..workbook.loader import read_raw_workbook
 
     def checked(path):
         try:

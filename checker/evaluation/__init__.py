@@ -1,0 +1,1 @@
+"""The rule machinery: the quantity graph and the rule table."""

@@ -1,0 +1,1 @@
+"""The public faces' formats: text, JSON and JUnit results, result files, compare."""
