@@ -539,7 +539,7 @@ def study(workbook, study_file, out_dir, workers, dask_address, no_pdf, progress
                 pdfs: list[str] = []
 
                 def draw() -> None:  # while another process writes results.xlsx
-                    from .study.report import render
+                    from .report.study import render
                     from .study.results import report_frame
 
                     say("drawing the study report")

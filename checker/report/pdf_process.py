@@ -45,9 +45,9 @@ class _ProgressToParent(logging.Handler):
         self.conn = conn
 
     def emit(self, record: logging.LogRecord) -> None:
-        from .render import _PageProgress
+        from .pdf_engine import PageProgress
 
-        m = _PageProgress.PAGE.search(record.getMessage())
+        m = PageProgress.PAGE.search(record.getMessage())
         if m:
             self.conn.send(("progress", f"Laying out the PDF, page {m.group(1)}"))
 
@@ -59,11 +59,12 @@ def _serve(conn) -> None:
 
     child_start()  # Ctrl-C and SIGTERM: the command handles them
     try:
-        from . import render
+        from ..plumbing.resources import templates_dir
+        from . import pdf_engine
 
-        wp = render._weasyprint()
-        html_class = render._html_class(wp)
-        html_class(string=WARM_UP, base_url=str(render.templates_dir())).render()
+        wp = pdf_engine.load_weasyprint()
+        html_class = pdf_engine.html_class(wp)
+        html_class(string=WARM_UP, base_url=str(templates_dir())).render()
         fewer_collections()  # a short-lived process building many objects (see there)
         failed: BaseException | None = None
     except BaseException as exc:  # noqa: BLE001 - told when the report arrives
@@ -75,7 +76,7 @@ def _serve(conn) -> None:
         if failed is not None:
             raise failed
         _, html, figures, pending = msg
-        conn.send(("pdf", *_lay_out_and_write(conn, render, wp, html_class, html, figures,
+        conn.send(("pdf", *_lay_out_and_write(conn, wp, html_class, html, figures,
                                                pending)))
     except EOFError:  # the command ended
         return
@@ -88,17 +89,20 @@ def _serve(conn) -> None:
         conn.close()
 
 
-def _lay_out_and_write(conn, render, wp, html_class, html: str, figures: dict[str, bytes],
+def _lay_out_and_write(conn, wp, html_class, html: str, figures: dict[str, bytes],
                        pending: dict[str, tuple[int, int]]):
     """The PDF of ``html`` (figures served from ``figures``; those in ``pending`` replaced by
     the drawn ones the command sends): ``(pdf, pages, wall and processor times)``."""
+    from ..plumbing.resources import templates_dir
+    from . import pdf_engine
+
     t, c = time.perf_counter(), time.process_time()
-    images = render._FigureCache()
+    images = pdf_engine.FigureCache()
     logger = logging.getLogger("weasyprint.progress")
     logger.addHandler(_ProgressToParent(conn))
     logger.setLevel(logging.INFO)
-    doc = html_class(string=html, base_url=str(render.templates_dir()),
-                     url_fetcher=render._fetcher(wp, figures)).render(cache=images)
+    doc = html_class(string=html, base_url=str(templates_dir()),
+                     url_fetcher=pdf_engine.fetcher(wp, figures)).render(cache=images)
     times = {"layout": (time.perf_counter() - t, time.process_time() - c)}
     t, c = time.perf_counter(), time.process_time()
     kind, book = conn.recv()
@@ -112,7 +116,7 @@ def _lay_out_and_write(conn, render, wp, html_class, html: str, figures: dict[st
             raise RuntimeError(f"the PDF engine expected the drawn figures, got {kind!r}")
         return value
 
-    pdf = render.write_with_figures(wp, doc, html, book, images, figures, pending, drawn)
+    pdf = pdf_engine.write_with_figures(wp, doc, html, book, images, figures, pending, drawn)
     times["write"] = (time.perf_counter() - t, time.process_time() - c)
     times["wait"] = (images.wait, 0.0)
     return pdf, len(doc.pages), times

@@ -13,31 +13,35 @@ from __future__ import annotations
 
 import base64
 import datetime as _dt
-import hashlib
 import logging
 import re
 import time
 from collections.abc import Callable
-from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from .. import __version__
 from ..api import CheckResult
-from ..plumbing import swapped
 from ..plumbing.forked import ForkedCall
 from ..plumbing.resources import templates_dir
 from ..results.caveats import estimate_caveat
 from . import results_book, review, summary
+from .pdf_engine import (
+    FIGURE_SCHEME,
+    FigureCache,
+    PageProgress,
+    children_cpu,
+    fetcher,
+    html_class,
+    load_weasyprint,
+    write_pdf,
+    write_with_figures,
+)
 from .sections import SECTIONS, SectionJob, modules_with_sections
 
 if TYPE_CHECKING:
     from .pdf_process import PdfEngine
 
-WEASYPRINT_HELP = (
-    "WeasyPrint could not load its system libraries (Pango). Install them, e.g. on Debian/"
-    "Ubuntu: apt-get install libpango-1.0-0 libpangoft2-1.0-0 fonts-dejavu-core"
-)
 
 Progress = Callable[[str], None]
 
@@ -61,9 +65,6 @@ def _environment():
                       autoescape=select_autoescape(["html"]), undefined=StrictUndefined)
     env.filters["rule_label"] = rule_label
     return env
-
-
-FIGURE_SCHEME = "checker-figure:"
 
 
 def _figure_sources(sections: list[dict], figures: dict[str, bytes] | None = None,
@@ -103,19 +104,6 @@ def standalone_html(html: str, figures: dict[str, bytes]) -> str:
         html = html.replace(f'src="{url}"', 'src="data:image/jpeg;base64,'
                             + base64.b64encode(data).decode("ascii") + '"')
     return html
-
-
-def _fetcher(wp, figures: dict[str, bytes]):
-    """A WeasyPrint URL fetcher that serves the report's figures from memory."""
-
-    class Fetcher(wp.urls.URLFetcher):
-        def fetch(self, url, headers=None):
-            if url.startswith(FIGURE_SCHEME):
-                return wp.urls.URLFetcherResponse(url, body=figures[url],
-                                                  headers={"Content-Type": "image/jpeg"})
-            return super().fetch(url, headers)
-
-    return Fetcher()
 
 
 KEEP_ROWS = 14
@@ -444,116 +432,13 @@ def render_html(res: CheckResult) -> str:
     return _environment().get_template("report.html").render(**context(res))
 
 
-def _weasyprint():
-    from ..plumbing.pdf_engine_import import import_weasyprint
-
-    try:
-        weasyprint = import_weasyprint()
-    except OSError as exc:  # missing Pango
-        raise RuntimeError(WEASYPRINT_HELP + f" ({exc})") from None
-    return weasyprint
-
-
-def _html_class(wp):
-    """WeasyPrint's ``HTML`` with the report's own user-agent stylesheet
-    (``templates/report_ua.css``: the HTML5 defaults of the elements the template uses, the
-    same pages in less layout time). ``_ua_stylesheets`` is WeasyPrint's hook for it (62..70);
-    should a later version not call it, its own stylesheet applies and only speed differs."""
-
-    ua = wp.CSS(string=(templates_dir() / "report_ua.css").read_text(encoding="utf-8"))
-
-    class HTML(wp.HTML):
-        def _ua_stylesheets(self, *args, **kwargs):
-            return [ua]
-
-    return HTML
-
-
 def render_pdf(html: str, res: CheckResult, attachments: list[tuple[str, bytes, str]] = ()
                ) -> bytes:
     """The report as PDF bytes (same input -> same bytes on the same day); ``attachments``:
     ``(name, bytes, description)`` embedded files."""
-    wp = _weasyprint()
-    doc = _html_class(wp)(string=html, base_url=str(templates_dir())).render()
-    return _write(wp, doc, html, attachments)
-
-
-def _write(wp, doc, html: str, attachments) -> bytes:
-    import io
-
-    day = _dt.datetime.combine(_dt.date.today(), _dt.time())
-    files = [wp.Attachment(file_obj=io.BytesIO(data), name=name, description=desc,
-                           created=day, modified=day) for name, data, desc in attachments]
-    ident = hashlib.sha256(html.encode("utf-8")).hexdigest()[:32].encode()
-    with _flate_level(FLATE_LEVEL):
-        return doc.write_pdf(pdf_identifier=ident, attachments=files)
-
-
-def write_with_figures(wp, doc, html: str, book: bytes, images: _FigureCache,
-                       figures: dict[str, bytes], pending: dict[str, tuple[int, int]],
-                       drawn: Callable[[], dict[tuple[int, int], bytes]]) -> bytes:
-    """The laid-out report's PDF with the results workbook ``book`` attached; the figures
-    still being drawn (``pending``) are fetched from ``drawn()`` when the writer first reads
-    one (:meth:`_FigureCache.arm`). Never written with a placeholder."""
-    images.arm(figures, pending, drawn)
-    pdf = _write(wp, doc, html, [(results_book.ATTACHMENT_NAME, book,
-                                  "Every computed quantity, the rule results and the plot"
-                                  " data of this report")])
-    if not images.filled:
-        raise RuntimeError("the PDF was written without its drawn figures")
-    return pdf
-
-
-FLATE_LEVEL = 6
-"""zlib level of the PDF's compressed streams. The PDF writer (pydyf) compresses each page's
-content stream at level 9; level 6 (zlib's default) gives a file 0.2 % larger in a fifth less
-writing time (I4 report: 0.53 -> 0.42 s of processor time; benchmarks/bench_report.py)."""
-
-
-class _Zlib:
-    """zlib with every compression at one level (the module pydyf calls)."""
-
-    def __init__(self, zlib, level: int):
-        self._zlib, self._level = zlib, level
-
-    def compressobj(self, level: int = -1, *args, **kwargs):  # noqa: ARG002 - overridden
-        return self._zlib.compressobj(self._level, *args, **kwargs)
-
-    def compress(self, data, level: int = -1, **kwargs):  # noqa: ARG002 - overridden
-        return self._zlib.compress(data, self._level, **kwargs)
-
-    def __getattr__(self, name: str):
-        return getattr(self._zlib, name)
-
-
-@contextmanager
-def _flate_level(level: int):
-    """pydyf's streams compressed at ``level`` while the PDF is written (where pydyf calls
-    zlib as a module attribute; otherwise its own levels)."""
-    import zlib
-
-    import pydyf
-
-    if getattr(pydyf, "zlib", None) is not zlib:
-        yield
-        return
-    with swapped.attribute(pydyf, "zlib", _Zlib(zlib, level)):
-        yield
-
-
-class _PageProgress(logging.Handler):
-    """WeasyPrint's progress log ("Step 5 - Creating layout - Page 12") as progress lines."""
-
-    PAGE = re.compile(r"Creating layout - Page (\d+)$")
-
-    def __init__(self, progress: Progress):
-        super().__init__(logging.INFO)
-        self.progress = progress
-
-    def emit(self, record: logging.LogRecord) -> None:
-        m = self.PAGE.search(record.getMessage())
-        if m:
-            self.progress(f"Laying out the PDF, page {m.group(1)}")
+    wp = load_weasyprint()
+    doc = html_class(wp)(string=html, base_url=str(templates_dir())).render()
+    return write_pdf(wp, doc, html, attachments)
 
 
 @dataclass
@@ -608,7 +493,7 @@ def build_report(res: CheckResult, progress: Progress | None = None,
         book_job.close()
         raise
     try:
-        wp = _weasyprint() if engine is None else None
+        wp = load_weasyprint() if engine is None else None
         # while the drawing processes build the sections: the template compiled, the pages
         # before the sections and the sections the job was started without (the remedies and
         # corners, found after it)
@@ -618,9 +503,9 @@ def build_report(res: CheckResult, progress: Progress | None = None,
         extra_sheets = _extra_sheets(res)
         clock.stage("template and front pages" if engine is not None
                     else "PDF engine import, template and front pages")
-        children = _children_cpu()
+        children = children_cpu()
         sections = job.result() + own
-        clock.stage("sections (figures set up)", extra_cpu=_children_cpu() - children)
+        clock.stage("sections (figures set up)", extra_cpu=children_cpu() - children)
         sections, extra = _split_details(_plain_sections(sections))
         extra += extra_sheets
         say("Writing the results workbook")
@@ -643,22 +528,22 @@ def build_report(res: CheckResult, progress: Progress | None = None,
                                           clock)
             return Report(pdf, standalone_html(html, figures) if want_html else "", book,
                           pages, clock.wall, clock.cpu, None)
-        images = _FigureCache()  # WeasyPrint's image cache (URL -> image, key -> image data)
+        images = FigureCache()  # WeasyPrint's image cache (URL -> image, key -> image data)
         logger = logging.getLogger("weasyprint.progress")
-        handler = _PageProgress(say)
+        handler = PageProgress(say)
         old_level = logger.level
         logger.addHandler(handler)
         logger.setLevel(logging.INFO)
         try:
-            doc = _html_class(wp)(string=html, base_url=str(templates_dir()),
-                                  url_fetcher=_fetcher(wp, figures)).render(cache=images)
+            doc = html_class(wp)(string=html, base_url=str(templates_dir()),
+                                  url_fetcher=fetcher(wp, figures)).render(cache=images)
         finally:
             logger.removeHandler(handler)
             logger.setLevel(old_level)
         clock.stage("PDF layout")
-        children = _children_cpu()
+        children = children_cpu()
         book = book_job.result()
-        clock.stage("results workbook", extra_cpu=_children_cpu() - children)
+        clock.stage("results workbook", extra_cpu=children_cpu() - children)
         say(f"Writing the PDF ({len(doc.pages)} pages)")
         pdf = write_with_figures(wp, doc, html, book, images, figures, pending, job.images)
     except BaseException:  # no drawing or workbook process outlives the report
@@ -680,9 +565,9 @@ def _in_engine(engine: PdfEngine, html: str, figures: dict[str, bytes],
     are ready; the engine's progress told meanwhile. ``(pdf, pages, results workbook)``;
     the engine's stage times in ``clock``."""
     engine.lay_out(html, figures, pending)
-    children = _children_cpu()
+    children = children_cpu()
     book = book_job.result()
-    clock.stage("results workbook", extra_cpu=_children_cpu() - children)
+    clock.stage("results workbook", extra_cpu=children_cpu() - children)
     engine.send("book", book)
     got: list[tuple] = []
 
@@ -691,9 +576,9 @@ def _in_engine(engine: PdfEngine, html: str, figures: dict[str, bytes],
         if r is not None:
             got.append(r)
 
-    children = _children_cpu()
+    children = children_cpu()
     drawn = job.images(also=(engine.conn, from_engine))
-    clock.stage("figures drawn (beside the layout)", extra_cpu=_children_cpu() - children)
+    clock.stage("figures drawn (beside the layout)", extra_cpu=children_cpu() - children)
     if pending and not got:
         engine.send("images", {key: bytes(drawn[key]) for key in pending.values()})
         for url, key in pending.items():
@@ -706,79 +591,12 @@ def _in_engine(engine: PdfEngine, html: str, figures: dict[str, bytes],
     return pdf, pages, book
 
 
-class _FigureCache(dict):
-    """WeasyPrint's image cache (a dict: URL -> image, data key -> image bytes) that puts the
-    drawn figures in place of their placeholders when the PDF writer first reads the data of
-    one (:meth:`arm`): the figures are drawn while the PDF is laid out and its pages are
-    drawn, and are needed only when the file is serialised. An image keeps its placeholder's
-    size (checked), so the layout is that of the drawn figure."""
-
-    def __init__(self):
-        super().__init__()
-        self._armed: tuple | None = None
-        self._keys: set[str] = set()
-        self.filled = True
-        self.wait = 0.0
-        """Time waited for the drawing processes [s]."""
-        self.children_cpu = 0.0
-        """Processor time of the drawing processes, counted when they ended [s]."""
-
-    def arm(self, figures: dict[str, bytes], pending: dict[str, tuple[int, int]],
-            drawn: Callable[[], dict[tuple[int, int], bytes]]) -> None:
-        """Fill the placeholders ``pending`` (URL -> key) with ``drawn()[key]`` (and
-        ``figures[URL]``) when the data of one is first read."""
-        if not pending:
-            return
-        keys = set()
-        for url in pending:
-            img = dict.get(self, url)
-            if img is None or not hasattr(img, "image_data"):
-                raise RuntimeError(f"figure {url}: not found in the laid-out document")
-            keys.add(img.image_data._key)
-        self._armed, self._keys, self.filled = (figures, pending, drawn), keys, False
-
-    def __getitem__(self, key):
-        if self._armed is not None and key in self._keys:
-            self._fill()
-        return super().__getitem__(key)
-
-    def _fill(self) -> None:
-        from .plots import image_size
-
-        figures, pending, drawn = self._armed
-        self._armed = None
-        t, c = time.perf_counter(), _children_cpu()
-        images = drawn()
-        self.wait = time.perf_counter() - t
-        self.children_cpu = _children_cpu() - c
-        for url, key in pending.items():
-            data = bytes(images[key])
-            img = dict.__getitem__(self, url)
-            if (img.width, img.height) != image_size(data):
-                raise RuntimeError(f"figure {url}: drawn at another size than its"
-                                   " placeholder")
-            img.image_data = img.cache_image_data(data)
-            figures[url] = data
-        self.filled = True
-
-
 def start_drawing(res: CheckResult, progress: Progress | None = None) -> SectionJob:
     """The module sections of ``res`` drawn from now on in worker processes at the lowest
     priority: started before the remedies' and corners' search, they take the processor time
     that the search leaves idle (its rounds wait for their slowest variant) instead of
     running after it. Give the job to :func:`build_report`."""
     return SectionJob(res, progress, nice=19, defer=True)
-
-
-def _children_cpu() -> float:
-    """Processor time of the finished child processes [s] (0 where unknown)."""
-    try:
-        import resource
-
-        r = resource.getrusage(resource.RUSAGE_CHILDREN)
-        return r.ru_utime + r.ru_stime
-    except (ImportError, OSError):
-        return 0.0
 
 
 class _Clock:

@@ -101,7 +101,7 @@ def _layout(html: str):
 
 
 def _study(kind: str, d):
-    from checker.study.report import html
+    from checker.report.study import html
 
     wb = d / "engine.xlsx"
     eng, text = ("i4", I4_STUDY) if kind == "i4-factorial" else ("i6", I6_STUDY)

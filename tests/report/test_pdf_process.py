@@ -12,7 +12,7 @@ from click.testing import CliRunner
 
 from checker import api
 from checker.cli import main
-from checker.report import pdf_process, render
+from checker.report import pdf_engine, pdf_process
 from checker.report.render import build_report
 from checker.workbook.example import example_content, write_workbook
 
@@ -45,8 +45,8 @@ def test_engine_writes_the_same_pdf_and_html_as_this_process(res):
 
 
 def test_a_failure_in_the_engine_comes_back_as_its_exception(res, monkeypatch):
-    real = render._html_class
-    monkeypatch.setattr(render, "_html_class", lambda wp: _Switch(real(wp)))
+    real = pdf_engine.html_class
+    monkeypatch.setattr(pdf_engine, "html_class", lambda wp: _Switch(real(wp)))
     engine = pdf_process.start()  # forked with the switch: the engine's report fails
     try:
         with pytest.raises(ValueError, match="layout failed on purpose"):

@@ -5,7 +5,8 @@ in this process, and a worst-case table's repeated not-judged reason is said onc
 
 from __future__ import annotations
 
-from checker.report import render
+from checker.plumbing import pdf_compression
+from checker.report import pdf_engine, render
 
 SNIPPET = """<!DOCTYPE html><html><head><meta charset="utf-8"><title>t</title>
 <style>{css}</style></head><body>
@@ -48,11 +49,11 @@ def _layout(cls, html: str) -> list[tuple]:
 
 
 def test_own_user_agent_stylesheet_lays_out_like_weasyprints():
-    wp = render._weasyprint()
+    wp = pdf_engine.load_weasyprint()
     css = (render.templates_dir() / "report.css").read_text(encoding="utf-8")
     html = SNIPPET.replace("{css}", css)
     stock = _layout(wp.HTML, html)
-    own = _layout(render._html_class(wp), html)
+    own = _layout(pdf_engine.html_class(wp), html)
     assert len(stock) > 50
     assert own == stock
 
@@ -97,9 +98,9 @@ def test_pdf_streams_at_the_chosen_zlib_level_and_pydyf_restored():
     import pydyf
     import pytest
 
-    wp = render._weasyprint()
+    wp = pdf_engine.load_weasyprint()
     doc = wp.HTML(string="<p>" + "text " * 2000 + "</p>").render()
-    pdf = render._write(wp, doc, "<p>x</p>", [])
+    pdf = pdf_engine.write_pdf(wp, doc, "<p>x</p>", [])
     assert pydyf.zlib is zlib
     seen = []
     real = zlib.compressobj
@@ -110,11 +111,11 @@ def test_pdf_streams_at_the_chosen_zlib_level_and_pydyf_restored():
 
     zlib.compressobj = spy
     try:
-        again = render._write(wp, doc, "<p>x</p>", [])
+        again = pdf_engine.write_pdf(wp, doc, "<p>x</p>", [])
     finally:
         zlib.compressobj = real
-    assert again == pdf and seen and set(seen) == {render.FLATE_LEVEL}
-    with pytest.raises(RuntimeError), render._flate_level(1):
+    assert again == pdf and seen and set(seen) == {pdf_compression.FLATE_LEVEL}
+    with pytest.raises(RuntimeError), pdf_compression.flate_level(1):
         assert pydyf.zlib is not zlib
         raise RuntimeError
     assert pydyf.zlib is zlib

@@ -13,8 +13,8 @@ import numpy as np
 from .. import __version__
 from ..plumbing.resources import templates_dir
 from ..results.display import item_label
-from .results import STATUS_ORDER, baseline_values, best_variant, sensitivity, variant_table
-from .run import StudyRun
+from ..study.results import STATUS_ORDER, baseline_values, best_variant, sensitivity, variant_table
+from ..study.run import StudyRun
 
 _COLOURS = {"pass": "#27ae60", "warning": "#d68910", "fail": "#c0392b",
             "not_evaluated": "#7f8c8d", "input error": "#34495e", "-": "#bdc3c7",
@@ -28,7 +28,7 @@ def _label(text: str) -> str:
 
 def _img(fig) -> str:
     """A figure as a JPEG data URI (raster: the PDF engine copies it instead of drawing)."""
-    from ..report.plots import to_image
+    from .plots import to_image
 
     return "data:image/jpeg;base64," + base64.b64encode(bytes(to_image(fig))).decode("ascii")
 
@@ -42,7 +42,7 @@ def _item_margins(df, items: tuple[str, ...], fam: str) -> dict[int, float]:
 
 
 def _margin_figures(vt, run: StudyRun, fams: list[str], df=None) -> list[dict[str, Any]]:
-    from ..report.plots import figure, legend_below
+    from .plots import figure, legend_below
 
     params = [q for q in run.study.parameters if q.numeric]
     if not params:
@@ -101,7 +101,7 @@ def _margin_figures(vt, run: StudyRun, fams: list[str], df=None) -> list[dict[st
 def _map_figure(vt, run: StudyRun, fams: list[str]) -> dict[str, Any] | None:
     """Feasibility maps of a two-parameter study, one panel per rule family (the family's
     worst status in each variant), so that one failing family does not paint every map red."""
-    from ..report.plots import figure, legend_below
+    from .plots import figure, legend_below
 
     params = [q for q in run.study.parameters if q.numeric]
     if len(params) != 2 or not fams:
