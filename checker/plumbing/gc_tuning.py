@@ -16,6 +16,15 @@ from __future__ import annotations
 
 import gc
 
+MEASURED_ON = "CPython 3.11 (timed on 3.11.7)"
+"""The interpreter this was measured on."""
+
+
+def missing_targets() -> list[str]:
+    """What the tuning calls and this interpreter lacks (empty: all)."""
+    return [f"gc.{n}" for n in ("freeze", "get_threshold", "set_threshold")
+            if not callable(getattr(gc, n, None))]
+
 YOUNG_THRESHOLD = 10_000
 """Net allocations of container objects between two young-generation collections (CPython's
 default: 700)."""

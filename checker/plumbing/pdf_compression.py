@@ -1,10 +1,10 @@
 """pydyf's content streams compressed at one zlib level while a PDF is written.
 
-Patches a dependency: pydyf (measured on pydyf 0.10-0.11, as WeasyPrint 62-66 use it) calls
-``zlib.compressobj`` / ``zlib.compress`` through its module attribute ``pydyf.zlib`` at level 9.
-Where that attribute is not the ``zlib`` module, nothing is patched (the PDF is written at
-pydyf's own levels); :func:`patch_target_present` tells whether it still is, and a test fails
-loudly when it is not.
+Patches a dependency: pydyf (:data:`MEASURED_ON`) calls ``zlib.compressobj`` /
+``zlib.compress`` through its module attribute ``pydyf.zlib`` at level 9. Where that attribute
+is not the ``zlib`` module, nothing is patched (the PDF is written at pydyf's own levels);
+:func:`missing_targets` names what a release no longer has, and
+tests/plumbing/test_patch_targets.py fails on it loudly.
 """
 
 from __future__ import annotations
@@ -12,6 +12,24 @@ from __future__ import annotations
 from contextlib import contextmanager
 
 from . import swapped
+
+MEASURED_ON = "pydyf 0.10 to 0.13 (timed on 0.13.0, with WeasyPrint 70.0)"
+"""The releases this patch was measured on."""
+
+
+def missing_targets() -> list[str]:
+    """What the patch replaces and the installed pydyf does not have (empty: all)."""
+    import inspect
+    import zlib
+
+    import pydyf
+
+    out = []
+    if getattr(pydyf, "zlib", None) is not zlib:
+        out.append("pydyf.zlib (the zlib module)")
+    elif "zlib.compressobj(" not in inspect.getsource(pydyf):
+        out.append("pydyf calling zlib.compressobj")
+    return out
 
 FLATE_LEVEL = 6
 """zlib level of the PDF's compressed streams. The PDF writer (pydyf) compresses each page's

@@ -14,6 +14,10 @@ library loads under the first of its names the dynamic loader knows; if that fai
 library WeasyPrint requires, or HarfBuzz's subsetting library (which the PDF's fonts use) is
 left out, the import is done again in WeasyPrint's own way. Only on Linux (elsewhere the
 search starts no programs).
+
+Measured on :data:`MEASURED_ON`. :func:`missing_targets` names what a release no longer has
+(cffi no longer asking ``ctypes.util.find_library``, WeasyPrint's ``_dlopen`` gone): the
+shortcut would then do nothing, and tests/plumbing/test_patch_targets.py fails on it loudly.
 """
 
 from __future__ import annotations
@@ -23,6 +27,26 @@ from contextlib import AbstractContextManager
 from types import ModuleType
 
 from . import swapped
+
+MEASURED_ON = "WeasyPrint 62 to 70 with cffi 1.16 to 2.1 (timed on WeasyPrint 70.0, cffi 2.1.1)"
+"""The releases this shortcut was measured on."""
+
+
+def missing_targets() -> list[str]:
+    """What the shortcut relies on and the installed cffi and WeasyPrint lack (empty: all)."""
+    import importlib.util
+    import inspect
+
+    import cffi.api
+
+    out = []
+    if "ctypes.util.find_library(" not in inspect.getsource(cffi.api):
+        out.append("cffi.api calling ctypes.util.find_library")
+    spec = importlib.util.find_spec("weasyprint.text.ffi")
+    source = spec.loader.get_source(spec.name) if spec and spec.loader else ""
+    if "def _dlopen(" not in (source or "") or "harfbuzz_subset" not in (source or ""):
+        out.append("weasyprint.text.ffi._dlopen and harfbuzz_subset")
+    return out
 
 
 def _no_library_search() -> AbstractContextManager[None]:

@@ -15,7 +15,7 @@ import re
 import time
 from collections.abc import Callable
 
-from ..plumbing.pdf_compression import FLATE_LEVEL, flate_level
+from ..plumbing import pdf_compression, weasyprint_ua
 from ..plumbing.resources import templates_dir
 from . import results_book
 
@@ -57,16 +57,9 @@ def load_weasyprint():
 def html_class(wp):
     """WeasyPrint's ``HTML`` with the report's own user-agent stylesheet
     (``templates/report_ua.css``: the HTML5 defaults of the elements the template uses, the
-    same pages in less layout time). ``_ua_stylesheets`` is WeasyPrint's hook for it (62..70);
-    should a later version not call it, its own stylesheet applies and only speed differs."""
-
-    ua = wp.CSS(string=(templates_dir() / "report_ua.css").read_text(encoding="utf-8"))
-
-    class HTML(wp.HTML):
-        def _ua_stylesheets(self, *args, **kwargs):
-            return [ua]
-
-    return HTML
+    same pages in less layout time; :mod:`checker.plumbing.weasyprint_ua`)."""
+    css = (templates_dir() / "report_ua.css").read_text(encoding="utf-8")
+    return weasyprint_ua.html_class(wp, css)
 
 
 def write_pdf(wp, doc, html: str, attachments) -> bytes:
@@ -76,7 +69,7 @@ def write_pdf(wp, doc, html: str, attachments) -> bytes:
     files = [wp.Attachment(file_obj=io.BytesIO(data), name=name, description=desc,
                            created=day, modified=day) for name, data, desc in attachments]
     ident = hashlib.sha256(html.encode("utf-8")).hexdigest()[:32].encode()
-    with flate_level(FLATE_LEVEL):
+    with pdf_compression.flate_level(pdf_compression.FLATE_LEVEL):
         return doc.write_pdf(pdf_identifier=ident, attachments=files)
 
 

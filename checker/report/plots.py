@@ -20,9 +20,8 @@ from __future__ import annotations
 import io
 import re
 from collections.abc import Callable
-from contextlib import contextmanager
 
-from ..plumbing import swapped
+from ..plumbing import matplotlib_patches
 
 LIMIT_STYLE = {"color": "#c0392b", "linestyle": "--", "linewidth": 1.1}
 STATUS_COLORS = {"PASS": "#1e8449", "FAIL": "#c0392b", "WARN": "#d68910",
@@ -66,30 +65,12 @@ def pyplot():
         import matplotlib
 
         matplotlib.use("Agg")
-        with _property_lists_unwritten():
+        with matplotlib_patches.property_lists_unwritten():
             import matplotlib.pyplot as mpl_pyplot
 
         mpl_pyplot.rcParams.update(_RC)
         _PLT = mpl_pyplot
     return _PLT
-
-
-@contextmanager
-def _property_lists_unwritten():
-    """While pyplot is imported: the property lists matplotlib writes into the help texts of
-    its artists' ``set`` methods and plotting functions (``matplotlib.artist.kwdoc``, a
-    search of every setter's docstring for each artist class: 0.06 of the import's 0.26 s of
-    processor time, on the report's way to its HTML) left empty. Only those help texts
-    differ (``help(Line2D.set)`` in this process); the methods, their signatures and every
-    figure are the same (tests/report/test_plots_import.py). Where matplotlib has no such
-    function, nothing changes."""
-    import matplotlib.artist as artist
-
-    if not hasattr(artist, "kwdoc"):
-        yield
-        return
-    with swapped.attribute(artist, "kwdoc", lambda _artist: ""):
-        yield
 
 
 class _LazyPyplot:
@@ -305,18 +286,12 @@ def draw_deferred(index: int) -> Png:
 
 def _draw(fig) -> Png:
     """Draw and close a prepared figure (:func:`_prepare`)."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg, RendererAgg
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
     from PIL import Image
 
     drawn: list[str] = []
-    orig = RendererAgg.draw_text
-
-    def draw_text(self, gc, x, y, s, prop, angle, ismath=False, mtext=None):
-        drawn.append(s)
-        return orig(self, gc, x, y, s, prop, angle, ismath, mtext)
-
     canvas = FigureCanvasAgg(fig)
-    with swapped.attribute(RendererAgg, "draw_text", draw_text):
+    with matplotlib_patches.agg_text_recorded(drawn):
         canvas.draw()
     rgba = canvas.buffer_rgba()
     img = Image.frombuffer("RGBA", (rgba.shape[1], rgba.shape[0]), rgba, "raw", "RGBA", 0,
