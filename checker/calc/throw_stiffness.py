@@ -42,10 +42,23 @@ discretisation error at the samples' mesh is below 0.5 % and systematic (the sam
 0.12-0.26 % above a mesh of two-thirds the size; convergence study in
 ``benchmarks/bench_throw_fe.py``). The stated model error, ``ThrowStiffness.model_error``,
 is their sum rounded up: 3.5 %. The model is smooth and monotone in every dimension (positive
-coefficients; the web's effective length stays positive over the range,
-R - c_s (Dj + Dp)/2 >= 0.57 R). On the I4 throw of Bell (2013) (idealised: solid, web width
-75.7 mm): FE 518.8, this model 520.7, Carter 506, Ker Wilson 486 kN m/rad (published FE of the
-real crank, with lightening and fillets: 403.3).
+coefficients; the web's effective length stays above half the crank radius over the range,
+R - c_s (Dj + Dp)/2 >= 0.579 R).
+
+Outside the range, where the pin comes to lie largely within the journal in the end view
+(``R < 2 c_s (Dj + Dp)/2``), the web's effective length ``l_w = R - c_s (Dj + Dp)/2`` would
+fall below half the crank radius and, below ``R = c_s (Dj + Dp)/2``, turn negative: a thinner
+web would give a stiffer throw and the stiffness could turn negative. There the length
+continues as ``l_w' = (R/2) exp(2 l_w / R - 1)`` (:func:`web_length`): equal in value and
+slope at ``l_w = R/2``, positive, increasing in R and falling in Dj and Dp, tending to zero
+(rigid webs: the throw a stepped shaft) as the pin's axis approaches the journal's. The model
+is then smooth, positive and monotone in every dimension over every geometry; the
+continuation is not fitted (no sample lies there), so such a throw is outside the range and
+reported so (:attr:`ThrowStiffness.outside`).
+
+On the I4 throw of Bell (2013) (idealised: solid, web width 75.7 mm): FE 518.8, this model
+520.7, Carter 506, Ker Wilson 486 kN m/rad (published FE of the real crank, with lightening
+and fillets: 403.3).
 
 References
 ----------
@@ -99,10 +112,22 @@ RANGE = {
     "cw_angle": (np.radians(120.0), np.radians(180.0)),
     "cw_t/tw": (0.6, 1.0),
 }
-"""Fitted range of the dimensionless groups (S = (Dj + Dp)/2 - R; the counterweight groups
-only where there is a counterweight, whose inner radius must then be at most Bj/2)."""
+"""Range of the FE samples' dimensionless groups (S = (Dj + Dp)/2 - R; the counterweight
+groups only where there is a counterweight). ``in_range`` checks the groups the model uses
+(:data:`MODEL_GROUPS`)."""
 
 _RANGE_TOL = 1e-6
+
+MODEL_GROUPS = ("Dp/Dj", "S/Dj", "tw/Dj", "Bj/Dj", "Bp/Dp", "Lj/Dj", "Lp/Dp", "dj/Dj", "dp/Dp",
+                "nu")
+"""The groups of :data:`RANGE` the model's terms use; the counterweight groups bound the
+samples only (the stiffness has no counterweight term), so they do not flag a value."""
+
+_GROUP_TEXT = {"S/Dj": "overlap S/Dj", "nu": "Poisson's ratio"}
+
+WEB_KNEE = 0.5
+"""Fraction of the crank radius below which the web's effective length continues
+exponentially (:func:`web_length`); over the fitted range it is at least 0.579 R."""
 
 
 @dataclass(frozen=True)
@@ -112,11 +137,15 @@ class ThrowStiffness:
     stiffness: np.ndarray
     """Torsional stiffness between the journal mid-planes [N m/rad], per throw."""
     in_range: np.ndarray
-    """True where every dimensionless group is inside the fitted range (:data:`RANGE`)."""
+    """True where every group the model uses is inside the fitted range (:data:`RANGE`,
+    :data:`MODEL_GROUPS`)."""
     method: str
     """Method and source, for the report."""
     model_error: float
     """Stated relative error against the 3D FE over the fitted range."""
+    outside: tuple[str, ...] = ()
+    """Per throw, the model's groups outside the fitted range with their values and ranges
+    (``""`` inside it), for the caller's warning."""
 
 
 @functools.cache
@@ -137,6 +166,30 @@ def _groups(Dj, dj, Lj, Dp, dp, Lp, tw, Bj, Bp, R, nu, ri, ro, alpha, tc) -> dic
     }
 
 
+def web_length(R: ArrayLike, inset: ArrayLike) -> np.ndarray:
+    r"""Effective length of a web's in-plane bending [m]: ``R - inset`` (``inset`` =
+    ``c_s (Dj + Dp)/2``) down to ``WEB_KNEE R``, below it the continuation
+    ``WEB_KNEE R exp((R - inset)/(WEB_KNEE R) - 1)`` (module docstring; C1 at the knee,
+    positive, increasing in R and falling with ``inset``)."""
+    R = np.asarray(R, dtype=float)
+    lw = R - np.asarray(inset, dtype=float)
+    knee = WEB_KNEE * R
+    below = knee * np.exp(np.minimum(lw / knee - 1.0, 0.0))
+    return np.where(lw >= knee, lw, below)
+
+
+def _outside(groups: dict) -> tuple[str, ...]:
+    """Per throw, the model's groups outside :data:`RANGE`, with value and range."""
+    n = len(next(iter(groups.values())))
+    texts: list[list[str]] = [[] for _ in range(n)]
+    for name in MODEL_GROUPS:
+        lo, hi = RANGE[name]
+        g = np.asarray(groups[name], dtype=float)
+        for i in np.flatnonzero((g < lo - _RANGE_TOL) | (g > hi + _RANGE_TOL)):
+            texts[i].append(f"{_GROUP_TEXT.get(name, name)} {g[i]:.3g} (fitted {lo:g}..{hi:g})")
+    return tuple(", ".join(t) for t in texts)
+
+
 def throw_compliance_terms(coef: dict, *, Dj, dj, Lj, Dp, dp, Lp, tw, Bj, Bp, R, E, nu,
                            ri, ro, alpha, tc) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The three compliances of the series [rad/(N m)]: journal, pin, two webs (see module
@@ -146,7 +199,7 @@ def throw_compliance_terms(coef: dict, *, Dj, dj, Lj, Dp, dp, Lp, tw, Bj, Bp, R,
     Jp = np.pi * (Dp**4 - dp**4) / 32
     c_j = Lj / (G * Jj) + coef["c_j"] * Dj / (G * np.pi * Dj**4 / 32)
     c_p = Lp / (G * Jp) + coef["c_p"] * Dp / (G * np.pi * Dp**4 / 32)
-    lw = R - coef["c_s"] * (Dj + Dp) / 2
+    lw = web_length(R, coef["c_s"] * (Dj + Dp) / 2)
     bj = Dj + coef["eta"] * (Bj - Dj)
     bp = Dp + coef["eta"] * (Bp - Dp)
     c_w = 2 * coef["c_w"] * 12 * lw / (E * tw) * (bj + bp) / (2 * bj**2 * bp**2)
@@ -195,7 +248,7 @@ def throw_torsional_stiffness(*, journal_diameter: ArrayLike, journal_bore: Arra
     -------
     ThrowStiffness
         ``stiffness`` [N m/rad], ``in_range`` (inside the fitted range :data:`RANGE`),
-        ``method``, ``model_error``.
+        ``method``, ``model_error``, ``outside`` (the groups outside it, per throw).
 
     Raises
     ------
@@ -209,7 +262,10 @@ def throw_torsional_stiffness(*, journal_diameter: ArrayLike, journal_bore: Arra
     S = (Dj + Dp)/2 - R; tw/Dj 0.2-0.5; Bj/Dj, Bp/Dp 1.2-1.8; Lj/Dj 0.35-0.6; Lp/Dp
     0.35-1.5; bores up to 0.6 D; counterweights of 120-180 deg, outer radius 0.95-1.25
     (R + Dp/2), thickness 0.6-1.0 tw; nu 0.27-0.31). Outside it the value is the same
-    physically based series (smooth, monotone) and ``in_range`` is False: the caller warns.
+    physically based series (smooth, positive, monotone; the web's length continued below
+    R/2, :func:`web_length`), ``in_range`` is False and ``outside`` names the groups: the
+    caller warns. The counterweight groups bound the samples, not the model (it has no
+    counterweight term): they do not flag a value.
     Fillets, undercuts and oil holes are not part of the solid.
 
     Examples
@@ -261,17 +317,14 @@ def throw_torsional_stiffness(*, journal_diameter: ArrayLike, journal_bore: Arra
                                    Lp=Lp, tw=tw, Bj=Bj, Bp=Bp, R=R, E=E, nu=nu, ri=ri, ro=ro,
                                    alpha=alpha, tc=tc)
     k = 1.0 / (parts[0] + parts[1] + parts[2])
-    groups = _groups(Dj, dj, Lj, Dp, dp, Lp, tw, Bj, Bp, R, nu, ri, ro, alpha, tc)
-    ok = np.ones(k.shape, dtype=bool)
-    for name, (lo, hi) in RANGE.items():
-        g = groups[name]
-        ok &= (g >= lo - _RANGE_TOL) & (g <= hi + _RANGE_TOL)
-    ok &= ~cw | (ri <= Bj / 2 + _RANGE_TOL)
+    outside = _outside(_groups(Dj, dj, Lj, Dp, dp, Lp, tw, Bj, Bp, R, nu, ri, ro, alpha, tc))
+    ok = np.array([not o for o in outside], dtype=bool)
     err = float(coef["model_error"])
     method = (f"series of journal and pin torsion and web in-plane bending (after Carter 1928, "
               f"Ker Wilson 1956) fitted to a linear-elastic 3D FE of the throw "
               f"({coef['n_samples']} geometries, within {100 * err:g} %)")
-    return ThrowStiffness(stiffness=k, in_range=ok, method=method, model_error=err)
+    return ThrowStiffness(stiffness=k, in_range=ok, method=method, model_error=err,
+                          outside=outside)
 
 
 def _classical_inputs(Dj, dj, Lj, Dp, dp, Lp, tw, B, R, G):

@@ -262,6 +262,7 @@ class ThrowStiffnessInfo:
     method: str
     model_error: float | None
     missing: str = ""
+    outside: tuple[str, ...] = ()  # per throw: the model's groups outside the range ("" in)
 
 
 def throw_stiffness(crank: CrankGeometry) -> ThrowStiffnessInfo:
@@ -293,7 +294,21 @@ def throw_stiffness(crank: CrankGeometry) -> ThrowStiffnessInfo:
                                else 0.0 for t in crank.throws]))  # 0: no counterweight
     return ThrowStiffnessInfo(np.asarray(res.stiffness, dtype=float),
                               np.asarray(res.in_range, dtype=bool), str(res.method),
-                              None if res.model_error is None else float(res.model_error))
+                              None if res.model_error is None else float(res.model_error),
+                              outside=tuple(res.outside))
+
+
+def outside_text(stiff: ThrowStiffnessInfo, throws: list[int]) -> str:
+    """The stiffness model's groups outside its fitted range for throws (1-based), once
+    each: ``throw 2: Dp/Dj 0.741 (fitted 0.75..1)``; the groups alone when all throws
+    share them."""
+    texts = {t: stiff.outside[t - 1] for t in sorted(set(throws))
+             if t - 1 < len(stiff.outside) and stiff.outside[t - 1]}
+    if not texts:
+        return "outside the samples"
+    if len(set(texts.values())) == 1:
+        return next(iter(texts.values()))
+    return "; ".join(f"throw {t}: {g}" for t, g in texts.items())
 
 
 def _shaft_compliance(d: float, bore: float, length: float, g: float) -> float:
@@ -395,11 +410,11 @@ def tv_from_crank(rows: list[dict[str, Any]], crank: CrankGeometry, params: dict
                     if t is not None and 1 <= t <= n and not stiff.in_range[t - 1]]
             if used and warn is not None:
                 err_text = ("" if stiff.model_error is None
-                            else f" (stated error {stiff.model_error * 100:.1f} % inside it)")
+                            else f"; stated error {stiff.model_error * 100:.1f} % inside it")
                 warn("TVModel", "stiffness", i, "stiffness derived from throw"
                      f" {', '.join(map(str, sorted(set(used))))} outside the fitted range of"
-                     f" the throw stiffness model{err_text}: the value is extrapolated; check"
-                     " it or type the stiffness")
+                     f" the throw stiffness model ({outside_text(stiff, used)}{err_text}):"
+                     " the value is extrapolated; check it or type the stiffness")
         if typed is None and derived is None:
             err("TVModel", "stiffness", i, "stiffness to the next station is required for"
                 " every station but the last (expected a torsional stiffness, e.g. N m/rad;"

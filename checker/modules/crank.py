@@ -63,8 +63,10 @@ def crank_geometry(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         if not np.isfinite(st.stiffness[i]):
             stiff_missing[(i,)] = [st.missing or "throw stiffness not available"]
         elif not st.in_range[i]:
+            groups = st.outside[i] if i < len(st.outside) else ""
             findings[(i,)] = [f"{items[i]}: outside the fitted range of the throw stiffness"
-                              " model: the value is extrapolated"]
+                              f" model{f' ({groups})' if groups else ''}: the value is"
+                              " extrapolated"]
     return {
         "crank.throw_mass": Quantity(THROW_MASS, mp.mass_total, coords, detail=detail),
         "crank.throw_inertia": Quantity(THROW_INERTIA, mp.inertia_total, coords,

@@ -136,9 +136,15 @@ def test_in_range_flags_outside_the_fit():
                                         "pin_length": np.array([0.0244, 0.0244, 0.09])})
     assert x.in_range.tolist() == [True, False, False]   # Dp/Dj 0.64; Lp/Dp 1.8
     assert np.all(np.isfinite(x.stiffness)) and np.all(x.stiffness > 0)
-    cw = ts.throw_torsional_stiffness(**I4, cw_inner_radius=0.02, cw_outer_radius=0.08,
-                                      cw_angle=np.radians([150.0, 200.0]), cw_thickness=0.02)
-    assert cw.in_range.tolist() == [True, False]
+    assert x.outside == ("", "Dp/Dj 0.636 (fitted 0.75..1), Bp/Dp 2.16 (fitted 1.2..1.8)",
+                         "Lp/Dp 1.8 (fitted 0.35..1.5)")
+    # the counterweight groups bound the samples, not the model (no counterweight term): a
+    # 200 deg counterweight reaching inside the web circle changes nothing and flags nothing
+    cw = ts.throw_torsional_stiffness(**I4, cw_inner_radius=np.array([0.02, 0.05]),
+                                      cw_outer_radius=0.08, cw_angle=np.radians([150.0, 200.0]),
+                                      cw_thickness=0.02)
+    assert cw.in_range.tolist() == [True, True] and cw.outside == ("", "")
+    assert cw.stiffness[0] == cw.stiffness[1]
     assert 0.0 < cw.model_error < 0.05
     assert "Carter" in cw.method and "FE" in cw.method
 
@@ -168,3 +174,72 @@ def test_samples_are_the_scripts_design():
     for col in ("Dj", "Dp", "Lj", "Lp", "tw", "R", "Bj", "Bp", "dj", "dp", "E", "nu", "cw_ri",
                 "cw_ro", "cw_angle", "cw_t"):
         np.testing.assert_allclose([r[col] for r in design], d[col], rtol=1e-8, err_msg=col)
+
+
+# Issue 43, item 2: a large overlap (the pin largely within the journal in the end view) made
+# the web's effective length R - c_s (Dj + Dp)/2 small or negative: a thinner web gave a
+# stiffer throw, and below R = c_s (Dj + Dp)/2 the stiffness could turn negative.
+WIDE = dict(journal_diameter=0.080, journal_bore=0.0, journal_length=0.036, pin_diameter=0.068,
+            pin_bore=0.0, pin_length=0.034, web_width_journal=0.120, web_width_pin=0.0952,
+            youngs_modulus=210e9, poisson_ratio=0.3)
+
+
+def test_thinner_web_never_stiffer_at_any_overlap():
+    """Stiffness rises with the web thickness over a sweep of thicknesses at every crank
+    radius from the pin's axis almost on the journal's to the fitted range and beyond (with
+    the axes 0.1 mm apart the webs' bending is below round-off: constant)."""
+    tw = np.linspace(0.002, 0.040, 77)
+    for r in (1e-4, 0.005, 0.010, 0.0204, 0.020, 0.025, 0.030, 0.045, 0.060, 0.100):
+        k = ts.throw_torsional_stiffness(**WIDE, web_thickness=tw, crank_radius=r).stiffness
+        assert np.all(np.isfinite(k)) and np.all(k > 0), r
+        assert np.all(np.diff(k) > 0 if r >= 0.005 else np.diff(k) >= 0), r
+
+
+def test_issue_cases_positive_and_ordered():
+    """The issue's cases: stroke 40 mm, web 16 and 40 mm (the thinner one came out stiffer,
+    2.076e6 against 2.068e6 N m/rad); stroke 10 mm, web 2 mm (negative)."""
+    k = ts.throw_torsional_stiffness(**WIDE, web_thickness=np.array([0.016, 0.040]),
+                                     crank_radius=0.020)
+    assert k.stiffness[0] < k.stiffness[1]
+    assert not k.in_range.any() and all("overlap S/Dj 0.675" in o for o in k.outside)
+    thin = ts.throw_torsional_stiffness(**WIDE, web_thickness=0.002, crank_radius=0.005)
+    assert thin.stiffness[0] > 0 and not thin.in_range[0]
+    assert thin.outside[0] == ("overlap S/Dj 0.863 (fitted -0.15..0.3),"
+                               " tw/Dj 0.025 (fitted 0.2..0.5)")
+
+
+def test_large_overlap_tends_to_the_stepped_shaft():
+    """With the pin's axis on the journal's (R -> 0) the webs bend no more: the throw is the
+    series of journal and pin torsion with their junction lengths (the web term vanishes);
+    the stiffness falls monotonically with R from there, smoothly through the knee."""
+    coef = ts._coefficients()["coefficients"]
+    g = 210e9 / 2.6
+    jj, jp = np.pi * 0.080**4 / 32, np.pi * 0.068**4 / 32
+    shaft = 1 / ((0.036 + coef["c_j"] * 0.080) / (g * jj) + (0.034 + coef["c_p"] * 0.068)
+                 / (g * jp))
+    r = np.linspace(1e-6, 0.08, 4001)
+    k = ts.throw_torsional_stiffness(**WIDE, web_thickness=0.016, crank_radius=r).stiffness
+    assert k[0] == pytest.approx(shaft, rel=1e-9)
+    dk = np.diff(k)
+    assert np.all(dk <= 0) and np.all(dk[r[1:] > 0.002] < 0)
+    assert np.all(np.abs(np.diff(dk)) < 0.02 * np.abs(dk).max())   # no kink at the knee
+
+
+def test_web_length_continuation():
+    """Unchanged down to half the crank radius (every sample is above 0.579 R); below it
+    equal in value and slope at the knee, positive, increasing in R."""
+    r = 0.02
+    inset = np.linspace(0.0, 0.05, 5001)
+    lw = ts.web_length(r, inset)
+    above = r - inset >= ts.WEB_KNEE * r
+    assert np.array_equal(lw[above], (r - inset)[above])
+    assert np.all(lw > 0) and np.all(np.diff(lw) < 0)
+    h = 1e-7
+    knee = r - ts.WEB_KNEE * r
+    slope = (ts.web_length(r, knee + h) - ts.web_length(r, knee - h)) / (2 * h)
+    assert float(slope) == pytest.approx(-1.0, rel=1e-5)
+    rr = np.linspace(1e-5, 0.1, 1001)
+    assert np.all(np.diff(ts.web_length(rr, 0.0204)) > 0)
+    d = _samples()
+    c_s = ts._coefficients()["coefficients"]["c_s"]
+    assert np.all(d["R"] - c_s * (d["Dj"] + d["Dp"]) / 2 >= 0.579 * d["R"])

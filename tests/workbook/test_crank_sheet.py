@@ -186,7 +186,8 @@ class _StandIn:
         length = kw["journal_length"] + 2 * kw["web_thickness"] + kw["pin_length"]
         k = g * np.pi * kw["journal_diameter"]**4 / 32 / length
         return SimpleNamespace(stiffness=k, in_range=np.ones_like(k, bool),
-                               method="stand-in", model_error=0.03)
+                               method="stand-in", model_error=0.03,
+                               outside=("",) * np.size(k))
 
 
 @pytest.fixture
@@ -276,5 +277,55 @@ def test_derived_stiffness_outside_the_fitted_range_is_a_warning_at_its_cell(tmp
     (w,) = [w for w in e.warnings if w.where.startswith("TVModel")]
     assert w.where == "TVModel!F7"
     assert "derived from throw 2, 3 outside the fitted range" in w.message
+    assert "(Dp/Dj 0.741 (fitted 0.75..1); stated error 3.5 % inside it)" in w.message
     assert next(m for m in e.crank_model if m.item == "Cylinder 2"
                 and m.attr == "stiffness").origin == "derived"
+
+
+def _v8_wide_throw(path, stroke_mm: float, web_mm: float, cw: tuple | None = None):
+    """The V8 example (torsional model derived from sheet Crank) with the throw of issue 43,
+    item 2: journal 80, pin 68 mm, the pin largely within the journal in the end view."""
+    from checker.workbook.example_data import load_example
+
+    c = load_example("v8")
+    cols, rows = c["Crank"]
+    names = [n for n, _ in cols]
+    for k, v in {"main journal diameter": 80, "main journal length": 36, "pin diameter": 68,
+                 "pin length": 34, "web thickness": web_mm, "web width at journal": 120,
+                 "web width at pin": 95.2, "counterweight inner radius": None,
+                 "counterweight outer radius": None, "counterweight angle": None}.items():
+        rows[0][names.index(k)] = v
+    if cw is not None:
+        for k, v in zip(("counterweight inner radius", "counterweight outer radius",
+                         "counterweight angle"), cw):
+            rows[0][names.index(k)] = v
+    c["Engine"] = [(e[0], stroke_mm, *e[2:]) if e[0] == "Stroke" else e for e in c["Engine"]]
+    c.pop("CrankMass")
+    return _write(path.parent, c, path.name)
+
+
+def test_stiffness_model_outside_its_range_checks_and_names_its_groups(tmp_path):
+    """Issue 43, item 2: stroke 10 mm, web 2 mm ended in 'internal error: ValueError:
+    stiffness must be finite and > 0'; now the check runs, every derived stiffness is
+    positive and its warning names the groups outside the fitted range."""
+    res = api.check(_v8_wide_throw(tmp_path / "v8-wide.xlsx", 10.0, 2.0))
+    k = [m.value for m in res.engine.crank_model if m.attr == "stiffness"
+         and m.origin == "derived"]
+    assert k and all(math.isfinite(x) and x > 0 for x in k)
+    warns = [w for w in res.engine.warnings if w.where.startswith("TVModel")]
+    assert warns and all("(overlap S/Dj 0.863 (fitted -0.15..0.3), tw/Dj 0.025 (fitted"
+                         " 0.2..0.5); stated error 3.5 % inside it)" in w.message
+                         for w in warns)
+
+
+def test_counterweight_alone_outside_the_samples_is_no_warning(tmp_path):
+    """The stiffness has no counterweight term: a counterweight beyond the samples' radii
+    (outer radius 1.5 (R + Dp/2), the samples reach 1.25) flags no derived stiffness."""
+    from checker.workbook.example_data import load_example
+
+    c = load_example("v8")
+    cols, rows = c["Crank"]
+    rows[0][[n for n, _ in cols].index("counterweight outer radius")] = 1.5 * (46 + 26.66)
+    e = load_engine(_write(tmp_path, c, "v8-cw.xlsx"))
+    assert not [w for w in e.warnings if w.where.startswith("TVModel")]
+    assert [m.origin for m in e.crank_model if m.attr == "stiffness"].count("derived") >= 3
