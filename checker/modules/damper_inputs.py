@@ -133,12 +133,31 @@ def viscous_coupling(engine: Engine) -> ViscousCoupling:
                            "Couette shear of the silicone on every wetted face")
 
 
-def heat_resistance(engine: Engine, what: str) -> float:
-    """``R = 1 / (h A)`` [K/W] of the damper's cooled surface (raises MissingInputs)."""
-    miss = _missing(engine, ("heat_transfer", "cooled_area"), what)
+HEAT_PATH = ("heat_transfer", "cooled_area")
+"""The cells of the damper's heat path (sheet Damper): both blank means no self-heating."""
+
+
+def heat_resistance(engine: Engine, what: str) -> float | None:
+    """``R = 1 / (h A)`` [K/W] of the damper's cooled surface; None when both cells are
+    blank: no self-heating, the damper at the air temperature (docs/workbook.md). One of the
+    two alone raises MissingInputs naming the other."""
+    if all(engine.damper.get(a) is None for a in HEAT_PATH):
+        return None
+    miss = _missing(engine, HEAT_PATH, what)
     if miss:
         raise MissingInputs(miss)
     return 1.0 / (float(engine.damper["heat_transfer"]) * float(engine.damper["cooled_area"]))
+
+
+def heat_path_assumption(engine: Engine, res_th: float | None) -> tuple[str, ...]:
+    """The assumption a blank heat path makes (none when it is given)."""
+    if res_th is not None:
+        return ()
+    cells = [c for c in (engine.cell("Damper", a) for a in HEAT_PATH) if c != "Damper"]
+    at = f", {' and '.join(cells)}" if cells else ""
+    return ("Damper heat path not given (Damper heat transfer coefficient and cooled surface"
+            f" area blank{at}): no self-heating, the damper at the air temperature of each"
+            " end of the operating range (T = T_air).",)
 
 
 def temperature_range(engine: Engine, what: str) -> tuple[float, float]:

@@ -282,7 +282,7 @@ def damper_rubber_ends(engine: Engine, inputs: dict) -> dict[str, Quantity]:
             " from the DamperRubber table at that temperature (ln G' and the loss factor"
             " interpolated linearly in temperature); the tuning ratio is judged at the speed"
             " of the largest dissipated power of each end and load case (the crank"
-            " resonance).",))
+            " resonance).",) + dinp.heat_path_assumption(engine, res_th))
     coords = {"end": list(ENDS), "case": list(rs.cases), "speed": list(rs.speeds)}
     judged_text = ("judged at the speed of the largest dissipated power of each end and load"
                    " case (the crank resonance the damper works at)")
@@ -378,7 +378,8 @@ def viscous_damper(engine: Engine, inputs: dict) -> dict[str, Quantity]:
             + "; the TV response of module torsion uses the silicone at its reference"
             " temperature (or the typed coefficient); Den Hartog's optimum for an undamped"
             " crank mode, compared at the speed of the largest dissipated power.",
-            "Damper type viscous: the rubber damper's rules (DMP-001..007) do not apply.",))
+            "Damper type viscous: the rubber damper's rules (DMP-001..007) do not apply.",)
+        + dinp.heat_path_assumption(engine, res_th))
     coords = {"end": list(ENDS), "case": list(rs.cases), "speed": list(rs.speeds)}
     flux_missing = dict(missing)
     if cp.wetted_area is None:

@@ -209,7 +209,8 @@ def _viscous_section(res: CheckResult) -> dict:
         ["Peak magnification at the optimum 1 + 2/μ", fmt(d.peak_magnification, 4), "-"],
         ["Wetted ring area", fmt(None if d.wetted_area is None else
                                  in_unit(d.wetted_area, "m**2", "cm**2"), 4), "cm²"],
-        ["Heat path 1/(h A)", fmt(d.heat_resistance, 3), "K/W"],
+        ["Heat path 1/(h A)", "not given: no self-heating" if d.heat_resistance is None
+         else fmt(d.heat_resistance, 3), "" if d.heat_resistance is None else "K/W"],
     ]
     blocks.append({"type": "table", "caption": "Untuned viscous damper and Den Hartog's"
                    " optimum for this crank", "columns": ["quantity", "value", "unit"],

@@ -57,7 +57,7 @@ class DamperEndsDetail(Detail):
     damper_type: str  # "rubber" | "viscous"
     ends: tuple[str, ...]  # ("cold", "hot")
     air_temperature: tuple[float, ...]  # (E,) air temperature at the damper [K]
-    heat_resistance: float  # 1/(h A) of the cooled surface [K/W]
+    heat_resistance: float | None  # 1/(h A) of the cooled surface [K/W]; None: not heated
     speeds: np.ndarray  # (S,) [rad/s]
     cases: tuple[str, ...]  # (C,)
     temperature: np.ndarray  # (E, C, S) damper (rubber / silicone) temperature [K]

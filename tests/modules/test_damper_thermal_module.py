@@ -249,3 +249,46 @@ def test_maxwell_silicone_in_the_torsional_solve(tmp_path):
     judged = [r for r in res.results if r.status != "not_applicable"]
     assert {r.rule for r in judged} == {"DMP-008", "DMP-009", "DMP-010"}
     assert all(r.value is not None for r in judged)
+
+
+def _blank_heat_path(wb, labels=NEW_DAMPER_ROWS[2:]):
+    ws = wb["Damper"]
+    for label in labels:
+        ws.cell(param_row(ws, label), 2).value = None
+
+
+def test_blank_heat_path_means_no_self_heating(tmp_path):
+    """Issue 43, item 4: blank 'Damper heat transfer coefficient' and 'Damper cooled surface
+    area' mean no self-heating (docs/workbook.md), stated as an assumption: the rubber at
+    the air temperature of each end, DMP-005..007 judged (they were not evaluated)."""
+    res = api.check(edited(tmp_path, _blank_heat_path), select=["DMP"])
+    status = {r.rule: r.status for r in res.results}
+    assert all(status[r] not in ("not_evaluated", "not_applicable")
+               for r in ("DMP-005", "DMP-006", "DMP-007")), status
+    d = res.outcome.quantities["damper.end_tuning_ratio"].detail
+    assert d.heat_resistance is None
+    t_air = np.array(d.air_temperature)[:, None, None]
+    np.testing.assert_array_equal(d.temperature, np.broadcast_to(t_air, d.temperature.shape))
+    assert any("no self-heating" in a and "Damper!B" in a for a in res.assumptions)
+
+
+def test_blank_heat_path_viscous_damper_at_the_air_temperature(tmp_path):
+    content = i6_content(damper_ring=True)
+    content["Damper"] = [r for r in content["Damper"] if r[0] not in NEW_DAMPER_ROWS[2:]]
+    p = tmp_path / "i6-no-heat-path.xlsx"
+    write_workbook(p, content)
+    res = api.check(p, select=["DMP"])
+    status = {r.rule: r.status for r in res.results}
+    assert all(status[r] not in ("not_evaluated", "not_applicable")
+               for r in ("DMP-008", "DMP-009", "DMP-010")), status
+    q = res.outcome.quantities["damper.silicone_temperature"]
+    t_air = np.array(q.detail.air_temperature)[:, None, None]
+    np.testing.assert_array_equal(q.values, np.broadcast_to(t_air, q.values.shape))
+    assert any("no self-heating" in a for a in res.assumptions)
+
+
+def test_half_a_heat_path_is_not_evaluated_naming_the_other_cell(tmp_path):
+    res = api.check(edited(tmp_path, lambda wb: _blank_heat_path(
+        wb, ("Damper cooled surface area",))), select=["DMP-006"])
+    [r] = res.results
+    assert r.status == "not_evaluated" and "Damper cooled surface area" in r.message
