@@ -21,8 +21,9 @@ ATTACHMENT_NAME = "results.xlsx"
 
 DEFAULT_DISPLAY = {"Pa": "MPa", "m": "mm", "rad": "deg", "N*m": "N*m", "W/m**3": "W/cm**3",
                    "m**2": "mm**2", "N": "kN", "rad/s": "rpm", "Hz": "Hz", "W": "W",
-                   "": "", "-": ""}
-"""Display unit of a quantity's SI unit when no rule names one."""
+                   "K": "°C", "": "", "-": ""}
+"""Display unit of a quantity's SI unit when no rule names one: every temperature in °C, as
+the report gives it (a temperature, not a difference: no quantity in K is a difference)."""
 
 
 

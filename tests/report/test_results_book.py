@@ -110,3 +110,24 @@ def test_index_sheet_and_cylinder_pressure_data(result):
     first = rows[tr + 1]
     np.testing.assert_allclose(np.array(first[1:1 + cyc.speeds.size], float),
                                cyc.pressure[0, :, 0] / 1e5, rtol=1e-9)
+
+
+def test_every_temperature_in_celsius(tmp_path):
+    """Issue 43, item 5: the film temperature was in °C (its rule's unit) and the damper
+    rubber's temperature at the ends of its range in K; every temperature in °C, as the
+    report gives them (reference: pint's kelvin -> degree Celsius)."""
+    from checker.workbook.units import Q_
+
+    res = api.check(example_path(tmp_path), select=["BRG-007", "DMP"])
+    wb = openpyxl.load_workbook(io.BytesIO(results_book.build(res)), read_only=True)
+    temps = [q for q in res.outcome.quantities.values() if q.spec.unit == "K"]
+    assert {"bearing.film_temperature", "damper.end_rubber_temperature"} <= {
+        q.name for q in temps}
+    for q in temps:
+        rows = list(wb[results_book.sheet_name(q.name)].iter_rows(values_only=True))
+        assert rows[1][0] == "unit: °C", (q.name, rows[1])
+        lead = len(q.spec.dims) - 1
+        n = int(np.prod(q.values.shape[:-1]))
+        got = np.array([r[lead:lead + q.values.shape[-1]] for r in rows[3:3 + n]], float)
+        want = Q_(q.values, "kelvin").to("degC").magnitude.reshape(got.shape)
+        np.testing.assert_allclose(got, want, rtol=1e-9, equal_nan=True)
