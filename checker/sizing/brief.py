@@ -2,7 +2,8 @@
 
 Values with units are strings, ``bore = "86 mm"``, converted to SI by :func:`checker.workbook.units.
 to_si` (the workbook's unit handling); every problem of a brief is reported at once
-(:class:`checker.errors.InputErrors`: key, expected with unit, found), exit code 2.
+(:class:`checker.errors.InputErrors`: ``file:line``, key, expected with unit, found), exit code
+2; a file that is not UTF-8 text or not TOML is refused at its line.
 """
 
 from __future__ import annotations
@@ -90,15 +91,22 @@ def _norm(s: str) -> str:
     return re.sub(r"[\s_\-]+", " ", s.strip().lower())
 
 
-def parse_brief(raw: dict[str, Any], where: str = "brief") -> Brief:
+def parse_brief(raw: dict[str, Any], where: str = "brief",
+                lines: dict[str, int] | None = None) -> Brief:
     """Check and convert a brief (``{key: value}``, TOML types); all problems in one
-    :class:`InputErrors`."""
+    :class:`InputErrors`. ``lines``: the line of each key in the brief file (messages say
+    ``file:line: key``)."""
     errs: list[InputError] = []
     vals: dict[str, Any] = {}
+    lines = lines or {}
+
+    def loc(k: str) -> str:
+        return f"{where}:{lines[k]}: {k}" if k in lines else f"{where}: {k}"
+
     for k in raw:
         if k not in KEYS:
             near = difflib.get_close_matches(k.lower(), list(KEYS), n=1, cutoff=0.7)
-            errs.append(InputError(f"{where}: {k}", "unknown key; expected one of "
+            errs.append(InputError(loc(k), "unknown key; expected one of "
                                    + ", ".join(KEYS) + (f" (did you mean {near[0]}?)"
                                                         if near else "")))
     for k, (kind, example, required, _dflt) in KEYS.items():
@@ -108,7 +116,7 @@ def parse_brief(raw: dict[str, Any], where: str = "brief") -> Brief:
                                        f"{example}, found nothing"))
             continue
         v = raw[k]
-        at = f"{where}: {k}"
+        at = loc(k)
         if kind == "text":
             vals[k] = str(v)
         elif kind == "int":
@@ -150,10 +158,10 @@ def parse_brief(raw: dict[str, Any], where: str = "brief") -> Brief:
         layout = vals.get("layout", "inline")
         n = vals["cylinders"]
         if layout == "V" and n % 2:
-            errs.append(InputError(f"{where}: cylinders", "a V engine needs an even number of"
+            errs.append(InputError(loc("cylinders"), "a V engine needs an even number of"
                                    f" cylinders (two banks, two rods per pin); found {n}"))
         if layout == "inline" and "bank_angle" in vals:
-            errs.append(InputError(f"{where}: bank_angle", "only for layout = \"V\"; found a"
+            errs.append(InputError(loc("bank_angle"), "only for layout = \"V\"; found a"
                                    " bank angle with an in-line layout"))
         bank = vals.get("bank_angle", 4 * math.pi / n if layout == "V" else 0.0)
         if layout == "V" and n == 2 and "bank_angle" not in vals:
@@ -162,11 +170,13 @@ def parse_brief(raw: dict[str, Any], where: str = "brief") -> Brief:
         vmax = vals.get("max_speed", 1.1 * rated)
         vmin = vals.get("min_speed", (1000.0 if fuel == "gasoline" else 800.0) * math.pi / 30)
         if vmax < rated:
-            errs.append(InputError(f"{where}: max_speed", "expected at least the rated speed"
+            errs.append(InputError(loc("max_speed"), "expected at least the rated speed"
                                    f" ({rated * 30 / math.pi:.0f} rpm); found"
                                    f" {vmax * 30 / math.pi:.0f} rpm"))
         if vmin >= rated:
-            errs.append(InputError(f"{where}: min_speed", "expected below the rated speed"))
+            errs.append(InputError(loc("min_speed"), "expected below the rated speed"
+                                   f" ({rated * 30 / math.pi:.0f} rpm); found"
+                                   f" {vmin * 30 / math.pi:.0f} rpm"))
         from ..calc.first_layout import peak_pressure as typical
 
         lining = vals.get("bearing_lining",
@@ -185,7 +195,7 @@ def parse_brief(raw: dict[str, Any], where: str = "brief") -> Brief:
             if layout != "V" and k == "bank_angle":
                 continue
             if not lo <= x <= hi:
-                errs.append(InputError(f"{where}: {k}", _no_data(k, x, lo, hi)))
+                errs.append(InputError(loc(k), _no_data(k, x, lo, hi)))
         if errs:
             raise InputErrors(errs, source=str(where))
         return brief
@@ -210,7 +220,7 @@ def _no_data(k: str, x: float, lo: float, hi: float) -> str:
     why = {
         "bore": "the piston and rod mass rules and the web ratio are car/truck-engine rules",
         "stroke": "the rod-length ratio is a car/truck-engine ratio",
-        "cylinders": "firing orders are tabled for 1-16 cylinders",
+        "cylinders": "firing orders are tabled or derived for 1-16 cylinders",
         "bank_angle": "V engines with two rods per pin",
         "rated_speed": "the sized joints and damper are car/truck-engine designs",
         "peak_pressure": "Agostini 2019's admissible bearing pressure is for engine pressures",
@@ -221,20 +231,69 @@ def _no_data(k: str, x: float, lo: float, hi: float) -> str:
             " or change the brief")
 
 
+_KEY_LINE = re.compile(r"""^\s*(?:"([^"]*)"|'([^']*)'|([A-Za-z0-9_-]+))\s*(?:\.[^=]*)?=""")
+_TOML_AT = re.compile(r"\s*\(at line (\d+), column (\d+)\)\s*$")
+
+
+def key_lines(text: str) -> dict[str, int]:
+    """Line (1-based) of each top-level key of a TOML brief (the first assignment; a brief
+    has no tables)."""
+    out: dict[str, int] = {}
+    for i, line in enumerate(text.splitlines(), start=1):
+        if line.lstrip().startswith("["):
+            break
+        m = _KEY_LINE.match(line)
+        if m:
+            out.setdefault(next(g for g in m.groups() if g is not None), i)
+    return out
+
+
+def _read_toml(path: str | Path, where: str) -> tuple[dict[str, Any], dict[str, int]]:
+    """The brief file's keys and their lines; a file that cannot be read, is not UTF-8 text
+    or is not TOML is an error at its line."""
+    def fail(message: str) -> InputErrors:
+        return InputErrors([InputError(where, message)], source=where)
+
+    try:
+        data = Path(path).read_bytes()
+    except OSError as exc:
+        raise fail(f"cannot be read: {exc.strerror}") from None
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data.count(b"\n", 0, exc.start) + 1
+        raise InputErrors([InputError(
+            f"{where}:{line}", f"expected a text file (TOML, UTF-8), e.g. bore = \"86 mm\";"
+            f" found the byte 0x{data[exc.start]:02x}, which is not UTF-8 text (a binary"
+            " or differently encoded file?)")], source=where) from None
+    try:
+        raw = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        msg = str(exc)
+        m = _TOML_AT.search(msg)
+        at = f"{where}:{m.group(1)}" if m else where
+        reason = _TOML_AT.sub("", msg) if m else msg
+        line = text.splitlines()[int(m.group(1)) - 1].strip() if m and int(m.group(1)) <= len(
+            text.splitlines()) else ""
+        raise InputErrors([InputError(
+            at, "expected TOML lines key = value, e.g. bore = \"86 mm\"; found"
+            + (f" '{line}'" if line else " the end of the file")
+            + (f" (column {m.group(2)}: {reason.lower()})" if m else f" ({reason.lower()})"))],
+            source=where) from None
+    return raw, key_lines(text)
+
+
 def load_brief(path: str | Path, options: dict[str, Any] | None = None) -> Brief:
-    """Read a brief file (TOML) and/or options (options win); all problems at once."""
+    """Read a brief file (TOML) and/or options (options win); all problems at once, each at
+    ``file:line`` with its key."""
     raw: dict[str, Any] = {}
+    lines: dict[str, int] = {}
     where = "options"
     if path is not None:
         where = Path(path).name
-        try:
-            with open(path, "rb") as fh:
-                raw = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise InputErrors([InputError(where, f"not a valid TOML file: {exc}")],
-                              source=where) from None
-        except OSError as exc:
-            raise InputErrors([InputError(where, f"cannot be read: {exc.strerror}")],
-                              source=where) from None
-    raw.update({k: v for k, v in (options or {}).items() if v is not None})
-    return parse_brief(raw, where)
+        raw, lines = _read_toml(path, where)
+    given = {k: v for k, v in (options or {}).items() if v is not None}
+    raw.update(given)
+    for k in given:
+        lines.pop(k, None)  # an option wins over the file: no line of the file
+    return parse_brief(raw, where, lines)

@@ -30,6 +30,7 @@ from ..calc import first_layout as fl
 from ..calc.bolted_joint import PRELOAD_FRACTIONS, effective_friction_diameter, tensile_stress_area
 from ..calc.crank_geometry import cylinder, throw_mass_properties
 from .brief import Brief
+from .firing import inline_firing_order
 
 TAG = "ESTIMATE (checker new)"
 RPM = 30.0 / math.pi
@@ -60,10 +61,6 @@ MATERIALS = {  # density, E, nu, strengths [MPa] (Bell 2013 data for the steel)
                   " E 174 GPa, nu 0.275, fatigue 0.375 UTS, rolled fillets x 1.8 [not confirmed"
                   " in a public source]"},
 }
-
-INLINE_FIRING = {1: [1], 2: [1, 2], 3: [1, 2, 3], 4: [1, 3, 4, 2], 5: [1, 2, 4, 5, 3],
-                 6: [1, 5, 3, 6, 2, 4], 8: [1, 6, 2, 5, 8, 3, 7, 4]}
-"""Usual in-line firing orders (even firing, 720/n apart); the throw angles follow."""
 
 
 def padm_text(b: Brief) -> str:
@@ -119,31 +116,26 @@ def _throws_and_firing(b: Brief) -> tuple[list[float], list[int], list[float], l
                                           str, str]:
     n = b.cylinders
     if b.layout == "inline":
-        order = INLINE_FIRING.get(n)
-        if order is None:
-            raise NoRule(f"no firing order is tabled for an in-line {n}-cylinder (tabled: 1-6"
-                         " and 8): type the Cylinders sheet of a workbook by hand")
+        order, tabled = inline_firing_order(n)
         step = 720.0 / n
         firing = [0.0] * n
         for k, c in enumerate(order):
             firing[c - 1] = k * step
         throws = [(-f) % 360.0 for f in firing]
         return (throws, list(range(1, n + 1)), [0.0] * n, firing, "-".join(map(str, order)),
-                f"the usual in-line firing order, even firing every {step:g} deg; throw angle ="
-                " -firing angle (mod 360)")
+                f"{'the usual' if tabled else 'a derived'} in-line firing order"
+                f"{'' if tabled else ' (the smallest free moments, Taylor 1985 vol. 2 ch. 8)'},"
+                f" even firing every {step:g} deg; throw angle = -firing angle (mod 360)")
     half = n // 2
     if half == 4:
         pins = [0.0, 90.0, 270.0, 180.0]
         how = "cross-plane crank (pins 0/90/270/180 deg)"
-    elif half in INLINE_FIRING:
+    else:
         f = [0.0] * half
-        for k, c in enumerate(INLINE_FIRING[half]):
+        for k, c in enumerate(inline_firing_order(half)[0]):
             f[c - 1] = k * 720.0 / half
         pins = [(-x) % 360.0 for x in f]
         how = f"pins as an in-line {half}"
-    else:
-        raise NoRule(f"no crank-pin arrangement is tabled for a V{n}: type the Cylinders sheet"
-                     " by hand")
     alpha = math.degrees(b.bank_angle)
     banks = [alpha / 2 if c % 2 == 0 else -alpha / 2 for c in range(n)]  # odd cyl left (+)
     cyl_pin = [c // 2 + 1 for c in range(n)]

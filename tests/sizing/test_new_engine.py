@@ -112,7 +112,10 @@ def test_v8_even_firing_cross_plane():
     ('cylinders = 6\nbore = "250 mm"\nstroke = "320 mm"\nrated_power = "1800 kW"\n'
      'rated_speed = "1000 rpm"\nmin_speed = "400 rpm"\nfuel = "diesel"\n', None),
     ('cylinders = 7\nbore = "80 mm"\nstroke = "80 mm"\nrated_power = "50 kW"\n'
-     'rated_speed = "6000 rpm"\n', "no firing order is tabled for an in-line 7"),
+     'rated_speed = "6000 rpm"\n', None),
+    ('cylinders = 17\nbore = "80 mm"\nstroke = "80 mm"\nrated_power = "50 kW"\n'
+     'rated_speed = "6000 rpm"\n', "odd.toml:1: cylinders: no rule of checker new has data for"
+     " 17 (covered: 1 to 16"),
     ('cylinders = 6\nbore = "400 mm"\nstroke = "400 mm"\nrated_power = "5000 kW"\n'
      'rated_speed = "600 rpm"\nfuel = "diesel"\n', "no rule of checker new has data for 400 mm"),
 ])
