@@ -134,14 +134,14 @@ def viscous_coupling(engine: Engine) -> ViscousCoupling:
 
 
 HEAT_PATH = ("heat_transfer", "cooled_area")
-"""The cells of the damper's heat path (sheet Damper): both blank means no self-heating."""
+"""The cells of the damper's heat path (sheet Damper), ``R = 1 / (h A)``."""
 
 
 def heat_resistance(engine: Engine, what: str) -> float | None:
-    """``R = 1 / (h A)`` [K/W] of the damper's cooled surface; None when both cells are
-    blank: no self-heating, the damper at the air temperature (docs/workbook.md). One of the
-    two alone raises MissingInputs naming the other."""
-    if all(engine.damper.get(a) is None for a in HEAT_PATH):
+    """``R = 1 / (h A)`` [K/W] of the damper's cooled surface; None when the heat transfer
+    coefficient is blank: no self-heating, the damper at the air temperature (docs/workbook.md).
+    A coefficient without the area raises MissingInputs naming the area's cell."""
+    if engine.damper.get("heat_transfer") is None:
         return None
     miss = _missing(engine, HEAT_PATH, what)
     if miss:
@@ -150,14 +150,13 @@ def heat_resistance(engine: Engine, what: str) -> float | None:
 
 
 def heat_path_assumption(engine: Engine, res_th: float | None) -> tuple[str, ...]:
-    """The assumption a blank heat path makes (none when it is given)."""
+    """The assumption a blank heat transfer coefficient makes (none when it is given)."""
     if res_th is not None:
         return ()
-    cells = [c for c in (engine.cell("Damper", a) for a in HEAT_PATH) if c != "Damper"]
-    at = f", {' and '.join(cells)}" if cells else ""
-    return ("Damper heat path not given (Damper heat transfer coefficient and cooled surface"
-            f" area blank{at}): no self-heating, the damper at the air temperature of each"
-            " end of the operating range (T = T_air).",)
+    cell = engine.cell("Damper", "heat_transfer")
+    at = f" ({cell})" if cell != "Damper" else ""
+    return (f"Damper heat transfer coefficient blank{at}: no self-heating, the damper at the"
+            " air temperature of each end of the operating range (T = T_air).",)
 
 
 def temperature_range(engine: Engine, what: str) -> tuple[float, float]:

@@ -287,8 +287,18 @@ def test_blank_heat_path_viscous_damper_at_the_air_temperature(tmp_path):
     assert any("no self-heating" in a for a in res.assumptions)
 
 
-def test_half_a_heat_path_is_not_evaluated_naming_the_other_cell(tmp_path):
+def test_coefficient_without_its_area_is_not_evaluated_naming_the_area(tmp_path):
     res = api.check(edited(tmp_path, lambda wb: _blank_heat_path(
         wb, ("Damper cooled surface area",))), select=["DMP-006"])
     [r] = res.results
     assert r.status == "not_evaluated" and "Damper cooled surface area" in r.message
+
+
+def test_blank_coefficient_alone_means_no_self_heating(tmp_path):
+    """docs/workbook.md: a blank heat transfer coefficient is no self-heating (the area alone
+    is no heat path)."""
+    res = api.check(edited(tmp_path, lambda wb: _blank_heat_path(
+        wb, ("Damper heat transfer coefficient",))), select=["DMP-006"])
+    [r] = res.results
+    assert r.status not in ("not_evaluated", "not_applicable"), r.message
+    assert any("no self-heating" in a for a in res.assumptions)
