@@ -1,4 +1,5 @@
-"""Command line: ``checker template | new | check | report | rules``.
+"""Command line: ``checker template | new | check | report | study | compare | correlate |
+rules``.
 
 Exit codes: 0 no error-severity rule fails; 1 a rule fails; 2 bad input, bad rule file,
 unwritable output or usage error; 130 interrupted (SIGINT, Ctrl-C); 143 terminated (SIGTERM).
@@ -625,6 +626,32 @@ def compare(baseline, variants, rules, select, ignore, fail_on, fmt, output) -> 
         click.echo(f"{Path(c.variant.engine.source).name}: {c.variant.verdict_text}"
                    f" ({c.inputs_text()}; {n} newly failing)", err=True)
     sys.exit(1 if worse else 0)
+
+
+@main.command()
+@WORKBOOK
+@click.argument("measured", type=click.Path(exists=True, dir_okay=False))
+@click.option("-o", "--output", type=click.Path(dir_okay=False),
+              help="PDF file (default: the workbook name with -correlation.pdf).")
+@click.option("--json", "json_out", type=click.Path(dir_okay=False, allow_dash=True),
+              help="Also write the comparison and calibration as JSON ('-': stdout).")
+@click.option("--calibrated", type=click.Path(dir_okay=False),
+              help="Calibrated copy of the workbook (default: the workbook name with"
+              " -calibrated.xlsx).")
+@click.option("--no-fit", is_flag=True, help="Compare only: no calibration, no copy.")
+@click.option("--fit-excitation", is_flag=True,
+              help="Also fit one scale on the crank-torque harmonics.")
+@click.option("--orders", help="Orders to compare, e.g. '2,4,6' or '0.5-12'.")
+@click.option("--progress/--no-progress", default=None, help="Stage lines on stderr.")
+def correlate(workbook, measured, output, json_out, calibrated, no_fit, fit_excitation, orders,
+              progress) -> None:
+    """Compare a measurement (order tracks or an angle-domain signal, MEASURED) with the
+    torsional model of WORKBOOK and calibrate the model (docs/correlation.md)."""
+    from .correlation.command import run_command
+
+    run_command(workbook, measured, output, json_out, calibrated, not no_fit, fit_excitation,
+                orders, _Progress(sys.stderr.isatty() if progress is None else progress),
+                {"fail": _fail, "outputs_writable": _outputs_writable, "write_all": _write_all})
 
 
 @main.command("rules")

@@ -48,6 +48,9 @@ def speed_sweep(engine: Engine) -> tuple[np.ndarray, list[str]]:
     """Speeds [rad/s]: minimum..maximum in steps (default 100 rpm) plus the overspeed."""
     p = engine.params
     notes = []
+    if p.get("speed_points"):
+        # explicit speeds (checker correlate: the measured speeds and a grid between them)
+        return np.array(sorted(p["speed_points"]), dtype=float), notes
     full = sorted(s for c, s, _ in engine.peak_pressure if c == "full")
     lo = p.get("speed_min") or (full[0] if full else None)
     hi = p.get("speed_max") or (full[-1] if full else None)
