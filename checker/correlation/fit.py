@@ -62,7 +62,7 @@ class FitResult:
     rms_after: float
     max_before: float  # largest |residual|
     max_after: float
-    evaluations: int
+    evaluations: int  # forced-response solves (the residuals' and the Jacobians')
     status: str  # the solver's message
     correlation: np.ndarray  # (p, p) correlation of the fitted log factors
     mask: np.ndarray  # (S, O) bool: the points fitted
@@ -134,5 +134,6 @@ def calibrate(s: Setup, meas: Measurement) -> FitResult:
                      rms_before=float(np.sqrt(np.mean(r0**2))),
                      rms_after=float(np.sqrt(np.mean(sol.fun**2))),
                      max_before=float(np.abs(r0).max()), max_after=float(np.abs(sol.fun).max()),
-                     evaluations=int(sol.nfev), status=str(sol.message),
+                     evaluations=int(sol.nfev + (sol.njev or 0) * len(keys)),
+                     status=str(sol.message),
                      correlation=np.nan_to_num(corr), mask=mask)

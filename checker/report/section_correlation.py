@@ -88,7 +88,14 @@ def _drpm(x: float | None) -> str:
 
 
 def _value(v: float, unit: str) -> str:
-    return f"{v:.4g}" + (f" {unit.replace('*', ' ')}" if unit else "")
+    """``0.1021``, ``27 530 N m/rad`` (4 significant digits, thousands spaced)."""
+    if not np.isfinite(v):
+        return "-"
+    if abs(v) >= 1e4:
+        text = f"{float(f'{v:.4g}'):,.0f}".replace(",", " ")
+    else:
+        text = f"{v:.4g}"
+    return text + (f" {unit.replace('*', ' ')}" if unit else "")
 
 
 def section_context(c: Correlation) -> dict[str, Any]:
@@ -124,8 +131,8 @@ def section_context(c: Correlation) -> dict[str, Any]:
                            "source": p.source, "cells": ", ".join(p.cells) or "-"})
     runs = [{"speed": f"{r.speed * RPM:.0f}", "cycles": r.cycles, "n": r.samples_per_cycle,
              "top": f"{r.highest_order:g}",
-             "scatter": f"{np.max(r.scatter / np.maximum(m.amplitude[i], 1e-30)) * 100:.2g} %",
-             "leak": f"{np.max(r.leakage / np.maximum(m.amplitude[i], 1e-30)) * 100:.2g} %"}
+             "scatter": f"{np.max(r.scatter) / max(m.amplitude[i].max(), 1e-300) * 100:.2g} %",
+             "leak": f"{np.max(r.leakage) / max(m.amplitude[i].max(), 1e-300) * 100:.2g} %"}
             for i, r in enumerate(m.runs)]
     return {
         "station": s.station_name, "station_asked": m.station, "load": m.load,

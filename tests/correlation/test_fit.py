@@ -116,3 +116,21 @@ def test_temperature_outside_the_rubber_table(tmp_path, i4):
     m.write_text(text)
     with pytest.raises(InputErrors, match="outside the DamperRubber table"):
         cr.run(i4, m)
+
+
+def test_worked_example_of_the_docs(i4):
+    """docs/correlation.md's worked example (examples/i4-measured-crank-nose.csv, 60 °C: the
+    DamperRubber table's value equals the workbook's nominal rubber): the numbers it prints."""
+    from pathlib import Path
+
+    m = Path(__file__).resolve().parents[2] / "examples" / "i4-measured-crank-nose.csv"
+    c = cr.run(i4, m)
+    f = c.fit.factors()
+    assert f["damper_damping"] == pytest.approx(0.7345, rel=1e-3)
+    assert f["damper_stiffness"] == pytest.approx(1.0821, rel=1e-3)
+    assert f["crank_damping"] == pytest.approx(0.966, rel=2e-3)
+    assert c.fit.rms_before == pytest.approx(0.1817, rel=2e-3)
+    assert c.fit.rms_after == pytest.approx(0.0227, rel=5e-3)
+    assert c.fit.points == 33
+    k = next(p for p in c.fit.parameters if p.key == "damper_stiffness")
+    assert k.start == pytest.approx(25497, rel=1e-4)  # Phi_r G'(60 °C)
