@@ -124,7 +124,8 @@ def to_dict(c: Correlation, calibrated: str | None = None) -> dict[str, Any]:
         out["calibration"] = {
             "method": "bounded least squares (trust-region reflective) on ln amplitude at"
                       " the resonant peaks and flanks; confidence from the Jacobian",
-            "points": f.points, "evaluations": f.evaluations,
+            "points": f.points, "evaluations": f.evaluations, "converged": f.converged,
+            "solver_message": f.status,
             "residual_rms_before_percent": _num(f.rms_before * 100),
             "residual_rms_after_percent": _num(f.rms_after * 100),
             "residual_max_before_percent": _num(f.max_before * 100),

@@ -64,6 +64,7 @@ class FitResult:
     max_after: float
     evaluations: int  # forced-response solves (the residuals' and the Jacobians')
     status: str  # the solver's message
+    converged: bool  # the solver met a tolerance (not its evaluation limit)
     correlation: np.ndarray  # (p, p) correlation of the fitted log factors
     mask: np.ndarray  # (S, O) bool: the points fitted
 
@@ -135,5 +136,5 @@ def calibrate(s: Setup, meas: Measurement) -> FitResult:
                      rms_after=float(np.sqrt(np.mean(sol.fun**2))),
                      max_before=float(np.abs(r0).max()), max_after=float(np.abs(sol.fun).max()),
                      evaluations=int(sol.nfev + (sol.njev or 0) * len(keys)),
-                     status=str(sol.message),
+                     status=str(sol.message), converged=bool(sol.success),
                      correlation=np.nan_to_num(corr), mask=mask)

@@ -246,108 +246,133 @@ def _cells(engine: Engine, *keys: tuple) -> tuple[str, ...]:
     return tuple(out)
 
 
+@dataclass
+class _Start:
+    """The model's damper and damping at the measured temperature, being gathered."""
+
+    stiffness: np.ndarray
+    loss_factor: np.ndarray
+    damping_rel: np.ndarray
+    dynamic: dict
+    params: list[Parameter]
+    notes: list[str]
+    shear_stiffness: float | None = None
+
+
 def _parameters(engine: Engine, data, base: tv.TorsionalModel, viscous: bool,
                 meas: Measurement):
     """(model at the measured temperature, parameters, notes, silicone shear stiffness)."""
-    params: list[Parameter] = []
-    notes: list[str] = []
-    T = meas.temperature
-    ring = data.ring
-    stiff = base.stiffness.copy()
-    loss = base.loss_factor.copy()
-    rel = base.damping_rel.copy()
-    dyn = dict(base.dynamic_stiffness)
-    ks = None
-    rubber_rows = [i for i in range(len(engine.damper.get("rubber_table") or ()))]
-    if ring is None:
-        notes.append("The torsional model has no damper ring (TVModel role 'damper ring'):"
-                     " no damper parameter is fitted.")
+    st = _Start(base.stiffness.copy(), base.loss_factor.copy(), base.damping_rel.copy(),
+                dict(base.dynamic_stiffness), [], [])
+    if data.ring is None:
+        st.notes.append("The torsional model has no damper ring (TVModel role 'damper ring'):"
+                        " no damper parameter is fitted.")
     elif viscous:
-        coupling = dinp.viscous_coupling(engine)
-        c0, how = coupling.damping, coupling.source
-        if T is not None:
-            if coupling.slope is None:
-                notes.append("Damper temperature given, but the viscous damper's damping has"
-                             " no temperature law (typed, or no viscosity temperature"
-                             " coefficient): its nominal value is the starting point.")
-            else:
-                c0 = float(coupling.damping_at(np.array(T)))
-                how = f"{how}, at the measured {T - 273.15:.0f} °C (Andrade's law)"
-        typed = engine.damper.get("viscous_damping") is not None
-        cells = (_cells(engine, ("Damper", "viscous_damping")) if typed
-                 else _cells(engine, ("Damper", "silicone_viscosity")))
-        params.append(Parameter("damper_damping", "viscous damper damping c", "N*m*s/rad", c0,
-                                cells, how))
-        ks = coupling.shear_stiffness
-        if ks is None:
-            rel[ring] = c0
-            notes.append("The viscous damper's silicone has no shear modulus (Damper sheet):"
-                         " the coupling is purely viscous, no damper stiffness is fitted.")
-        else:
-            params.append(Parameter("damper_stiffness", "silicone shear stiffness k_s",
-                                    "N*m/rad", ks,
-                                    _cells(engine, ("Damper", "silicone_shear_modulus")),
-                                    "silicone shear modulus times the gap factor"))
-            rel[ring] = 0.0
-            dyn[ring] = _Maxwell(c0, ks)
+        _viscous_start(engine, data.ring, meas.temperature, st)
     else:
-        k0, eta0, c0 = float(base.stiffness[ring]), float(base.loss_factor[ring]), float(
-            base.damping_rel[ring])
-        how_k = "TVModel 'stiffness to next' of the ring"
-        how_d = "Damper 'Rubber loss factor'"
-        table = engine.damper.get("rubber_table")
-        if T is not None and table:
-            rt = dinp.rubber_table(engine)
-            g, eta = rt(np.array(T))
-            if not np.isfinite(g):
-                raise _error(meas.where("damper temperature"), f"damper temperature"
-                             f" {T - 273.15:.1f} °C is outside the DamperRubber table"
-                             f" ({rt.t_min - 273.15:.0f} to {rt.t_max - 273.15:.0f} °C)")
-            try:
-                phi = dinp.rubber_factor(engine)
-            except MissingInputs as exc:
-                raise InputErrors([InputError(engine.source, r) for r in exc.reasons]) from None
-            k0, eta0 = float(phi * g), float(eta)
-            how_k = how_d = (f"DamperRubber table at the measured {T - 273.15:.0f} °C (bonded"
-                             " annulus, Gent 2012)")
-        elif T is not None:
-            notes.append("Damper temperature given, but the workbook has no DamperRubber table:"
-                         " the rubber's nominal stiffness and loss factor are the starting"
-                         " point.")
-        stiff[ring], loss[ring] = k0, eta0
-        d_cells = _cells(engine, ("Damper", "loss_factor"),
-                         *(("DamperRubber", i, "loss_factor") for i in rubber_rows))
-        if c0 > 0:
-            d_cells += _cells(engine, ("TVModel", ring, "relative_damping"))
-        if eta0 > 0 or c0 > 0:
-            params.append(Parameter(
-                "damper_damping", "rubber loss factor" if eta0 > 0 else
-                "damper relative damping", "" if eta0 > 0 else "N*m*s/rad",
-                eta0 if eta0 > 0 else c0, d_cells,
-                how_d if eta0 > 0 else "TVModel 'damping to next' of the ring"))
+        _rubber_start(engine, data.ring, base, meas, st)
+    _crank_parameter(engine, base, data.ring, st)
+    model = tv.TorsionalModel(inertia=base.inertia, stiffness=st.stiffness,
+                              damping_abs=base.damping_abs, damping_rel=st.damping_rel,
+                              loss_factor=st.loss_factor, dynamic_stiffness=st.dynamic)
+    return model, st.params, st.notes, st.shear_stiffness
+
+
+def _viscous_start(engine: Engine, ring: int, T: float | None, st: _Start) -> None:
+    """A viscous damper's silicone damping ``c`` (at ``T`` by its viscosity law) and, with
+    the silicone's shear modulus, its shear stiffness (Maxwell)."""
+    coupling = dinp.viscous_coupling(engine)
+    c0, how = coupling.damping, coupling.source
+    if T is not None:
+        if coupling.slope is None:
+            st.notes.append("Damper temperature given, but the viscous damper's damping has no"
+                            " temperature law (typed, or no viscosity temperature"
+                            " coefficient): its nominal value is the starting point.")
         else:
-            notes.append("The damper rubber has no damping (loss factor 0): none is fitted.")
-        params.append(Parameter(
-            "damper_stiffness", "rubber storage stiffness k'", "N*m/rad", k0,
-            _cells(engine, ("TVModel", ring, "stiffness"),
-                   *(("DamperRubber", i, "storage_modulus") for i in rubber_rows)), how_k))
-    crank_rel = [e for e in range(base.n_elements) if e != ring and base.damping_rel[e] > 0]
-    crank_abs = [i for i in range(base.n_stations) if i != ring and base.damping_abs[i] > 0]
-    if crank_rel or crank_abs:
-        parts = []
-        if crank_rel:
-            parts.append(f"{len(crank_rel)} elements' relative damping")
-        if crank_abs:
-            parts.append(f"{len(crank_abs)} stations' absolute damping")
-        params.append(Parameter(
-            "crank_damping", "crank damping (factor)", "", 1.0,
-            _cells(engine, *(("TVModel", e, "relative_damping") for e in crank_rel),
-                   *(("TVModel", i, "absolute_damping") for i in crank_abs)),
-            "TVModel: one factor on " + " and ".join(parts)))
+            c0 = float(coupling.damping_at(np.array(T)))
+            how = f"{how}, at the measured {T - 273.15:.0f} °C (Andrade's law)"
+    typed = engine.damper.get("viscous_damping") is not None
+    cells = _cells(engine, ("Damper", "viscous_damping" if typed else "silicone_viscosity"))
+    st.params.append(Parameter("damper_damping", "viscous damper damping c", "N*m*s/rad", c0,
+                               cells, how))
+    ks = st.shear_stiffness = coupling.shear_stiffness
+    if ks is None:
+        st.damping_rel[ring] = c0
+        st.notes.append("The viscous damper's silicone has no shear modulus (Damper sheet): the"
+                        " coupling is purely viscous, no damper stiffness is fitted.")
+        return
+    st.params.append(Parameter("damper_stiffness", "silicone shear stiffness k_s", "N*m/rad",
+                               ks, _cells(engine, ("Damper", "silicone_shear_modulus")),
+                               "silicone shear modulus times the gap factor"))
+    st.damping_rel[ring] = 0.0
+    st.dynamic[ring] = _Maxwell(c0, ks)
+
+
+def _rubber_at(engine: Engine, T: float, meas: Measurement) -> tuple[float, float]:
+    """(k' [N m/rad], eta) of the rubber at ``T`` from the DamperRubber table."""
+    rt = dinp.rubber_table(engine)
+    g, eta = rt(np.array(T))
+    if not np.isfinite(g):
+        raise _error(meas.where("damper temperature"), f"damper temperature {T - 273.15:.1f}"
+                     f" °C is outside the DamperRubber table ({rt.t_min - 273.15:.0f} to"
+                     f" {rt.t_max - 273.15:.0f} °C)")
+    try:
+        phi = dinp.rubber_factor(engine)
+    except MissingInputs as exc:
+        raise InputErrors([InputError(engine.source, r) for r in exc.reasons]) from None
+    return float(phi * g), float(eta)
+
+
+def _rubber_start(engine: Engine, ring: int, base: tv.TorsionalModel, meas: Measurement,
+                  st: _Start) -> None:
+    """A rubber damper's loss factor (or the ring element's viscous damping) and storage
+    stiffness, from the DamperRubber table at the measured temperature when both are given."""
+    T = meas.temperature
+    k0, eta0 = float(base.stiffness[ring]), float(base.loss_factor[ring])
+    c0 = float(base.damping_rel[ring])
+    how_k, how_d = "TVModel 'stiffness to next' of the ring", "Damper 'Rubber loss factor'"
+    rows = range(len(engine.damper.get("rubber_table") or ()))
+    if T is not None and rows:
+        k0, eta0 = _rubber_at(engine, T, meas)
+        how_k = how_d = (f"DamperRubber table at the measured {T - 273.15:.0f} °C (bonded"
+                         " annulus, Gent 2012)")
+    elif T is not None:
+        st.notes.append("Damper temperature given, but the workbook has no DamperRubber table:"
+                        " the rubber's nominal stiffness and loss factor are the starting"
+                        " point.")
+    st.stiffness[ring], st.loss_factor[ring] = k0, eta0
+    d_cells = _cells(engine, ("Damper", "loss_factor"),
+                     *(("DamperRubber", i, "loss_factor") for i in rows))
+    if c0 > 0:
+        d_cells += _cells(engine, ("TVModel", ring, "relative_damping"))
+    if eta0 > 0:
+        st.params.append(Parameter("damper_damping", "rubber loss factor", "", eta0, d_cells,
+                                   how_d))
+    elif c0 > 0:
+        st.params.append(Parameter("damper_damping", "damper relative damping", "N*m*s/rad",
+                                   c0, d_cells, "TVModel 'damping to next' of the ring"))
     else:
-        notes.append("The TVModel gives the crank no damping (relative or absolute): none is"
-                     " fitted.")
-    model = tv.TorsionalModel(inertia=base.inertia, stiffness=stiff,
-                              damping_abs=base.damping_abs, damping_rel=rel, loss_factor=loss,
-                              dynamic_stiffness=dyn)
-    return model, params, notes, ks
+        st.notes.append("The damper rubber has no damping (loss factor 0): none is fitted.")
+    st.params.append(Parameter(
+        "damper_stiffness", "rubber storage stiffness k'", "N*m/rad", k0,
+        _cells(engine, ("TVModel", ring, "stiffness"),
+               *(("DamperRubber", i, "storage_modulus") for i in rows)), how_k))
+
+
+def _crank_parameter(engine: Engine, base: tv.TorsionalModel, ring: int | None,
+                     st: _Start) -> None:
+    """One factor on the crank's damping: every other element's relative and every other
+    station's absolute damping (when the TVModel gives any)."""
+    rel = [e for e in range(base.n_elements) if e != ring and base.damping_rel[e] > 0]
+    absd = [i for i in range(base.n_stations) if i != ring and base.damping_abs[i] > 0]
+    if not (rel or absd):
+        st.notes.append("The TVModel gives the crank no damping (relative or absolute): none"
+                        " is fitted.")
+        return
+    parts = ([f"{len(rel)} elements' relative damping"] if rel else []) + (
+        [f"{len(absd)} stations' absolute damping"] if absd else [])
+    st.params.append(Parameter(
+        "crank_damping", "crank damping (factor)", "", 1.0,
+        _cells(engine, *(("TVModel", e, "relative_damping") for e in rel),
+               *(("TVModel", i, "absolute_damping") for i in absd)),
+        "TVModel: one factor on " + " and ".join(parts)))

@@ -148,7 +148,13 @@ def section_context(c: Correlation) -> dict[str, Any]:
             "before": f"{c.fit.rms_before * 100:.1f} %", "after": f"{c.fit.rms_after * 100:.1f} %",
             "max_before": f"{c.fit.max_before * 100:.1f} %",
             "max_after": f"{c.fit.max_after * 100:.1f} %"},
-        "runs": runs, "notes": list(c.notes) + list(m.notes),
+        "runs": runs,
+        "notes": list(c.notes) + list(m.notes) + ([] if not fitted or c.fit.converged else [
+            f"The fit did not converge ({c.fit.status}): the fitted values are the last"
+            " iterate, not a minimum."]) + [
+            f"{p.label}: at its bound (x{p.factor:.3g}); the measurement asks for a value"
+            " outside the range the fit allows" for p in (c.fit.parameters if fitted else ())
+            if p.at_bound],
     }
 
 
