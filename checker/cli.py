@@ -648,10 +648,12 @@ def correlate(workbook, measured, output, json_out, calibrated, no_fit, fit_exci
     """Compare a measurement (order tracks or an angle-domain signal, MEASURED) with the
     torsional model of WORKBOOK and calibrate the model (docs/correlation.md)."""
     from .correlation.command import run_command
+    from .report.section_correlation import render
 
     run_command(workbook, measured, output, json_out, calibrated, not no_fit, fit_excitation,
                 orders, _Progress(sys.stderr.isatty() if progress is None else progress),
-                {"fail": _fail, "outputs_writable": _outputs_writable, "write_all": _write_all})
+                {"fail": _fail, "outputs_writable": _outputs_writable, "write_all": _write_all,
+                 "render": render})
 
 
 @main.command("rules")

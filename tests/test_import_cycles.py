@@ -32,6 +32,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("checker.study",),
     ("checker.remedies",),
     ("checker.sizing",),
+    ("checker.correlation",),  # checker correlate: a measurement against the model
     ("checker.report",),
     ("checker.cli", "checker.__main__"),
 )

@@ -50,7 +50,9 @@ def run_command(workbook: str, measured: str, output: str | None, json_out: str 
                 calibrated: str | None, fit: bool, fit_excitation: bool, orders: str | None,
                 progress, cli: dict) -> None:
     """``cli``: the command line's ``fail``, ``outputs_writable`` and ``write_all`` (exit
-    code 2 with one sentence; outputs probed before the work and written all or none)."""
+    code 2 with one sentence; outputs probed before the work and written all or none) and
+    the report's ``render`` (:func:`checker.report.section_correlation.render`), handed down
+    so that this layer imports neither."""
     from . import run, to_dict
 
     _fail, _outputs_writable, _write_all = cli["fail"], cli["outputs_writable"], cli["write_all"]
@@ -90,9 +92,7 @@ def run_command(workbook: str, measured: str, output: str | None, json_out: str 
             files.append((cal, data))
             cal_name = cal.name
         progress("Drawing the correlation report")
-        from ..report.section_correlation import render
-
-        _html, pdf_bytes = render(c, workbook, cal_name)
+        _html, pdf_bytes = cli["render"](c, workbook, cal_name)
         files.insert(0, (pdf, pdf_bytes))
         text = json.dumps(to_dict(c, cal_name), indent=2, sort_keys=True,
                           ensure_ascii=False) + "\n"
