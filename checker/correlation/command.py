@@ -57,6 +57,9 @@ def run_command(workbook: str, measured: str, output: str | None, json_out: str 
 
     _fail, _outputs_writable, _write_all = cli["fail"], cli["outputs_writable"], cli["write_all"]
 
+    if calibrated and not fit:
+        raise click.UsageError("--calibrated with --no-fit: nothing is fitted, so no calibrated"
+                               " copy is written")
     wb = Path(workbook)
     pdf = Path(output) if output else wb.with_name(wb.stem + "-correlation.pdf")
     cal = (Path(calibrated) if calibrated else wb.with_name(wb.stem + "-calibrated.xlsx")

@@ -115,3 +115,20 @@ def test_every_problem_at_once(tmp_path, workbook):
     assert "missing '# load: full'" in out
     assert "unknown column 'torque'" in out
     assert "unit 'mm' is not an angle" in out
+
+
+def test_calibrated_without_fit_is_a_usage_error(tmp_path, workbook):
+    p = tracks_csv(tmp_path / "m.csv", "crank nose", "full", SPEEDS, ORDERS, AMP)
+    r = CliRunner().invoke(main, ["correlate", str(workbook), str(p), "--no-fit",
+                                  "--calibrated", str(tmp_path / "c.xlsx"), "-o",
+                                  str(tmp_path / "o.pdf")])
+    assert r.exit_code == 2 and "--calibrated with --no-fit" in r.output
+    assert not (tmp_path / "o.pdf").exists()
+
+
+def test_output_over_the_measurement_is_refused(tmp_path, workbook):
+    p = tracks_csv(tmp_path / "m.csv", "crank nose", "full", SPEEDS, ORDERS, AMP)
+    before = p.read_bytes()
+    r = CliRunner().invoke(main, ["correlate", str(workbook), str(p), "--json", str(p)])
+    assert r.exit_code == 2 and "would overwrite the measurement file" in r.output
+    assert p.read_bytes() == before
