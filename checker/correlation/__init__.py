@@ -59,6 +59,13 @@ def _arr(a, scale: float = 1.0) -> list:
     return [_num(v * scale) for v in np.asarray(a, dtype=float).ravel()]
 
 
+def _curves(c: Correlation, theta: np.ndarray, synthesis: np.ndarray) -> dict[str, Any]:
+    """A model's curves on the fine grid: per order and synthesised [deg]."""
+    return {"speeds_rpm": _arr(c.grid, RPM),
+            "orders": {f"{o:g}": _arr(np.abs(theta[:, j]), DEG) for j, o in enumerate(c.orders)},
+            "synthesis_deg": _arr(synthesis, DEG)}
+
+
 RPM = 30.0 / math.pi
 DEG = 180.0 / math.pi
 
@@ -115,10 +122,7 @@ def to_dict(c: Correlation, calibrated: str | None = None) -> dict[str, Any]:
     out: dict[str, Any] = {
         "measurement": meas, "tracks": tracks, "synthesis": syn, "peaks": peaks,
         "irregularity_lowest_speed": irr, "notes": list(c.notes),
-        "predicted_curves": {
-            "speeds_rpm": _arr(c.grid, RPM),
-            "orders": {f"{o:g}": _arr(np.abs(c.predicted[:, j]), DEG)
-                       for j, o in enumerate(c.orders)}}}
+        "predicted_curves": _curves(c, c.predicted, c.synthesis_predicted)}
     if c.fit is not None:
         f = c.fit
         out["calibration"] = {
@@ -138,6 +142,5 @@ def to_dict(c: Correlation, calibrated: str | None = None) -> dict[str, Any]:
                 "at_bound": p.at_bound, "cells": list(p.cells), "source": p.source}
                 for p in f.parameters],
             "calibrated_workbook": calibrated}
-        out["fitted_curves"] = {f"{o:g}": _arr(np.abs(c.fitted[:, j]), DEG)
-                                for j, o in enumerate(c.orders)}
+        out["fitted_curves"] = _curves(c, c.fitted, c.synthesis_fitted)
     return out
