@@ -75,6 +75,19 @@ def test_i6_viscous_damper_recovered(tmp_path, i6):
     _recovered(c.fit)
 
 
+def test_i6_as_shipped_viscous_damping_recovered(tmp_path):
+    """The I6 template as shipped: a purely viscous silicone (no stiffness to fit, said in a
+    note); its damping -30 % recovered within 5 % from 10 speeds at the flywheel."""
+    p = tmp_path / "i6.xlsx"
+    write_workbook(p, i6_content(damper_ring=True))
+    m, _ = perturbed_tracks(tmp_path, p, "flywheel", np.linspace(1000, 2800, 10),
+                            [3, 4.5, 6, 7.5, 9], {"damper_damping": 0.70}, 0.03)
+    c = cr.run(p, m)
+    assert [x.key for x in c.fit.parameters] == ["damper_damping", "crank_damping"]
+    assert c.fit.factors()["damper_damping"] == pytest.approx(0.70, rel=0.05)
+    assert any("no damper stiffness is fitted" in n for n in c.notes)
+
+
 def test_prediction_is_the_checks_own(tmp_path, i4):
     """With the workbook's values the re-solve gives the check's crank-nose response (graph
     quantity tv.nose_amplitude's detail) to round-off at the check's own speeds."""
