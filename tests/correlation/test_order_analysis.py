@@ -102,3 +102,16 @@ def test_speed_signal_file(tmp_path):
     assert m.amplitude[0, 1] == pytest.approx(amp_rpm / (2 * w_rpm), rel=1e-7)  # CSV: 9 digits
     assert m.amplitude[0, 0] == pytest.approx(0.0, abs=1e-12)
     assert m.irregularity[0] == pytest.approx(2 * amp_rpm / w_rpm, rel=1e-4)
+
+
+def test_track_of_a_speed_amplitude(tmp_path):
+    """An order track given as a speed amplitude (rpm) is the angle amplitude W / (n w); its
+    phase 90 deg behind the speed's; percent irregularity read as a ratio."""
+    p = tmp_path / "t.csv"
+    p.write_text("# station: flywheel\n# load: no\nspeed,order 2,order 2 phase,irregularity\n"
+                 "rpm,rpm,deg,%\n1000,10,30,2\n2000,4,30,0.4\n", encoding="utf-8")
+    m = read_measurement(p)
+    assert m.load == "no" and m.orders.tolist() == [2.0]
+    assert m.amplitude[:, 0] == pytest.approx([10 / (2 * 1000), 4 / (2 * 2000)], rel=1e-12)
+    assert np.degrees(np.angle(m.coeffs[0, 0])) == pytest.approx(30 - 90, abs=1e-9)
+    assert m.irregularity == pytest.approx([0.02, 0.004], rel=1e-12)
