@@ -5,8 +5,8 @@ module lines them up: the tracks of each order at the measured speeds and on a f
 (predicted with the workbook's values, and with the fitted ones), each resonance's peak speed
 and amplitude side by side with the differences, the synthesis of all orders (half
 peak-to-peak, :func:`checker.calc.torsional.half_peak_to_peak`) and the cyclic irregularity
-at the lowest measured speed, ``(w_max - w_min) / w_mean = 2 max|sum Re{j n Theta_n e^{jn
-theta}}|``-range, i.e. twice the half range of the speed fluctuation over the mean speed.
+at the lowest measured speed, ``(w_max - w_min) / w_mean``: twice the half range of
+``sum Re{j n Theta_n exp(j n theta)}`` (the speed fluctuation over the mean speed).
 """
 
 from __future__ import annotations
@@ -86,11 +86,11 @@ def _peak_rows(meas: Measurement, pred: np.ndarray, fitted: np.ndarray | None
     """Peaks of the measured and the model's tracks, both at the measured speeds and refined
     alike (a sparse speed step lowers a sharp peak for both: like is compared with like)."""
     rows = []
-    grid = meas.speeds
+    x = meas.speeds
     for j, o in enumerate(meas.orders):
-        mp = find_peaks(meas.speeds, meas.amplitude[:, j])
-        pp = find_peaks(grid, np.abs(pred[:, j]))
-        fp = find_peaks(grid, np.abs(fitted[:, j])) if fitted is not None else []
+        mp = find_peaks(x, meas.amplitude[:, j])
+        pp = find_peaks(x, np.abs(pred[:, j]))
+        fp = find_peaks(x, np.abs(fitted[:, j])) if fitted is not None else []
         used = set()
         for s, a in mp:
             p = _nearest(pp, s)
@@ -107,8 +107,14 @@ def _peak_rows(meas: Measurement, pred: np.ndarray, fitted: np.ndarray | None
     return rows
 
 
-def _row(order, m, p, f, with_fit: bool) -> dict:
-    def diff(x, ref, rel):
+Peak = tuple[float, float]  # (speed [rad/s], amplitude [rad])
+
+
+def _row(order: float, m: Peak | None, p: Peak | None, f: Peak | None, with_fit: bool
+         ) -> dict:
+    """One line of the peak table: measured, predicted (and fitted) with the differences."""
+
+    def diff(x: float | None, ref: float | None, rel: bool) -> float | None:
         if x is None or ref is None:
             return None
         return (x - ref) / ref if rel else x - ref
