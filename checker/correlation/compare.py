@@ -150,6 +150,10 @@ def correlate(s: Setup, meas: Measurement, fit: FitResult | None) -> Correlation
     oi = s.order_index
     pred, fitted = all_theta[:, oi], None if fit_theta is None else fit_theta[:, oi]
     notes = list(s.notes)
+    if fit is not None and fit.cancelled:
+        notes.append(f"Order {', '.join(f'{o:g}' for o in fit.cancelled)} left out of the fit:"
+                     " the firing order cancels it in the model (its measured amplitude is"
+                     " what the model cannot give: a cylinder's imbalance, noise).")
     # synthesis: the instrument's total against all model orders; else the measured orders
     if meas.total is not None:
         syn_o, syn_m = s.orders, meas.total

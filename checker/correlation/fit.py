@@ -1,9 +1,10 @@
 """Calibration: the least-known parameters fitted to the measured order tracks.
 
 Residuals: ``r_i = ln |Theta_pred,i(p)| - ln A_meas,i`` at every measured speed and order whose
-measured amplitude is at least :data:`PEAK_FLOOR` of that order's largest: the resonant peaks
-and their flanks, where the damper's and the crank's damping and the damper's stiffness show
-(a peak's height and its speed); relative residuals weigh a 3 % error alike on every order.
+measured amplitude is at least :data:`PEAK_FLOOR` of that order's largest (an order the firing
+order cancels in the model, :data:`CANCELLED`, left out): the resonant peaks and their
+flanks, where the damper's and the crank's damping and the damper's stiffness show (a peak's
+height and its speed); relative residuals weigh a 3 % error alike on every order.
 The parameters are the logarithms of factors on the starting values, bounded by
 :data:`checker.correlation.model.BOUNDS`, solved by a trust-region reflective least-squares
 method (``scipy.optimize.least_squares``, Branch, Coleman & Li 1999). Each evaluation
@@ -67,16 +68,28 @@ class FitResult:
     converged: bool  # the solver met a tolerance (not its evaluation limit)
     correlation: np.ndarray  # (p, p) correlation of the fitted log factors
     mask: np.ndarray  # (S, O) bool: the points fitted
+    cancelled: tuple[float, ...] = ()  # orders the model cancels, left out
 
     def factors(self) -> dict[str, float]:
         return {p.key: p.factor for p in self.parameters}
 
 
+CANCELLED = 1e-6
+"""An order whose predicted amplitude stays below this fraction of the largest order's is one
+the firing order cancels (a V8's 6th): its measured amplitude is noise, not fitted."""
+
+
 def fit_mask(meas: Measurement) -> np.ndarray:
-    """(S, O) bool: the measured points the fit uses."""
+    """(S, O) bool: the measured points at the resonances (the fit's points)."""
     a = meas.amplitude
     top = a.max(axis=0, keepdims=True)
     return (a >= PEAK_FLOOR * top) & (a > 0)
+
+
+def cancelled_orders(predicted: np.ndarray) -> np.ndarray:
+    """(O,) bool: orders whose predicted amplitude (S, O) is round-off (:data:`CANCELLED`)."""
+    p = np.abs(predicted).max(axis=0)
+    return p < CANCELLED * p.max()
 
 
 def calibrate(s: Setup, meas: Measurement) -> FitResult:
@@ -85,7 +98,10 @@ def calibrate(s: Setup, meas: Measurement) -> FitResult:
     from scipy.special import stdtrit
 
     keys = [p.key for p in s.parameters]
-    mask = fit_mask(meas)
+    rows = s.measured
+    cols = s.order_index
+    cancelled = cancelled_orders(s.solve(None, rows, cols))
+    mask = fit_mask(meas) & ~cancelled[None, :]
     if int(mask.sum()) <= len(keys):
         raise InputErrors([InputError(meas.source, f"{int(mask.sum())} measured points at the"
                                       " resonances (amplitudes of at least"
@@ -94,8 +110,6 @@ def calibrate(s: Setup, meas: Measurement) -> FitResult:
                                       " speeds or orders, or compare only (--no-fit)")],
                           source=meas.source)
     target = np.log(meas.amplitude[mask])
-    rows = s.measured
-    cols = s.order_index
 
     def residual(x: np.ndarray) -> np.ndarray:
         f = dict(zip(keys, np.exp(x)))
@@ -137,4 +151,5 @@ def calibrate(s: Setup, meas: Measurement) -> FitResult:
                      max_before=float(np.abs(r0).max()), max_after=float(np.abs(sol.fun).max()),
                      evaluations=int(sol.nfev + (sol.njev or 0) * len(keys)),
                      status=str(sol.message), converged=bool(sol.success),
-                     correlation=np.nan_to_num(corr), mask=mask)
+                     correlation=np.nan_to_num(corr), mask=mask,
+                     cancelled=tuple(float(o) for o in meas.orders[cancelled]))
