@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..calc import torsional as tv
-from .fit import FitResult
+from .fit import FitResult, cancelled_orders
 from .measurement import Measurement
 from .model import Setup
 
@@ -87,10 +87,11 @@ def _peak_rows(meas: Measurement, pred: np.ndarray, fitted: np.ndarray | None
     alike (a sparse speed step lowers a sharp peak for both: like is compared with like)."""
     rows = []
     x = meas.speeds
+    gone = cancelled_orders(pred)  # round-off wiggles of a cancelled order are no peaks
     for j, o in enumerate(meas.orders):
         mp = find_peaks(x, meas.amplitude[:, j])
-        pp = find_peaks(x, np.abs(pred[:, j]))
-        fp = find_peaks(x, np.abs(fitted[:, j])) if fitted is not None else []
+        pp = [] if gone[j] else find_peaks(x, np.abs(pred[:, j]))
+        fp = find_peaks(x, np.abs(fitted[:, j])) if fitted is not None and not gone[j] else []
         used = set()
         for s, a in mp:
             p = _nearest(pp, s)
