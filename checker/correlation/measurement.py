@@ -205,6 +205,10 @@ def _table(rows: list[tuple[int, list[str]]], probs: _Problems) -> _Table:
                   + ("no rows" if not rows else "only one row (no unit row: missing units)"))
         probs.raise_if_any()
     (hline, header), (uline, units) = rows[0], rows[1]
+    if len(header) == 1 and ";" in header[0]:
+        probs.add(hline, "expected columns separated by commas (CSV), found semicolons (a"
+                  " spreadsheet's export with a decimal comma: export with '.' and ',')")
+        probs.raise_if_any()
     names = [h.strip().lower() for h in header]
     units = units + [""] * (len(names) - len(units))
     given = [u for u in units[: len(names)] if u]

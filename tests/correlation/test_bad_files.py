@@ -132,3 +132,10 @@ def test_output_over_the_measurement_is_refused(tmp_path, workbook):
     r = CliRunner().invoke(main, ["correlate", str(workbook), str(p), "--json", str(p)])
     assert r.exit_code == 2 and "would overwrite the measurement file" in r.output
     assert p.read_bytes() == before
+
+
+def test_semicolon_separated(tmp_path, workbook):
+    p = _write(tmp_path, "# station: crank nose\n# load: full\nspeed;order 4\nrpm;deg\n"
+               "1500;0,05\n")
+    out = _run(tmp_path, workbook, p)
+    assert "m.csv:3: expected columns separated by commas" in out
