@@ -74,12 +74,21 @@ def _mm(v: float) -> str:
 
 
 # ------------------------------------------------------------------------------ Bearings
+def _from_crank(attr: str) -> str:
+    """The method of a dimension taken from sheet Crank: its column there."""
+    from .crank_input import _LABEL
+
+    return f"sheet Crank's {_LABEL.get(attr, attr.replace('_', ' '))}"
+
+
 def bearings_from_crank(rows: list[dict[str, Any]], crank: CrankGeometry,
                         pin_of_cylinder: dict[int, int], where: dict[tuple, str],
-                        err: Err) -> None:
+                        err: Err) -> list[ModelValue]:
     """Fill the Bearings rows' journal diameter and length (and big-end oil hole diameter)
-    from the crank, in place; a typed value that differs is an error naming both cells."""
+    from the crank, in place; a typed value that differs is an error naming both cells.
+    Returns each such value of the model, typed (checked against the crank) or derived."""
     n = len(crank.throws)
+    model: list[ModelValue] = []
     counts = {"main": 0, "big end": 0}
     for i, r in enumerate(rows):
         kind = r.get("type")
@@ -108,6 +117,15 @@ def bearings_from_crank(rows: list[dict[str, Any]], crank: CrankGeometry,
                     f" {_mm(value)} ({crank.cell(cattr, t.number)}): the dimension is given"
                     " twice; leave this cell blank (it is taken from sheet Crank) or make them"
                     " equal")
+                continue
+            model.append(ModelValue(
+                "Bearings", str(r.get("name") or f"row {i + 1}"), battr,
+                float(typed if typed is not None else value),
+                "typed" if typed is not None else "derived", float(value),
+                _from_crank(cattr) + (" (the cylinder's crank pin)" if kind != "main" else ""),
+                where.get(("Bearings", i, battr), "Bearings") if typed is not None
+                else crank.cell(cattr, t.number)))
+    return model
 
 
 # ------------------------------------------------------------------------------- Fatigue
@@ -157,6 +175,15 @@ def fatigue_from_crank(fatigue: dict[str, Any], crank: CrankGeometry, err: Err,
             err("Fatigue", fattr, None, f"{_mm(typed)} differs from the crank's {_mm(value)}"
                 f" ({cell}): the dimension is given twice; leave this cell blank (it is taken"
                 " from the crank) or make them equal")
+            continue
+        model.append(ModelValue(
+            "Fatigue", "crank", fattr, float(typed if typed is not None else value),
+            "typed" if typed is not None else "derived", float(value),
+            _from_crank(cattr) + (", the smallest over the throws" if len(crank.throws) > 1
+                                  else "")
+            + (" (blank there: 0, solid)" if cattr.endswith("bore") and cell == "Crank"
+               else ""),
+            where.get(("Fatigue", fattr), "Fatigue") if typed is not None else cell))
     # derived M53 web geometry (a typed value wins)
     t0 = min(crank.throws, key=lambda t: t.web_thickness)
     lands = [fatigue.get(a) for a in ("pin_land_thickness", "main_land_thickness")]

@@ -196,13 +196,20 @@ def build_crank(rows: list[dict[str, Any]], ends: dict[str, Any], n_throws: int,
                 stroke: float | None, where: dict[tuple, str],
                 err: Callable[[str, str, int | None, str], None],
                 sheet_error: Callable[[str, str], None],
-                blank: Callable[[str, str, int | None, str], None] | None = None
+                blank: Callable[[str, str, int | None, str], None] | None = None,
+                refused: Callable[[int, str], bool] | None = None
                 ) -> CrankGeometry | None:
     """The crank from sheet Crank's rows and sheet CrankEnds' parameters (SI values), or None
-    without a Crank sheet (or when it has errors: they are reported through ``err``)."""
+    without a Crank sheet (or when it has errors: they are reported through ``err``).
+
+    ``refused(row, attr)``: whether the loader refused that cell's value (its error is
+    reported; the dimension it leaves missing is not reported again). A problem of a value
+    several throws take from the same cell (the ``all`` row) is reported once, naming the
+    throws."""
     if not rows:
         return None
     blank = blank or err  # a required cell left blank (silent where the cell has an error)
+    refused = refused or (lambda i, attr: False)
     ok = True
     by_key: dict[int | str, int] = {}
     for i, r in enumerate(rows):
@@ -228,6 +235,11 @@ def build_crank(rows: list[dict[str, Any]], ends: dict[str, Any], n_throws: int,
         return None
     cells: dict[tuple[int, str], str] = {}
     origin: dict[tuple[int, str], int] = {}
+    # (row, attr, message with "{whose}", blank cell) -> the throws with that problem
+    problems: dict[tuple[int | None, str, str, bool], list[int]] = {}
+
+    def was_refused(j: int, attr: str) -> bool:
+        return any(refused(by_key[k], attr) for k in (j, "all") if k in by_key)
 
     def pick(j: int, attr: str) -> tuple[Any, int | None]:
         for key in (j, "all"):
@@ -242,6 +254,9 @@ def build_crank(rows: list[dict[str, Any]], ends: dict[str, Any], n_throws: int,
         seen = [(i, rows[i][attr]) for i in sorted(by_key.values())
                 if rows[i].get(attr) is not None]
         if not seen:
+            if any(refused(i, attr) for i in by_key.values()):  # reported at its cell
+                ok = False
+                continue
             i0 = by_key.get("all", min(by_key.values()))
             err("Crank", attr, i0, f"{_LABEL[attr]} of the crank material is needed to derive"
                 f" its masses and stiffnesses ({_EXPECT[attr]})")
@@ -269,9 +284,11 @@ def build_crank(rows: list[dict[str, Any]], ends: dict[str, Any], n_throws: int,
                 origin[(j, attr)] = i
         missing = [a for a in REQUIRED if vals[a] is None]
         for a in missing:
-            i0 = by_key.get("all", by_key.get(j))
-            blank("Crank", a, i0, f"{_LABEL[a]} of throw {j} is missing (expected a length, e.g."
-                " mm): give it on the 'all' row or the throw's row")
+            if not was_refused(j, a):
+                i0 = by_key.get("all", by_key.get(j))
+                problems.setdefault((i0, a, f"{_LABEL[a]} of {{whose}} is missing (expected a"
+                                     " length, e.g. mm): give it on the 'all' row or the"
+                                     " throw's row", True), []).append(j)
         if missing:
             ok = False
             continue
@@ -279,9 +296,10 @@ def build_crank(rows: list[dict[str, Any]], ends: dict[str, Any], n_throws: int,
         if cw_given and len(cw_given) < len(COUNTERWEIGHT):
             i0 = by_key.get(j, by_key.get("all"))
             for a in COUNTERWEIGHT:
-                if vals[a] is None:
-                    err("Crank", a, i0, f"throw {j}'s counterweight needs its inner radius,"
-                        f" outer radius and angle: {_LABEL[a]} is missing")
+                if vals[a] is None and not was_refused(j, a):
+                    problems.setdefault((i0, a, f"{{whose}}: the counterweight needs its inner"
+                                         f" radius, outer radius and angle: {_LABEL[a]} is"
+                                         " missing", False), []).append(j)
             ok = False
             continue
         t = CrankThrow(number=j, **{a: (0.0 if vals[a] is None and a in (
@@ -289,13 +307,16 @@ def build_crank(rows: list[dict[str, Any]], ends: dict[str, Any], n_throws: int,
             "cw_thickness") else vals[a]) for a in THROW_DIMENSIONS})
 
         def bad(attr: str, msg: str, j: int = j) -> None:
-            nonlocal ok
-            ok = False
             i = origin.get((j, attr), by_key.get(j, by_key.get("all")))
-            err("Crank", attr, i, f"throw {j}: {msg}")
+            problems.setdefault((i, attr, "{whose}: " + msg, False), []).append(j)
 
         check_throw(t, stroke / 2.0, bad)
         throws.append(t)
+    for (i, attr, msg, is_blank), js in problems.items():  # once per cell and problem
+        ok = False
+        whose = (f"throw {js[0]}" if len(js) == 1 else "every throw" if len(js) == n_throws
+                 else f"throws {', '.join(map(str, js))}")
+        (blank if is_blank else err)("Crank", attr, i, msg.replace("{whose}", whose))
     # a main journal is shared by its two neighbouring throws: they must agree
     for a, b in zip(throws, throws[1:]):
         for attr in JOURNAL:
@@ -314,7 +335,9 @@ def build_crank(rows: list[dict[str, Any]], ends: dict[str, Any], n_throws: int,
     for d, b, what in (("nose_diameter", "nose_bore", "crank nose"),
                        ("flange_diameter", "flange_bore", "flywheel flange")):
         if ends.get(d) is not None and ends.get(b) is not None and ends[b] >= ends[d]:
-            err("CrankEnds", b, None, f"the {what} bore must be smaller than its diameter")
+            err("CrankEnds", b, None, f"the {what} bore {ends[b] * 1e3:g} mm must be smaller"
+                f" than its diameter {ends[d] * 1e3:g} mm"
+                f" ({where.get(('CrankEnds', d), 'CrankEnds')})")
             ok = False
     if not ok:
         return None

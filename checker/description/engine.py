@@ -235,6 +235,21 @@ def _angle_diff(a: float, b: float) -> float:
     return min(d, _TWO_PI - d)
 
 
+def _rpm(omega: float) -> str:
+    """A speed [rad/s] as the workbook's users read it."""
+    return f"{omega * 30.0 / math.pi:.6g} rpm"
+
+
+def _mm(length: float) -> str:
+    """A length [m] in mm."""
+    return f"{length * 1e3:.6g} mm"
+
+
+def _celsius(t: float) -> str:
+    """A temperature [K] in °C."""
+    return f"{t - 273.15:.6g} °C"
+
+
 def _deg(a: float) -> str:
     return f"{math.degrees(a):.6g} deg"
 
@@ -532,7 +547,7 @@ class _Problems:
         self.warnings: list[InputError] = list(data.warnings)
         self.rejected = {e.where.split("!", 1)[0] for e in data.errors}
         self.follow_on = 0
-        self._error_cells: set[str] = set()
+        self._error_cells: set[str] = set(data.refused)
         self._indexed = 0
 
     def _at(self, sheet: str, attr: str, row: int | None) -> str:
@@ -561,6 +576,12 @@ class _Problems:
         if where not in self._error_cells:
             self.errors.append(InputError(where, msg))
 
+    def refused(self, sheet: str, attr: str, row: int | None) -> bool:
+        """Whether the loader refused the cell's value (an error at the cell or at its
+        column's unit cell): the cell is blank to the builders, its problem reported."""
+        where = self._at(sheet, attr, row)
+        return where in self._error_cells or any(e.where == where for e in self.errors)
+
     def warn(self, sheet: str, attr: str, row: int | None, msg: str) -> None:
         self.warnings.append(InputError(self._at(sheet, attr, row), msg))
 
@@ -586,7 +607,7 @@ def build_engine(data: WorkbookData,
     _engine_geometry(p, pr)
     crank = _crank(data, p, cylinders, pr)
     rows = _crank_rows(data, crank, cylinders, pr)
-    has_crank = bool(_rows(data, "Crank"))  # a Crank sheet (its problems are reported)
+    has_crank = "Crank" in data.sheets_present  # its problems are reported on sheet Crank
     bearings = _bearings(rows["Bearings"], pr, has_crank)
     fatigue = rows["Fatigue"]
     crank_mass = _crank_mass(data, p, cylinders, complete, bearings, pr, rows["CrankMass"],
@@ -678,6 +699,15 @@ def _crank(data: WorkbookData, p: Params, cylinders: list[Cylinder], pr: _Proble
     from .crank_input import build_crank
 
     rows = _rows(data, "Crank")
+    n_pins = max((c.pin for c in cylinders), default=0)
+    if not rows and "Crank" in data.sheets_present:
+        pr.sheet_error("Crank", "the sheet has no data row: expected a row 'all' (column"
+                       " 'throw', from row 3) with the dimensions every throw shares, or one"
+                       " row per throw" + (f" (1..{n_pins}: the engine has {n_pins} throws)"
+                                           if n_pins else "") + "; or remove sheets Crank"
+                       " and CrankEnds and type the crank's values in Bearings, Fatigue and"
+                       " TVModel")
+        return None
     if not rows:
         for attr, v in data.params.get("CrankEnds", {}).items():
             if v is not None:
@@ -685,9 +715,9 @@ def _crank(data: WorkbookData, p: Params, cylinders: list[Cylinder], pr: _Proble
                        " crank's throws)")
                 break
         return None
-    n_pins = max((c.pin for c in cylinders), default=0)
     crank = build_crank(rows, dict(data.params.get("CrankEnds", {})), n_pins, p.get("stroke"),
-                        data.where, pr.err, pr.sheet_error, pr.blank_required)
+                        data.where, pr.err, pr.sheet_error, pr.blank_required,
+                        lambda i, attr: pr.refused("Crank", attr, i))
     if crank is not None and p.get("main_spacing") is not None:
         for t in crank.throws:
             if abs(t.length - p["main_spacing"]) > SPACING_SLIP * p["main_spacing"]:
@@ -717,10 +747,11 @@ def _crank_rows(data: WorkbookData, crank: CrankGeometry | None, cylinders: list
 
     pin_of = {c.number: c.pin for c in cylinders}
     bearings = [dict(r) for r in out["Bearings"]]
-    cd.bearings_from_crank(bearings, crank, pin_of, data.where, pr.err)
+    model = cd.bearings_from_crank(bearings, crank, pin_of, data.where, pr.err)
     filled: dict[tuple, str] = {}
-    fatigue, model = cd.fatigue_from_crank(dict(out["Fatigue"]), crank, pr.err, data.where,
-                                           filled)
+    fatigue, fatigue_model = cd.fatigue_from_crank(dict(out["Fatigue"]), crank, pr.err,
+                                                   data.where, filled)
+    model += fatigue_model
     typed_throws = {r["throw"] for r in out["CrankMass"] if r.get("throw") is not None}
     gamma = {}
     for c in sorted(cylinders, key=lambda c: c.number):
@@ -787,7 +818,8 @@ def _engine_geometry(p: Params, pr: _Problems) -> None:
     err = pr.err
     smin, smax = p.get("speed_min"), p.get("speed_max")
     if smin is not None and smax is not None and smin >= smax:
-        err("Engine", "speed_max", None, "maximum speed must be above the minimum speed")
+        err("Engine", "speed_max", None, f"maximum speed {_rpm(smax)} must be above the"
+            f" minimum speed {_rpm(smin)} ({pr._at('Engine', 'speed_min', None)})")
     if p.get("stroke") is not None and p.get("rod_length") is not None:
         offsets = abs(p.get("cylinder_offset") or 0.0) + abs(p.get("pin_offset") or 0.0)
         if p["rod_length"] <= p["stroke"] / 2:
@@ -969,12 +1001,14 @@ def _joints(data: WorkbookData, pr: _Problems) -> list[Joint]:
     for i, r in enumerate(_rows(data, "Joints")):
         if r["head_outer"] is not None and r["head_inner"] is not None and \
                 r["head_inner"] >= r["head_outer"]:
-            err("Joints", "head_inner", i, "head bearing inner diameter must be smaller than"
-                " the outer diameter")
+            err("Joints", "head_inner", i, f"head bearing inner diameter"
+                f" {_mm(r['head_inner'])} must be smaller than the outer diameter"
+                f" {_mm(r['head_outer'])} ({pr._at('Joints', 'head_outer', i)})")
         if r["face_outer"] is not None and r["face_inner"] is not None and \
                 r["face_inner"] >= r["face_outer"]:
-            err("Joints", "face_inner", i, "face inner diameter must be smaller than the outer"
-                " diameter")
+            err("Joints", "face_inner", i, f"face inner diameter {_mm(r['face_inner'])} must be"
+                f" smaller than the outer diameter {_mm(r['face_outer'])}"
+                f" ({pr._at('Joints', 'face_outer', i)})")
         if r["diameter"] is not None and r["pitch"] is not None and r["pitch"] >= 0.5 * r[
                 "diameter"]:
             err("Joints", "pitch", i, "thread pitch must be well below the nominal diameter")
@@ -1004,7 +1038,7 @@ def _joint_torques(data: WorkbookData, joints: list[Joint], pr: _Problems
         key = (r["joint"].lower(), r["point"])
         if key in seen:
             err("JointTorques", "point", i, f"duplicate operating point '{r['point']}' for"
-                f" joint '{r['joint']}'")
+                f" joint '{r['joint']}' (also at {pr._at('JointTorques', 'point', seen[key])})")
             continue
         seen[key] = i
         name = names[r["joint"].lower()]
@@ -1015,14 +1049,15 @@ def _joint_torques(data: WorkbookData, joints: list[Joint], pr: _Problems
 def _peak_pressure(data: WorkbookData, pr: _Problems) -> list[tuple[str, float, float]]:
     """Sheet PeakPressure: (case, speed, peak pressure), one per case and speed."""
     pk = []
-    seen_pk = set()
+    seen_pk: dict[tuple, int] = {}
     for i, r in enumerate(_rows(data, "PeakPressure")):
         if None in (r["case"], r["speed"], r["peak_pressure"]):
             continue
         key = (r["case"], round(r["speed"], 6))
         if key in seen_pk:
-            pr.err("PeakPressure", "speed", i, f"duplicate speed for load case '{r['case']}'")
-        seen_pk.add(key)
+            pr.err("PeakPressure", "speed", i, f"duplicate speed {_rpm(r['speed'])} for load"
+                   f" case '{r['case']}' (also at {pr._at('PeakPressure', 'speed', seen_pk[key])})")
+        seen_pk.setdefault(key, i)
         pk.append((r["case"], r["speed"], r["peak_pressure"]))
     return pk
 
@@ -1030,13 +1065,15 @@ def _peak_pressure(data: WorkbookData, pr: _Problems) -> list[tuple[str, float, 
 def _brake_torque(data: WorkbookData, pr: _Problems) -> list[tuple[float, float]]:
     """Sheet BrakeTorque: (speed, brake torque), one per speed."""
     bt = []
-    seen_bt = set()
+    seen_bt: dict[float, int] = {}
     for i, r in enumerate(_rows(data, "BrakeTorque")):
         if r["speed"] is None or r["brake_torque"] is None:
             continue
-        if round(r["speed"], 6) in seen_bt:
-            pr.err("BrakeTorque", "speed", i, "duplicate speed")
-        seen_bt.add(round(r["speed"], 6))
+        key = round(r["speed"], 6)
+        if key in seen_bt:
+            pr.err("BrakeTorque", "speed", i, f"duplicate speed {_rpm(r['speed'])} (also at"
+                   f" {pr._at('BrakeTorque', 'speed', seen_bt[key])})")
+        seen_bt.setdefault(key, i)
         bt.append((r["speed"], r["brake_torque"]))
     return bt
 
@@ -1048,31 +1085,37 @@ def _damper(data: WorkbookData, pr: _Problems) -> Params:
     damper = Params(data.params.get("Damper", {}))
     if damper.get("inner_radius") is not None and damper.get("outer_radius") is not None and \
             damper["inner_radius"] >= damper["outer_radius"]:
-        pr.err("Damper", "inner_radius", None, "rubber inner radius must be smaller than the"
-               " outer radius")
+        pr.err("Damper", "inner_radius", None, f"rubber inner radius"
+               f" {_mm(damper['inner_radius'])} must be smaller than the outer radius"
+               f" {_mm(damper['outer_radius'])} ({pr._at('Damper', 'outer_radius', None)})")
     if damper.get("ring_inner_radius") is not None and \
             damper.get("ring_outer_radius") is not None and \
             damper["ring_inner_radius"] >= damper["ring_outer_radius"]:
-        pr.err("Damper", "ring_inner_radius", None, "ring inner radius must be smaller than"
-               " the ring outer radius")
+        pr.err("Damper", "ring_inner_radius", None, f"ring inner radius"
+               f" {_mm(damper['ring_inner_radius'])} must be smaller than the ring outer radius"
+               f" {_mm(damper['ring_outer_radius'])}"
+               f" ({pr._at('Damper', 'ring_outer_radius', None)})")
     lo, hi = damper.get("operating_temperature_min"), damper.get("operating_temperature_max")
     if lo is not None and hi is not None and lo > hi:
-        pr.err("Damper", "operating_temperature_min", None, "the minimum operating"
-               " temperature is above the maximum")
+        pr.err("Damper", "operating_temperature_min", None, f"the minimum operating"
+               f" temperature {_celsius(lo)} is above the maximum {_celsius(hi)}"
+               f" ({pr._at('Damper', 'operating_temperature_max', None)})")
     if damper.get("damper_type") == "viscous" and damper.get("viscous_damping") is not None \
             and damper.get("silicone_viscosity") is not None:
         pr.err("Damper", "viscous_damping", None, "give the damping coefficient or the"
                " silicone's viscosity (with the gap geometry), not both: one source per value")
     rows = [r for r in _rows(data, "DamperRubber")
             if None not in (r["temperature"], r["storage_modulus"], r["loss_factor"])]
-    seen: set[float] = set()
+    seen: dict[float, int] = {}
     for i, r in enumerate(_rows(data, "DamperRubber")):
         t = r["temperature"]
         if t is None:
             continue
         if round(t, 9) in seen:
-            pr.err("DamperRubber", "temperature", i, "duplicate temperature")
-        seen.add(round(t, 9))
+            pr.err("DamperRubber", "temperature", i, f"duplicate temperature {_celsius(t)}"
+                   f" (also at {pr._at('DamperRubber', 'temperature', seen[round(t, 9)])}):"
+                   " one row per temperature")
+        seen.setdefault(round(t, 9), i)
     if rows:
         if damper.get("damper_type") == "viscous":
             pr.err("DamperRubber", "temperature", 0, "a rubber table with a viscous damper"

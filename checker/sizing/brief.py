@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError, InputErrors
-from ..workbook.units import UnitProblem, to_si
+from ..workbook.units import UnitProblem, kind_words, to_si
 
 # key: (kind, example, required, default text or None)
 KEYS: dict[str, tuple[str, str, bool, str | None]] = {
@@ -142,11 +142,12 @@ def parse_brief(raw: dict[str, Any], where: str = "brief",
             try:
                 x = to_si(float(m.group(1)), m.group(2).strip(), kind)
             except UnitProblem as exc:
-                errs.append(InputError(at, f"expected a {kind} with its unit, e.g. {example};"
-                                       f" found {v!r} ({exc})"))
+                errs.append(InputError(at, f"expected {kind_words(kind)} with its unit, e.g."
+                                       f" {example}; found {v!r} ({exc})"))
                 continue
             if x <= 0:
-                errs.append(InputError(at, f"expected a {kind} > 0, e.g. {example}; found {v!r}"))
+                errs.append(InputError(at, f"expected {kind_words(kind)} > 0, e.g. {example};"
+                                       f" found {v!r}"))
                 continue
             vals[k] = x
     defaults: dict[str, str] = {}

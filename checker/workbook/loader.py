@@ -26,7 +26,7 @@ from typing import Any
 
 from ..errors import InputError, InputErrors
 from .schema import SHEETS, ChoiceProblem, Field, Sheet, expected_choices, resolve_choice
-from .units import KINDS, UnitProblem, from_si, to_si
+from .units import KINDS, UnitProblem, from_si, kind_words, to_si
 from .xlsx import LAST_COLUMN, PackageProblem, SheetCells, open_package
 
 _PARAM_HEADER = ("parameter", "value", "unit")
@@ -49,13 +49,16 @@ class WorkbookData:
     tables: dict[str, list[dict[str, Any]]] = field(default_factory=dict)
     where: dict[tuple, str] = field(default_factory=dict)
     units: dict[tuple, str] = field(default_factory=dict)
-    sheets_present: tuple[str, ...] = ()
+    sheets_present: tuple[str, ...] = ()  # the schema's names of the sheets in the file
     errors: list[InputError] = field(default_factory=list)
     warnings: list[InputError] = field(default_factory=list)
     assumptions: list[str] = field(default_factory=list)
     estimates: list[str] = field(default_factory=list)
     """Inputs whose note says ESTIMATE (sized by a stated rule, e.g. by ``checker new``), in
     the format of :attr:`assumptions`."""
+    refused: set[str] = field(default_factory=set)
+    """Value cells left unread because of an error reported at another cell (a column's unit
+    cell): the builders' checks treat them as cells with an error, not as blank cells."""
 
     def cell(self, sheet: str, attr: str, row: int | None = None) -> str:
         """The ``Sheet!A1`` address of a parameter (or of a table cell in data row ``row``)."""
@@ -138,7 +141,7 @@ def _expected(f: Field) -> str:
     k = KINDS[f.kind]
     if f.kind in ("dimensionless", "ratio"):
         return "a number (dimensionless)"
-    return f"a {k.name.replace('_', ' ')} with a unit (e.g. {k.example})"
+    return f"{kind_words(k.name)} with a unit (e.g. {k.example})"
 
 
 def _check(f: Field, v: float) -> str | None:
@@ -441,6 +444,9 @@ class _Reader:
         for attr, j in col_of.items():
             u = units_row.get(j, (None, None))[0]
             unit_of[attr] = None if u is None else str(u).strip()
+        fields = {f.attr: f for f in spec.fields}
+        unit_bad = {attr: problem for attr in col_of
+                    if (problem := _unit_problem(fields[attr], unit_of[attr])) is not None}
         keys_seen: dict[Any, str] = {}
         notes: dict[str, list[int]] = {}
         est_rows: dict[str, list[int]] = {}
@@ -461,6 +467,16 @@ class _Reader:
                     continue
                 v, fmt = row.get(j, (None, None))
                 where = _addr(name, r, j)
+                if f.attr in unit_bad and not _blank(v):
+                    # the column's unit is wrong: one error at its unit cell (row 2), the
+                    # column's values unread
+                    at = _addr(name, 2, j)
+                    if not self.has_error(at):
+                        self.err(at, unit_bad[f.attr])
+                    data.where[(name, idx, f.attr)] = where
+                    data.refused.add(where)
+                    rec[f.attr] = None
+                    continue
                 val = self.value(where, f, v, fmt, raw.formulas.get((r, j)), unit_of.get(f.attr),
                                  data, (name, idx, f.attr))
                 rec[f.attr] = val
@@ -498,6 +514,18 @@ class _Reader:
         for text, rws in est_rows.items():
             rr = f"row {rws[0]}" if len(rws) == 1 else f"rows {', '.join(map(str, rws))}"
             data.estimates.append(f"{name} {rr}: {text}")
+
+
+def _unit_problem(f: Field, unit: str | None) -> str | None:
+    """What is wrong with a table column's unit cell for field ``f`` (None: nothing, or a
+    field without a unit)."""
+    if f.kind in ("int", "int_list", "text", "choice"):
+        return None
+    try:
+        to_si(1.0, unit, f.kind)
+    except UnitProblem as exc:
+        return f"{f.label}: {exc} (the unit of the column, row 2)"
+    return None
 
 
 DITTO = ("as above", "ditto", "〃", '"')
@@ -629,6 +657,7 @@ class _SheetPart:
         data.units.update(part.units)
         data.assumptions.extend(part.assumptions)
         data.estimates.extend(part.estimates)
+        data.refused.update(part.refused)
         for e in self.errors:
             reader.err(e.where, e.message)
         reader.warnings.extend(self.warnings)
@@ -663,7 +692,7 @@ def convert_raw(raw: RawWorkbook, raise_errors: bool = True) -> WorkbookData:
     reader = _Reader(Path(raw.path))
     for e in raw.problems:
         reader.err(e.where, e.message)
-    data = WorkbookData(path=raw.path, sha256=raw.sha256, sheets_present=raw.sheetnames)
+    data = WorkbookData(path=raw.path, sha256=raw.sha256, sheets_present=raw.present)
     for name, spec in SHEETS.items():
         if name not in raw.present:
             if spec.required:

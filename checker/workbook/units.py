@@ -264,6 +264,12 @@ def _scale(unit: str | None, kind: str, percent_formatted: bool) -> float | None
         return None
 
 
+def kind_words(name: str) -> str:
+    """A unit kind's name in words with its article: ``an angle``, ``a length``."""
+    words = name.replace("_", " ")
+    return ("an " if words[:1].lower() in "aeiou" else "a ") + words
+
+
 def to_si(value: float, unit: str | None, kind: str, percent_formatted: bool = False) -> float:
     """Convert a spreadsheet value with its unit cell to the SI magnitude of ``kind``.
 
@@ -382,7 +388,7 @@ def _to_si_pint_checked(value: float, unit: str, kind: str, percent_formatted: b
     """:func:`_to_si_pint` without the hint."""
     k = KINDS[kind]
     u = unit
-    expected = f"a {k.name.replace('_', ' ')} (e.g. {k.example})"
+    expected = f"{kind_words(k.name)} (e.g. {k.example})"
 
     if percent_formatted:
         if kind not in ("dimensionless", "ratio") or u.lower() not in _DIMENSIONLESS_SPELLINGS | {

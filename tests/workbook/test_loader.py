@@ -75,11 +75,12 @@ def test_wrong_unit(tmp_path):
     def edit(wb):
         ws = wb["PeakPressure"]
         ws.cell(2, 3).value = "mm"  # peak pressure column unit
-        cell["c"] = "PeakPressure!C3"
+        cell["c"] = "PeakPressure!C2"  # the unit cell, once (issue 43, item 10)
 
     p = edited(tmp_path, edit)
     err = _run_bad(p, tmp_path)
     assert cell["c"] in err and "expected a pressure" in err and "'mm'" in err
+    assert err.count("'mm'") == 1 and "PeakPressure!C3" not in err
 
 
 def test_unknown_unit(tmp_path):
@@ -111,8 +112,8 @@ def test_inner_radius_not_below_outer(tmp_path):
 
     p = edited(tmp_path, edit)
     err = _run_bad(p, tmp_path)
-    assert "inner radius must be smaller" in err and "Damper!B" in err
-    assert "inner diameter must be smaller" in err and "Joints!O3" in err
+    assert "inner radius 60 mm must be smaller" in err and "Damper!B" in err
+    assert "inner diameter 30 mm must be smaller" in err and "Joints!O3" in err
 
 
 def test_duplicate_names(tmp_path):
