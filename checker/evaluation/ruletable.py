@@ -590,14 +590,18 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
     not_applicable: list[tuple[str, str, str, bool]] = []
     for ii, item in enumerate(items):
         attrs = q.item_attrs.get(item, {})
-        if not _item_selected(rule, attrs, dims):
-            not_applicable.append((item, *_not_selected_reason(rule, attrs, dims)))
-            continue
         if "item" in dims:
             sel_i = list(sel)
             sel_i[dims.index("item")] = np.array([ii])
         else:
             sel_i = sel
+        if not _item_selected(rule, attrs, dims):
+            unknown = _unknown_attributes(rule, attrs, dims, item)
+            if unknown:  # whether the rule applies depends on a blank cell
+                results.append(_unknown_result(rule, q, item, unknown, sel_i, factor, base))
+            else:
+                not_applicable.append((item, *_not_selected_reason(rule, attrs, dims)))
+            continue
         lim, unjudged = _item_limit(rule, q, item, attrs, sel_i, factor, base)
         if unjudged is not None:
             results.append(unjudged)
@@ -680,6 +684,42 @@ def _not_selected_reason(rule: Rule, attrs: dict, dims: tuple[str, ...]
     return "it is not one of its items", to, False
 
 
+def _unknown_attributes(rule: Rule, attrs: dict, dims: tuple[str, ...], item: str
+                        ) -> list[str]:
+    """The inputs an item lacks to tell whether the rule applies to it: a ``where`` filter
+    on an attribute that is not given (a bearing's lining left blank: the sputter guideline
+    BRG-005 may apply), named by the quantity's ``<attribute>_missing`` (the cell to fill
+    in); empty when the item's given attributes decide (among them one that puts it out of
+    the rule's scope, :data:`SCOPE_ATTRIBUTES`)."""
+    unknown: list[str] = []
+    for k, vals in rule.where.items():
+        if k in dims:
+            continue
+        v = attrs.get(k)
+        if v in (None, ""):
+            if k in SCOPE_ATTRIBUTES:
+                return []
+            unknown += list(attrs.get(f"{k}_missing") or [
+                f"{k.replace('_', ' ')} of {_item_phrase(item)}"])
+        elif str(v).lower() not in [x.lower() for x in vals]:
+            return []  # a given attribute the rule does not apply to
+    return unknown
+
+
+def _unknown_result(rule: Rule, q: Quantity, item: str, unknown: list[str], sel_i: list,
+                    factor, base: dict) -> RuleResult:
+    """``not evaluated`` for an item whose blank cells leave open whether the rule applies
+    (:func:`_unknown_attributes`), with the worst computed value, not judged."""
+    value, where_txt = _unjudged_worst(rule, q, sel_i, q.spec.dims, factor)
+    msg = not_evaluated_message(unknown)
+    if value is not None:
+        msg += (f" (computed, not judged: {display.with_unit(value, rule.unit)}"
+                + (f" at {where_txt}" if where_txt else "") + ")")
+    return RuleResult(**base, item=item, status="not_evaluated", value=value,
+                      limit=rule.limit_text(), limit_values=None, margin=None, case=where_txt,
+                      message=msg, missing=unknown)
+
+
 def _unjudged_reason(q: Quantity) -> tuple[str, str]:
     """Why no point of an item is judged: ("", the quantity's ``applies_text``)."""
     text = (q.applies_text or "").rstrip(".")
@@ -716,11 +756,11 @@ def _item_limit(rule: Rule, q: Quantity, item: str, attrs: dict, sel_i: list, fa
                        f" RuleOverrides (engine class from"
                        f" {attrs.get('engine_class_cell') or 'sheet Engine'})"]
                 limit_text = "project limit"
+            elif not key:  # the cell to fill in, where the quantity names it
+                why = list(attrs.get(f"{rule.limit_by}_missing") or [
+                    f"no {rule.limit_by.replace('_', ' ')} is given for {_item_phrase(item)}"])
             else:
-                why = [f"no {rule.limit_by.replace('_', ' ')} is given for"
-                       f" {_item_phrase(item)}"
-                       if not key else
-                       f"{rule.limit_by.replace('_', ' ')} '{key}' of"
+                why = [f"{rule.limit_by.replace('_', ' ')} '{key}' of"
                        f" {_item_phrase(item)} has no limit in rule {rule.id} (known:"
                        f" {', '.join(rule.limits)}); add a RuleOverrides row"]
     if not why and rule.limit_from == "workbook":

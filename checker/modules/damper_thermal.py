@@ -184,15 +184,21 @@ class _Resolver:
 
 def _judged_at_peak_power(power: np.ndarray, envelope: np.ndarray | None) -> np.ndarray:
     """(E, C, S) mask: the speed of the largest dissipated power of each end and case within
-    the case's operating envelope ((C, S), None = every speed)."""
-    mask = np.zeros(power.shape, dtype=bool)
-    ok = np.isfinite(power)
+    the case's operating envelope ((C, S), None = every speed). An end and case without a
+    computed power there (the rubber's properties unknown at that end) keeps every speed of
+    the envelope: its values are missing, and the rule says which inputs (not evaluated),
+    as the rules judging every speed do."""
+    inside = np.ones(power.shape, dtype=bool)
     if envelope is not None:
-        ok &= np.broadcast_to(envelope, power.shape)
+        inside = inside & np.broadcast_to(envelope, power.shape)
+    ok = np.isfinite(power) & inside
     p = np.where(ok, power, -np.inf)
     k = np.argmax(p, axis=-1)
     e_i, c_i = np.indices(power.shape[:2])
+    mask = np.zeros(power.shape, dtype=bool)
     mask[e_i, c_i, k] = ok.any(-1)
+    unknown = ~ok.any(-1)
+    mask[unknown] = inside[unknown]
     return mask
 
 

@@ -389,6 +389,8 @@ def bearing_loads(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     for n in order:
         b = bearings[n]
         attrs[n] = {"type": b.type, "lining": (b.lining or "").lower() or None}
+        if attrs[n]["lining"] is None:  # the lining rules cannot tell: not evaluated
+            attrs[n]["lining_missing"] = [engine.describe_missing("Bearings", "lining", b.row, n)]
     detail = BearingLoadDetail(
         theta=cyc.theta, fx=fx, fy=fy, omega_journal=stacked(wj), omega_bearing=stacked(wb),
         frames={n: ("con-rod frame" if bearings[n].type == "big end" else "block frame")
