@@ -247,7 +247,7 @@ def _ties(vt, best: dict | None, tol: float = 5e-4) -> list[int]:
     if best.get("feasible"):
         pool = pool[pool["feasible"]]
     m = best["smallest_margin"]
-    return [int(v) + 1 for v, x in zip(pool["variant"], pool["smallest margin"])
+    return [int(v) for v, x in zip(pool["variant"], pool["smallest margin"])
             if abs(float(x) - m) <= tol]
 
 
@@ -301,7 +301,7 @@ def context(run: StudyRun, df) -> dict[str, Any]:
                 change = f" ({v - b0:+.4g})"
             values.append(_fmt(v) + change)
         g = gov.get(int(r["variant"]))
-        rows.append({"variant": int(r["variant"]) + 1, "name": r["variant_name"],
+        rows.append({"variant": int(r["variant"]), "name": r["variant_name"],
                      "values": values, "cells": cells,
                      "governing": "-" if g is None else
                      f"{g['rule']} {item_label(g['item'])}, {g['case']}",
@@ -326,7 +326,7 @@ def context(run: StudyRun, df) -> dict[str, Any]:
     best = best_variant(vt)
     if best:
         g = gov.get(best["variant"])
-        best = dict(best, variant=best["variant"] + 1, ties=_ties(vt, best),
+        best = dict(best, variant=best["variant"], ties=_ties(vt, best),
                     governing="" if g is None else
                     f"{g['rule']} at {item_label(g['item'])} ({g['case']})")
     return {

@@ -1,7 +1,8 @@
 """The study's results: a tidy table, feasibility per rule family, sensitivity, best variant.
 
 The tidy table has one row per variant, rule and item (variant, its parameter values, rule,
-item, case, value, unit, limit, margin, status); a variant whose input is invalid has one
+item, case, value, unit, limit, margin, status; the variant numbered from 1, as the terminal,
+the PDF and the default names number it); a variant whose input is invalid has one
 row with status ``input error`` and the message.
 
 Sensitivity: for each rule family the response of a variant is its smallest margin over the
@@ -40,7 +41,7 @@ def _columns(run: StudyRun) -> list[str]:
 def _rows(rec: dict, pnames: list[str]) -> list[dict[str, Any]]:
     """The tidy rows of one variant's record."""
     vals = dict((k, v) for k, v in rec["values"])
-    base = {"variant": rec["index"], "variant_name": rec["name"], "variant_id": rec["id"]}
+    base = {"variant": rec["index"] + 1, "variant_name": rec["name"], "variant_id": rec["id"]}
     for p in pnames:
         v = vals.get(p)
         base[p] = np.nan if v is None else v

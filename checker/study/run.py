@@ -117,9 +117,9 @@ class StudyRun:
     extra: dict[str, Any] = field(default_factory=dict)
 
     def input_errors(self) -> list[dict]:
-        """The variants with bad values: index, name, errors (each with study line and
-        workbook cell)."""
-        return [{"variant": r["index"], "name": r["name"], "errors": r["errors"]}
+        """The variants with bad values: number (1-based, as in the tables and the PDF),
+        name, errors (each with study line and workbook cell)."""
+        return [{"variant": r["index"] + 1, "name": r["name"], "errors": r["errors"]}
                 for r in self.records if r["status"] == "input error"]
 
 

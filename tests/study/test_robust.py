@@ -376,7 +376,8 @@ def test_variant_input_errors_are_listed_with_study_line_and_cell(wb, tmp_path):
                                   "--workers", "1", "--no-pdf"])
     assert r.exit_code == 0, r.output
     assert "1 with input errors" in r.output
-    line = next(x for x in r.output.splitlines() if x.startswith("  variant 2"))
+    # variants numbered from 1: the baseline, 100 °C, -400 °C
+    line = next(x for x in r.output.splitlines() if x.startswith("  variant 3"))
     assert "Oil supply temperature = -400 °C" in line
     assert "study line 6 (parameter 'Oil supply temperature')" in line and "Oil!B" in line
 
