@@ -576,6 +576,10 @@ class _Problems:
         if where not in self._error_cells:
             self.errors.append(InputError(where, msg))
 
+    def cell(self, sheet: str, attr: str, row: int | None = None) -> str:
+        """The ``Sheet!A1`` address of a value (the sheet's name when it has none)."""
+        return self._at(sheet, attr, row)
+
     def refused(self, sheet: str, attr: str, row: int | None) -> bool:
         """Whether the loader refused the cell's value (an error at the cell or at its
         column's unit cell): the cell is blank to the builders, its problem reported."""
@@ -819,7 +823,7 @@ def _engine_geometry(p: Params, pr: _Problems) -> None:
     smin, smax = p.get("speed_min"), p.get("speed_max")
     if smin is not None and smax is not None and smin >= smax:
         err("Engine", "speed_max", None, f"maximum speed {_rpm(smax)} must be above the"
-            f" minimum speed {_rpm(smin)} ({pr._at('Engine', 'speed_min', None)})")
+            f" minimum speed {_rpm(smin)} ({pr.cell('Engine', 'speed_min', None)})")
     if p.get("stroke") is not None and p.get("rod_length") is not None:
         offsets = abs(p.get("cylinder_offset") or 0.0) + abs(p.get("pin_offset") or 0.0)
         if p["rod_length"] <= p["stroke"] / 2:
@@ -1003,12 +1007,12 @@ def _joints(data: WorkbookData, pr: _Problems) -> list[Joint]:
                 r["head_inner"] >= r["head_outer"]:
             err("Joints", "head_inner", i, f"head bearing inner diameter"
                 f" {_mm(r['head_inner'])} must be smaller than the outer diameter"
-                f" {_mm(r['head_outer'])} ({pr._at('Joints', 'head_outer', i)})")
+                f" {_mm(r['head_outer'])} ({pr.cell('Joints', 'head_outer', i)})")
         if r["face_outer"] is not None and r["face_inner"] is not None and \
                 r["face_inner"] >= r["face_outer"]:
             err("Joints", "face_inner", i, f"face inner diameter {_mm(r['face_inner'])} must be"
                 f" smaller than the outer diameter {_mm(r['face_outer'])}"
-                f" ({pr._at('Joints', 'face_outer', i)})")
+                f" ({pr.cell('Joints', 'face_outer', i)})")
         if r["diameter"] is not None and r["pitch"] is not None and r["pitch"] >= 0.5 * r[
                 "diameter"]:
             err("Joints", "pitch", i, "thread pitch must be well below the nominal diameter")
@@ -1038,7 +1042,7 @@ def _joint_torques(data: WorkbookData, joints: list[Joint], pr: _Problems
         key = (r["joint"].lower(), r["point"])
         if key in seen:
             err("JointTorques", "point", i, f"duplicate operating point '{r['point']}' for"
-                f" joint '{r['joint']}' (also at {pr._at('JointTorques', 'point', seen[key])})")
+                f" joint '{r['joint']}' (also at {pr.cell('JointTorques', 'point', seen[key])})")
             continue
         seen[key] = i
         name = names[r["joint"].lower()]
@@ -1055,8 +1059,9 @@ def _peak_pressure(data: WorkbookData, pr: _Problems) -> list[tuple[str, float, 
             continue
         key = (r["case"], round(r["speed"], 6))
         if key in seen_pk:
+            first = pr.cell("PeakPressure", "speed", seen_pk[key])
             pr.err("PeakPressure", "speed", i, f"duplicate speed {_rpm(r['speed'])} for load"
-                   f" case '{r['case']}' (also at {pr._at('PeakPressure', 'speed', seen_pk[key])})")
+                   f" case '{r['case']}' (also at {first})")
         seen_pk.setdefault(key, i)
         pk.append((r["case"], r["speed"], r["peak_pressure"]))
     return pk
@@ -1072,7 +1077,7 @@ def _brake_torque(data: WorkbookData, pr: _Problems) -> list[tuple[float, float]
         key = round(r["speed"], 6)
         if key in seen_bt:
             pr.err("BrakeTorque", "speed", i, f"duplicate speed {_rpm(r['speed'])} (also at"
-                   f" {pr._at('BrakeTorque', 'speed', seen_bt[key])})")
+                   f" {pr.cell('BrakeTorque', 'speed', seen_bt[key])})")
         seen_bt.setdefault(key, i)
         bt.append((r["speed"], r["brake_torque"]))
     return bt
@@ -1087,19 +1092,19 @@ def _damper(data: WorkbookData, pr: _Problems) -> Params:
             damper["inner_radius"] >= damper["outer_radius"]:
         pr.err("Damper", "inner_radius", None, f"rubber inner radius"
                f" {_mm(damper['inner_radius'])} must be smaller than the outer radius"
-               f" {_mm(damper['outer_radius'])} ({pr._at('Damper', 'outer_radius', None)})")
+               f" {_mm(damper['outer_radius'])} ({pr.cell('Damper', 'outer_radius', None)})")
     if damper.get("ring_inner_radius") is not None and \
             damper.get("ring_outer_radius") is not None and \
             damper["ring_inner_radius"] >= damper["ring_outer_radius"]:
         pr.err("Damper", "ring_inner_radius", None, f"ring inner radius"
                f" {_mm(damper['ring_inner_radius'])} must be smaller than the ring outer radius"
                f" {_mm(damper['ring_outer_radius'])}"
-               f" ({pr._at('Damper', 'ring_outer_radius', None)})")
+               f" ({pr.cell('Damper', 'ring_outer_radius', None)})")
     lo, hi = damper.get("operating_temperature_min"), damper.get("operating_temperature_max")
     if lo is not None and hi is not None and lo > hi:
         pr.err("Damper", "operating_temperature_min", None, f"the minimum operating"
                f" temperature {_celsius(lo)} is above the maximum {_celsius(hi)}"
-               f" ({pr._at('Damper', 'operating_temperature_max', None)})")
+               f" ({pr.cell('Damper', 'operating_temperature_max', None)})")
     if damper.get("damper_type") == "viscous" and damper.get("viscous_damping") is not None \
             and damper.get("silicone_viscosity") is not None:
         pr.err("Damper", "viscous_damping", None, "give the damping coefficient or the"
@@ -1113,7 +1118,7 @@ def _damper(data: WorkbookData, pr: _Problems) -> Params:
             continue
         if round(t, 9) in seen:
             pr.err("DamperRubber", "temperature", i, f"duplicate temperature {_celsius(t)}"
-                   f" (also at {pr._at('DamperRubber', 'temperature', seen[round(t, 9)])}):"
+                   f" (also at {pr.cell('DamperRubber', 'temperature', seen[round(t, 9)])}):"
                    " one row per temperature")
         seen.setdefault(round(t, 9), i)
     if rows:
