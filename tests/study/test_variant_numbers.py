@@ -7,7 +7,7 @@ from __future__ import annotations
 from click.testing import CliRunner
 
 from checker.cli import main
-from checker.study.report import context
+from checker.report.study import context
 from checker.study.results import report_frame, write_tables
 from checker.study.run import run_study
 from checker.study.spec import load_study
