@@ -710,7 +710,7 @@ def _crank(data: WorkbookData, p: Params, cylinders: list[Cylinder], pr: _Proble
                        " row per throw" + (f" (1..{n_pins}: the engine has {n_pins} throws)"
                                            if n_pins else "") + "; or remove sheets Crank"
                        " and CrankEnds and type the crank's values in Bearings, Fatigue and"
-                       " TVModel")
+                       " TVModel", needs=("Crank",))  # (not after the loader's 'empty sheet')
         return None
     if not rows:
         for attr, v in data.params.get("CrankEnds", {}).items():

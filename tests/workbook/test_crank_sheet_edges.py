@@ -38,6 +38,15 @@ def test_a_crank_sheet_with_headers_only_is_one_error_at_the_sheet(tmp_path):
     assert "give sheet Crank" not in msg
 
 
+def test_an_empty_crank_sheet_is_one_error_at_the_sheet(tmp_path):
+    def edit(wb):
+        ws = wb["Crank"]
+        ws.delete_rows(1, ws.max_row)
+
+    errs = _errors(edited(tmp_path, edit))
+    assert [(e.where, e.message.split(";")[0]) for e in errs] == [("Crank", "sheet is empty")]
+
+
 def test_a_problem_of_the_all_row_is_reported_once_for_every_throw(tmp_path):
     where = {}
 
