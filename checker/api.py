@@ -185,7 +185,7 @@ class CheckResult:
         out = caveats.applicable(caveats.collect(self.outcome), self.results,
                                  {o.rule for o in self.table.overrides})
         est = caveats.estimate_caveat(self.engine, self.results)
-        return out + ([est] if est else [])
+        return out + ([est] if est else []) + caveats.layout_caveats(self.engine)
 
     def to_frame(self):
         """The rule results as a pandas DataFrame (one row per rule and item)."""

@@ -333,13 +333,19 @@ def template(path: str, force: bool, which: str) -> None:
               help='"forged steel" or "nodular iron".')
 @click.option("--bearing-lining", "bearing_lining", default=None,
               help='e.g. "aluminium bimetal", "tri-metal".')
+@click.option("--engine-class", "engine_class", default=None,
+              help='"passenger car", "commercial vehicle", "industrial" or "marine".')
+@click.option("--crank-type", "crank_type", default=None,
+              help='"shared pins", "split pins", "flat-plane", "cross-plane"; twins "180 deg",'
+                   ' "270 deg", "360 deg".')
+@click.option("--firing-order", "firing_order", default=None, help='e.g. "1-3-4-2".')
 @click.option("--name", default=None, help="Engine name.")
 def new(path, brief_file, force, **options) -> None:
     """Write a first crank-train layout to PATH (.xlsx) from a concept brief: every derived
     value sized by a stated design rule with its source, marked ESTIMATE."""
     from .errors import InputErrors
     from .sizing.brief import load_brief
-    from .sizing.new_engine import NoRule, size
+    from .sizing.new_engine import NoRule, size, warnings
     from .workbook.example import write_workbook
 
     p = Path(path)
@@ -354,7 +360,7 @@ def new(path, brief_file, force, **options) -> None:
     _outputs_writable([p])
     try:
         b = load_brief(brief_file, options)
-        _layout, content = size(b)
+        layout, content = size(b)
     except InputErrors as exc:
         click.echo(f"error: {exc}", err=True)
         sys.exit(2)
@@ -366,9 +372,29 @@ def new(path, brief_file, force, **options) -> None:
     with tempfile.TemporaryDirectory() as d:
         tmp = Path(d) / "engine.xlsx"
         write_workbook(tmp, content)
+        _refused_by_the_check(tmp)  # never write geometry the check would refuse
         _atomic_write(p, tmp.read_bytes())
+    for w in warnings(layout):
+        click.echo(f"warning: {w}", err=True)
     click.echo(f"wrote {p} (first layout; every value marked ESTIMATE names its rule and"
                " source)", err=True)
+
+
+def _refused_by_the_check(path: Path) -> None:
+    """Read the sized workbook as ``checker check`` will (every sheet, the crank's geometry,
+    the rule overrides): an input error there is a rule of ``checker new`` without data for
+    this brief, exit 2, nothing written."""
+    from .description.engine import load_engine
+    from .errors import InputErrors
+    from .evaluation.ruletable import load_rules, override_problems
+
+    table = load_rules()
+    try:
+        load_engine(path, check_overrides=lambda o: override_problems(table, o)[2])
+    except InputErrors as exc:
+        click.echo("error: the sized layout would be refused by the check (a rule of checker"
+                   f" new has no data for this brief): {exc}", err=True)
+        sys.exit(2)
 
 
 @main.command()

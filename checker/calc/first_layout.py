@@ -42,6 +42,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 RULES: dict[str, dict] = {
     "peak_pressure": {
@@ -50,23 +51,37 @@ RULES: dict[str, dict] = {
         "scatter": "gasoline 60-120 bar (turbocharged high), diesel 140-220 bar",
         "confirmed": False},
     "pin_diameter": {
-        "rule": "crank-pin diameter = 0.60 x bore",
-        "source": "no public source confirmed (Agostini 2019 only says 'semi-empirical formulas"
-                  " obtainable from literature')",
-        "scatter": "unknown (not published in the sources searched)", "confirmed": False},
+        "rule": "crank-pin diameter from the rod bearing's specific load: d = sqrt(F / ((L/D)"
+                " p_s)), F the worst pin force over the speed range (the peak gas force less"
+                " the reciprocating inertia at the lowest speed, or the inertia of the"
+                " reciprocating and rotating rod masses at TDC of gas exchange at the maximum"
+                " speed), L/D the land's ratio by engine class (passenger car 0.45, heavier"
+                " classes 0.50), p_s the lining's specific-load capacity (aluminium bimetal"
+                " 44.5 MPa, tri-metal 66.5 MPa: the middle of the published ranges)",
+        "source": "specific load p = F/(d L) (bearing load capacity: the lining ranges of"
+                  " Clevite/CARS Magazine 2000, aluminium bimetal 41-48 MPa, cast CuPb tri-metal"
+                  " > 83 MPa, and MTU/Detroit Diesel S1600 training, tri-metal 50 MPa); L/D"
+                  " band of real crank pins from the service data tabled in docs/new-engine.md",
+        "scatter": "pin diameter against 17 real engines: docs/new-engine.md", "confirmed": True},
     "main_diameter": {
-        "rule": "main journal diameter = crank-pin diameter (first approximation)",
-        "source": "Agostini 2019, crankshaft 'Design Guidelines'",
-        "scatter": "real cranks have mains 0-20 % larger than pins", "confirmed": True},
+        "rule": "main journal diameter = the larger of 1.20 x the crank-pin diameter and the"
+                " main bearing's own specific-load diameter (the main's worst force: one"
+                " cylinder's net gas force, or the inertia of every rod on the neighbouring pin"
+                " at the maximum speed: both rods of a V engine's pin), L/D 0.35 (passenger"
+                " car) or 0.40",
+        "source": "main larger than the pin as in real engines (Agostini 2019's equal diameters"
+                  " are a first approximation only); the ratio 1.20 is the median of the"
+                  " service data tabled in docs/new-engine.md (1.06-1.30)",
+        "scatter": "main/pin 1.06-1.30 in the service data", "confirmed": True},
     "journal_length": {
-        "rule": "land length L_pin = F/(d p_adm) per rod, L_main = F/(2 d p_adm); F = the"
-                " resultant along the piston axis at TDC and the rated speed (peak gas force"
-                " p_max pi D^2/4 less the reciprocating inertia m_rec R w^2 (1 + R/l), at least"
-                " half the gas force), p_adm = 21.5 MPa (middle of 18-25 MPa); journal length"
-                " = land + 2 (fillet radius + 1 mm chamfer)",
-        "source": "Agostini 2019, crankshaft 'Design Guidelines' (admissible pressure about"
-                  " 18-25 MPa); the land-to-journal allowance is not from a source",
-        "scatter": "+19 %/-14 % over the 18-25 MPa range", "confirmed": True},
+        "rule": "bearing land widths from the specific load p_s and the L/D band of real"
+                " bearings: crank pin L = F_pin/(d p_s) per rod (= (L/D) d), main L ="
+                " F_main/(d p_s) held within L/D 0.30-0.45 (passenger car) or 0.30-0.55;"
+                " journal length = land + 2 (fillet radius + 1 mm chamfer)",
+        "source": "specific load p = F/(d L) with the lining capacities above; L/D bands of"
+                  " real car mains about 0.3-0.45 (service data, docs/new-engine.md); the"
+                  " land-to-journal allowance is not from a source",
+        "scatter": "L/D of real pins 0.35-0.60, mains 0.30-0.55", "confirmed": True},
     "fillet_radius": {
         "rule": "fillet radius = 0.04 x journal diameter",
         "source": "inside the validity range of IACS UR M53 (r/d 0.03-0.13); the value itself"
@@ -83,8 +98,8 @@ RULES: dict[str, dict] = {
                   " the textbook page (e.g. Bhandari, Design of Machine Elements) not seen",
         "scatter": "not stated", "confirmed": False},
     "rod_length": {
-        "rule": "rod length = crank radius / lambda, lambda = 0.305 (gasoline, middle of"
-                " 0.28-0.33) or 0.28 (diesel, 'usually lower')",
+        "rule": "rod length = crank radius / lambda, lambda = 0.30 (passenger car, inside"
+                " 0.28-0.33) or 0.31 (commercial vehicle, industrial, marine)",
         "source": "van Basshuysen & Schaefer, Internal Combustion Engine Handbook (as quoted by"
                   " Wikipedia 'Pleuelstangenverhaeltnis'; page not seen)",
         "scatter": "lambda 0.28-0.33 (+-8 %)", "confirmed": True},
@@ -152,14 +167,118 @@ def resultant_force(gas: float, m_rec: float, crank_radius: float, rod_length: f
     return max(gas - inertia, 0.5 * gas)
 
 
-def pin_diameter(bore: float) -> float:
-    """Crank-pin diameter [m] = 0.60 x bore (unconfirmed ratio, :data:`RULES`)."""
-    return 0.60 * bore
+CLASSES: dict[str, dict[str, Any]] = {
+    "passenger car": {"pin_ld": 0.45, "shared_ld": 0.40, "main_ld": 0.35,
+                      "main_ld_band": (0.30, 0.45),
+                      "pin_ld_band": (0.30, 0.60), "lambda": 0.30, "pitch_wall": 0.06,
+                      "pitch_band": (1.05, 1.35), "web_band": (0.18, 0.34),
+                      "mode_band": (250.0, 1500.0), "irregularity": 0.20},
+    "commercial vehicle": {"pin_ld": 0.50, "shared_ld": 0.45, "main_ld": 0.40,
+                           "main_ld_band": (0.30, 0.55),
+                           "pin_ld_band": (0.35, 0.70), "lambda": 0.31, "pitch_wall": 0.11,
+                           "pitch_band": (1.10, 1.45), "web_band": (0.18, 0.36),
+                           "mode_band": (120.0, 900.0), "irregularity": 0.20},
+}
+CLASSES["industrial"] = CLASSES["commercial vehicle"]
+CLASSES["marine"] = CLASSES["commercial vehicle"]
+"""Sizing ratios and plausibility bands by engine class (the Engine sheet's classes):
+
+* ``pin_ld``, ``main_ld``: land L/D the diameters are sized with; ``shared_ld``: each rod's land
+  on a pin shared by two rods (V engines), narrower as in the service data (the Cadillac 4.4
+  V8: two rods on 43.9 mm of a 54 mm pin), its specific load that much higher;
+  ``*_ld_band``: the band of real bearings (service data, docs/new-engine.md) the lands are
+  held in;
+* ``lambda``: crank radius / rod length (van Basshuysen & Schaefer: 0.28-0.33 for cars);
+* ``pitch_wall``: the cylinder wall and water jacket between two bores, per side, as a fraction
+  of the bore (pitch >= bore (1 + 2 wall)) [not confirmed in a public source];
+* ``pitch_band``, ``web_band``: cylinder pitch and web thickness per bore of real engines
+  (plausibility; web: Khurmi & Gupta's 0.22-0.32 widened by the service data);
+* ``mode_band``: first crank torsional mode [Hz] plausible for the class [not confirmed];
+* ``irregularity``: the cyclic irregularity the flywheel is sized for at the lowest speed,
+  full load (a four-cylinder at 800 rpm idle turns between about 710 and 860 rpm, 19 %: J.
+  Venter, "Doing the twist", CAR magazine) [one measurement, not a standard]."""
+
+LINING_CAPACITY = {"aluminium bimetal": 44.5e6, "AS15": 44.5e6, "AS16": 44.5e6,
+                   "tri-metal": 66.5e6, "polymer": 95e6, "sputter": 110e6}
+"""Specific-load capacity of bearing linings [Pa], the middle of the published ranges:
+aluminium bimetal 41-48 MPa and cast CuPb tri-metal > 83 MPa (Clevite, CARS Magazine 2000),
+tri-metal 50 MPa (MTU/Detroit Diesel S1600 training); polymer up to 95 MPa (MAHLE 2012);
+sputter 100-120 MPa (substech.com)."""
+
+SIZING_LOAD = {"gasoline": 44.5e6, "diesel": 66.5e6}
+"""The specific load the journal diameters are sized for [Pa]: the capacity of the usual lining
+of the fuel (aluminium bimetal for gasoline, tri-metal for diesel engines, LINING_CAPACITY);
+a stronger lining chosen in the brief is margin, not a smaller journal."""
+
+MAIN_PIN_RATIO = 1.20
+"""Main journal / crank-pin diameter: median of the service data tabled in docs/new-engine.md
+(15 engines, 1.06-1.30)."""
 
 
-def main_diameter(pin_d: float) -> float:
-    """Main journal diameter [m] = pin diameter (Agostini 2019)."""
-    return pin_d
+def engine_class(fuel: str, bore: float) -> str:
+    """The engine class when the brief gives none: gasoline a passenger car; diesel below 95 mm
+    bore a passenger car, to 200 mm a commercial vehicle, above marine [boundaries not
+    confirmed]."""
+    if fuel == "gasoline":
+        return "passenger car"
+    return "marine" if bore >= 0.2 else ("commercial vehicle" if bore >= 0.095
+                                         else "passenger car")
+
+
+def sizing_forces(*, gas: float, m_rec: float, m_rot: float, crank_radius: float,
+                  rod_length: float, min_speed: float, max_speed: float, rods: int = 1,
+                  bank_angle: float = 0.0) -> tuple[float, float]:
+    """Worst crank-pin and main-bearing forces over the speed range [N].
+
+    Pin: the larger of the peak gas force less the reciprocating inertia
+    ``m_rec R w^2 (1 + R/l)`` at the lowest speed and the inertia at TDC of gas exchange at the
+    maximum speed, ``(m_rec (1 + R/l) + m_rot) R w^2`` (the big end carries the rod's rotating
+    share too). Main: the larger of the same net gas force (one cylinder fires at a time) and
+    the inertia of every rod on the neighbouring pin at the maximum speed: ``rods m_rot R w^2
+    + m_rec R w^2 (1 + R/l) (1 + (rods - 1) |cos bank|)`` (both rods of a V engine's pin;
+    counterweights neglected: conservative). Crank-slider inertia (Agostini 2019).
+
+    >>> [round(f / 1e3, 1) for f in sizing_forces(gas=49.4e3, m_rec=0.9, m_rot=0.45,
+    ...     crank_radius=0.0473, rod_length=0.155, min_speed=104.7, max_speed=733.0)]
+    [48.8, 48.8]
+    """
+    lam = crank_radius / rod_length
+    gas_net = gas - m_rec * crank_radius * min_speed**2 * (1.0 + lam)
+    w2r = crank_radius * max_speed**2
+    pin_in = (m_rec * (1.0 + lam) + m_rot) * w2r
+    main_in = rods * m_rot * w2r + m_rec * w2r * (1.0 + lam) * (
+        1.0 + (rods - 1) * abs(math.cos(bank_angle)))
+    return max(gas_net, pin_in), max(gas_net, main_in)
+
+
+def pin_diameter(force: float, p_s: float, ld: float) -> float:
+    """Crank-pin diameter [m] from the specific load ``p = F/(d L)`` with ``L = ld d``:
+    ``d = sqrt(F / (ld p_s))`` (:data:`RULES` ``pin_diameter``).
+
+    >>> round(pin_diameter(65.4e3, 44.5e6, 0.45) * 1e3, 1)
+    57.1
+    """
+    if not (force > 0 and p_s > 0 and ld > 0):
+        raise ValueError("force, p_s and ld must be > 0")
+    return math.sqrt(force / (ld * p_s))
+
+
+def main_diameter(pin_d: float, force: float, p_s: float, ld: float) -> float:
+    """Main journal diameter [m]: the larger of :data:`MAIN_PIN_RATIO` x the pin and the main's
+    own specific-load diameter ``sqrt(F / (ld p_s))`` (:data:`RULES` ``main_diameter``)."""
+    return max(MAIN_PIN_RATIO * pin_d, pin_diameter(force, p_s, ld))
+
+
+def main_land(force: float, diameter: float, p_s: float, band: tuple[float, float]) -> float:
+    """Main bearing land [m]: ``F/(d p_s)`` held within the class's L/D band."""
+    return min(max(force / (diameter * p_s), band[0] * diameter), band[1] * diameter)
+
+
+def cylinder_pitch(bore: float, stack: float, wall: float) -> float:
+    """Cylinder pitch [m]: the larger of the bore's (bore + two walls and water jackets,
+    ``bore (1 + 2 wall)``) and the crank's axial stack (main journal + two webs + pin);
+    the caller widens the crank to fill the pitch."""
+    return max(bore * (1.0 + 2.0 * wall), stack)
 
 
 def land_length(force: float, diameter: float, p_adm: float = 21.5e6,
@@ -187,9 +306,9 @@ def web_width(pin_d: float) -> float:
     return 1.14 * pin_d
 
 
-def rod_length(stroke: float, fuel: str) -> float:
-    """Rod length [m] = (stroke / 2) / lambda; lambda 0.305 gasoline, 0.28 diesel."""
-    return stroke / 2.0 / (0.305 if fuel == "gasoline" else 0.28)
+def rod_length(stroke: float, cls: str) -> float:
+    """Rod length [m] = (stroke / 2) / lambda, lambda by engine class (:data:`CLASSES`)."""
+    return stroke / 2.0 / CLASSES[cls]["lambda"]
 
 
 STEEL_DENSITY = 7850.0

@@ -63,6 +63,7 @@ class Rule:
     origin: str = ""
     limit_from: str | None = None  # "workbook": per-engine limit carried by the quantity
     method: str | None = None  # method tag of a film-thickness limit (selects the quantity)
+    not_applicable: str | None = None  # the project's reason (RuleOverrides 'not applicable')
 
     def limit_text(self, limit: tuple[float, ...] | None = None) -> str:
         """The limit as displayed (``≤ 48 MPa``, ``≥ 1.2 µm``, ``70..75 %``)."""
@@ -304,6 +305,11 @@ def _parse_limit(text: str) -> tuple[float, ...] | None:
         return None
 
 
+NOT_APPLICABLE_WORDS = ("not applicable", "n/a", "na")
+"""A RuleOverrides limit that declares the rule not applicable to the project (its reason is
+required and shown with every result of the rule)."""
+
+
 def override_problems(table: RuleTable, overrides) -> tuple[list[Rule], list[Override],
                                                              list[InputError]]:
     """Resolve workbook RuleOverrides against ``table``: the new rule list, the applied
@@ -322,6 +328,16 @@ def override_problems(table: RuleTable, overrides) -> tuple[list[Rule], list[Ove
             errs.append(InputError(o.where or "RuleOverrides", f"unknown rule '{o.rule}'{hint}"))
             continue
         r = rules[by_id[rid]]
+        if str(o.limit).strip().lower() in NOT_APPLICABLE_WORDS:
+            if not str(o.reason or "").strip():
+                errs.append(InputError(o.where or "RuleOverrides", f"{r.id} declared not"
+                                       " applicable: expected the reason why (column reason),"
+                                       " found nothing"))
+                continue
+            rules[by_id[rid]] = replace(r, not_applicable=str(o.reason).strip())
+            applied.append(Override(r.id, r.limit_text(), "not applicable", o.reason,
+                                    o.where))
+            continue
         lim = _parse_limit(o.limit)
         n = 2 if r.check == "between" else 1
         if lim is None or len(lim) != n or not all(math.isfinite(x) for x in lim):
@@ -570,6 +586,9 @@ def evaluate_rule(rule: Rule, q: Quantity | None, unavailable: list[str] | None,
     spec = QUANTITIES[rule.quantity]
     base = dict(rule=rule.id, name=rule.name, severity=rule.severity, unit=rule.unit,
                 source=rule.source, check=rule.check)
+    if rule.not_applicable:
+        return [not_applicable_result(rule, f"{rule.not_applicable} (declared by the project"
+                                      " in RuleOverrides)")]
     if q is None:
         reasons = unavailable or [f"the quantity {rule.quantity} was not computed"]
         return [RuleResult(**base, item="all", status="not_evaluated", value=None,

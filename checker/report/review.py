@@ -285,6 +285,13 @@ def caveats(res: CheckResult) -> list[dict]:
     est = estimate_caveat(res.engine, res.results)
     if est:
         out.append({"title": "Results resting on estimates", "items": [est["text"]]})
+    from ..results.caveats import layout_caveats
+
+    for kind, title in (("uneven firing", "Uneven firing"),
+                        ("plausibility", "Dimensions outside the band of real engines")):
+        items = [c["text"] for c in layout_caveats(res.engine) if c["kind"] == kind]
+        if items:
+            out.append({"title": title, "items": items})
     cls = _class_limits(res) + stated.pop("Limits outside their engine class", [])
     if cls:
         out.append({"title": "Limits outside their engine class", "items": cls})

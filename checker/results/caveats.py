@@ -126,6 +126,38 @@ def estimate_caveat(engine: Any, results: list) -> dict[str, Any] | None:
             "rules": rules, "count": n, "results": len(resting)}
 
 
+PLAUSIBILITY_MARK = "outside the band of real engines"
+"""The words a sized value's note carries when ``checker new`` found it outside the band of
+real engines of its class (docs/new-engine.md)."""
+
+
+def layout_caveats(engine: Any) -> list[dict[str, Any]]:
+    """Caveats of the layout itself: firing that is not even (the crank type or bank angle
+    allows no even firing: the torque's lower orders and the flywheel's task grow), and values a
+    first layout sized outside the band of real engines (notes marked by ``checker new``)."""
+    out: list[dict[str, Any]] = []
+    cyl = list(getattr(engine, "cylinders", ()) or ())
+    if len(cyl) > 1:
+        f = np.sort(np.mod([float(c.firing_angle) for c in cyl], 4 * np.pi))
+        gaps = np.degrees(np.diff(np.append(f, f[0] + 4 * np.pi)))
+        if not np.allclose(gaps, 720.0 / len(cyl), atol=1e-6):
+            order = sorted(cyl, key=lambda c: float(c.firing_angle) % (4 * np.pi))
+            out.append({"kind": "uneven firing", "severity": "medium",
+                        "text": ("The firing intervals are "
+                                 + "/".join(f"{g:.0f}" for g in gaps) + " deg (cylinders "
+                                 + "-".join(str(c.number) for c in order) + f"; even would be"
+                                 f" {720.0 / len(cyl):g} deg): the crank type and bank angle"
+                                 " allow no even firing, so the half and lower torque orders"
+                                 " and the cyclic irregularity are larger than an even-firing"
+                                 " engine's."), "rules": []})
+    marked = [e for e in getattr(engine, "estimates", ()) if PLAUSIBILITY_MARK in e]
+    for e in marked:
+        text = e.split(PLAUSIBILITY_MARK, 1)[1].split("]", 1)[0].strip(" :;")
+        out.append({"kind": "plausibility", "severity": "medium",
+                    "text": f"{e.split(':')[0]}: {text}.", "rules": []})
+    return out
+
+
 def collect(outcome: Any) -> list[dict[str, Any]]:
     """Every caveat of a run (graph outcome): those the calculations attached to their
     quantities (:attr:`checker.results.Detail.caveats`) and the IMEP check of the pressure

@@ -33,16 +33,42 @@ KEYS: dict[str, tuple[str, str, bool, str | None]] = {
     "min_speed": ("speed", '"1000 rpm"', False, "1000 rpm (gasoline) or 800 rpm (diesel)"),
     "peak_pressure": ("pressure", '"85 bar"', False, "typical by fuel: gasoline 85 bar,"
                       " diesel 180 bar"),
-    "bearing_pressure": ("pressure", '"21.5 MPa"', False, "21.5 MPa, the middle of Agostini"
-                         " 2019's admissible 18-25 MPa"),
+    "bearing_pressure": ("pressure", '"44.5 MPa"', False, "the specific-load capacity of the"
+                         " fuel's usual lining: 44.5 MPa (aluminium bimetal, gasoline) or 66.5"
+                         " MPa (tri-metal, diesel)"),
     "fuel": ("choice", '"gasoline" or "diesel"', False, "gasoline"),
     "crank_material": ("choice", '"forged steel", "nodular iron"', False, "forged steel"),
     "bearing_lining": ("choice", '"aluminium bimetal", "tri-metal"...', False,
                        "aluminium bimetal (gasoline), tri-metal (diesel)"),
+    "engine_class": ("choice", '"passenger car", "commercial vehicle", "industrial" or'
+                     ' "marine"', False, "by fuel and bore: gasoline passenger car; diesel"
+                     " below 95 mm passenger car, to 200 mm commercial vehicle, above marine"),
+    "crank_type": ("choice", '"shared pins", "split pins", "flat-plane", "cross-plane" (V);'
+                   ' "180 deg", "270 deg", "360 deg" (twins)', False,
+                   "V engines: shared pins (a V8: cross-plane); twins: 360 deg in-line, one"
+                   " pin on a V"),
+    "firing_order": ("text", '"1-3-4-2"', False, "the most even firing the crank type allows"),
 }
 CHOICES = {
     "layout": {"inline": "inline", "straight": "inline", "v": "V", "vee": "V"},
-    "fuel": {"gasoline": "gasoline", "petrol": "gasoline", "diesel": "diesel"},
+    "fuel": {"gasoline": "gasoline", "petrol": "gasoline",
+             "spark ignition": "gasoline", "si": "gasoline", "diesel": "diesel",
+             "compression ignition": "diesel", "ci": "diesel"},
+    "engine_class": {"passenger car": "passenger car", "car": "passenger car",
+                     "commercial vehicle": "commercial vehicle", "truck": "commercial vehicle",
+                     "heavy duty": "commercial vehicle", "bus": "commercial vehicle",
+                     "industrial": "industrial", "genset": "industrial",
+                     "stationary": "industrial", "off highway": "industrial",
+                     "marine": "marine"},
+    "crank_type": {"shared pins": "shared pins", "shared": "shared pins",
+                   "common pins": "shared pins", "split pins": "split pins",
+                   "split": "split pins", "offset pins": "split pins",
+                   "flat plane": "flat-plane", "flat": "flat-plane", "flatplane": "flat-plane",
+                   "cross plane": "cross-plane", "cross": "cross-plane",
+                   "crossplane": "cross-plane", "180 deg": "180 deg", "180": "180 deg",
+                   "180°": "180 deg", "270 deg": "270 deg", "270": "270 deg",
+                   "270°": "270 deg", "360 deg": "360 deg", "360": "360 deg",
+                   "360°": "360 deg"},
     "crank_material": {"forged steel": "forged steel", "steel": "forged steel",
                        "nodular iron": "nodular iron", "nodular cast iron": "nodular iron",
                        "ductile iron": "nodular iron", "cast iron": "nodular iron"},
@@ -82,6 +108,10 @@ class Brief:
     bearing_lining: str
     name: str = "New engine (checker new)"
     defaults: dict[str, str] = field(default_factory=dict)
+    engine_class: str = "passenger car"
+    crank_type: str | None = None
+    firing_order: str | None = None
+    lines: dict[str, int] = field(default_factory=dict)  # brief key -> line of the file
 
 
 _NUM = re.compile(r"^\s*([-+]?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?|[-+]?\.\d+(?:[eE][-+]?\d+)?)\s*(.*)$")
@@ -112,7 +142,7 @@ def parse_brief(raw: dict[str, Any], where: str = "brief",
     for k, (kind, example, required, _dflt) in KEYS.items():
         if k not in raw:
             if required:
-                errs.append(InputError(f"{where}: {k}", f"required: expected e.g. {k} = "
+                errs.append(InputError(loc(k), f"required: expected e.g. {k} = "
                                        f"{example}, found nothing"))
             continue
         v = raw[k]
@@ -167,6 +197,27 @@ def parse_brief(raw: dict[str, Any], where: str = "brief",
         bank = vals.get("bank_angle", 4 * math.pi / n if layout == "V" else 0.0)
         if layout == "V" and n == 2 and "bank_angle" not in vals:
             bank = math.pi / 2
+        ctype = vals.get("crank_type")
+        if ctype in ("flat-plane", "cross-plane") and not (layout == "V" and n == 8):
+            errs.append(InputError(loc("crank_type"), f"{ctype} is a crank of V8 engines; found"
+                                   f" {'a V' if layout == 'V' else 'an in-line '}{n}"))
+        if ctype in ("180 deg", "270 deg", "360 deg") and n != 2:
+            errs.append(InputError(loc("crank_type"), f"{ctype} is a crank of twins; found {n}"
+                                   " cylinders"))
+        if ctype in ("shared pins", "split pins") and layout != "V":
+            errs.append(InputError(loc("crank_type"), f"{ctype} is a crank of V engines; found"
+                                   " an in-line layout"))
+        if ctype in ("180 deg", "270 deg", "360 deg") and layout == "V" and n == 2:
+            need = 360.0 - float(ctype.split()[0])  # one pin: intervals 360 -/+ bank angle
+            given = math.degrees(vals.get("bank_angle", math.radians(need)))
+            if need <= 0.0 or abs(given - need) > 1e-6:
+                what = (f"needs bank_angle = \"{need:g} deg\"" if need > 0 else
+                        "cannot be a V on one pin (use layout = \"inline\")")
+                errs.append(InputError(loc("crank_type"), "a V-twin on one pin fires 360 deg"
+                                       f" -/+ its bank angle apart: a {ctype} twin {what};"
+                                       f" found {given:g} deg"))
+            elif "bank_angle" not in vals:
+                vals["bank_angle"] = math.radians(need)
         rated = vals["rated_speed"]
         vmax = vals.get("max_speed", 1.1 * rated)
         vmin = vals.get("min_speed", (1000.0 if fuel == "gasoline" else 800.0) * math.pi / 30)
@@ -178,6 +229,7 @@ def parse_brief(raw: dict[str, Any], where: str = "brief",
             errs.append(InputError(loc("min_speed"), "expected below the rated speed"
                                    f" ({rated * 30 / math.pi:.0f} rpm); found"
                                    f" {vmin * 30 / math.pi:.0f} rpm"))
+        from ..calc.first_layout import SIZING_LOAD, engine_class
         from ..calc.first_layout import peak_pressure as typical
 
         lining = vals.get("bearing_lining",
@@ -187,10 +239,12 @@ def parse_brief(raw: dict[str, Any], where: str = "brief",
             stroke=vals["stroke"], rated_power=vals["rated_power"], rated_speed=rated,
             max_speed=vmax, min_speed=vmin,
             peak_pressure=vals.get("peak_pressure", typical(fuel)), fuel=fuel,
-            bearing_pressure=vals.get("bearing_pressure", 21.5e6),
+            bearing_pressure=vals.get("bearing_pressure", SIZING_LOAD[fuel]),
             crank_material=vals.get("crank_material", "forged steel"),
             bearing_lining=lining, name=vals.get("name", "New engine (checker new)"),
-            defaults=defaults)
+            defaults=defaults,
+            engine_class=vals.get("engine_class", engine_class(fuel, vals["bore"])),
+            crank_type=ctype, firing_order=vals.get("firing_order"), lines=dict(lines))
         for k, (lo, hi) in VALID.items():
             x = getattr(brief, k)
             if layout != "V" and k == "bank_angle":

@@ -3,9 +3,13 @@
 Every derived value carries a note ``ESTIMATE (checker new): <rule>; <source>``; the rules and
 their sources are those of :mod:`checker.calc.first_layout` (docs/new-engine.md). The
 estimates are made consistent with each other by running the checker's own models on the
-layout (:func:`size`): the flywheel is sized for a 1 % irregularity at the rated speed by the
-flywheel module, the damper ring tuned to Den Hartog's optimum by the damper-tuning module, and
-the bolted joints sized for the torsional model's joint torques with the recommended preload.
+layout (:func:`size`): the flywheel is sized for the class's irregularity target at the lowest
+speed by the flywheel module, the damper ring tuned to Den Hartog's optimum by the damper-tuning
+module, the bolted joints sized for the torsional model's joint torques with the recommended
+preload, and the project limits the rules need are set by class
+(:mod:`checker.sizing.project_limits`). The crank type and firing come from
+:mod:`checker.sizing.crank_types`; dimensions outside the band of real engines are listed
+(:func:`plausibility`) for the console and the report.
 
 The crank is written as its geometry (sheets Crank and CrankEnds, issue 33): the crank
 module derives its CrankMass rows and the crank stations' TVModel inertias, and Bearings and
@@ -17,7 +21,6 @@ stations' inertias and stiffnesses are left blank in TVModel and derived by the 
 
 from __future__ import annotations
 
-import itertools
 import math
 import tempfile
 from dataclasses import dataclass, replace
@@ -29,8 +32,9 @@ import numpy as np
 from ..calc import first_layout as fl
 from ..calc.bolted_joint import PRELOAD_FRACTIONS, effective_friction_diameter, tensile_stress_area
 from ..calc.crank_geometry import cylinder, throw_mass_properties
+from ..results.caveats import PLAUSIBILITY_MARK
+from . import crank_types, project_limits
 from .brief import Brief
-from .firing import inline_firing_order
 
 TAG = "ESTIMATE (checker new)"
 RPM = 30.0 / math.pi
@@ -62,14 +66,18 @@ MATERIALS = {  # density, E, nu, strengths [MPa] (Bell 2013 data for the steel)
                   " in a public source]"},
 }
 
-
 def padm_text(b: Brief) -> str:
     """What the notes say of the admissible bearing pressure when the brief sets it."""
     if "bearing_pressure" in b.defaults:
         return ""
     p = b.bearing_pressure / 1e6
-    out = "" if 18 <= p <= 25 else ", outside Agostini's 18-25 MPa"
-    return f" [p_adm = {p:g} MPa given in the brief{out}: the brief's value, not the rule's]"
+    out = "" if 41 <= p <= 83 else ", outside the published 41-83 MPa of engine linings"
+    return f" [p_s = {p:g} MPa given in the brief{out}: the brief's value, not the rule's]"
+
+
+FLY_SOURCE = ("a four-cylinder at 800 rpm idle turns between about 710 and 860 rpm, 19 %"
+              " (J. Venter, 'Doing the twist', CAR magazine) [one measurement, not a"
+              " standard]")
 
 
 class NoRule(ValueError):
@@ -86,7 +94,7 @@ class Layout:
     cyl_firing: list[float]  # deg
     firing_order: str
     firing_note: str
-    force: float  # resultant along the piston axis at the rated speed (bearing lengths)
+    force: float  # worst crank-pin force over the speed range (journal sizing)
     gas: float  # peak gas force (rod stem)
     dp: float
     dj: float
@@ -110,132 +118,142 @@ class Layout:
     balance_target: float
     clearance_main: float
     clearance_pin: float
+    engine_class: str = "passenger car"
+    crank_type: str = "in-line"
+    even_firing: bool = True
+    intervals: tuple[float, ...] = ()
+    f_pin: float = 0.0  # worst crank-pin force over the speed range [N]
+    f_main: float = 0.0  # worst main-bearing force [N]
+    cw_achieved: float = 1.0  # counterweight unbalance / target
+    balance_rec: float = 0.0  # the target's reciprocating part (kg m; 90-degree V, in-throw)
+    plausibility: tuple[str, ...] = ()  # sized dimensions outside the band of real engines
 
 
-def _throws_and_firing(b: Brief) -> tuple[list[float], list[int], list[float], list[float],
-                                          str, str]:
-    n = b.cylinders
-    if b.layout == "inline":
-        order, tabled = inline_firing_order(n)
-        step = 720.0 / n
-        firing = [0.0] * n
-        for k, c in enumerate(order):
-            firing[c - 1] = k * step
-        throws = [(-f) % 360.0 for f in firing]
-        return (throws, list(range(1, n + 1)), [0.0] * n, firing, "-".join(map(str, order)),
-                f"{'the usual' if tabled else 'a derived'} in-line firing order"
-                f"{'' if tabled else ' (the smallest free moments, Taylor 1985 vol. 2 ch. 8)'},"
-                f" even firing every {step:g} deg; throw angle = -firing angle (mod 360)")
-    half = n // 2
-    if half == 4:
-        pins = [0.0, 90.0, 270.0, 180.0]
-        how = "cross-plane crank (pins 0/90/270/180 deg)"
-    else:
-        f = [0.0] * half
-        for k, c in enumerate(inline_firing_order(half)[0]):
-            f[c - 1] = k * 720.0 / half
-        pins = [(-x) % 360.0 for x in f]
-        how = f"pins as an in-line {half}"
-    alpha = math.degrees(b.bank_angle)
-    banks = [alpha / 2 if c % 2 == 0 else -alpha / 2 for c in range(n)]  # odd cyl left (+)
-    cyl_pin = [c // 2 + 1 for c in range(n)]
-    tdc = [((banks[c] - banks[0]) - pins[cyl_pin[c] - 1]) % 360.0 for c in range(n)]
-    groups: dict[float, list[int]] = {}
-    for c in range(n):
-        groups.setdefault(round(tdc[c], 6), []).append(c)
-    free = [g for g in groups.values() if len(g) == 2 and 0 not in g]
-    best: tuple | None = None
-    for pick in itertools.product((0, 1), repeat=len(free)):  # which of a pair fires first
-        firing = [tdc[c] for c in range(n)]
-        for g in groups.values():
-            if len(g) == 2 and 0 in g:
-                firing[g[1] if g[0] == 0 else g[0]] += 360.0
-        for g, k in zip(free, pick):
-            firing[g[1 - k]] += 360.0
-        order = sorted(range(n), key=lambda c: firing[c])
-        alternations = sum(banks[order[i]] != banks[order[(i + 1) % n]] for i in range(n))
-        key = (-alternations, tuple(order))
-        if best is None or key < best[0]:
-            best = (key, firing, order)
-    _key, firing, order = best
-    gaps = np.diff(sorted(firing) + [720.0])
-    even = bool(np.allclose(gaps, 720.0 / n))
-    fire = (f"even firing every {720.0 / n:g} deg" if even else
-            "the layout does not allow even firing (firing intervals "
-            + "/".join(f"{g:g}" for g in gaps) + " deg)")
-    note = (f"V{n}, {alpha:g} deg bank angle, two rods per pin, {how}; each pair of cylinders"
-            " reaching TDC at the same crank position fires 360 deg apart, the order chosen to"
-            " alternate the banks most often (then the lowest cylinder numbers first); " + fire)
-    return (pins, cyl_pin, banks, firing, "-".join(str(c + 1) for c in order), note)
+def _throws_and_firing(b: Brief) -> crank_types.Arrangement:
+    try:
+        return crank_types.arrange(b.cylinders, b.layout, b.bank_angle, b.crank_type,
+                              b.firing_order)
+    except crank_types.NoArrangement as exc:
+        raise NoRule(str(exc)) from None
+
+
+WEB_MIN = 0.22
+"""Thinnest web a crank that is longer than its cylinder pitch is given, per bore: the low end of
+Khurmi & Gupta's 0.22-0.32 x bore (A Textbook of Machine Design, §32.19)."""
+
+CW_BULKHEAD = 0.80
+"""Radius of the main bearing's housing (bulkhead) as a fraction of the journal diameter: a
+counterweight thicker than its web overhangs the web axially and must clear it (inner radius at
+least 0.8 x the journal diameter: shell, housing wall) [ratio not confirmed]."""
 
 
 def _cw_for_target(b: Brief, geo: dict, target_unbalance: float, mat: dict, ro_max: float,
-                   t_max: float) -> tuple[float, float, float]:
-    """Outer radius, angle and axial thickness of the two counterweights of a throw whose
-    unbalance (kg m, opposite the pin) is ``target_unbalance`` (crank geometry of the crank
-    branch): 150 deg at the web thickness first, then 180 deg, then thicker (up to
-    ``t_max``); none reaches it: the largest that fits if it balances at least half the
-    target (the low end of industrial practice), else :class:`NoRule`."""
-    ri = geo["journal_diameter"] / 2.0
+                   t_max: float) -> tuple[float, float, float, float, float]:
+    """Inner and outer radius, angle and axial thickness of the two counterweights of a throw
+    whose unbalance (kg m, opposite the pin) is ``target_unbalance`` (crank geometry of the
+    crank branch), and the fraction of the target they reach: 150 deg at the web thickness
+    first, then 180 deg, then thicker (up to ``t_max``), a thicker counterweight starting
+    clear of the main bearing (:data:`CW_BULKHEAD`); none reaches it: the largest that fits
+    (the caller states the fraction)."""
+    rj = geo["journal_diameter"] / 2.0
     tw = geo["web_thickness"]
 
-    def u(ro: float, ang: float, tc: float) -> float:
+    def u(ri: float, ro: float, ang: float, tc: float) -> float:
         p = throw_mass_properties(**geo, density=mat["density"], cw_inner_radius=ri,
                                   cw_outer_radius=ro, cw_angle=ang, cw_thickness=tc)
         return float(-(p.mass[0, 2] * p.y[0, 2] + p.mass[0, 5] * p.y[0, 5]))
 
-    tries = [(150.0, tw), (180.0, tw)] + [(180.0, min(f * tw, t_max)) for f in (1.25, 1.5, 2.0)
-                                          if f * tw <= t_max]
-    for ang_deg, tc in tries:
+    rb = CW_BULKHEAD * geo["journal_diameter"]
+    tries = [(150.0, tw, rj), (180.0, tw, rj)]
+    if rb < 0.9 * ro_max:
+        tries += [(180.0, min(f * tw, t_max), rb) for f in (1.25, 1.5, 2.0) if f * tw <= t_max]
+    best = None
+    for ang_deg, tc, ri in tries:
         ang = math.radians(ang_deg)
-        if u(ro_max, ang, tc) >= target_unbalance:
+        ri = math.ceil(ri * 1e5) / 1e5  # written in mm to 2 decimals: never inside the journal
+        if ro_max <= ri * 1.01:
+            continue
+        full = u(ri, ro_max, ang, tc)
+        if full >= target_unbalance:
             lo, hi = ri * 1.0001, ro_max
             for _ in range(60):
                 mid = 0.5 * (lo + hi)
-                if u(mid, ang, tc) < target_unbalance:
+                if u(ri, mid, ang, tc) < target_unbalance:
                     lo = mid
                 else:
                     hi = mid
-            return hi, ang, tc
-    ang, tc = math.radians(tries[-1][0]), tries[-1][1]
-    if u(ro_max, ang, tc) >= 0.5 * target_unbalance:  # the largest that fits, >= 50 %
-        return ro_max, ang, tc
-    raise NoRule("counterweight: no annular counterweight up to 180 deg, the swing radius"
-                 f" {ro_max * 1e3:.0f} mm (rod length - crank radius - 0.25 bore) and"
-                 f" {t_max * 1e3:.0f} mm thickness balances half the target"
-                 f" ({target_unbalance * 1e3:.0f} kg mm); the counterweight rule has no data for"
-                 " this geometry")
+            return ri, hi, ang, tc, 1.0
+        if best is None or full > best[4] * target_unbalance:
+            best = (ri, ro_max, ang, tc, full / target_unbalance)
+    if best is None or best[4] <= 0.0:
+        raise NoRule("counterweight: the swing radius (rod length - crank radius - 0.25 bore,"
+                     f" {ro_max * 1e3:.0f} mm) leaves no room outside the main journal; the"
+                     " counterweight rule has no data for this geometry")
+    return best
+
+
+def _rod_and_forces(b: Brief, cls: dict, dp: float, land: float, rod_len: float,
+                    wp: fl.WristPin, piston: float, gas: float, rods: int
+                    ) -> tuple[fl.Rod, float, float, float, float]:
+    """The con-rod for a big end of ``land`` on a pin ``dp``, its reciprocating and rotating
+    masses and the worst pin and main forces over the speed range."""
+    rod = fl.con_rod(force=gas, length=rod_len, pin_d=dp, pin_land=land, wrist=wp)
+    m_rot = rod.mass * (rod_len - rod.centre_from_big_end) / rod_len
+    m_rec = piston + rod.mass - m_rot
+    f_pin, f_main = fl.sizing_forces(gas=gas, m_rec=m_rec, m_rot=m_rot,
+                                     crank_radius=b.stroke / 2.0, rod_length=rod_len,
+                                     min_speed=b.min_speed, max_speed=b.max_speed, rods=rods,
+                                     bank_angle=b.bank_angle if rods > 1 else 0.0)
+    return rod, m_rot, m_rec, f_pin, f_main
 
 
 def layout(b: Brief) -> Layout:
     """Size every dimension by its rule (:mod:`checker.calc.first_layout`)."""
-    throws, cyl_throw, banks, firing, order, fnote = _throws_and_firing(b)
-    n_thr = max(cyl_throw)
+    arr = _throws_and_firing(b)
+    n_thr = max(arr.cyl_throw)
     rods_per_pin = b.cylinders // n_thr
+    cls = fl.CLASSES[b.engine_class]
     gas = fl.peak_gas_force(b.bore, b.peak_pressure)
-    dp = fl.pin_diameter(b.bore)
-    dj = fl.main_diameter(dp)
-    rf_p, rf_j = fl.fillet_radius(dp), fl.fillet_radius(dj)
-    rod_len = fl.rod_length(b.stroke, b.fuel)
+    rod_len = fl.rod_length(b.stroke, b.engine_class)
     wp = fl.wrist_pin(b.bore)
     piston = fl.piston_mass(b.bore, b.fuel) + wp.mass
-    force, rod_land = gas, fl.land_length(gas, dp, b.bearing_pressure)
-    for _ in range(20):  # the rod's big eye is as wide as the land the resultant needs
-        rod = fl.con_rod(force=gas, length=rod_len, pin_d=dp, pin_land=rod_land, wrist=wp)
-        m_rot = rod.mass * (rod_len - rod.centre_from_big_end) / rod_len
-        force = fl.resultant_force(gas, piston + rod.mass - m_rot, b.stroke / 2.0, rod_len,
-                                   b.rated_speed)
-        land = fl.land_length(force, dp, b.bearing_pressure)
-        if abs(land - rod_land) < 1e-7:
+    p_s = b.bearing_pressure
+    ld = cls["pin_ld"]
+    land_ld = ld if rods_per_pin == 1 else cls["shared_ld"]
+    dp = fl.pin_diameter(gas, p_s, ld)
+    for _ in range(30):  # the rod's big eye and masses follow the pin; the pin the forces
+        rod, m_rot, m_rec, f_pin, f_main = _rod_and_forces(
+            b, cls, dp, land_ld * dp, rod_len, wp, piston, gas, rods_per_pin)
+        new = fl.pin_diameter(f_pin, p_s, ld)
+        if abs(new - dp) < 1e-8:
             break
-        rod_land = land
-    rod_land = land
-    main_land = fl.land_length(force, dj, b.bearing_pressure, share=0.5)
+        dp = new
+    rod_land = land_ld * dp
+    dj = fl.main_diameter(dp, f_main, p_s, cls["main_ld"])
+    rf_p, rf_j = fl.fillet_radius(dp), fl.fillet_radius(dj)
+    main_land = fl.main_land(f_main, dj, p_s, cls["main_ld_band"])
     pin_len = rods_per_pin * rod_land + 2 * (rf_p + 1e-3) + (rods_per_pin - 1) * 1e-3
     main_len = main_land + 2 * (rf_j + 1e-3)
     tw = fl.web_thickness(b.bore)
-    bw = fl.web_width(dp)
+    split = arr.crank_type == "split pins"
+    bore_pitch = fl.cylinder_pitch(b.bore, 0.0, cls["pitch_wall"])
+    throw_pitch = bore_pitch / 2.0 if split else bore_pitch  # split: two throws per pitch
+    stack = main_len + 2 * tw + pin_len
+    if stack > throw_pitch:  # thinner webs, down to Khurmi & Gupta's 0.22 x bore
+        tw = max(WEB_MIN * b.bore, (throw_pitch - main_len - pin_len) / 2.0, 0.0)
+    else:  # the crank fills the pitch: longer mains (to the L/D band), then thicker webs
+        extra = throw_pitch - stack
+        grow = max(min(extra, cls["main_ld_band"][1] * dj - main_land), 0.0)
+        main_land += grow
+        main_len += grow
+        extra -= grow
+        dt = min(extra / 2.0, max(cls["web_band"][1] * b.bore * 0.95 - tw, 0.0))
+        tw += dt
+        extra -= 2 * dt
+        main_land += extra
+        main_len += extra
     spacing = main_len + 2 * tw + pin_len
+    bw = max(fl.web_width(dp), 1.25 * dj)
     mat = MATERIALS[b.crank_material]
     R = b.stroke / 2.0
     geo = dict(journal_diameter=dj, journal_bore=0.0, journal_length=main_len, pin_diameter=dp,
@@ -243,17 +261,63 @@ def layout(b: Brief) -> Layout:
                web_width_pin=bw, crank_radius=R)
     bare = throw_mass_properties(**geo, density=mat["density"])
     u_crank = float(bare.mass[0, 1] * bare.y[0, 1] * 2 + bare.mass[0, 3] * bare.y[0, 3])
-    m_rot = rod.mass * (rod_len - rod.centre_from_big_end) / rod_len
-    m_rec = piston + rod.mass - m_rot
     target = u_crank + rods_per_pin * m_rot * R
-    if b.layout == "V" and abs(math.degrees(b.bank_angle) - 90.0) < 1e-6:
-        target += m_rec * R
+    rec = 0.0  # a 90-degree V pair's primary force is a constant rotating vector (in-throw)
+    if (b.layout == "V" and abs(math.degrees(b.bank_angle) - 90.0) < 1e-6 and not split
+            and arr.crank_type != "flat-plane"):
+        rec = m_rec * R
+    target += rec
     ro_max = rod_len - R - 0.25 * b.bore
-    ro, ang, tc = _cw_for_target(b, geo, target, mat, ro_max, tw + 0.9 * min(pin_len, main_len))
-    return Layout(b, n_thr, throws, cyl_throw, banks, firing, order, fnote, force, gas, dp,
-                  dj, rod_land, pin_len, main_land, main_len, rf_p, rf_j, tw, bw, rod_len,
-                  spacing, wp, piston, rod, dj / 2.0, ro, ang, tc, target, 5e-4 * dj,
-                  5e-4 * dp)
+    ri, ro, ang, tc, got = _cw_for_target(b, geo, target, mat, ro_max,
+                                          tw + 0.9 * min(pin_len, main_len))
+    L = Layout(b, n_thr, arr.throw_angle, arr.cyl_throw, arr.cyl_bank, arr.cyl_firing,
+               arr.firing_order, arr.note, f_pin, gas, dp, dj, rod_land, pin_len, main_land,
+               main_len, rf_p, rf_j, tw, bw, rod_len, spacing, wp, piston, rod, ri, ro, ang, tc,
+               target, 5e-4 * dj, 5e-4 * dp, engine_class=b.engine_class,
+               crank_type=arr.crank_type, even_firing=arr.even,
+               intervals=tuple(arr.intervals), f_pin=f_pin, f_main=f_main, cw_achieved=got,
+               balance_rec=rec)
+    return replace(L, plausibility=tuple(plausibility(L)))
+
+
+def plausibility(L: Layout) -> list[str]:
+    """Sized dimensions outside the band of real engines of the class (:data:`first_layout.
+    CLASSES`), each a sentence; the balance the counterweights reach when short of target."""
+    b = L.brief
+    cls = fl.CLASSES[L.engine_class]
+    out = []
+    rods = b.cylinders // L.throws
+
+    def band(what: str, x: float, lo_hi: tuple[float, float], unit: str = "") -> None:
+        lo, hi = lo_hi
+        if not lo * 0.999 <= x <= hi * 1.001:
+            out.append(f"{what} {x:.3g}{unit} is outside the band of real {L.engine_class}"
+                       f" engines ({lo:g}-{hi:g}{unit})")
+
+    band("crank-pin land L/D", L.rod_land / L.dp, cls["pin_ld_band"])
+    band("main land L/D", L.main_land / L.dj, cls["main_ld_band"])
+    pitch = L.spacing * (2 if L.crank_type == "split pins" else 1)
+    band("cylinder pitch per bore", pitch / b.bore, cls["pitch_band"])
+    band("web thickness per bore", L.tw / b.bore, cls["web_band"])
+    if rods == 1 and L.pin_len / L.dp > 1.0:
+        out.append(f"crank-pin length {L.pin_len * 1e3:.0f} mm is longer than its diameter")
+    if L.cw_achieved < 0.999:
+        out.append(f"the counterweights reach only {100 * L.cw_achieved:.0f} % of their target"
+                   f" ({L.balance_target * 1e3:.0f} kg mm per throw): the swing radius"
+                   f" (piston skirt at BDC) leaves no room for more")
+    return out
+
+
+def warnings(L: Layout) -> list[str]:
+    """What ``checker new`` prints as warnings: the values outside the band of real engines
+    and firing that cannot be even (both also page-1 caveats of the report)."""
+    out = [f"{w} (docs/new-engine.md)" for w in L.plausibility]
+    if not L.even_firing:
+        where = "on this crank" if L.brief.layout == "inline" else "at this bank angle"
+        out.append(f"{L.crank_type}: even firing is impossible {where}; firing"
+                   f" order {L.firing_order}, intervals "
+                   + "/".join(f"{g:g}" for g in L.intervals) + " deg")
+    return out
 
 
 @dataclass
@@ -267,6 +331,7 @@ class Tuning:
     joints: list[dict]
     tuning: float = 1.0  # Den Hartog's optimum ring / crank-mode frequency ratio
     sizing: bool = True  # a sizing pass (the irregularity target typed for the flywheel module)
+    limits: dict | None = None  # project limits (sizing.project_limits.free_limits)
 
 
 def _mm(x: float) -> float:
@@ -310,7 +375,9 @@ def _crank_sheet(L: Layout, mat: dict) -> tuple[list, list]:
                + f", achieved {100 * cw_u / L.balance_target:.0f} % of the target"
                f" {L.balance_target * 1e3:.0f} kg mm per throw; fillets: "
                + fl.RULES["fillet_radius"]["rule"] + " (" + fl.RULES["fillet_radius"]["source"]
-               + "); oil holes 0.1 x pin diameter [not confirmed]; material: " + mat["source"])
+               + "); oil holes 0.1 x pin diameter [not confirmed]; material: " + mat["source"]
+               + (f" [{PLAUSIBILITY_MARK}: " + "; ".join(L.plausibility) + "]"
+                  if L.plausibility else ""))
     cols = [("throw", "-"), ("main journal diameter", "mm"), ("main journal bore", "mm"),
             ("main journal length", "mm"), ("pin diameter", "mm"), ("pin bore", "mm"),
             ("pin length", "mm"), ("web thickness", "mm"), ("web width at journal", "mm"),
@@ -363,10 +430,36 @@ def _tv_rows(L: Layout, mat: dict, tune: Tuning) -> list:
                      ", ".join(map(str, cyl)) if rods > 1 else cyl[0], None, None, None, None,
                      f"inertia and stiffness {derived}"])
     rows.append(["Flywheel", "flywheel", None, round(tune.flywheel, 5), None, None, None,
-                 est(None, "smallest flywheel meeting a cyclic irregularity of 1 % (Agostini"
-                     " 2019: 'kinematic irregularity <= 1 %') at the rated speed, full load,"
+                 est(None, "smallest flywheel meeting the class's cyclic irregularity target"
+                     f" ({fl.CLASSES[L.engine_class]['irregularity'] * 100:g} %) at the lowest"
+                     " speed, full load,"
                      " with the engine's inertias only (flywheel module, +5 %)")])
     return rows
+
+
+def _mode_plausibility(L: Layout, res: Any) -> list[str]:
+    """The first torsional mode of the sized crank train against the class's band."""
+    f = _q(res, "tv.natural_frequency")
+    if f is None:
+        return []
+    f = f[np.isfinite(f) & (f > 1.0)]
+    if not f.size:
+        return []
+    lo, hi = fl.CLASSES[L.engine_class]["mode_band"]
+    x = float(f.min())
+    if lo <= x <= hi:
+        return []
+    return [f"first torsional mode {x:.0f} Hz is outside the band of real {L.engine_class}"
+            f" engines ({lo:g}-{hi:g} Hz)"]
+
+
+def _limit_rows(L: Layout, tune: Tuning) -> list[tuple]:
+    """Engine-sheet project limits (free forces and moments, balance-ratio band); blank in a
+    sizing pass before the balance module has run."""
+    if tune.limits is None:
+        return []
+    return project_limits.engine_rows(tune.limits, L.balance_target / max(
+        L.balance_target - L.balance_rec, 1e-12))
 
 
 def _joint_design(location: str, torque: float, face_od: float, face_id: float) -> dict:
@@ -416,11 +509,7 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
         return (f"{TAG}: default of checker new ({b.defaults[key]})" if key in b.defaults
                 else brief_note)
 
-    if b.fuel == "gasoline":
-        cls = "passenger car"
-    else:
-        cls = "marine" if b.bore >= 0.2 else ("commercial vehicle" if b.bore >= 0.095
-                                             else "passenger car")
+    cls = L.engine_class
     cr = 10.5 if b.fuel == "gasoline" else 17.0
     bmep_na = 12e5 if b.fuel == "gasoline" else 9e5
     p_int = max(1.0, round(bmep / bmep_na, 2))
@@ -429,9 +518,7 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
     engine = [
         ("Engine name", b.name, "-", brief_note),
         ("Number of cylinders", b.cylinders, "-", brief_note),
-        ("Engine class", cls, "-", est(None, "by fuel and bore (gasoline: passenger car;"
-                                       " diesel: below 95 mm passenger car, to 200 mm"
-                                       " commercial vehicle, above marine)")),
+        ("Engine class", cls, "-", dflt("engine_class")),
         ("Layout", "inline" if b.layout == "inline" else "V", "-", dflt("layout")),
         ("Bore", round(b.bore * 1e3, 3), "mm", brief_note),
         ("Stroke", round(b.stroke * 1e3, 3), "mm", brief_note),
@@ -464,9 +551,10 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
         ("Speed step", step, "rpm", est(None, "about 60 speeds from minimum to maximum")),
         ("Overspeed", round(b.max_speed * RPM), "rpm", est(None, "the maximum speed of the"
                                                            " brief")),
-        ("Target cyclic irregularity", 1 if tune.sizing else None, "%",
-         "the project's target at the lowest speed (FLY-001): not estimated by checker new"
-         " (the flywheel is sized for 1 % at the rated speed, see TVModel)"),
+        ("Target cyclic irregularity", round(fl.CLASSES[cls]["irregularity"] * 100, 3), "%",
+         est(None, "the class's target at the lowest speed, full load (FLY-001; the flywheel"
+             " in TVModel is sized for it): " + FLY_SOURCE)),
+        *_limit_rows(L, tune),
         ("Project", "checker new: first layout", "-", brief_note),
         ("Revision", "0", "-", brief_note),
     ]
@@ -568,6 +656,8 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
         ("Pin oil hole fatigue strength", mat["pin_hole"], "N/mm^2", src),
         ("Main fillet fatigue strength", mat["main_fillet"], "N/mm^2", src),
         ("Main oil hole fatigue strength", mat["main_hole"], "N/mm^2", src),
+        *project_limits.nose_rows(L.dj, NOSE[0] * L.dj, L.fillet_j, mat["fatigue"],
+                                  b.crank_material),
     ]
     jcols = [("name", "-"), ("location", "-"), ("bolts", "-"), ("nominal diameter", "mm"),
              ("thread pitch", "mm"), ("property class", "-"), ("tightening", "-"),
@@ -605,15 +695,17 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
         "Joints": (jcols, jrows),
         "JointTorques": ([("joint", "-"), ("operating point", "-"), ("speed", "rpm"),
                           ("applied torque", "N m"), ("note", "")], []),
-        "RuleOverrides": ([("rule", "-"), ("limit", "-"), ("unit", "-"), ("reason", "-")], []),
+        "RuleOverrides": ([("rule", "-"), ("limit", "-"), ("unit", "-"), ("reason", "-")],
+                          project_limits.override_rows()),
         "Tolerances": ([("sheet", "-"), ("row", "-"), ("column", "-"), ("min", "-"),
                         ("max", "-"), ("unit", "-"), ("source", "")], []),
         "Notes": [f"First layout written by checker new from a brief: {b.name}.",
                   "Values marked ESTIMATE are sized by a stated design rule (see each note and"
                   " docs/new-engine.md), not data of this engine.",
                   "Replace each estimate with the design's value as it becomes known.",
-                  f"Peak gas force {L.gas / 1e3:.1f} kN, resultant at TDC and the rated"
-                  f" speed {L.force / 1e3:.1f} kN, rated torque {rated_torque:.0f} N m,"
+                  f"Peak gas force {L.gas / 1e3:.1f} kN; worst pin force over the speed range"
+                  f" {L.f_pin / 1e3:.1f} kN, worst main force {L.f_main / 1e3:.1f} kN;"
+                  f" rated torque {rated_torque:.0f} N m,"
                   f" rated BMEP {bmep / 1e5:.1f} bar; rotating share of the rod"
                   f" {m_rot:.3f} kg, crank radius {R * 1e3:g} mm.",
                   "See docs/workbook.md for every sheet, parameter and column."],
@@ -665,7 +757,7 @@ def size(b: Brief) -> tuple[Layout, dict[str, Any]]:
                   joints=joints0)
     for _ in range(4):  # flywheel and damper tuning settle in 2-3 passes
         res = _evaluate(content(L, tune), ["FLY", "DMP"])
-        j_min = _rated(res, "flywheel.minimum_inertia", b.rated_speed)
+        j_min = _rated(res, "flywheel.minimum_inertia", b.min_speed)
         modal = _q(res, "damper.modal_inertia")
         k_opt = _q(res, "damper.optimum_stiffness")
         eta = _q(res, "damper.optimum_loss_factor")
@@ -688,7 +780,11 @@ def size(b: Brief) -> tuple[Layout, dict[str, Any]]:
         tune = new
         if done:
             break
-    res = _evaluate(content(L, tune), ["TV", "JNT"])  # the joint torques of the tuned model
+    res = _evaluate(content(L, tune), ["TV", "JNT", "BAL"])  # joint torques, free forces
+    L = replace(L, plausibility=L.plausibility + tuple(_mode_plausibility(L, res)))
+    m_rot = L.rod.mass * (L.rod_len - L.rod.centre_from_big_end) / L.rod_len
+    tune = replace(tune, limits=project_limits.free_limits(
+        res, L.piston + L.rod.mass - m_rot, b.stroke / 2.0, b.rated_speed, L.spacing))
     tq = _q(res, "tv.joint_torque")
     joints = []
     for i, j in enumerate(joints0):

@@ -1103,7 +1103,8 @@ RULE_OVERRIDES = Sheet(
     note="Project-specific limits replacing the rule table's defaults (each listed in the report).",
     fields=(
         F("rule", "rule", "text"),
-        F("limit", "limit", "text", note="A number, or a range 'low..high'."),
+        F("limit", "limit", "text", note="A number, a range 'low..high', or 'not applicable'"
+          " (the rule does not apply to the project; the reason says why)."),
         F("unit", "unit", "text", required=False),
         F("reason", "reason", "text"),
     ),

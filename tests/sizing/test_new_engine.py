@@ -76,23 +76,40 @@ def test_rules_follow_their_sources():
     lay = layout(b)
     gas = 85e5 * math.pi / 4 * 0.086**2
     assert lay.gas == pytest.approx(gas)
-    # Agostini 2019: F the resultant along the piston axis (gas less reciprocating inertia
-    # at TDC and the rated speed), L_pin = F/(d p_adm), L_main = F/(2 d p_adm), 21.5 MPa
+    # the worst pin force over the speed range (gas less inertia at 1000 rpm; the inertia at
+    # TDC of gas exchange at the maximum speed, 6600 rpm), by hand
     m_rot = lay.rod.mass * (lay.rod_len - lay.rod.centre_from_big_end) / lay.rod_len
     m_rec = lay.piston + lay.rod.mass - m_rot
-    w = 6000 * math.pi / 30
-    force = gas - m_rec * 0.0473 * w**2 * (1 + 0.0473 / lay.rod_len)
-    assert lay.force == pytest.approx(force, rel=1e-6)
-    assert lay.rod_land == pytest.approx(force / (lay.dp * 21.5e6), rel=1e-5)
-    assert lay.main_land == pytest.approx(force / (2 * lay.dj * 21.5e6), rel=1e-5)
-    assert lay.dj == lay.dp  # Agostini 2019: first approximation
-    assert lay.tw == pytest.approx(0.27 * 0.086)  # Khurmi & Gupta: 0.22-0.32 bore
-    assert lay.bw == pytest.approx(1.14 * lay.dp)  # Bhandari
-    assert 0.0473 / lay.rod_len == pytest.approx(0.305)  # van Basshuysen & Schaefer
+    lam = 0.0473 / lay.rod_len
+    w_lo, w_hi = 1000 * math.pi / 30, 6600 * math.pi / 30
+    f_pin = max(gas - m_rec * 0.0473 * w_lo**2 * (1 + lam),
+                (m_rec * (1 + lam) + m_rot) * 0.0473 * w_hi**2)
+    assert lay.f_pin == pytest.approx(f_pin, rel=1e-9)
+    # specific load p = F/(d L) at the aluminium bimetal's 44.5 MPa with L = 0.45 d (car)
+    assert lay.f_pin / (lay.dp * lay.rod_land) == pytest.approx(44.5e6, rel=1e-6)
+    assert lay.rod_land / lay.dp == pytest.approx(0.45)
+    assert lay.dj >= 1.2 * lay.dp - 1e-12  # main larger than the pin (service data median)
+    assert 0.30 - 1e-9 <= lay.main_land / lay.dj <= 0.45 + 1e-9  # L/D band of car mains
+    assert 0.0473 / lay.rod_len == pytest.approx(0.30)
+    assert 0.22 * 0.086 - 1e-12 <= lay.tw <= 0.32 * 0.086  # Khurmi & Gupta
+    assert lay.spacing >= 0.086 * 1.12 - 1e-9  # bore + walls and water jackets
+    # the crank's axial stack is the pitch
+    assert lay.spacing == pytest.approx(lay.main_len + 2 * lay.tw + lay.pin_len)
     assert lay.wrist.outer == pytest.approx(0.35 * 0.086)  # Agostini 2019
     assert lay.firing_order == "1-3-4-2" and lay.throw_angle == [0.0, 180.0, 180.0, 0.0]
     for k, r in fl.RULES.items():
         assert r["rule"] and r["source"] and r["scatter"], k
+
+
+def test_v_engine_main_carries_both_rods():
+    base = {"bore": "99 mm", "stroke": "92 mm", "rated_power": "257 kW",
+            "rated_speed": "6000 rpm", "max_speed": "9000 rpm", "peak_pressure": "40 bar"}
+    v8 = layout(parse_brief({**base, "cylinders": 8, "layout": "V", "bank_angle": "90 deg"}))
+    i4 = layout(parse_brief({**base, "cylinders": 4}))
+    # at 9000 rpm and 40 bar the inertia governs: the V8's main carries two rods' rotating
+    # masses, the in-line's one
+    assert v8.f_main > 1.3 * i4.f_main
+    assert v8.f_pin == pytest.approx(i4.f_pin, rel=0.15)
 
 
 def test_v8_even_firing_cross_plane():
@@ -102,6 +119,21 @@ def test_v8_even_firing_cross_plane():
     assert lay.throw_angle == [0.0, 90.0, 270.0, 180.0]
     assert sorted(lay.cyl_firing) == [90.0 * k for k in range(8)]
     assert "even firing every 90 deg" in lay.firing_note
+
+
+def test_public_engines_scatter():
+    """The open-loop rules against the public engines' service data (docs/new-engine.md):
+    median |error| of main, pin and rod length at most 8 %; the largest (the Ford 4.0 V6's
+    main, 1.06 x its pin where the rule takes 1.2) is stated in the docs."""
+    from checker.sizing.public_engines import markdown, scatter
+
+    _rows, stats = scatter()
+    for k in ("main", "pin", "rod"):
+        assert stats[k]["n"] >= 9 and stats[k]["median"] <= 8.0, (k, stats[k])
+    assert stats["pin"]["max"] <= 15.0 and stats["rod"]["max"] <= 15.0
+    assert stats["main"]["max"] <= 22.0
+    doc = (Path(__file__).parents[2] / "docs" / "new-engine.md").read_text()
+    assert markdown() in doc  # the table in the docs is the one the rules give today
 
 
 @pytest.mark.parametrize("text, words", [
@@ -173,23 +205,26 @@ def test_sizing_is_deterministic_and_writes_the_crank_geometry():
     assert all(r[2] is None and r[3] is None for r in bearings)  # dimensions from Crank
 
 
-def test_bearing_pressure_of_the_brief_sizes_the_lands_and_is_stated():
+def test_bearing_pressure_of_the_brief_sizes_the_journals_and_is_stated():
     base = {"cylinders": 6, "bore": "105 mm", "stroke": "137 mm", "rated_power": "150 kW",
             "rated_speed": "2200 rpm", "fuel": "diesel"}
-    agostini = layout(parse_brief(base))
-    brief = parse_brief({**base, "bearing_pressure": "60 MPa"})
+    tri = layout(parse_brief(base))
+    brief = parse_brief({**base, "bearing_pressure": "100 MPa"})
     own = layout(brief)
-    assert own.rod_land == pytest.approx(agostini.rod_land * 21.5 / 60, rel=1e-3)
+    # d = sqrt(F/(L/D p_s)): the pin scales with 1/sqrt(p_s) (the forces move a little with
+    # the lighter rod)
+    assert own.dp == pytest.approx(tri.dp * math.sqrt(66.5 / 100), rel=0.03)
     from checker.sizing.new_engine import padm_text
 
-    assert "60 MPa given in the brief, outside Agostini's 18-25 MPa" in padm_text(brief)
+    assert "100 MPa given in the brief, outside the published 41-83 MPa" in padm_text(brief)
     assert padm_text(parse_brief(base)) == ""
 
 
 def test_estimates_are_consistent_with_the_checkers_models(tmp_path):
     """The first check agrees with what the sizing targeted: the counterweights balance 100 %
     of each throw's rotating unbalance (balance module, from sheet Crank), the flywheel gives
-    at most 1 % irregularity at the rated speed, full load (flywheel module), the damper sits
+    at most the class's 20 % irregularity at the lowest speed, full load (flywheel module),
+    the damper sits
     in its tuning band around Den Hartog's optimum, the bolt heads within the contact limit."""
     import numpy as np
 
@@ -199,8 +234,8 @@ def test_estimates_are_consistent_with_the_checkers_models(tmp_path):
     assert np.asarray(q["balance.balance_ratio"].values) == pytest.approx(1.0, abs=1e-3)
     ci = q["flywheel.cyclic_irregularity"]
     speeds = np.asarray(ci.coords["speed"])
-    k = int(np.argmin(np.abs(speeds - 6000 * math.pi / 30)))
-    assert ci.values[ci.coords["case"].index("full")][k] <= 0.01
+    k = int(np.argmin(np.abs(speeds - 1000 * math.pi / 30)))
+    assert ci.values[ci.coords["case"].index("full")][k] <= 0.20  # the class's target
     status = {(r.rule, r.item): r.status for r in res.results}
     assert status[("DMP-004", "Damper ring")] == "pass"
     assert status[("JNT-002", "crank nose")] == "pass"
