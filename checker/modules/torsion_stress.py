@@ -90,14 +90,33 @@ def crank_sections(engine: Engine) -> list[int]:
     roles = [s.role for s in engine.tv_model]
     if "crank nose" not in roles:
         return []
-    nose = roles.index("crank nose")
+    rear = _crank_rear(engine)
+    return [] if rear is None else list(range(roles.index("crank nose"), rear))
+
+
+def _crank_rear(engine: Engine) -> int | None:
+    """Station index where the crank ends: the flywheel behind the last cylinder station,
+    else the last cylinder station (None: no cylinder station)."""
+    roles = [s.role for s in engine.tv_model]
     cyl = [i for i, s in enumerate(engine.tv_model) if s.cylinders]
     if not cyl:
-        return []
+        return None
     rear = max(cyl)
     if "flywheel" in roles and roles.index("flywheel") > rear:
         rear = roles.index("flywheel")
-    return list(range(nose, rear))
+    return rear
+
+
+def whole_system(engine: Engine) -> bool:
+    """Whether the TV model is the complete dynamic system (IACS UR M53 2.2(A)(a)): stations
+    behind the crank (a coupling, a generator, a propeller), not the engine alone."""
+    rear = _crank_rear(engine)
+    return rear is not None and rear < len(engine.tv_model) - 1
+
+
+def bars_speed_ranges(engine: Engine) -> bool:
+    """Whether the engine's class rules impose barred speed ranges (marine propulsion)."""
+    return engine_class(engine) == "marine"
 
 
 def _section_moduli(engine: Engine) -> dict:
@@ -337,7 +356,7 @@ def _barred(cls: str, stress: Quantity, nf: Quantity, lam: np.ndarray, curves: d
         f" ({rows[x]['section']}, {rows[x]['case']} load)"] for i, x in enumerate(labels)}
     why = ("no critical's synthesised stress exceeds the continuous limit tau_1 below the"
            " rated speed: no barred speed range is needed" if cls == "marine" else
-           f"barred speed ranges are judged for marine propulsion engines (a {cls} engine"
+           f"barred speed ranges are judged for marine propulsion engines (this {cls} engine"
            " runs continuously only where tau_1 is defined)")
     return Quantity(BARRED, vals, {"item": labels},
                     {x: {"engine_class": cls} for x in labels}, findings=findings,
