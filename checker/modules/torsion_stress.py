@@ -333,8 +333,13 @@ def _barred(cls: str, stress: Quantity, nf: Quantity, lam: np.ndarray, curves: d
             nc, label, order, mode = sp[si], f"peak at {sp[si] / RPM:.0f} rpm", np.nan, -1
         if label not in rows or rows[label]["ratio"] < r[e, ci, si]:
             rng = cl.barred_speed_range(nc, rated)
-            rows[label] = {"ratio": r[e, ci, si], "nc": nc, "lo": float(rng.lower),
-                           "hi": float(rng.upper), "order": order, "mode": mode,
+            # the rule's range around the critical, widened to every swept speed of the run
+            # above tau_1 (a stress above tau_1 away from the resonance is barred as well)
+            rows[label] = {"ratio": r[e, ci, si], "nc": nc,
+                           "lo": min(float(rng.lower), sp[s]),
+                           "hi": max(float(rng.upper), sp[t]),
+                           "rule_lo": float(rng.lower), "rule_hi": float(rng.upper),
+                           "run_lo": sp[s], "run_hi": sp[t], "order": order, "mode": mode,
                            "peak_speed": sp[si], "peak_stress": tau[e, ci, si],
                            "peak_limit": tau1[si], "section": stress.coords["item"][e],
                            "case": stress.coords["case"][ci]}
@@ -343,7 +348,9 @@ def _barred(cls: str, stress: Quantity, nf: Quantity, lam: np.ndarray, curves: d
     get = lambda f: np.array([rows[x][f] for x in labels], dtype=float)  # noqa: E731
     vals = get("hi") / rated
     detail = BarredRangeDetail(
-        critical_speed=get("nc"), lower=get("lo"), upper=get("hi"), order=get("order"),
+        critical_speed=get("nc"), lower=get("lo"), upper=get("hi"),
+        rule_lower=get("rule_lo"), rule_upper=get("rule_hi"), run_lower=get("run_lo"),
+        run_upper=get("run_hi"), order=get("order"),
         mode=get("mode").astype(int), peak_speed=get("peak_speed"),
         peak_stress=get("peak_stress"), peak_limit=get("peak_limit"),
         section=tuple(rows[x]["section"] for x in labels),
@@ -402,6 +409,8 @@ def tv_class_rules(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     stress: Quantity = inputs["tv.crank_shear_stress"]
     nf: Quantity = inputs["tv.natural_frequency"]
     cls = engine_class(engine)
+    if cls not in CLASS_RULE_CLASSES:  # (the rules are not applicable: the graph says why)
+        raise MissingInputs([_why_not(engine)])
     rated = engine.params.get("rated_speed")
     if rated is None:
         raise MissingInputs([engine.describe_missing(

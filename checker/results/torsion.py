@@ -195,8 +195,12 @@ class BarredRangeDetail(Detail):
     exceeds the continuous limit (KR Pt 5 Ch 4 206.1(1)); item axis R."""
 
     critical_speed: np.ndarray  # (R,) N_c [rad/s]
-    lower: np.ndarray  # (R,) lowest barred speed [rad/s]
-    upper: np.ndarray  # (R,) highest barred speed [rad/s]
+    lower: np.ndarray  # (R,) lowest barred speed: min(rule_lower, run_lower) [rad/s]
+    upper: np.ndarray  # (R,) highest barred speed: max(rule_upper, run_upper) [rad/s]
+    rule_lower: np.ndarray  # (R,) 16 N_c / (18 - lambda) [rad/s]
+    rule_upper: np.ndarray  # (R,) (18 - lambda) N_c / 16 [rad/s]
+    run_lower: np.ndarray  # (R,) lowest swept speed of the run above tau_1 [rad/s]
+    run_upper: np.ndarray  # (R,) highest swept speed of the run above tau_1 [rad/s]
     order: np.ndarray  # (R,) order of the critical [-] (NaN: a peak without a critical)
     mode: np.ndarray  # (R,) int: flexible mode of the critical, 0-based (-1: none)
     peak_speed: np.ndarray  # (R,) swept speed of the largest stress / tau_1 [rad/s]
