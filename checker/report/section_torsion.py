@@ -546,6 +546,10 @@ def _draw_crank_stress(sp: np.ndarray, cases: list[str], names: list[str], tau: 
                     lw=1.6 if is_worst else 0.7,
                     label=f"worst section: {literal(n)}" if is_worst else
                     ("other crank sections" if e == (1 if worst == 0 else 0) else None))
+        if env[ci].any():  # the worst section's largest stress in the envelope, marked
+            k = int(np.argmax(np.where(env[ci], tau[worst, ci], -np.inf)))
+            ax.plot(sp[k], tau[worst, ci, k], "o", ms=4, mfc="none", color="k",
+                    label="largest in the operating envelope")
         for lab, ls, curve in limits:
             ax.plot(sp, curve, color="#c0392b", ls=ls, lw=1.0, label=lab)
         ax.set_title(case_text(c))
