@@ -1,8 +1,9 @@
 """Graph calculations for the crankshaft's vibratory torsional stress and the class-society
 rules on it (module ``torsion``; detail types :mod:`checker.results.torsion`).
 
-* ``tv_crank_stress`` gives ``tv.crank_shear_stress``: the nominal shear stress amplitude of
-  every crank section of the TV model, ``tau = M_TN / W_P`` (IACS UR M53, Rev. 4, 2019,
+* ``tv_crank_stress`` gives ``tv.crank_shear_stress`` (per order
+  ``tv.crank_order_shear_stress``): the nominal shear stress amplitude of every crank
+  section of the TV model, ``tau = M_TN / W_P`` (IACS UR M53, Rev. 4, 2019,
   2.2(A)(e)): ``M_TN`` the half range of the element torque synthesised over the cycle
   (quantity ``tv.element_torque``), ``W_P = pi/16 (D^4 - D_B^4)/D`` of the crank pin and of
   the main journal (diameters from sheet Bearings, axial bores from sheet Fatigue), the
@@ -56,6 +57,10 @@ STRESS = quantity(QuantitySpec(
     "Nominal vibratory shear stress in each crank section of the TV model (element torque half"
     " range over the smaller polar section modulus of crank pin and main journal)", "MPa",
     ("section",), coords={"case": CASES}, detail=CrankStressDetail))
+STRESS_ORDER = quantity(QuantitySpec(
+    "tv.crank_order_shear_stress", "Pa", ("order", "item", "case", "speed"),
+    "Nominal vibratory shear stress in each crank section per harmonic order (0-to-peak)",
+    "MPa", ("section",), coords={"case": CASES}, detail=CrankStressDetail))
 _RATIO_FILTERS = ("engine_class",)
 CONTINUOUS = quantity(QuantitySpec(
     "tv.crank_stress_ratio_continuous", "", ("item", "case", "speed"),
@@ -144,7 +149,8 @@ def _section_moduli(engine: Engine) -> dict:
             "pin_modulus": float(w_pin), "journal_modulus": float(w_jnl)}
 
 
-@calculation("tv_crank_stress", "torsion", provides=("tv.crank_shear_stress",),
+@calculation("tv_crank_stress", "torsion",
+             provides=("tv.crank_shear_stress", "tv.crank_order_shear_stress"),
              needs=("tv.element_torque", "loads.cycle"),
              reads=("tv_model", "bearings.type", "bearings.diameter", "fatigue.pin_bore",
                     "fatigue.main_bore"))
@@ -179,10 +185,13 @@ def tv_crank_stress(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     attrs = {n: {"section": section} for n in names}
     findings = {(i, ci, si): v for (e, ci, si), v in et.findings.items() if e in elems
                 for i in [elems.index(e)]}
-    return {"tv.crank_shear_stress": Quantity(
-        STRESS, vals, {"item": names, "case": list(et.coords["case"]),
-                       "speed": list(et.coords["speed"])}, attrs, findings=findings,
-        detail=detail)}
+    coords = {"item": names, "case": list(et.coords["case"]), "speed": list(et.coords["speed"])}
+    return {"tv.crank_shear_stress": Quantity(STRESS, vals, coords, attrs, findings=findings,
+                                              detail=detail),
+            "tv.crank_order_shear_stress": Quantity(
+                STRESS_ORDER, np.moveaxis(per_order, -1, 0),
+                {"order": [f"order {n:g}" for n in ex.orders], **coords}, attrs,
+                detail=detail)}
 
 
 # ------------------------------------------------------------------------ class rules

@@ -75,6 +75,9 @@ def test_stress_is_element_torque_over_the_pin_modulus(marine):
     np.testing.assert_allclose(st.values, et.values[rows] / w, rtol=1e-9)
     np.testing.assert_allclose(st.detail.order_stress, np.abs(et.detail.coeffs[rows]) / w,
                                rtol=1e-9)
+    per_q = q["tv.crank_order_shear_stress"]
+    np.testing.assert_allclose(per_q.values, np.moveaxis(np.abs(et.detail.coeffs[rows]) / w,
+                                                         -1, 0), rtol=1e-9)
     assert set(st.detail.section) == {"crank pin"}
     # synthesis bounds: the half range lies between the largest order and the sum of orders
     per = st.detail.order_stress
