@@ -308,9 +308,32 @@ def _criticals(nf: Quantity) -> tuple[np.ndarray, np.ndarray]:
     return np.asarray(nf.detail.critical_speed, float), np.asarray(nf.detail.orders, float)
 
 
+def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
+    """(first, last) index of every run of True in a 1-D boolean mask."""
+    edges = np.diff(np.concatenate([[0], np.asarray(mask, int), [0]]))
+    return [(int(a), int(b) - 1) for a, b in zip(np.flatnonzero(edges == 1),
+                                                 np.flatnonzero(edges == -1), strict=True)]
+
+
+def _critical_at(order_stress: np.ndarray, crit: np.ndarray, orders: np.ndarray,
+                 speed: float) -> tuple[float, str, float, int]:
+    """The critical behind a stress peak at ``speed`` [rad/s]: (N_c [rad/s], label, order,
+    mode (0-based; -1 none)). The order with the largest stress there (``order_stress``, (O,))
+    and the mode whose critical speed for it is nearest, if within :data:`CRITICAL_MATCH`;
+    else the peak's own speed."""
+    oi = int(np.argmax(order_stress))
+    if crit.size:
+        m = int(np.argmin(np.abs(crit[:, oi] - speed)))
+        if abs(crit[m, oi] - speed) <= CRITICAL_MATCH * speed:
+            return float(crit[m, oi]), f"order {orders[oi]:g}, mode {m + 1}", orders[oi], m
+    return float(speed), f"peak at {speed / RPM:.0f} rpm", float("nan"), -1
+
+
 def _barred(cls: str, stress: Quantity, nf: Quantity, lam: np.ndarray, curves: dict,
             rated: float) -> Quantity:
-    """Barred speed ranges of the criticals whose synthesised stress exceeds tau_1."""
+    """Barred speed ranges of the criticals whose synthesised stress exceeds tau_1: one per
+    run of swept speeds above tau_1 (either load case, within its envelope), the rule's
+    range around the run's critical (:func:`_critical_at`) widened to the whole run."""
     sp = np.asarray(stress.coords["speed"], float)
     tau = stress.values  # (E, C, S)
     env = stress.detail.envelope
@@ -318,43 +341,29 @@ def _barred(cls: str, stress: Quantity, nf: Quantity, lam: np.ndarray, curves: d
     tau1 = curves["continuous"] if cls == "marine" else np.full(sp.shape, np.nan)
     with np.errstate(invalid="ignore"):
         r = np.where(judged[None] & np.isfinite(tau1), tau / tau1, 0.0)  # (E, C, S)
-    over = (r > 1.0).any(axis=(0, 1))  # (S,)
     crit, orders = _criticals(nf)
     rows: dict[str, dict] = {}
-    s = 0
-    while s < sp.size:
-        if not over[s]:
-            s += 1
+    for s, t in _runs((r > 1.0).any(axis=(0, 1))):
+        e, ci, si = np.unravel_index(int(np.argmax(r[:, :, s:t + 1])),
+                                     (r.shape[0], r.shape[1], t + 1 - s))
+        si += s
+        nc, label, order, mode = _critical_at(stress.detail.order_stress[e, ci, si], crit,
+                                              orders, sp[si])
+        if label in rows and rows[label]["ratio"] >= r[e, ci, si]:
             continue
-        t = s
-        while t + 1 < sp.size and over[t + 1]:
-            t += 1
-        run = np.arange(s, t + 1)
-        e, ci, k = np.unravel_index(int(np.argmax(r[:, :, run])), (r.shape[0], r.shape[1],
-                                                                   run.size))
-        si = int(run[k])
-        oi = int(np.argmax(stress.detail.order_stress[e, ci, si]))
-        m = int(np.argmin(np.abs(crit[:, oi] - sp[si]))) if crit.size else -1
-        if m >= 0 and abs(crit[m, oi] - sp[si]) <= CRITICAL_MATCH * sp[si]:
-            nc, label, order, mode = crit[m, oi], f"order {orders[oi]:g}, mode {m + 1}", \
-                orders[oi], m
-        else:
-            nc, label, order, mode = sp[si], f"peak at {sp[si] / RPM:.0f} rpm", np.nan, -1
-        if label not in rows or rows[label]["ratio"] < r[e, ci, si]:
-            rng = cl.barred_speed_range(nc, rated)
-            # the rule's range around the critical, widened to every swept speed of the run
-            # above tau_1 (a stress above tau_1 away from the resonance is barred as well)
-            rows[label] = {"ratio": r[e, ci, si], "nc": nc,
-                           "lo": min(float(rng.lower), sp[s]),
-                           "hi": max(float(rng.upper), sp[t]),
-                           "rule_lo": float(rng.lower), "rule_hi": float(rng.upper),
-                           "run_lo": sp[s], "run_hi": sp[t], "order": order, "mode": mode,
-                           "peak_speed": sp[si], "peak_stress": tau[e, ci, si],
-                           "peak_limit": tau1[si], "section": stress.coords["item"][e],
-                           "case": stress.coords["case"][ci]}
-        s = t + 1
+        rng = cl.barred_speed_range(nc, rated)
+        rows[label] = {"ratio": r[e, ci, si], "nc": nc,
+                       "lo": min(float(rng.lower), sp[s]), "hi": max(float(rng.upper), sp[t]),
+                       "rule_lo": float(rng.lower), "rule_hi": float(rng.upper),
+                       "run_lo": sp[s], "run_hi": sp[t], "order": order, "mode": mode,
+                       "peak_speed": sp[si], "peak_stress": tau[e, ci, si],
+                       "peak_limit": tau1[si], "section": stress.coords["item"][e],
+                       "case": stress.coords["case"][ci]}
     labels = sorted(rows, key=lambda x: rows[x]["nc"])
-    get = lambda f: np.array([rows[x][f] for x in labels], dtype=float)  # noqa: E731
+
+    def get(field: str) -> np.ndarray:
+        return np.array([rows[x][field] for x in labels], dtype=float)
+
     vals = get("hi") / rated
     detail = BarredRangeDetail(
         critical_speed=get("nc"), lower=get("lo"), upper=get("hi"),
