@@ -51,6 +51,8 @@ STEP_WORDS = {
     "moft_finite": "the minimum oil film thickness (finite-length bearing)",
     "tv_response": "the torsional vibration of the crank train",
     "tv_joint_torque": "the joint torques from the torsional model",
+    "tv_crank_stress": "the crankshaft's vibratory shear stress",
+    "tv_class_rules": "the crankshaft's vibratory stress against the class rules",
     "damper_tuning": "the damper tuning",
     "damper_rubber_ends": "the damper rubber at the ends of its temperature range",
     "viscous_damper": "the viscous damper's heat and damping",

@@ -665,7 +665,9 @@ def _not_applicable(rule: Rule, q: Quantity, results: list[RuleResult],
                        f"the rule judges none of its points: {why}")
                 for item, has, why, scope in left_out if not scope]
     if not left_out:
-        return [result("all", "the quantity has no item to judge")]
+        # an empty item axis says why in the quantity's words (no barred speed range)
+        return [result("all", (q.applies_text or "").rstrip(".")
+                       or "the quantity has no item to judge")]
     by_why: dict[str, dict[str, list[str]]] = {}
     for item, has, why, _ in left_out:
         by_why.setdefault(why, {}).setdefault(has, []).append(item)

@@ -48,4 +48,5 @@ from . import (  # noqa: E402, F401  (after the registry: their calculations nam
     joints,
     loads,
     torsion,
+    torsion_stress,
 )

@@ -75,7 +75,14 @@ from ..calc import fatigue as fat
 from ..calc import scf as scf_mod
 from ..calc import throw_fatigue as tf
 from ..description.engine import Engine
-from ..evaluation.graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
+from ..evaluation.graph import (
+    UNAVAILABLE,
+    MissingInputs,
+    Quantity,
+    QuantitySpec,
+    calculation,
+    quantity,
+)
 from ..results.fatigue import (
     FilletRatioDetail,
     GoodmanDetail,
@@ -86,7 +93,9 @@ from ..results.fatigue import (
     ThrowGeometry,
     ThrowNominal,
 )
+from ..workbook.units import RPM
 from . import joints, loads, support_beam, torsion  # noqa: F401  (registered first: report order)
+from . import torsion_stress as tvs
 from .loads import CASES
 
 LOCATIONS = ("pin fillet", "main fillet", "pin oil hole", "main oil hole")
@@ -441,9 +450,12 @@ def _findings(location: list[str], where: _Locations, et: Quantity) -> dict[tupl
 
 
 def _m53(engine: Engine, g: ThrowGeometry, where: _Locations, location: list[str],
-         cand, findings: dict[tuple, list[str]], shape: tuple[int, int]) -> dict:
+         cand, findings: dict[tuple, list[str]], shape: tuple[int, int],
+         tau_system: dict[str, float] | None = None) -> dict:
     """M53 Q of every location but the main oil holes: values, sigma_V, sigma_DW, missing
-    inputs and findings (indices into the M53 items)."""
+    inputs and findings (indices into the M53 items). ``tau_system``: the local alternating
+    shear stress of each location type from the whole dynamic system's largest nominal
+    stress (:func:`_m53_torsion`); ``None``: the stress at each speed (``cand.tau_a``)."""
     fa = engine.fatigue
     m53_items = [i for i, lname in enumerate(location) if lname != "main oil hole"]
     uts = fa.get("uts")
@@ -485,7 +497,10 @@ def _m53(engine: Engine, g: ThrowGeometry, where: _Locations, location: list[str
             q_missing[(qi,)] = list(dict.fromkeys(why))
             continue
         # (C, S): worst fillet / torque variant
-        sv_pick[qi], q_vals[qi] = tf.m53_q(cand.sigma_a[:, :, i, :], cand.tau_a[:, :, i, :],
+        tau = cand.tau_a[:, :, i, :]
+        if tau_system is not None:  # M53 2.2(A)(f): the highest value over the speed range
+            tau = np.full_like(tau, tau_system[lname])
+        sv_pick[qi], q_vals[qi] = tf.m53_q(cand.sigma_a[:, :, i, :], tau,
                                            dw_of[lname], lname == "pin oil hole", SIGMA_ADD)
         texts = list(findings.get((i,), []))
         if lname in clip_text:
@@ -615,9 +630,75 @@ def _candidate_names(sel: list, main_el: np.ndarray, element_names: list[str]
     return out
 
 
+def _m53_torsion(engine: Engine, inputs: dict, g: ThrowGeometry, k: dict[str, float],
+                 speeds: np.ndarray) -> tuple[dict[str, float] | None, str]:
+    """M53's alternating torsional stress of each location type, and which torque it is from.
+
+    IACS UR M53 2.2(A)(a), (f): the nominal alternating torsional stress is the highest value,
+    over the speed range, of the harmonic synthesis of the *complete dynamic system* at its
+    most torsionally loaded mass point of the crankshaft, stresses inside barred speed ranges
+    left out. Where the TV model is that system (stations behind the crank: coupling and
+    driven machine), ``M_TN`` is the largest half range of the crank sections' torque
+    (``tv.crank_shear_stress``) over the load cases' operating envelopes outside the barred
+    ranges, ``tau_N = M_TN / W_P`` of the crank pin (pin fillet, oil bore) or the journal
+    (journal fillet), times alpha_T, beta_T, gamma_T. Otherwise (the engine's own TV model: no
+    driven machinery) ``None``: each speed's own torque, combined with that speed's bending.
+    """
+    if not tvs.whole_system(engine):
+        return None, (
+            "M53 torsion (FAT-002): the TV model is the engine's own (no driven machinery"
+            " behind the crank in sheet TVModel), so each speed's synthesised torque is"
+            " combined with that speed's bending; IACS UR M53 2.2(A)(a),(f) takes the highest"
+            " nominal torsional stress of the complete dynamic system (engine, couplings,"
+            " driven machine) over the speed range, which needs that system in TVModel.")
+    stress = inputs.get("tv.crank_shear_stress")
+    if stress is None:
+        why = "; ".join(inputs.get(UNAVAILABLE, {}).get("tv.crank_shear_stress", []))
+        return None, ("M53 torsion (FAT-002): the crank's nominal TV stress of the whole"
+                      f" dynamic system is not available ({why or 'not computed'}); each"
+                      " speed's own torque is used.")
+    d = stress.detail
+    torque = stress.values * d.polar_modulus[:, None, None]  # (E, C, S) M_TN per section
+    judged = np.ones(torque.shape[1:], bool) if d.envelope is None else d.envelope.copy()
+    barred = inputs.get("tv.barred_speed_range")
+    ranges = []
+    if barred is not None:
+        for lo, hi in zip(barred.detail.lower, barred.detail.upper, strict=True):
+            judged &= ~((speeds >= lo) & (speeds <= hi))[None, :]
+            ranges.append(f"{lo / RPM:.0f}..{hi / RPM:.0f} rpm")
+    if not judged.any():
+        return None, ("M53 torsion (FAT-002): no speed of the operating range lies outside"
+                      " the barred speed ranges; each speed's own torque is used.")
+    e, ci, si = np.unravel_index(int(np.argmax(np.where(judged[None], torque, -np.inf))),
+                                 torque.shape)
+    m_tn = float(torque[e, ci, si])
+    _, w_pin = cs.shaft_section_moduli(g.pin_diameter, g.pin_bore)
+    _, w_jnl = cs.shaft_section_moduli(g.journal_diameter, g.journal_bore)
+    tau_pin, tau_jnl = m_tn / float(w_pin), m_tn / float(w_jnl)
+    text = (f"M53 torsion (FAT-002): the whole dynamic system of sheet TVModel (stations behind"
+            f" the crank), largest synthesised half range M_TN = {m_tn:.0f} N m in"
+            f" {stress.coords['item'][e]} at {speeds[si] / RPM:.0f} rpm"
+            f" ({stress.coords['case'][ci]} load) over the operating range"
+            + (f" outside the barred speed ranges {', '.join(ranges)}" if ranges else "")
+            + f": tau_N = {tau_pin / 1e6:.1f} MPa (crank pin), {tau_jnl / 1e6:.1f} MPa"
+              " (journal), at every speed (IACS UR M53 2.2(A)(f)).")
+    return {"pin fillet": k["alpha_t"] * tau_pin, "main fillet": k["beta_t"] * tau_jnl,
+            "pin oil hole": k["gamma_t"] * tau_pin}, text
+
+
 # ------------------------------------------------------------------------------- calculation
+def _needs(engine: Engine) -> tuple[str, ...]:
+    """The loads and element torques; the crank's nominal TV stress (M53's whole-system
+    torsional stress, and the report's stress plot) and, for an engine whose class rules bar
+    speed ranges, those ranges (left out of M53's speed range)."""
+    out = ("loads.bearing_load", "tv.element_torque", "tv.crank_shear_stress")
+    if tvs.whole_system(engine) and tvs.bars_speed_ranges(engine):
+        out += ("tv.barred_speed_range",)
+    return out
+
+
 @calculation("crank_fatigue", "fatigue", provides=("fatigue.goodman_sf", "fatigue.m53_q"),
-             needs=("loads.bearing_load", "tv.element_torque"),
+             needs=_needs, optional=("tv.crank_shear_stress", "tv.barred_speed_range"),
              reads=("fatigue", "params", "cylinders", "tv_model", "crank",
                     "bearings.support_stiffness", "bearings.support_offset",
                     "bearings.name", "bearings.type",
@@ -698,7 +779,8 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
             sf[i] = np.nan
             missing[(i,)] = where.loc_missing[lname]
     findings = _findings(location, where, et)
-    m53 = _m53(engine, g, where, location, cand, findings, (C, S))
+    tau_system, basis = _m53_torsion(engine, inputs, g, where.factors(), speeds)
+    m53 = _m53(engine, g, where, location, cand, findings, (C, S), tau_system)
 
     # ------------------------------------------------------------- details
     loc_arr = np.array(location)
@@ -752,6 +834,8 @@ def crank_fatigue(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         "fatigue.m53_q": Quantity(
             M53Q, m53["values"], {"item": q_items, "case": cases, "speed": list(speeds)},
             {n: attrs[n] for n in q_items}, m53["missing"], m53["findings"],
-            detail=M53Detail(**common, sigma_v=m53["sigma_v"], sigma_dw=m53["sigma_dw"],
+            detail=M53Detail(**dict(common, assumptions=common["assumptions"] + (basis,)),
+                             torsion_basis=basis, sigma_v=m53["sigma_v"],
+                             sigma_dw=m53["sigma_dw"],
                              sigma_add=SIGMA_ADD, k_fillet=M53_K_FILLET, k_oil=M53_K_OIL)),
     }

@@ -31,7 +31,8 @@ SHEET_CHARS = 31
 """Longest sheet name Excel accepts."""
 ABBREVIATIONS = (("amplitude", "ampl"), ("lower_order", "low_order"), ("pressure", "press"),
                  ("temperature", "temp"), ("cylinder", "cyl"), ("frequency", "freq"),
-                 ("_order", "_ord"), ("bearing.", "brg."), ("elastic", "elast"))
+                 ("_order", "_ord"), ("bearing.", "brg."), ("elastic", "elast"),
+                 ("continuous", "cont"))
 """Word abbreviations applied in turn (only as far as needed) to a quantity name longer than
 a sheet name may be: ``tv.nose_cylinder_order_amplitude`` -> ``tv.nose_cylinder_order_ampl``,
 never a name cut mid-word."""

@@ -100,8 +100,9 @@ def _modes(res: CheckResult, nf, sp: np.ndarray) -> list[dict]:
     # Campbell diagram
     lo_rpm, hi_rpm = rpm(lo), rpm(hi)
     drawn, f_show, above, y_max = _campbell_range(f, orders, n_cyl, hi_rpm)
+    barred, band = _class_marks(res)
     png = later((170, 78), _draw_campbell, orders, major, ex.critical_speed, drawn, f_show,
-                y_max, lo_rpm, hi_rpm)
+                y_max, lo_rpm, hi_rpm, barred, band)
     note = ""
     if above.size:
         note = (" Modes above the frequency axis (no drawn order reaches them inside the speed"
@@ -111,8 +112,28 @@ def _modes(res: CheckResult, nf, sp: np.ndarray) -> list[dict]:
                    "caption": "Campbell diagram: engine orders (numbered at the ends of the"
                               " lines; half orders dotted) against the natural frequencies;"
                               " filled dots: major-order resonances inside the speed range,"
-                              " open dots: resonances of the other orders drawn." + note})
+                              " open dots: resonances of the other orders drawn."
+                              + (" Red bands: barred speed ranges of the criticals whose"
+                                 " crank stress exceeds the class's continuous limit (KR Pt 5"
+                                 " Ch 4 206.1(1))." if barred else "")
+                              + (f" Hatched: {band[0]:.0f}..{band[1]:.0f} rpm, the band of"
+                                 " the rated speed the class keeps free of major criticals"
+                                 " (KR Pt 5 Ch 4 204)." if band else "") + note})
     return blocks
+
+
+def _class_marks(res: CheckResult) -> tuple[list[tuple[float, float]], tuple | None]:
+    """Barred speed ranges [rpm] and the band free of major criticals [rpm] (None) of the
+    class rules, for the Campbell diagram."""
+    q = res.outcome.quantities
+    b, m = q.get("tv.barred_speed_range"), q.get("tv.major_critical_clearance")
+    barred = ([(rpm(lo), rpm(hi)) for lo, hi in zip(b.detail.lower, b.detail.upper,
+                                                     strict=True)] if b is not None else [])
+    band = None
+    if m is not None and np.isfinite(m.detail.band).all():
+        n = rpm(m.detail.rated_speed)
+        band = (m.detail.band[0] * n, m.detail.band[1] * n)
+    return barred, band
 
 
 def _draw_mode_shapes(modes: np.ndarray, stations: list[str], f: np.ndarray, n_show: int):
@@ -148,12 +169,20 @@ def _campbell_range(f: np.ndarray, orders, n_cyl: int, hi_rpm: float
 
 
 def _draw_campbell(orders, major: list, critical_speed: np.ndarray, drawn: list,
-                   f_show: np.ndarray, y_max: float, lo_rpm: float, hi_rpm: float):
+                   f_show: np.ndarray, y_max: float, lo_rpm: float, hi_rpm: float,
+                   barred: list | None = None, band: tuple | None = None):
     """The Campbell diagram of :func:`_modes` (``drawn``, ``f_show``, ``y_max`` of
-    :func:`_campbell_range`; speed range ``lo_rpm`` to ``hi_rpm``), drawn."""
-    fig, ax = figure(170, 78, right=12, legend_rows=1)
-    x_max = hi_rpm * 1.1
+    :func:`_campbell_range`; speed range ``lo_rpm`` to ``hi_rpm``; the class rules' barred
+    ranges and band free of major criticals [rpm]), drawn."""
+    fig, ax = figure(170, 78, right=12, legend_rows=2 if (barred or band) else 1)
+    x_max = max(hi_rpm, band[1] if band else 0.0) * 1.1
     ax.axvspan(lo_rpm, hi_rpm, color="#3498db", alpha=0.08, label="speed range")
+    for k, (lo, hi) in enumerate(barred or []):
+        ax.axvspan(lo, hi, color="#e74c3c", alpha=0.25,
+                   label="barred speed range" if k == 0 else None)
+    if band:
+        ax.axvspan(*band, fill=False, hatch="//", ec="#bdc3c7", lw=0,
+                   label="band free of major criticals")
     seen: set[str] = set()
     placed: list[tuple[str, float]] = []  # order labels already placed (edge, position)
     for o in drawn:
@@ -416,6 +445,121 @@ def _draw_elements(sp: np.ndarray, cases: list[str], names: list[str], tw, et,
     return to_image(fig)
 
 
+_LIMITS = (("continuous", "τ₁ continuous", "-"), ("transient", "τ₂ transient", "--"),
+           ("overspeed", "τ₃ above rated speed", ":"))
+
+
+def _crank_stress(res: CheckResult, q: dict) -> list[dict]:
+    """The crank's nominal vibratory shear stress against speed with the class limits, the
+    worst section marked; its largest values, barred speed ranges and major criticals."""
+    st = q.get("tv.crank_shear_stress")
+    if st is None:
+        return []
+    d = st.detail
+    cls = next((q[n].detail for n in ("tv.crank_stress_ratio_continuous",
+                                      "tv.crank_stress_ratio_transient") if n in q), None)
+    sp = rpm(np.array(st.coords["speed"]))
+    cases = st.coords["case"]
+    names = st.coords["item"]
+    b = q.get("tv.barred_speed_range")
+    barred = [] if b is None else [(rpm(lo), rpm(hi)) for lo, hi in
+                                   zip(b.detail.lower, b.detail.upper, strict=True)]
+    limits = [] if cls is None else [
+        (lab, ls, in_unit(getattr(cls, key), "Pa", "MPa")) for key, lab, ls in _LIMITS
+        if np.isfinite(getattr(cls, key)).any()]
+    env = np.ones((len(cases), sp.size), bool) if d.envelope is None else d.envelope
+    png = later((170, 78), _draw_crank_stress, sp, cases, names, in_unit(st.values, "Pa", "MPa"),
+                d.worst, env, limits, barred)
+    where = (f" Limits: {cls.source} (engine group {cls.group}, f_m = {cls.f_m_tensile:.3f}"
+             f" for τ₁/τ₃, {cls.f_m_yield:.3f} for τ₂; rated speed"
+             f" {rpm(cls.rated_speed):.0f} rpm)." if cls is not None else
+             " No class limit applies to this engine class (the crank-nose targets judge it).")
+    blocks: list[dict] = [{"type": "figure", "png": png, "data": [st.name], "caption": (
+        "Nominal vibratory shear stress in every crank section (half range of the"
+        " synthesised torque over the polar modulus of the"
+        f" {d.section[0]}, the smaller of pin and journal), against speed; bold: the worst"
+        f" section ({literal(names[d.worst])}); dotted outside each load case's operating"
+        " envelope" + ("; red bands: barred speed ranges" if barred else "") + "." + where)}]
+    rows = []
+    for e, n in enumerate(names):
+        for ci, c in enumerate(cases):
+            v = np.where(env[ci], st.values[e, ci], -np.inf)
+            k = int(np.argmax(v))
+            if not np.isfinite(v[k]):
+                continue
+            lim = "-" if cls is None else next(
+                (fmt(in_unit(getattr(cls, key)[k], "Pa", "MPa")) for key, _, _ in _LIMITS
+                 if np.isfinite(getattr(cls, key)[k])), "-")
+            rows.append([n, case_text(c), fmt(in_unit(st.values[e, ci, k], "Pa", "MPa")),
+                         f"{sp[k]:.0f}", lim])
+    blocks.append({"type": "table", "caption": "Largest nominal vibratory shear stress per"
+                   " crank section and load case within the operating envelope, with the"
+                   " class's permissible stress at that speed (rules TV-004..TV-006, TV-009)",
+                   "columns": ["crank section", "case", "τ [MPa]", "speed [rpm]",
+                               "limit [MPa]"], "rows": rows, "widths": [34, 14, 16, 16, 20]})
+    if b is not None and b.values.size:
+        bd = b.detail
+        blocks.append({"type": "table", "caption": "Barred speed ranges (KR Pt 5 Ch 4"
+                       " 206.1(1): 16 N_c/(18 − λ) ≤ N ≤ (18 − λ) N_c/16, λ = N_c/N_rated,"
+                       " widened to every speed of the run above τ₁; rule TV-007: none above"
+                       " 0.8 of the rated speed)",
+                       "columns": ["critical", "N_c [rpm]", "λ", "barred [rpm]",
+                                   "peak τ / τ₁ [MPa]"],
+                       "rows": [[lab, f"{rpm(bd.critical_speed[i]):.0f}",
+                                 f"{bd.critical_speed[i] / bd.rated_speed:.3f}",
+                                 f"{rpm(bd.lower[i]):.0f}..{rpm(bd.upper[i]):.0f}",
+                                 f"{fmt(in_unit(bd.peak_stress[i], 'Pa', 'MPa'))} /"
+                                 f" {fmt(in_unit(bd.peak_limit[i], 'Pa', 'MPa'))}"]
+                                for i, lab in enumerate(b.coords["item"])],
+                       "widths": [26, 14, 10, 24, 26]})
+    m = q.get("tv.major_critical_clearance")
+    if m is not None and m.values.size:
+        md = m.detail
+        blocks.append({"type": "table", "caption": "Major criticals of the one-node mode"
+                       f" ({md.natural_frequency:.1f} Hz) against the band"
+                       f" {md.band[0]:g}..{md.band[1]:g} of the rated speed (KR Pt 5 Ch 4 204,"
+                       " rule TV-008)",
+                       "columns": ["order", "N_c [rpm]", "λ = N_c/N_rated", "outside the band"],
+                       "rows": [[f"{md.order[i]:g}", f"{rpm(md.critical_speed[i]):.0f}",
+                                 f"{md.speed_ratio[i]:.3f}",
+                                 "yes" if m.values[i] > 0 else "NO"]
+                                for i in range(m.values.size)],
+                       "widths": [15, 20, 25, 25]})
+    return blocks
+
+
+def _draw_crank_stress(sp: np.ndarray, cases: list[str], names: list[str], tau: np.ndarray,
+                       worst: int, env: np.ndarray, limits: list, barred: list):
+    """The figure of :func:`_crank_stress`: per load case the stress of every section
+    (``tau`` [MPa], (E, C, S)), the ``worst`` one bold, the limit curves ``limits`` (label,
+    line style, (S,) [MPa]) and the barred ranges [rpm], drawn."""
+    fig, axes = figure(170, 78, ncols=len(cases), sharey=True, squeeze=False, wgap=8,
+                       legend_rows=2)
+    for ci, c in enumerate(cases):
+        ax = axes[0, ci]
+        for k, (lo, hi) in enumerate(barred):
+            ax.axvspan(lo, hi, color="#e74c3c", alpha=0.2,
+                       label="barred speed range" if k == 0 else None)
+        for e, n in enumerate(names):
+            is_worst = e == worst
+            jd.line(ax, sp, tau[e, ci], env[ci], color="k" if is_worst else "0.6",
+                    lw=1.6 if is_worst else 0.7,
+                    label=f"worst section: {literal(n)}" if is_worst else
+                    ("other crank sections" if e == (1 if worst == 0 else 0) else None))
+        if env[ci].any():  # the worst section's largest stress in the envelope, marked
+            k = int(np.argmax(np.where(env[ci], tau[worst, ci], -np.inf)))
+            ax.plot(sp[k], tau[worst, ci, k], "o", ms=4, mfc="none", color="k",
+                    label="largest in the operating envelope")
+        for lab, ls, curve in limits:
+            ax.plot(sp, curve, color="#c0392b", ls=ls, lw=1.0, label=lab)
+        ax.set_title(case_text(c))
+        ax.set_xlabel("Engine speed [rpm]")
+        ax.set_ylim(0, None)
+    axes[0, 0].set_ylabel("Nominal shear stress [MPa]")
+    legend_below(fig, ncols=4)
+    return to_image(fig)
+
+
 def _damper(res: CheckResult, q: dict) -> list[dict]:
     pw = q.get("damper.power")
     if pw is None or not np.isfinite(pw.values).any():
@@ -611,6 +755,16 @@ def torsion_section(res: CheckResult) -> dict:
          "Nashif, Jones and Henderson 1985 (local heat ∝ 1/r⁴ in a bonded ring)"),
         ("Joint torque", "T = max_t |T_mean + T_vib(t)|", "Bell, Ricardo 2013, 'Crankshaft"
          " analysis (23)-(24)' (TV torque + accessory drive / + brake torque)"),
+        ("Crank vibratory stress", "τ = M_TN / W_P,  W_P = π(D⁴ − D_B⁴)/(16 D)",
+         "IACS UR M53, Rev. 4, 2019, 2.2(A)(e): M_TN the half range of the synthesised torque;"
+         " the smaller of crank pin and journal"),
+        ("Class limits", "τ₁ = f_m(45 − 24λ²),  τ₂ = 2τ₁·Y/225 (λ ≤ 0.8),  τ₃ = f_m(21 +"
+         " 237(λ − 0.8)√(λ − 1))", "Korean Register, Rules for the Classification of Steel"
+         " Ships, Pt 5 Ch 4, 2025, 201 (4-stroke in-line; 45 − 29λ², 16 + ... other V"
+         " engines); generator engines 203: τ₁ = 21 (16), τ₂ = 90 MPa"),
+        ("Barred speed range", "16 N_c/(18 − λ) ≤ N ≤ (18 − λ) N_c/16",
+         "Korean Register, Rules for the Classification of Steel Ships, Pt 5 Ch 4, 2025,"
+         " 206.1(1)"),
     ]})
     nf = q.get("tv.natural_frequency")
     tot = q.get("tv.nose_amplitude")
@@ -619,6 +773,7 @@ def torsion_section(res: CheckResult) -> dict:
         # judged worst cases first (the values of the rule results), then the plots
         modes, nose, elements, damper = (_modes(res, nf, sp), _nose(res, q),
                                          _elements(res, q), _damper(res, q))
+        stress = _crank_stress(res, q)
 
         def tables(bs):
             return [b for b in bs if b["type"] != "figure"]
@@ -632,12 +787,17 @@ def torsion_section(res: CheckResult) -> dict:
                        if res.engine.damper.get("damper_type") == "viscous" else
                        "TV damper rubber: judged worst cases"})
         blocks += tables(damper)
+        if stress:
+            blocks.append({"type": "heading", "text": "Crankshaft vibratory stress and the"
+                           " class rules"})
+            blocks += tables(stress)
         blocks.append({"type": "heading", "text": "Torques at the bolted joints"})
         blocks += _joints(res, q)
         blocks.append({"type": "heading", "text": "Natural frequencies"})
         blocks += tables(modes) + tables(elements)
         blocks.append({"type": "heading", "text": "Plots"})
-        blocks += figures(modes) + figures(nose) + figures(elements) + figures(damper)
+        blocks += (figures(modes) + figures(nose) + figures(elements) + figures(stress)
+                   + figures(damper))
         found = sorted({f for v in tot.findings.values() for f in v})
         if found:
             blocks.append({"type": "heading", "text": "Numerical findings"})

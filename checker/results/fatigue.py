@@ -137,6 +137,7 @@ class M53Detail(FatigueDetail):
     sigma_add: float  # [Pa] additional bending stress (trunk piston)
     k_fillet: float  # [-] M53 §6 factor K at the fillets
     k_oil: float  # [-] M53 §6 factor K at the oil bore
+    torsion_basis: str = ""  # which torsional stress M53 used (whole system or each speed)
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -146,6 +146,86 @@ class JointTorqueDetail(Detail):
     overspeed: float | None = None  # Engine 'Overspeed' [rad/s]
 
 
-__all__ = ["CylinderOrderDetail", "DamperDetail", "ElementTorqueDetail", "JointTorqueDetail",
-           "LowerOrdersDetail", "NaturalFrequencyDetail", "NoseDetail", "OrdersCheckedDetail",
+@dataclass(frozen=True, kw_only=True)
+class CrankStressDetail(TorsionDetail):
+    """``tv.crank_shear_stress``: the nominal vibratory shear stress of every crank section
+    of the TV model (the elements from the crank nose to the flywheel), the torque over the
+    polar section modulus of the crank pin or main journal, the smaller governing."""
+
+    order_stress: np.ndarray  # (E, C, S, O) stress amplitude per order, 0-to-peak [Pa]
+    element_index: np.ndarray  # (E,) int: index of each section in ``tv.element_torque``
+    polar_modulus: np.ndarray  # (E,) polar section modulus used [m^3]
+    section: tuple[str, ...]  # (E,) "crank pin" or "main journal": the smaller modulus
+    pin_modulus: float  # W_P of the crank pin [m^3]
+    journal_modulus: float  # W_P of the main journal [m^3]
+    pin_diameter: float  # [m]
+    pin_bore: float  # [m]
+    journal_diameter: float  # [m]
+    journal_bore: float  # [m]
+    worst: int  # index of the section with the largest stress in the operating envelope
+    envelope: np.ndarray | None  # (C, S) bool: each load case's operating envelope
+
+
+@dataclass(frozen=True, kw_only=True)
+class ClassLimitDetail(Detail):
+    """The class-society limits of the crank's vibratory stress against speed (quantities
+    ``tv.crank_stress_ratio_*``): the limit curves over the whole sweep (NaN outside the
+    speed range where a limit is defined) and what they were built from."""
+
+    engine_class: str  # "marine", "industrial" or "commercial vehicle"
+    group: str  # KR Pt 5 Ch 4 201.1 engine group "A" or "B"
+    rated_speed: float  # MCR (rated) speed [rad/s]
+    speed_ratio: np.ndarray  # (S,) lambda = n / n_rated of every swept speed [-]
+    continuous: np.ndarray  # (S,) permissible stress, continuous operation [Pa] (NaN: none)
+    transient: np.ndarray  # (S,) permissible stress, transient operation [Pa] (NaN: none)
+    overspeed: np.ndarray  # (S,) permissible stress above the rated speed [Pa] (NaN: none)
+    judged_band: tuple[float, float]  # lambda band the quantity judges [-]
+    f_m_tensile: float  # material factor of tau_1, tau_3 [-]
+    f_m_yield: float  # material factor of tau_2 [-]
+    speeds: np.ndarray  # (s,) the speeds on the quantity's speed axis [rad/s]
+    stress: np.ndarray  # (E, C, s) the stresses judged [Pa]
+    limit: np.ndarray  # (s,) the limit at those speeds [Pa]
+    source: str  # the rule text behind the limit, in words
+    default: bool  # an engineering default (no published limit for the class)
+
+
+@dataclass(frozen=True, kw_only=True)
+class BarredRangeDetail(Detail):
+    """``tv.barred_speed_range``: the barred speed range of every critical whose stress
+    exceeds the continuous limit (KR Pt 5 Ch 4 206.1(1)); item axis R."""
+
+    critical_speed: np.ndarray  # (R,) N_c [rad/s]
+    lower: np.ndarray  # (R,) lowest barred speed: min(rule_lower, run_lower) [rad/s]
+    upper: np.ndarray  # (R,) highest barred speed: max(rule_upper, run_upper) [rad/s]
+    rule_lower: np.ndarray  # (R,) 16 N_c / (18 - lambda) [rad/s]
+    rule_upper: np.ndarray  # (R,) (18 - lambda) N_c / 16 [rad/s]
+    run_lower: np.ndarray  # (R,) lowest swept speed of the run above tau_1 [rad/s]
+    run_upper: np.ndarray  # (R,) highest swept speed of the run above tau_1 [rad/s]
+    order: np.ndarray  # (R,) order of the critical [-] (NaN: a peak without a critical)
+    mode: np.ndarray  # (R,) int: flexible mode of the critical, 0-based (-1: none)
+    peak_speed: np.ndarray  # (R,) swept speed of the largest stress / tau_1 [rad/s]
+    peak_stress: np.ndarray  # (R,) synthesised stress there [Pa]
+    peak_limit: np.ndarray  # (R,) tau_1 there [Pa]
+    section: tuple[str, ...]  # (R,) crank section of the peak
+    case: tuple[str, ...]  # (R,) load case of the peak
+    rated_speed: float  # [rad/s]
+
+
+@dataclass(frozen=True, kw_only=True)
+class MajorCriticalDetail(Detail):
+    """``tv.major_critical_clearance``: the critical speeds of the major orders of the
+    one-node (first flexible) mode against the band KR Pt 5 Ch 4 204 keeps free."""
+
+    order: np.ndarray  # (K,) major orders [-]
+    critical_speed: np.ndarray  # (K,) [rad/s]
+    speed_ratio: np.ndarray  # (K,) N_c / N_rated [-]
+    band: tuple[float, float]  # the band to keep free [-]
+    natural_frequency: float  # of the one-node mode [Hz]
+    rated_speed: float  # [rad/s]
+
+
+__all__ = ["BarredRangeDetail", "ClassLimitDetail", "CrankStressDetail", "CylinderOrderDetail",
+           "DamperDetail", "ElementTorqueDetail", "JointTorqueDetail",
+           "LowerOrdersDetail", "MajorCriticalDetail",
+           "NaturalFrequencyDetail", "NoseDetail", "OrdersCheckedDetail",
            "TVModelData", "TorsionDetail", "TwistDetail"]
