@@ -59,11 +59,11 @@ def main() -> None:
             stress = graph.CALCULATIONS["tv_crank_stress"]
             rules = graph.CALCULATIONS["tv_class_rules"]
             ins = {n: q[n] for n in stress.needs(eng)}
-            t_stress = _median(lambda: stress.func(eng, ins), 50)
+            t_stress = _median(lambda s=stress, e=eng, i=ins: s.func(e, i), 50)
             ins2 = {n: q[n] for n in rules.needs(eng)}
-            t_rules = _median(lambda: rules.func(eng, ins2), 50)
-            full = _median(lambda: api.check(p), 5)
-            without = _median(lambda: api.check(p, ignore=NEW), 5)
+            t_rules = _median(lambda r=rules, e=eng, i=ins2: r.func(e, i), 50)
+            full = _median(lambda p=p: api.check(p), 5)
+            without = _median(lambda p=p: api.check(p, ignore=NEW), 5)
             print(f"I6 as {cls}: tv_crank_stress {t_stress * 1e3:.2f} ms, tv_class_rules"
                   f" {t_rules * 1e3:.2f} ms; check {full:.3f} s, without TV-004..009"
                   f" {without:.3f} s (difference {1e3 * (full - without):+.0f} ms)")
