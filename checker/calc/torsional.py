@@ -497,6 +497,7 @@ def forced_response(
     orders: ArrayLike,
     excitation: ArrayLike,
     impedance: Mapping[int, ArrayLike] | None = None,
+    station_damping: ArrayLike | None = None,
 ) -> ForcedResponse:
     """Steady-state forced response for all speeds and orders in one batched solve.
 
@@ -518,6 +519,9 @@ def forced_response(
         (n_speed, n_order), replacing :func:`element_impedance` for that element (a damper
         whose properties depend on its own temperature, which differs from speed to speed).
         Passive: finite, ``Re >= 0``, ``Im >= 0``.
+    station_damping : array_like, shape (n_speed, n) or broadcastable, optional [N m s/rad]
+        Absolute viscous damping added to ``damping_abs`` per speed (a propeller's damping,
+        which follows its torque and so the speed). Finite and ``>= 0``.
 
     Returns
     -------
@@ -562,6 +566,17 @@ def forced_response(
                              " Im >= 0 (passive)")
         z[..., int(e)] = ze
     dmat = _assemble(model, om, z)  # (S, O, n, n)
+    if station_damping is not None:
+        extra = np.asarray(station_damping, dtype=float)
+        try:
+            extra = np.broadcast_to(extra, (w.size, n))
+        except ValueError as err:
+            raise ValueError(f"station_damping shape {extra.shape} does not broadcast to"
+                             f" (n_speed, n_station) = {(w.size, n)}") from err
+        if np.any(~np.isfinite(extra)) or np.any(extra < 0):
+            raise ValueError("station_damping must be finite and >= 0 N m s/rad")
+        idx = np.arange(n)
+        dmat[..., idx, idx] += 1j * om[..., None] * extra[:, None, :]
 
     resonance = _undamped_resonance(model, om, dmat)
     if np.any(resonance):

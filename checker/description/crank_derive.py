@@ -392,6 +392,8 @@ def tv_from_crank(rows: list[dict[str, Any]], crank: CrankGeometry, params: dict
             continue
         if viscous_ring and r.get("role") == "damper ring":
             continue
+        if r.get("element") == "flexible coupling":  # the catalogue's (sheet Coupling)
+            continue
         nxt = rows[i + 1]
         a, b = pin_of(r), pin_of(nxt)
         derived = method = None

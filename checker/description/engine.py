@@ -88,6 +88,7 @@ class TVStation:
     absolute_damping: float = 0.0
     stiffness: float | None = None
     relative_damping: float = 0.0
+    element: str = "shaft"  # what joins it to the next station: "shaft" | "flexible coupling"
 
     @property
     def cylinder(self) -> int | None:
@@ -152,6 +153,11 @@ class Engine:
     brake_torque: tuple[tuple[float, float], ...] = ()  # (speed rad/s, torque N m)
     oil: Params = field(default_factory=Params)
     damper: Params = field(default_factory=Params)
+    #: Sheet Coupling (and CouplingTemperature as ``temperature_table``, ((T [K], stiffness
+    #: factor, damping factor, temperature factor), ...)), empty when not given.
+    coupling: Params = field(default_factory=Params)
+    #: Sheet Driven: the driven machine (generator, propeller), empty when not given.
+    driven: Params = field(default_factory=Params)
     fatigue: Params = field(default_factory=Params)
     overrides: tuple[RuleOverride, ...] = ()
     source: str = "<in memory>"
@@ -630,6 +636,8 @@ def build_engine(data: WorkbookData,
     _support_scheme(p, bearings, crank, pr)
     check_oil(Params(data.params.get("Oil", {})), pr.err)
     damper = _damper(data, pr)
+    coupling = _coupling(data, tv, pr)
+    driven = _driven(data, tv, pr)
     overrides = _overrides(data, pr)
     if check_overrides is not None:
         pr.errors += check_overrides(overrides)
@@ -640,8 +648,8 @@ def build_engine(data: WorkbookData,
         bearings=tuple(bearings), crank_mass=crank_mass, tv_model=tuple(tv),
         joints=tuple(joints), joint_torques=tuple(jt), peak_pressure=tuple(pk),
         pressure_traces=traces, brake_torque=tuple(sorted(bt)),
-        oil=Params(data.params.get("Oil", {})), damper=damper,
-        fatigue=fatigue, overrides=tuple(overrides),
+        oil=Params(data.params.get("Oil", {})), damper=damper, coupling=coupling,
+        driven=driven, fatigue=fatigue, overrides=tuple(overrides),
         source=data.path, sha256=data.sha256, where=dict(data.where),
         assumptions=tuple(data.assumptions), estimates=tuple(data.estimates),
         warnings=tuple(pr.warnings), crank=crank, crank_model=tuple(rows["model"]),
@@ -946,7 +954,17 @@ def _tv_model(tv_rows: list[dict[str, Any]], p: Params, pr: _Problems, has_crank
         if r["station"] is None or r["inertia"] is None or r["role"] is None:
             continue
         last = i == len(tv_rows) - 1
-        if viscous and r["role"] == "damper ring":  # the silicone couples the ring
+        element = r.get("element") or "shaft"
+        if element == "flexible coupling":  # the catalogue's stiffness and damping
+            if last:
+                err("TVModel", "element", i, "the last station has no next station; a flexible"
+                    " coupling joins a station to the next one")
+            for col, what in (("stiffness", "stiffness"), ("relative_damping", "damping")):
+                if r[col] is not None:
+                    err("TVModel", col, i, f"a flexible coupling's {what} is the maker's"
+                        " catalogue value (sheet Coupling, at the rubber's temperature); leave"
+                        " it blank")
+        elif viscous and r["role"] == "damper ring":  # the silicone couples the ring
             for col, what in (("stiffness", "stiffness"), ("relative_damping", "damping")):
                 if r[col] is not None:
                     err("TVModel", col, i, f"a viscous damper's ring has no {what} to next"
@@ -973,7 +991,7 @@ def _tv_model(tv_rows: list[dict[str, Any]], p: Params, pr: _Problems, has_crank
                 station_of_cyl[c] = i
         tv.append(TVStation(r["station"], r["role"], r["inertia"], cyls_here,
                             r["absolute_damping"] or 0.0, r["stiffness"],
-                            r["relative_damping"] or 0.0))
+                            r["relative_damping"] or 0.0, element))
         shares = _rod_piston_inertia(p)
         if shares is not None and cyls_here and r["inertia"] < len(cyls_here) * shares:
             pr.warn("TVModel", "inertia", i, f"inertia {r['inertia']:.4g} kg m^2 is less than"
@@ -1129,6 +1147,54 @@ def _damper(data: WorkbookData, pr: _Problems) -> Params:
                              for r in rows))
         damper = Params(dict(damper, rubber_table=table))
     return damper
+
+
+def _coupling(data: WorkbookData, tv: list[TVStation], pr: _Problems) -> Params:
+    """Sheet Coupling (and CouplingTemperature): the table (sorted by temperature, no
+    repeats) is kept as ``coupling["temperature_table"]``, ``((T [K], stiffness factor,
+    damping factor, temperature factor), ...)``, only when given; catalogue values without a
+    flexible coupling in TVModel are refused (they would be ignored)."""
+    coupling = Params(data.params.get("Coupling", {}))
+    rows = _rows(data, "CouplingTemperature")
+    seen: set[float] = set()
+    table = []
+    for i, r in enumerate(rows):
+        t = r["temperature"]
+        if t is None:
+            continue
+        if round(t, 9) in seen:
+            pr.err("CouplingTemperature", "temperature", i, "duplicate temperature")
+        seen.add(round(t, 9))
+        vals = (r["stiffness_factor"], r["damping_factor"], r["temperature_factor"])
+        if None in vals:
+            col = ("stiffness_factor", "damping_factor", "temperature_factor")[vals.index(None)]
+            pr.err("CouplingTemperature", col, i, "each row needs its three factors (expected"
+                   " a number, found an empty cell)")
+            continue
+        table.append((t, *vals))
+    given = any(v is not None for k, v in coupling.items()) or bool(table)
+    if given and not any(s.element == "flexible coupling" for s in tv):
+        pr.err("Coupling", "nominal_torque", None, "coupling data are given but no TVModel"
+               " element is a flexible coupling (column 'element to next'): mark the"
+               " coupling's row, or remove the Coupling sheet's values")
+    if table:
+        coupling = Params(dict(coupling, temperature_table=tuple(sorted(table))))
+    return coupling
+
+
+def _driven(data: WorkbookData, tv: list[TVStation], pr: _Problems) -> Params:
+    """Sheet Driven: a propeller's entrained water and torque need a 'propeller' station."""
+    driven = Params(data.params.get("Driven", {}))
+    has_prop = any(s.role == "propeller" for s in tv)
+    for attr in ("entrained_water", "propeller_torque"):
+        if driven.get(attr) is not None and not has_prop:
+            pr.err("Driven", attr, None, "no TVModel station has the role 'propeller' (its"
+                   " inertia and damping are the propeller's)")
+    if driven.get("propeller_torque") is not None and data.params["Engine"].get(
+            "rated_speed") is None:
+        pr.err("Driven", "propeller_torque", None, "the propeller law needs the Engine"
+               " sheet's rated speed (the speed of this torque)")
+    return driven
 
 
 def _overrides(data: WorkbookData, pr: _Problems) -> list[RuleOverride]:

@@ -107,6 +107,7 @@ from ..results.torsion import (
     TwistDetail,
 )
 from ..workbook.units import RPM
+from . import coupling as cpl
 from . import damper_inputs as dinp
 from .joints import POINTS
 
@@ -238,10 +239,19 @@ def _tv_inputs(engine: Engine) -> TVModelData:
                         " is the element to the next station")
         ring = None
     viscous = dinp.is_viscous(engine)
-    stiffness = np.array([0.0 if (viscous and i == ring) else s.stiffness
+    couplings = cpl.coupling_elements(engine)
+    stiffness = np.array([0.0 if (viscous and i == ring) or i in couplings else s.stiffness
                           for i, s in enumerate(st[:-1])], dtype=float)
     rel = np.array([s.relative_damping for s in st[:-1]], dtype=float)
     loss = np.zeros(len(st) - 1)
+    if couplings:  # flexible couplings: the catalogue's stiffness and damping (sheet Coupling)
+        try:
+            state = cpl.coupling_state(engine)
+        except MissingInputs as err:
+            problems += err.reasons
+        else:
+            stiffness[couplings] = state.stiffness
+            loss[couplings] = cpl.cp.loss_factor(state.relative_damping)
     eta = engine.damper.get("loss_factor")
     dyn = {}
     if ring is not None and viscous:
@@ -267,7 +277,7 @@ def _tv_inputs(engine: Engine) -> TVModelData:
     if problems:
         raise MissingInputs(problems)
     model = tv.TorsionalModel(
-        inertia=[s.inertia for s in st], stiffness=stiffness,
+        inertia=cpl.station_inertia(engine), stiffness=stiffness,
         damping_abs=[s.absolute_damping for s in st], damping_rel=rel, loss_factor=loss,
         dynamic_stiffness=dyn)
     return TVModelData(
@@ -313,7 +323,8 @@ def _solution(engine: Engine, cycle: Quantity) -> dict:
 
 
 @calculation("tv_response", "torsion", provides=PROVIDES, needs=("loads.cycle",),
-             reads=("params", "cylinders", "tv_model", "damper", "brake_torque"))
+             reads=("params", "cylinders", "tv_model", "damper", "brake_torque", "coupling",
+                    "driven"))
 def tv_response(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Natural frequencies, forced response at full and no load, element and damper results."""
     return dict(_solution(engine, inputs["loads.cycle"])["quantities"])
@@ -321,7 +332,7 @@ def tv_response(engine: Engine, inputs: dict) -> dict[str, Quantity]:
 
 @calculation("tv_joint_torque", "torsion", provides=("tv.joint_torque",), needs=("loads.cycle",),
              reads=("params", "cylinders", "tv_model", "damper", "brake_torque",
-                    "joint_torques", "joints.name", "joints.location"))
+                    "joint_torques", "joints.name", "joints.location", "coupling", "driven"))
 def tv_joint_torque(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Peak TV torque through each bolted joint at the three operating points.
 
@@ -379,7 +390,13 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
     orders, cyl_coeffs, cyl_mean = _excitation(engine, cyc)
     O = orders.size
     force = tv.station_excitation(cyl_coeffs, data.cyl_station, n_st)  # (C, S, n, O)
-    resp = tv.forced_response(model, np.tile(speeds, C), orders, force.reshape(C * S, n_st, O))
+    extra = cpl.station_damping(engine, speeds)  # a propeller's damping per speed
+    resp = tv.forced_response(model, np.tile(speeds, C), orders, force.reshape(C * S, n_st, O),
+                              station_damping=None if extra is None else np.tile(extra, (C, 1)))
+    assumptions += cpl.driven_text(engine)
+    couplings = cpl.coupling_elements(engine)
+    if couplings:
+        assumptions.append(cpl.state_text(cpl.coupling_state(engine)))
     theta = resp.theta.reshape(C, S, n_st, O)
     et = resp.element_torque.reshape(C, S, n_el, O)
     omega = resp.omega.reshape(C, S, O)
@@ -525,7 +542,8 @@ def _solve(engine: Engine, cycle: Quantity) -> dict:
                                                         stations=(names[nose], names[rear])))
 
     el_names = [f"{names[e]} -> {names[e + 1]}" for e in range(n_el)]
-    el_attrs = {el_names[e]: {"kind": "damper rubber" if e == ring else "shaft",
+    el_attrs = {el_names[e]: {"kind": "damper rubber" if e == ring else
+                              cpl.COUPLING if e in couplings else "shaft",
                               "front": names[e], "rear": names[e + 1]} for e in range(n_el)}
     el_find = {(e, ci, si): v for (ci, si), v in res_text.items() for e in range(n_el)}
     out["tv.element_torque"] = Quantity(

@@ -985,9 +985,15 @@ TV_MODEL = Sheet(
     fields=(
         F("station", "station", "text"),
         F("role", "role", "choice",
-          choices=("damper ring", "crank nose", "cylinder", "flywheel", "other"),
+          choices=("damper ring", "crank nose", "cylinder", "flywheel", "generator",
+                   "propeller", "other"),
           aliases=(("ring", "damper ring"), ("damper inertia ring", "damper ring"),
-                   ("nose", "crank nose"), ("cyl", "cylinder"))),
+                   ("nose", "crank nose"), ("cyl", "cylinder"),
+                   ("generator rotor", "generator"), ("alternator", "generator"),
+                   ("prop", "propeller")),
+          note="A 'propeller' station's inertia is the propeller's in air: the entrained"
+               " water (sheet Driven) is added to it; a 'generator' station is the generator"
+               " rotor."),
         F("cylinder", "cylinder", "int_list", check=">0", required=False,
           note="Cylinder(s) whose gas and inertia torque acts on this station: one number, or"
                " several separated by commas, e.g. '1, 2' for the two cylinders of a V-engine"
@@ -1013,6 +1019,102 @@ TV_MODEL = Sheet(
         F("damping to next", "relative_damping", "torsional_damping", check=">=0",
           required=False,
           valid=R(0, 1e9, "N m s/rad"), usual=R(0, 1e6, "N m s/rad")),
+        F("element to next", "element", "choice", choices=("shaft", "flexible coupling"),
+          required=False,
+          aliases=(("coupling", "flexible coupling"), ("elastic coupling", "flexible coupling"),
+                   ("rubber coupling", "flexible coupling"), ("highly flexible coupling",
+                                                              "flexible coupling")),
+          note="What joins the station to the next: shaft (blank) with the row's stiffness"
+               " and damping; flexible coupling: the maker's catalogue values of sheet"
+               " Coupling (dynamic torsional stiffness and relative damping at the rubber's"
+               " temperature), the row's 'stiffness to next' and 'damping to next' left"
+               " blank."),
+    ),
+)
+
+COUPLING = Sheet(
+    "Coupling",
+    "parameters",
+    note="Flexible (elastic) coupling between engine and driven machine (the TVModel element"
+         " whose 'element to next' is 'flexible coupling'): the maker's catalogue values in"
+         " the conventions of DIN 740-2, and the rubber's temperature.",
+    fields=(
+        F("Coupling designation", "designation", "text", required=False,
+          note="Maker, series and size, e.g. from the catalogue."),
+        F("Nominal torque T_KN", "nominal_torque", "torque", check=">0", required=False,
+          note="Torque the coupling transmits continuously (CPL-003).",
+          valid=R(0.01, 1e9, "N m"), usual=R(10, 1e8, "N m")),
+        F("Permissible vibratory torque T_KW", "vibratory_torque", "torque", check=">0",
+          required=False,
+          note="Amplitude of periodic torque the coupling takes continuously at 10 Hz and the"
+               " catalogue's reference temperature (CPL-001, MIS-003).",
+          valid=R(0.001, 1e9, "N m"), usual=R(1, 1e8, "N m")),
+        F("Permissible damping power P_KV", "damping_power", "power", check=">0",
+          required=False,
+          note="Heat the coupling dissipates continuously at the catalogue's reference"
+               " (ambient) temperature (CPL-002, MIS-004).",
+          valid=R(0.001, 1e8, "W"), usual=R(1, 1e6, "W")),
+        F("Dynamic torsional stiffness C_Tdyn", "stiffness", "torsional_stiffness",
+          check=">0", required=False,
+          note="Catalogue value at its reference state (load, amplitude, frequency,"
+               " temperature); the factors of sheet CouplingTemperature move it to the"
+               " rubber's temperature.",
+          valid=R(1, 1e12, "N m/rad"), usual=R(100, 1e10, "N m/rad")),
+        F("Relative damping psi", "relative_damping", "ratio", check=">=0", required=False,
+          note="Damping work of a cycle over the elastic work, psi = 2 pi x loss factor"
+               " (DIN 740-2); rubber couplings about 0.5 to 1.5.",
+          valid=R(0, 20), usual=R(0.1, 3)),
+        F("Rubber temperature", "temperature", "temperature", required=False,
+          note="Temperature of the coupling's rubber in operation: reads the factors of"
+               " sheet CouplingTemperature (blank: the catalogue's reference state).",
+          valid=R(-100, 300, "°C"), usual=R(-40, 150, "°C")),
+    ),
+)
+
+COUPLING_TEMPERATURE = Sheet(
+    "CouplingTemperature",
+    "table",
+    max_rows=200,
+    note="Flexible coupling against the rubber's temperature (maker's catalogue): factors on"
+         " the dynamic torsional stiffness and on the relative damping, and the temperature"
+         " factor S_t (>= 1) on the load compared with T_KW and P_KV; linear between rows,"
+         " held beyond them. Blank table = factors 1.",
+    fields=(
+        F("temperature", "temperature", "temperature",
+          valid=R(-150, 400, "°C"), usual=R(-60, 200, "°C")),
+        F("stiffness factor", "stiffness_factor", "ratio", check=">0",
+          valid=R(1e-3, 100), usual=R(0.2, 5)),
+        F("damping factor", "damping_factor", "ratio", check=">0",
+          valid=R(1e-3, 100), usual=R(0.2, 5)),
+        F("temperature factor", "temperature_factor", "ratio", check=">0",
+          note="S_t of DIN 740-2: the vibratory torque and the damping power are multiplied"
+               " by it before the comparison with T_KW and P_KV.",
+          valid=R(1e-3, 100), usual=R(1, 5)),
+    ),
+)
+
+DRIVEN = Sheet(
+    "Driven",
+    "parameters",
+    note="The driven machine: a generator (constant speed) or a propeller (torque following"
+         " the propeller law), its inertia and damping in the torsional model.",
+    fields=(
+        F("Driven machine", "machine", "choice", choices=("generator", "propeller", "other"),
+          required=False,
+          aliases=(("alternator", "generator"), ("genset", "generator"),
+                   ("fixed pitch propeller", "propeller"), ("fpp", "propeller"))),
+        F("Propeller entrained water", "entrained_water", "ratio", check=">=0",
+          required=False,
+          note="Inertia of the water the propeller carries along, as a fraction of its dry"
+               " inertia (TVModel station with role 'propeller'): the station's inertia in"
+               " water is dry x (1 + fraction); typically 0.2 to 0.3.",
+          valid=R(0, 5), usual=R(0.05, 0.6)),
+        F("Propeller torque at rated speed", "propeller_torque", "torque", check=">0",
+          required=False,
+          note="Torque the propeller absorbs at the Engine sheet's rated speed; with the"
+               " propeller law Q = Q_r (n/n_r)^2 it gives the propeller's damping"
+               " c = dQ/domega = 2 Q/omega at every speed (blank: no propeller damping).",
+          valid=R(0.01, 1e10, "N m"), usual=R(10, 1e9, "N m")),
     ),
 )
 
@@ -1150,8 +1252,9 @@ SHEETS: dict[str, Sheet] = {
     s.name: s
     for s in (
         ENGINE, CYLINDERS, PEAK_PRESSURE, PRESSURE_TRACES, BRAKE_TORQUE, BEARINGS, CRANK,
-        CRANK_ENDS, CRANK_MASS, OIL, TV_MODEL, DAMPER, DAMPER_RUBBER, FATIGUE, JOINTS,
-        JOINT_TORQUES, RULE_OVERRIDES, TOLERANCES, NOTES,
+        CRANK_ENDS, CRANK_MASS, OIL, TV_MODEL, DAMPER, DAMPER_RUBBER, COUPLING,
+        COUPLING_TEMPERATURE, DRIVEN, FATIGUE, JOINTS, JOINT_TORQUES, RULE_OVERRIDES,
+        TOLERANCES, NOTES,
     )
 }
 
