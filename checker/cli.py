@@ -285,15 +285,19 @@ def _keep_freed_memory() -> None:
 @main.command()
 @click.argument("path", type=click.Path(dir_okay=False), required=False)
 @click.option("--force", is_flag=True, help="Overwrite an existing file.")
-@click.option("--engine", "which", type=click.Choice(["i4", "i6", "v8"], case_sensitive=False),
+@click.option("--engine", "which", type=click.Choice(["i4", "i6", "v8", "genset", "marine"],
+                                                    case_sensitive=False),
               default="i4",
               show_default=True, help="i4: the gasoline engine of Bell, Ricardo 2013; i6: a"
               " truck diesel from Mendes et al. 2008 with an assumed viscous damper; v8: a"
-              " 90-degree cross-plane V8 from GM LS1 service data; assumptions labelled in each.")
+              " 90-degree cross-plane V8 from GM LS1 service data; genset: an in-line six"
+              " medium-speed diesel driving a generator through a flexible coupling; marine:"
+              " the same engine driving a fixed-pitch propeller; assumptions labelled in each.")
 def template(path: str, force: bool, which: str) -> None:
     """Write an example workbook to PATH (default: engine.xlsx for the I4, engine-i6.xlsx for
     the I6, engine-v8.xlsx for the V8)."""
     from .workbook.example import example_content, write_workbook
+    from .workbook.example_classes import genset_content, marine_content
     from .workbook.example_i6 import i6_content
     from .workbook.example_v8 import v8_content
 
@@ -306,7 +310,7 @@ def template(path: str, force: bool, which: str) -> None:
         raise click.UsageError(f"{p} exists; use --force to overwrite it")
     _outputs_writable([p])
     content = {"i4": example_content, "i6": lambda: i6_content(damper_ring=True),
-               "v8": v8_content}[which]()
+               "v8": v8_content, "genset": genset_content, "marine": marine_content}[which]()
     with tempfile.TemporaryDirectory() as d:
         tmp = Path(d) / "engine.xlsx"
         write_workbook(tmp, content)

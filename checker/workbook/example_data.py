@@ -30,7 +30,7 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
-ENGINES = ("i4", "i6", "v8")
+ENGINES = ("i4", "i6", "v8", "genset", "marine")
 PARAMETER_KEYS = ("parameter", "value", "unit", "note")
 ABOUT = "about"
 

@@ -18,6 +18,10 @@ I6 (Mendes et al. 2008, see :mod:`checker.workbook.example_i6`)
     * Fatigue: oil-hole heights = journal radius x sin(hole angle) (pin: the Bearings sheet's
       45 deg; main: 20 deg).
 
+Genset and marine (:mod:`checker.workbook.example_classes`)
+    * As the I6 (their crank train is the I6's scaled to a 200 mm bore), the crank masses
+      scaled by :data:`SCALE` (mass x SCALE^3, centre-of-mass radius x SCALE).
+
 V8 (GM LS1, see :mod:`checker.workbook.example_v8`)
     * Cylinders: firing angles at 720/8 deg intervals from the firing order; GM numbering (odd
       cylinders on the left bank at +45 deg, even on the right at -45 deg, cylinders 2k-1 and
@@ -360,7 +364,26 @@ def derived_v8(content: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-DERIVED = {"i6": derived_i6, "v8": derived_v8}
+SCALE = 1.97
+"""Geometric similarity factor of the genset and marine examples' crank train to the I6's
+(:mod:`checker.workbook.example_classes`)."""
+
+
+def derived_scaled_i6(content: dict[str, Any]) -> dict[str, Any]:
+    """The genset and marine examples (an I6 crank train scaled to the 200 mm bore): the I6's
+    derived cells, its crank masses scaled by :data:`SCALE` (mass x SCALE^3, radius x SCALE)."""
+    out = derived_i6(content)
+    cols, rows = out["CrankMass"]
+    for r in rows:
+        r[3] = float(f"{r[3] * SCALE**3:.4g}")
+        r[5], r[6] = (float(f"{v * SCALE:.4g}") for v in (r[5], r[6]))
+        r[9] = (ASSUMPTION + f": the I6 example's crank mass scaled by geometric similarity"
+                f" (mass x {SCALE:g}^3, radius x {SCALE:g}); " + r[9])
+    return out
+
+
+DERIVED = {"i6": derived_i6, "v8": derived_v8, "genset": derived_scaled_i6,
+           "marine": derived_scaled_i6}
 """Engine -> the function recomputing its derived cells (the I4 derives nothing)."""
 
 
