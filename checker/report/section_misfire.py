@@ -34,22 +34,26 @@ def misfire_section(res: CheckResult) -> dict:
          "Friswell et al. 2010, ch. 9 (linear steady-state forced response)"),
     ]}]
     # the worst misfire case per element: speed, cylinder, torque against normal firing
+    judged = np.ones(mt.values.shape, bool) if mt.applies is None else mt.applies
     rows = []
     for e, name in enumerate(d.elements):
-        k = int(np.argmax(mt.values[e]))
+        if not judged[e].any():
+            continue
+        k = int(np.argmax(np.where(judged[e], mt.values[e], -np.inf)))
         c = int(d.worst_cylinder[e, k])
         normal = d.element_torque_normal[e, k]
         rows.append([name, f"{rpm(sp[k]):.0f}", str(cyl[c]), fmt(mt.values[e, k], 4),
                      fmt(normal, 4), fmt(mt.values[e, k] / normal if normal > 0 else np.inf,
                                          3)])
     blocks.append({"type": "table", "caption": "The misfire case per element of the torsional"
-                   " model, full load: the speed of the largest vibratory torque with any one"
+                   " model, full load within its envelope: the speed of the largest vibratory"
+                   " torque with any one"
                    " cylinder misfiring, the cylinder whose misfire gives it, and normal"
                    " firing at that speed (half peak-to-peak, all orders synthesised)",
                    "columns": ["element", "speed [rpm]", "misfiring cylinder",
                                "misfire [N m]", "normal [N m]", "ratio [-]"],
                    "rows": rows, "sheet": "Misfire per element"})
-    e_max = int(np.argmax(mt.values.max(axis=1)))
+    e_max = int(np.argmax(np.where(judged, mt.values, -np.inf).max(axis=1)))
     per_cyl = d.element_torque[:, e_max]  # (Z, S)
     blocks.append({"type": "figure", "png": later(
         (170, 70), _draw_elements, sp, per_cyl, d.element_torque_normal[e_max],
