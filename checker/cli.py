@@ -53,6 +53,8 @@ STEP_WORDS = {
     "tv_joint_torque": "the joint torques from the torsional model",
     "tv_crank_stress": "the crankshaft's vibratory shear stress",
     "tv_class_rules": "the crankshaft's vibratory stress against the class rules",
+    "coupling_load": "the flexible coupling's torque and heat",
+    "misfire_response": "the misfire case (each cylinder not firing in turn)",
     "damper_tuning": "the damper tuning",
     "damper_rubber_ends": "the damper rubber at the ends of its temperature range",
     "viscous_damper": "the viscous damper's heat and damping",
