@@ -1,6 +1,6 @@
 """The genset and marine examples (issue 46 item 6) end to end: ``checker template --engine
-genset|marine``, ``checker check`` (every coupling and misfire rule judged, never a missing
-input), ``checker report`` (the coupling and misfire sections) and ``checker study`` on the
+genset|marine``, ``checker check`` (every torsional, coupling and misfire rule judged or not
+applicable, never a missing input), ``checker report`` (the coupling and misfire sections) and ``checker study`` on the
 studies of ``examples/``; the examples' classes (industrial, marine) and their sourced values.
 """
 
@@ -28,7 +28,7 @@ def _template(tmp_path: Path, engine: str) -> Path:
 
 
 @pytest.mark.parametrize("engine", ["genset", "marine"])
-def test_check_judges_every_coupling_and_misfire_rule(tmp_path, engine):
+def test_check_judges_every_tv_coupling_and_misfire_rule(tmp_path, engine):
     p = _template(tmp_path, engine)
     out = tmp_path / "check.json"
     r = CliRunner().invoke(main, ["check", str(p), "--format", "json", "-o", str(out)])
@@ -39,9 +39,10 @@ def test_check_judges_every_coupling_and_misfire_rule(tmp_path, engine):
     assert str(res.engine.params["engine_class"]) == CLASSES[engine]
     got = {}
     for x in res.results:
-        if x.rule.startswith(("CPL-", "MIS-")):
+        if x.rule.startswith(("CPL-", "MIS-", "TV-")):
             got.setdefault(x.rule, set()).add(x.status)
-    assert {"CPL-001", "CPL-002", "CPL-003", "MIS-002", "MIS-003", "MIS-004"} <= set(got)
+    assert {"CPL-001", "CPL-002", "CPL-003", "MIS-002", "MIS-003", "MIS-004", "MIS-005",
+            "TV-004", "TV-005", "TV-008"} <= set(got)
     for rule, st in got.items():
         assert "not_evaluated" not in st, rule
     # the viscous damper: the rubber's misfire rule does not apply

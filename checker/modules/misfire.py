@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..calc import class_limits as cl
 from ..calc import coupling as cp
 from ..calc import crank_forces as cf
 from ..calc import damper as dmp
@@ -34,9 +35,10 @@ from ..calc import torsion_post as tp
 from ..calc import torsional as tv
 from ..description.engine import Engine
 from ..evaluation.graph import MissingInputs, Quantity, QuantitySpec, calculation, quantity
-from ..results.misfire import MisfireDetail
+from ..results.misfire import MisfireDetail, MisfireStressDetail
 from . import coupling as cpl
 from . import damper_inputs as dinp
+from .torsion_stress import TENSILE_CAP
 
 CASE = "full"
 MAX_ORDER = exc.DEFAULT_MAX_ORDER
@@ -71,6 +73,11 @@ M_COUPLING_HEAT = quantity(QuantitySpec(
     "misfire.coupling_heat_ratio", "", ("item", "speed"),
     "Flexible coupling damping power x S_t over P_KV with one cylinder misfiring, the worst"
     " cylinder, full load", "", detail=MisfireDetail))
+M_STRESS = quantity(QuantitySpec(
+    "misfire.crank_stress_ratio", "", ("item", "speed"),
+    "Crank vibratory shear stress with one cylinder misfiring (the worst cylinder, full load)"
+    " over the class's transient limit tau_2 (the class gives no misfire limit of its own)",
+    "", ("engine_class",), detail=MisfireStressDetail))
 PROVIDES = ("misfire.element_torque", "misfire.element_torque_increase",
             "misfire.damper_power", "misfire.damper_heat_density", "misfire.damper_heat_flux",
             "misfire.coupling_torque_ratio", "misfire.coupling_heat_ratio")
@@ -311,3 +318,68 @@ def _damper(engine: Engine, ring: int | None, power: np.ndarray | None, speeds: 
                                                   detail=detail, applies=judged,
                                                   applies_text=ENVELOPE_TEXT)
     return out
+
+
+LIMIT_TEXT = {
+    "marine": ("the class gives no misfire limit: its transient limit tau_2 = 2 tau_1 f_m2"
+               " (Korean Register Pt 5 Ch 4 201.2, 201.4; defined up to 0.8 of the rated"
+               " speed) is used up to the rated speed, the formula extended above 0.8 (a"
+               " misfiring engine keeps running at its speed); above the rated speed not"
+               " judged"),
+    "industrial": ("the class gives no misfire limit: the generator engine's transient limit"
+                   " tau_2 = 90 N/mm^2 f_m2 (Korean Register Pt 5 Ch 4 203.1(2), 203.3;"
+                   " defined below 0.9 of the rated speed) is used at every speed"),
+}
+
+
+def _misfire_limit(cls: str, lam: np.ndarray, group: str, f2: float) -> np.ndarray:
+    """The transient limit used for the misfire case [Pa] (:data:`LIMIT_TEXT`), NaN where
+    not judged."""
+    if cls == "industrial":
+        return np.full(lam.shape, cl.generator_transient(f2))
+    ok = lam <= 1.0 + 1e-9
+    out = np.full(lam.shape, np.nan)
+    out[ok] = 2.0 * f2 * cl.propulsion_continuous(np.minimum(lam[ok], 1.0), group, 1.0)
+    return out
+
+
+@calculation("misfire_crank_stress", "misfire", provides=("misfire.crank_stress_ratio",),
+             needs=("misfire.element_torque", "tv.crank_shear_stress"),
+             reads=("params", "cylinders", "fatigue.uts", "fatigue.yield_strength"),
+             applies=_applies, applies_why=_why_not)
+def misfire_crank_stress(engine: Engine, inputs: dict) -> dict[str, Quantity]:
+    """The crank sections' stress under misfire against the class's transient limit."""
+    mt: Quantity = inputs["misfire.element_torque"]
+    st: Quantity = inputs["tv.crank_shear_stress"]
+    rated = engine.params.get("rated_speed")
+    if rated is None:
+        raise MissingInputs([engine.describe_missing(
+            "Engine", "rated_speed", what="the engine (the speed ratio of the class limit)")])
+    cls = str(engine.params.get("engine_class")).lower()
+    idx = np.asarray(st.detail.element_index, dtype=int)
+    w = np.asarray(st.detail.polar_modulus, dtype=float)
+    speeds = np.asarray(mt.coords["speed"], dtype=float)
+    tau = mt.values[idx] / w[:, None]  # (Ec, S)
+    tau0 = mt.detail.element_torque_normal[idx] / w[:, None]
+    lam = cl.speed_ratio(speeds, float(rated))
+    firing = np.array([c.firing_angle for c in engine.cylinders])
+    bank = np.array([c.bank_angle for c in engine.cylinders])
+    group = cl.engine_group(firing, bank)
+    fa = engine.fatigue
+    _f1, f2 = cl.material_factors(fa.get("uts"), fa.get("yield_strength"), TENSILE_CAP)
+    lim = _misfire_limit(cls, lam, group, f2)
+    judged = np.isfinite(lim) if mt.applies is None else (mt.applies[idx] & np.isfinite(lim))
+    with np.errstate(invalid="ignore"):
+        ratio = np.where(np.isfinite(lim), tau / np.where(np.isfinite(lim), lim, 1.0), 0.0)
+    names = [mt.coords["item"][e] for e in idx]
+    detail = MisfireStressDetail(
+        speeds=speeds, sections=tuple(names), stress=tau, stress_normal=tau0, limit=lim,
+        speed_ratio=lam, engine_class=cls, limit_text=LIMIT_TEXT[cls],
+        assumptions=("Misfire crank stress: the crank sections' nominal shear stress (IACS UR"
+                     " M53 2.2, the polar modulus of tv.crank_shear_stress) with the worst"
+                     " misfiring cylinder; " + LIMIT_TEXT[cls] + f" (f_m2 = {f2:.3f}).",))
+    return {"misfire.crank_stress_ratio": Quantity(
+        M_STRESS, ratio, {"item": names, "speed": list(speeds)},
+        {n: {"engine_class": cls} for n in names}, detail=detail, applies=judged,
+        applies_text=ENVELOPE_TEXT + "; " + LIMIT_TEXT[cls])}
+

@@ -80,6 +80,23 @@ def misfire_section(res: CheckResult) -> dict:
                            f" ({label}), worst speed", "columns": [
                                "coupling", "quantity", "speed [rpm]", "value [-]"],
                            "rows": rows})
+    ms = q.get("misfire.crank_stress_ratio")
+    if ms is not None and ms.detail is not None and ms.values.size:
+        md = ms.detail
+        ok = np.ones(ms.values.shape, bool) if ms.applies is None else ms.applies
+        rows = []
+        for e, name in enumerate(md.sections):
+            if not ok[e].any():
+                continue
+            k = int(np.argmax(np.where(ok[e], ms.values[e], -np.inf)))
+            rows.append([name, f"{rpm(sp[k]):.0f}", fmt(md.stress[e, k] / 1e6, 4),
+                         fmt(md.stress_normal[e, k] / 1e6, 4), fmt(md.limit[k] / 1e6, 4),
+                         fmt(ms.values[e, k], 3)])
+        blocks.append({"type": "table", "caption": "Crank vibratory shear stress under misfire"
+                       " (worst cylinder, full load) against the class's transient limit (rule"
+                       f" MIS-005): {md.limit_text}",
+                       "columns": ["crank section", "speed [rpm]", "misfire [MPa]",
+                                   "normal [MPa]", "limit [MPa]", "ratio [-]"], "rows": rows})
     peak = in_unit(d.motored_peak, "Pa", "bar")
     fire = in_unit(d.firing_peak, "Pa", "bar")
     return {"id": "misfire", "title": title,

@@ -38,4 +38,19 @@ class MisfireDetail(Detail):
     coupling_power: np.ndarray | None = None  # (K, Z, S) damping power, misfire [W]
 
 
-__all__ = ["MisfireDetail"]
+@dataclass(frozen=True, kw_only=True)
+class MisfireStressDetail(Detail):
+    """``misfire.crank_stress_ratio``: the crank sections' vibratory shear stress with one
+    cylinder misfiring against the class's transient limit."""
+
+    speeds: np.ndarray  # (S,) swept speeds [rad/s]
+    sections: tuple[str, ...]  # (Ec,) crank-section elements "front -> rear"
+    stress: np.ndarray  # (Ec, S) misfire stress, worst cylinder [Pa]
+    stress_normal: np.ndarray  # (Ec, S) normal firing's stress [Pa]
+    limit: np.ndarray  # (S,) the limit used [Pa] (NaN where not judged)
+    speed_ratio: np.ndarray  # (S,) lambda = n / n_rated [-]
+    engine_class: str  # "marine" or "industrial"
+    limit_text: str  # which limit, in words, with its source
+
+
+__all__ = ["MisfireDetail", "MisfireStressDetail"]

@@ -78,3 +78,20 @@ def test_motored_exponent_is_the_synthesis_exponent(result):
     # the I6's full-load traces are synthesized with the polytropic exponent 1.32
     np.testing.assert_allclose(d.motored_exponent, 1.32, rtol=1e-9)
     assert np.all(d.motored_peak < d.firing_peak)
+
+
+def test_misfire_crank_stress_against_the_transient_limit_by_hand(result):
+    q = result.outcome.quantities["misfire.crank_stress_ratio"]
+    d = q.detail
+    st = result.outcome.quantities["tv.crank_shear_stress"].detail
+    mt = result.outcome.quantities["misfire.element_torque"]
+    e = int(st.element_index[0])
+    w = float(st.polar_modulus[0])
+    # industrial (generator engine): 90 N/mm^2 x Y/225 at every speed (KR Pt 5 Ch 4 203.1(2))
+    y = result.engine.fatigue.get("yield_strength")
+    f2 = max(1.0, y / 225e6) if y is not None else 1.0
+    hand = mt.values[e] / w / (90e6 * f2)
+    np.testing.assert_allclose(q.values[0], hand, rtol=1e-12)
+    assert d.engine_class == "industrial"
+    rules = {r.status for r in result.results if r.rule == "MIS-005"}
+    assert rules and rules <= {"pass", "fail"}
