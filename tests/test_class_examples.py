@@ -1,7 +1,8 @@
 """The genset and marine examples (issue 46 item 6) end to end: ``checker template --engine
 genset|marine``, ``checker check`` (every torsional, coupling and misfire rule judged or not
-applicable, never a missing input), ``checker report`` (the coupling and misfire sections) and ``checker study`` on the
-studies of ``examples/``; the examples' classes (industrial, marine) and their sourced values.
+applicable, never a missing input), ``checker report`` (the coupling and misfire sections)
+and ``checker study`` on the studies of ``examples/``; the examples' classes (industrial,
+marine) and their sourced values.
 """
 
 from __future__ import annotations
