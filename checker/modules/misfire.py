@@ -355,7 +355,10 @@ def misfire_crank_stress(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     if rated is None:
         raise MissingInputs([engine.describe_missing(
             "Engine", "rated_speed", what="the engine (the speed ratio of the class limit)")])
-    cls = str(engine.params.get("engine_class")).lower()
+    cls = str(engine.params.get("engine_class") or "").lower()
+    if cls not in LIMIT_TEXT:
+        raise MissingInputs([f"{engine.cell('Engine', 'engine_class')}: the misfire case's"
+                             " crank stress is judged for marine and industrial engines"])
     idx = np.asarray(st.detail.element_index, dtype=int)
     w = np.asarray(st.detail.polar_modulus, dtype=float)
     speeds = np.asarray(mt.coords["speed"], dtype=float)
