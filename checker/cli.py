@@ -56,8 +56,6 @@ STEP_WORDS = {
     "coupling_load": "the flexible coupling's torque and heat",
     "misfire_response": "the misfire case (each cylinder not firing in turn)",
     "misfire_crank_stress": "the crank's stress under misfire against the class limit",
-    "tv_crank_stress": "the crank's vibratory shear stress",
-    "tv_class_rules": "the class rules on the crank's vibratory stress",
     "damper_tuning": "the damper tuning",
     "damper_rubber_ends": "the damper rubber at the ends of its temperature range",
     "viscous_damper": "the viscous damper's heat and damping",

@@ -6,8 +6,9 @@ example engines.
 The page quotes the examples' results (counts, rule values, natural frequencies...). Each such
 number is written in the template (``scripts/examples_doc_template.md``) as a placeholder
 ``{{ expression | format }}``, evaluated against a fresh ``checker check`` of the example
-(``i4``, ``i6``, ``v8``: :class:`Example`), e.g. ``{{ v8.mode(1) | .0f }}`` for the V8's first
-natural frequency in Hz or ``{{ i4.value("TV-001") | .3f }}`` for a rule's value in its unit.
+(``i4``, ``i6``, ``v8``, ``genset``, ``marine``: :class:`Example`), e.g.
+``{{ v8.mode(1) | .0f }}`` for the V8's first natural frequency in Hz or
+``{{ i4.value("TV-001") | .3f }}`` for a rule's value in its unit.
 After a change that moves the examples' results, run this script and read the diff: the text
 around the numbers may need a new word. ``--check`` writes nothing and exits 1 when a number
 of the committed page is off (``tests/test_examples_doc.py`` checks the same, with the
@@ -30,7 +31,7 @@ sys.path.insert(0, str(ROOT))
 
 TEMPLATE = ROOT / "scripts" / "examples_doc_template.md"
 OUT = ROOT / "docs" / "examples.md"
-ENGINES = ("i4", "i6", "v8")
+ENGINES = ("i4", "i6", "v8", "genset", "marine")
 PLACEHOLDER = re.compile(r"\{\{(.+?)\}\}", re.S)
 NUMBER = r"[-+]?\d[\d,]*(?:\.\d+)?"
 
@@ -116,11 +117,13 @@ class Example:
 def _check(engine: str):
     from checker import api
     from checker.workbook.example import example_content, write_workbook
+    from checker.workbook.example_classes import genset_content, marine_content
     from checker.workbook.example_i6 import i6_content
     from checker.workbook.example_v8 import v8_content
 
     content = {"i4": example_content, "i6": lambda: i6_content(damper_ring=True),
-               "v8": v8_content}[engine]()  # as `checker template --engine` writes them
+               "v8": v8_content, "genset": genset_content,
+               "marine": marine_content}[engine]()  # as `checker template --engine` writes them
     with tempfile.TemporaryDirectory() as tmp:
         p = Path(tmp) / f"{engine}.xlsx"
         write_workbook(p, content)
