@@ -696,7 +696,7 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
         "JointTorques": ([("joint", "-"), ("operating point", "-"), ("speed", "rpm"),
                           ("applied torque", "N m"), ("note", "")], []),
         "RuleOverrides": ([("rule", "-"), ("limit", "-"), ("unit", "-"), ("reason", "-")],
-                          project_limits.override_rows()),
+                          project_limits.override_rows(b.engine_class)),
         "Tolerances": ([("sheet", "-"), ("row", "-"), ("column", "-"), ("min", "-"),
                         ("max", "-"), ("unit", "-"), ("source", "")], []),
         "Notes": [f"First layout written by checker new from a brief: {b.name}.",

@@ -18,7 +18,11 @@ marked ESTIMATE, or the rule is declared not applicable with its reason (sheet R
   radius, the material's base fatigue strength (no rolling or hardening of the nose fillet);
 * the shell supplier's limits (BRG-007..009) and the damper supplier's rubber limits
   (DMP-001..003): no public default by lining or rubber was found, so a first layout declares
-  them not applicable until a supplier is chosen (the reason is printed with each result).
+  them not applicable until a supplier is chosen (the reason is printed with each result);
+* the crank-nose amplitude targets (TV-001..003) of a commercial-vehicle engine: Bell (2013)
+  gives them for refined passenger-car engines only and no public source gives a truck's, so a
+  first layout declares them not applicable; its crank's vibratory stress is judged by TV-009
+  (the class rules' continuous limit as a stated engineering default).
 """
 
 from __future__ import annotations
@@ -102,9 +106,21 @@ def nose_rows(journal_d: float, nose_d: float, fillet_r: float, fatigue: float,
              " hardening credited at the nose fillet")]
 
 
-def override_rows() -> list[list]:
-    """RuleOverrides rows declaring the supplier-data rules not applicable to a first layout."""
-    return [[rid, "not applicable", "-",
+NOSE_TARGET_RULES = ("TV-001", "TV-002", "TV-003")
+"""Crank-nose amplitude targets: published for passenger cars only (Bell 2013)."""
+
+
+def override_rows(engine_class: str = "passenger car") -> list[list]:
+    """RuleOverrides rows declaring the supplier-data rules not applicable to a first layout,
+    and a commercial vehicle's crank-nose targets (none published)."""
+    rows = [[rid, "not applicable", "-",
              f"first layout (checker new): {what} is the supplier's data and no public"
              " default was found; enter it when the supplier is chosen and remove this row"]
             for rid, what in SUPPLIER_RULES.items()]
+    if engine_class == "commercial vehicle":
+        rows += [[rid, "not applicable", "-",
+                  "first layout (checker new): no published crank-nose target for a commercial"
+                  " vehicle (Bell, Ricardo 2013, gives them for refined passenger cars only);"
+                  " the crank's vibratory stress is judged by TV-009; enter the project's"
+                  " target here when it has one"] for rid in NOSE_TARGET_RULES]
+    return rows
