@@ -66,12 +66,15 @@ __all__ = [
     "BeamSolution",
     "CrankFrame",
     "Frame",
+    "assembled_torsional_stiffness",
+    "balancing_torques",
     "crank_frame",
     "element_stiffness",
     "rectangle_torsion_constant",
     "section_moment",
     "solve_frame",
     "throw_section_loads",
+    "web_inplane_factor",
     "web_stiffness_factors",
 ]
 
@@ -438,12 +441,19 @@ class CrankFrame:
         with the moment of their offset).
     pin_nodes : list of ndarray of int
         Per pin, the nodes at ``pin_load_z`` (con-rod forces, the pin's own mass).
+    web_elements : ndarray of int, shape (n_pins, 2)
+        Element index of each throw's two webs.
+    web_inplane_factor : ndarray, shape (n_pins,)
+        Factor on each throw's web in-plane bending stiffness (1: not calibrated; see
+        ``throw_torsional_stiffness`` of :func:`crank_frame`).
     """
 
     frame: Frame
     main_nodes: np.ndarray
     web_nodes: np.ndarray
     pin_nodes: list[np.ndarray]
+    web_elements: np.ndarray | None = None
+    web_inplane_factor: np.ndarray | None = None
 
     @property
     def load_nodes(self) -> np.ndarray:
@@ -494,6 +504,7 @@ def crank_frame(
     poisson_ratio: float,
     support_stiffness: ArrayLike,
     web_correction: bool = True,
+    throw_torsional_stiffness: ArrayLike | None = None,
 ) -> CrankFrame:
     """The crank as a 3D frame through its journal and pin centre lines.
 
@@ -534,6 +545,16 @@ def crank_frame(
         Apply the web and junction correction fitted to the 3D FE of single throws
         (:func:`web_stiffness_factors`); ``False`` gives the plain beam idealisation above,
         which is 24-1350 % too flexible in bending against the FE.
+    throw_torsional_stiffness : array_like, shape (n_pins,) [N m/rad], optional
+        Each throw's torsional stiffness by the project's definition (between its journal
+        mid-planes, both free to tilt: :mod:`checker.calc.throw_stiffness`, fitted to the 3D
+        FE). Given, each throw's webs get their in-plane bending stiffness (``EI`` about the
+        crank axis) scaled so that the throw alone in the frame, under that definition, has
+        this stiffness (:func:`web_inplane_factor`): the plain web, a beam of length ``R``
+        and depth ``B``, is a deep beam whose parts inside the journal and pin circles hardly
+        bend (the I4 throw of Bell 2013 alone in the plain frame: 426 against the FE's
+        519 kN m/rad; its webs' in-plane ``EI`` times 4.2). The coupling of torsion and
+        bending is the frame's own (docs/crank-geometry.md, "The assembled crank").
 
     Returns
     -------
@@ -582,6 +603,7 @@ def crank_frame(
 
     mains = [node(0.0, 0.0, zm[0])]
     webs = np.zeros((n_pins, 2), dtype=int)
+    web_elements = np.zeros((n_pins, 2), dtype=int)
     pins: list[np.ndarray] = []
     for j in range(n_pins):
         if not zm[j] < zw[j, 0] < zw[j, 1] < zm[j + 1]:
@@ -614,6 +636,7 @@ def crank_frame(
             webs[j, side] = axis_node
             if side == 0:
                 shaft(prev, axis_node, dj[j], bj[j], f_j0)
+            web_elements[j, side] = len(elements)
             elements.append((axis_node, pin_node))
             props.append(web_props)
             axes.append(et)
@@ -631,6 +654,23 @@ def crank_frame(
                 mains.append(nxt)
     ks = np.asarray(support_stiffness, dtype=float) * np.ones(n_main)
     pr = np.array(props)
+    factor = np.ones(n_pins)
+    if throw_torsional_stiffness is not None:
+        target = positive("throw_torsional_stiffness", throw_torsional_stiffness) * np.ones(
+            n_pins)
+        cache: dict[tuple, float] = {}
+        for j in range(n_pins):
+            key = (zm[j + 1] - zm[j], zw[j, 0] - zm[j], zw[j, 1] - zm[j], dj[j], bj[j], dp[j],
+                   bp[j], tw[j], bw[j], float(target[j]))
+            if key not in cache:
+                cache[key] = web_inplane_factor(
+                    bay_length=key[0], web_z=key[1:3], crank_radius=r, journal_diameter=dj[j],
+                    journal_bore=bj[j], pin_diameter=dp[j], pin_bore=bp[j],
+                    web_thickness=tw[j], web_width=bw[j], youngs_modulus=e,
+                    poisson_ratio=nu, web_correction=web_correction,
+                    torsional_stiffness=float(target[j]))
+            factor[j] = cache[key]
+            pr[web_elements[j], 3] *= factor[j]
     frame = Frame(
         nodes=np.array(nodes),
         elements=np.array(elements, dtype=int),
@@ -643,7 +683,8 @@ def crank_frame(
         torsion_node=mains[-1],
     )
     return CrankFrame(
-        frame=frame, main_nodes=np.array(mains, dtype=int), web_nodes=webs, pin_nodes=pins
+        frame=frame, main_nodes=np.array(mains, dtype=int), web_nodes=webs, pin_nodes=pins,
+        web_elements=web_elements, web_inplane_factor=factor,
     )
 
 
@@ -792,3 +833,203 @@ def throw_section_loads(
     v_r = shear[..., 0] * er[0] + shear[..., 1] * er[1]
     shape = m_r.shape[:-2] + (n_t, n_k, m_r.shape[-1])
     return m_r.reshape(shape), m_t.reshape(shape), v_r.reshape(shape)
+
+
+# ------------------------------------------------------------------------------------------
+# torsion of the assembled crank (issue 43)
+# ------------------------------------------------------------------------------------------
+def _torsion_solve(kg: np.ndarray, support_stiffness: np.ndarray, mains: np.ndarray
+                   ) -> np.ndarray:
+    """Rotation about z of every main node under a unit torque at the last main, the first
+    main's rotation and axial motion held, every main held radially by its support (``inf``:
+    held; finite: its spring). Returns (n_main,) [rad/(N m)]."""
+    n = kg.shape[0]
+    k = kg.copy()
+    held = [int(mains[0]) * _DOF + 5, int(mains[0]) * _DOF + 2]
+    for m, s in zip(mains, support_stiffness, strict=True):
+        for c in (0, 1):
+            if np.isfinite(s):
+                k[m * _DOF + c, m * _DOF + c] += s
+            else:
+                held.append(int(m) * _DOF + c)
+    free = np.setdiff1d(np.arange(n), held)
+    f = np.zeros(n)
+    f[int(mains[-1]) * _DOF + 5] = 1.0
+    u = np.zeros(n)
+    try:  # numpy only: the torsional model's derivation imports no scipy
+        u[free] = np.linalg.solve(k[np.ix_(free, free)], f[free])
+    except np.linalg.LinAlgError as exc:
+        raise ValueError("the crank frame is not held in torsion (singular stiffness)") from exc
+    return u[np.asarray(mains, dtype=int) * _DOF + 5]
+
+
+def assembled_torsional_stiffness(crank: CrankFrame) -> np.ndarray:
+    r"""Torsional stiffness of each throw of the assembled crank on its main bearings [N m/rad].
+
+    A torque ``T`` passed through the whole frame (applied at the last main, the first main's
+    rotation held), every main held radially by its support and free to tilt: throw ``j``'s
+    stiffness is ``T / (phi_{j+1} - phi_j)``, ``phi`` the mains' rotations about the crank
+    axis. Unlike a throw alone (the project's definition, both journal mid-planes free to
+    tilt), a throw in the assembled crank is restrained by its neighbours and the bearings:
+    a twisted throw tilts its journals (the offset pin bends under the torque's tangential
+    force), and where the neighbour is not its mirror image (180 deg in an I4, 120 deg in an
+    I6, 90 deg in a cross-plane V8) the tilts disagree at the shared journal, which the
+    bearing holds in place: the bearing reacts a force and the crank is stiffer (I4 pieces of
+    2 to 4 throws: +17 %; docs/crank-geometry.md, "The assembled crank", verified against a
+    3D FE of multi-throw pieces, ``scripts/crank_piece_fe.py``, within 1 %).
+
+    Parameters
+    ----------
+    crank : CrankFrame
+        The crank's frame (:func:`crank_frame`, best with ``throw_torsional_stiffness``: its
+        throws' torsion calibrated to the 3D FE).
+
+    Returns
+    -------
+    ndarray, shape (n_pins,) [N m/rad]
+
+    Raises
+    ------
+    ValueError
+        The frame is not held, or a throw's twist is not positive (numerical trouble).
+    """
+    fr = crank.frame
+    phi = _torsion_solve(_assemble(fr), np.asarray(fr.support_stiffness, dtype=float),
+                         np.asarray(crank.main_nodes))
+    twist = np.diff(phi)
+    if not np.all(np.isfinite(twist)) or np.any(twist <= 0.0):
+        raise ValueError("the assembled crank's twist per throw is not positive:"
+                         f" {twist.tolist()} rad/(N m)")
+    return 1.0 / twist
+
+
+def _definition_stiffness(kg: np.ndarray, mains: np.ndarray) -> float:
+    """A single throw's torsional stiffness by the project's definition in the frame: both
+    main nodes held radially, free to tilt and (but the first) to move axially, the first
+    held in rotation; unit torque at the second [N m/rad]."""
+    return 1.0 / float(_torsion_solve(kg, np.full(mains.size, np.inf), mains)[-1])
+
+
+def web_inplane_factor(
+    *, bay_length: float, web_z: tuple[float, float], crank_radius: float,
+    journal_diameter: float, journal_bore: float, pin_diameter: float, pin_bore: float,
+    web_thickness: float, web_width: float, youngs_modulus: float, poisson_ratio: float,
+    torsional_stiffness: float, web_correction: bool = True,
+) -> float:
+    """Factor on a throw's web in-plane bending stiffness that gives the throw alone in the
+    frame the stated torsional stiffness (the project's definition: both journal mid-planes
+    held radially, free to tilt and to move axially, one turned about the crank axis).
+
+    The frame's stiffness matrix is linear in the factor ``s``: ``K(s) = K_1 + (s - 1) K_w``
+    with ``K_w`` the webs' in-plane bending alone, and the throw's torsional compliance falls
+    monotonically with ``s``; the root is found by Brent's method on ``log s`` in
+    ``[1e-3, 1e4]`` (Illinois false position on ``log s``, to 1e-13 in ``log k``).
+
+    Parameters
+    ----------
+    bay_length : float [m]
+        Distance between the throw's main journal mid-planes.
+    web_z : tuple of two floats [m]
+        The webs' mid-planes from the first main.
+    crank_radius, journal_diameter, journal_bore, pin_diameter, pin_bore, web_thickness,
+    web_width : float [m]
+    youngs_modulus : float [Pa]
+    poisson_ratio : float [-]
+    torsional_stiffness : float [N m/rad]
+        The throw's stiffness by the definition (:mod:`checker.calc.throw_stiffness`).
+    web_correction : bool
+        As :func:`crank_frame`.
+
+    Returns
+    -------
+    float [-]
+
+    Raises
+    ------
+    ValueError
+        No factor in ``[1e-3, 1e4]`` reaches the stiffness (the frame's journals and pin
+        alone are more flexible than the throw, or its webs far too stiff).
+    """
+    one = crank_frame(
+        main_z=[0.0, bay_length], web_z=[list(web_z)], pin_load_z=[[sum(web_z) / 2.0]],
+        throw_angle=[0.0], crank_radius=crank_radius, journal_diameter=journal_diameter,
+        journal_bore=journal_bore, pin_diameter=pin_diameter, pin_bore=pin_bore,
+        web_thickness=web_thickness, web_width=web_width, youngs_modulus=youngs_modulus,
+        poisson_ratio=poisson_ratio, support_stiffness=np.inf, web_correction=web_correction)
+    fr = one.frame
+    k1 = _assemble(fr)
+    kw = np.zeros_like(k1)
+    for e_idx in one.web_elements.ravel():
+        i, k = fr.elements[e_idx]
+        ke = element_stiffness(fr.nodes[i], fr.nodes[k], 0.0, 0.0, 0.0,
+                               float(fr.bending_stiffness[e_idx, 1]), fr.first_axis[e_idx])
+        idx = np.r_[i * _DOF:(i + 1) * _DOF, k * _DOF:(k + 1) * _DOF]
+        kw[np.ix_(idx, idx)] += ke
+    mains = np.asarray(one.main_nodes)
+    target = float(torsional_stiffness)
+
+    def gap(log_s: float) -> float:
+        return float(np.log(_definition_stiffness(k1 + (np.exp(log_s) - 1.0) * kw, mains)
+                            / target))
+
+    lo, hi = np.log(1e-3), np.log(1e4)
+    g_lo, g_hi = gap(lo), gap(hi)
+    if not (g_lo <= 0.0 <= g_hi):
+        k_lo, k_hi = (target * np.exp(g) for g in (g_lo, g_hi))
+        raise ValueError(
+            f"the throw's torsional stiffness {target:.6g} N m/rad is outside what the frame"
+            f" reaches by its webs' in-plane stiffness ({k_lo:.6g} to {k_hi:.6g} N m/rad)")
+    # the Illinois variant of the false position (the gap rises monotonically with log s)
+    a, b, fa, fb = lo, hi, g_lo, g_hi
+    for _ in range(200):
+        c = b - fb * (b - a) / (fb - fa)
+        fc = gap(c)
+        if abs(fc) < 1e-13 or fc == fb:
+            return float(np.exp(c))
+        if fc * fb < 0.0:
+            a, fa = b, fb
+        else:
+            fa *= 0.5
+        b, fb = c, fc
+    raise ValueError("the web in-plane factor did not converge")
+
+
+def balancing_torques(torque: ArrayLike, inertia: ArrayLike, output: int) -> np.ndarray:
+    r"""Torques that balance the crank's applied torque: the load at the output, d'Alembert's
+    inertia torques on the rotating inertias.
+
+    Over one steady cycle the torque of the con-rods about the crank axis, ``T(theta)``, leaves
+    the engine at its output (the flywheel flange) as its cycle mean ``T_m`` (the load); the
+    rest speeds up and slows down the rotating system as a rigid body,
+    ``J alpha = T - T_m`` with ``J = sum J_i``, and each inertia takes its d'Alembert torque
+    ``-J_i alpha`` (Ker Wilson, Practical Solution of Torsional Vibration Problems, vol. 1,
+    1956, the engine's turning-moment diagram and its flywheel; Den Hartog, Mechanical
+    Vibrations, 4th ed., 1956, sec. 5.9):
+
+    .. math::
+
+        M_i = -\frac{J_i}{J} (T - T_m) - \delta_{i,out} T_m,
+        \qquad \sum_i M_i = -T .
+
+    Parameters
+    ----------
+    torque : array_like, shape (..., N) [N m]
+        Applied torque about the crank axis at ``N`` equally spaced angles of one cycle.
+    inertia : array_like, shape (K,) [kg m^2]
+        The rotating inertias (e.g. the torsional model's stations), each > 0.
+    output : int
+        Index of the inertia where the torque leaves the engine (the flywheel).
+
+    Returns
+    -------
+    ndarray, shape (..., K, N) [N m]
+        Torque on the crank at each inertia; with ``torque`` they sum to zero at every angle.
+    """
+    t = finite("torque", torque)
+    j = positive("inertia", inertia).ravel()
+    if not 0 <= int(output) < j.size:
+        raise ValueError("output must index one of the inertias")
+    mean = t.mean(axis=-1, keepdims=True)
+    out = -(j / j.sum())[:, None] * (t - mean)[..., None, :]
+    out[..., int(output), :] -= mean
+    return out

@@ -17,11 +17,14 @@ Conventions (docs/crank-geometry.md):
   revolution of the slider-crank's equivalent inertia, Ker Wilson, Practical Solution of
   Torsional Vibration Problems, vol. 1, 1956, ch. 3; Bell, Ricardo 2013: constant inertia
   applied at each crank pin);
-* a throw's stiffness (between its journal mid-planes, :mod:`checker.calc.throw_stiffness`) is
-  split into two equal halves at the pin's mid-plane, where the cylinder station sits: between
-  neighbouring cylinder stations ``1/k = 1/(2 k_a) + 1/(2 k_b)``; crank nose to cylinder 1 adds
-  the nose shaft and the front half of main journal 1 (plain shafts, ``G Jp / L``); the last
-  cylinder to the flywheel adds the rear half journal and the flywheel flange.
+* a throw's stiffness in the assembled crank on its main bearings
+  (:func:`checker.calc.crank_beam.assembled_torsional_stiffness`: the crank's 3D frame with
+  each throw's torsion calibrated to its stiffness alone, :mod:`checker.calc.throw_stiffness`;
+  issue 43) is split into two equal halves at the pin's mid-plane, where the cylinder station
+  sits: between neighbouring cylinder stations ``1/k = 1/(2 k_a) + 1/(2 k_b)``; crank nose to
+  cylinder 1 adds the nose shaft and the front half of main journal 1 (plain shafts,
+  ``G Jp / L``); the last cylinder to the flywheel adds the rear half journal and the flywheel
+  flange.
 """
 
 from __future__ import annotations
@@ -282,7 +285,9 @@ def rod_inertia_share(params: dict[str, Any]) -> tuple[float, str] | None:
 @dataclass(frozen=True)
 class ThrowStiffnessInfo:
     """Each throw's stiffness between its journal mid-planes [N m/rad] (NaN: not available),
-    whether each lies in the fast model's fitted range, the method and its stated error."""
+    whether each lies in the fast model's fitted range, the method and its stated error;
+    ``assembled``: each throw's stiffness in the assembled crank on its main bearings (the
+    torsional model's; NaN where not available) and how it was found."""
 
     stiffness: np.ndarray
     in_range: np.ndarray
@@ -290,11 +295,21 @@ class ThrowStiffnessInfo:
     model_error: float | None
     missing: str = ""
     outside: tuple[str, ...] = ()  # per throw: the model's groups outside the range ("" in)
+    assembled: np.ndarray | None = None
+    assembled_method: str = ""
+
+    @property
+    def for_model(self) -> np.ndarray:
+        """The stiffness the torsional model uses: the assembled crank's where known."""
+        return self.stiffness if self.assembled is None else self.assembled
 
 
-def throw_stiffness(crank: CrankGeometry) -> ThrowStiffnessInfo:
+def throw_stiffness(crank: CrankGeometry, throw_angle: dict[int, float] | None = None
+                    ) -> ThrowStiffnessInfo:
     """The throws' torsional stiffness from :mod:`checker.calc.throw_stiffness` (issue 33,
-    item 4); NaN with the reason when that model is not available."""
+    item 4); NaN with the reason when that model is not available. With the throws' angles
+    (``throw_angle``: pin -> angle from throw 1 [rad]) also each throw's stiffness in the
+    assembled crank on its main bearings (:func:`assembled_stiffness`, issue 43)."""
     n = len(crank.throws)
     try:
         from ..calc.throw_stiffness import throw_torsional_stiffness
@@ -319,10 +334,61 @@ def throw_stiffness(crank: CrankGeometry) -> ThrowStiffnessInfo:
         cw_angle=np.array(crank.column("cw_angle")),
         cw_thickness=np.array([(t.cw_thickness or t.web_thickness) if t.has_counterweight
                                else 0.0 for t in crank.throws]))  # 0: no counterweight
-    return ThrowStiffnessInfo(np.asarray(res.stiffness, dtype=float),
-                              np.asarray(res.in_range, dtype=bool), str(res.method),
+    single = np.asarray(res.stiffness, dtype=float)
+    assembled, how = (None, "") if throw_angle is None else assembled_stiffness(
+        crank, throw_angle, single)
+    return ThrowStiffnessInfo(single, np.asarray(res.in_range, dtype=bool), str(res.method),
                               None if res.model_error is None else float(res.model_error),
-                              outside=tuple(res.outside))
+                              outside=tuple(res.outside), assembled=assembled,
+                              assembled_method=how)
+
+
+def assembled_stiffness(crank: CrankGeometry, throw_angle: dict[int, float],
+                        single: np.ndarray) -> tuple[np.ndarray, str]:
+    """Each throw's torsional stiffness in the assembled crank on rigid main bearings [N m/rad]
+    and its method: the crank's 3D frame (:func:`checker.calc.crank_beam.crank_frame`, mains
+    at the throws' lengths) with each throw's web in-plane stiffness calibrated to its
+    stiffness alone (``single``), a torque passed through it
+    (:func:`checker.calc.crank_beam.assembled_torsional_stiffness`). Where the frame cannot
+    be calibrated (a throw far outside the stiffness model's range) the throws in series
+    (``single``) with the reason in the method."""
+    from ..calc import crank_beam as cb
+
+    throws = crank.throws
+    if not np.all(np.isfinite(single)):
+        return single, ""
+    lengths = np.array([t.length for t in throws])
+    main_z = np.concatenate([[0.0], np.cumsum(lengths)])
+    lj = np.array([t.journal_length for t in throws])
+    tw = np.array([t.web_thickness for t in throws])
+    web_z = np.column_stack([main_z[:-1] + lj / 2 + tw / 2, main_z[1:] - lj / 2 - tw / 2])
+    try:
+        frame = cb.crank_frame(
+            main_z=main_z, web_z=web_z, pin_load_z=[[z] for z in (main_z[:-1] + main_z[1:]) / 2],
+            throw_angle=[throw_angle.get(t.number, 0.0) for t in throws],
+            crank_radius=crank.crank_radius,
+            journal_diameter=[t.journal_diameter for t in throws],
+            journal_bore=[t.journal_bore for t in throws],
+            pin_diameter=[t.pin_diameter for t in throws],
+            pin_bore=[t.pin_bore for t in throws], web_thickness=tw,
+            web_width=[(t.web_width_journal + t.web_width_pin) / 2.0 for t in throws],
+            youngs_modulus=crank.youngs_modulus, poisson_ratio=crank.poisson_ratio,
+            support_stiffness=np.inf, throw_torsional_stiffness=single)
+        k = cb.assembled_torsional_stiffness(frame)
+    except ValueError as exc:
+        return single, (f"throws in series (the assembled crank's frame could not be"
+                        f" calibrated: {exc})")
+    return k, ("assembled crank on its main bearings: 3D frame of the crank with each throw's"
+               " torsion calibrated to its stiffness alone, a torque passed through it"
+               " (verified against a 3D FE of 2- to 4-throw pieces of the I4 and I6 within"
+               " 1 %)")
+
+
+def _methods(stiff: ThrowStiffnessInfo) -> str:
+    """The throw stiffness's method, and the assembled crank's where it is used."""
+    if not stiff.assembled_method:
+        return stiff.method
+    return f"{stiff.assembled_method}; each throw alone: {stiff.method}"
 
 
 def outside_text(stiff: ThrowStiffnessInfo, throws: list[int]) -> str:
@@ -355,7 +421,7 @@ def tv_from_crank(rows: list[dict[str, Any]], crank: CrankGeometry, params: dict
     mp = crank.mass_properties
     share = rod_inertia_share(params)
     g = crank.shear_modulus
-    k = stiff.stiffness
+    k = stiff.for_model
     n = len(crank.throws)
 
     def pin_of(r: dict[str, Any]) -> int | None:
@@ -402,7 +468,7 @@ def tv_from_crank(rows: list[dict[str, Any]], crank: CrankGeometry, params: dict
             lo, hi = min(a, b), max(a, b)
             if np.isfinite(k[lo - 1]) and np.isfinite(k[hi - 1]):
                 derived = 1.0 / (1.0 / (2 * k[lo - 1]) + 1.0 / (2 * k[hi - 1]))
-                method = f"halves of throws {lo} and {hi} in series ({stiff.method})"
+                method = f"halves of throws {lo} and {hi} in series ({_methods(stiff)})"
             else:
                 why = stiff.missing
         elif r.get("role") == "crank nose" and b == 1 or (
@@ -431,7 +497,7 @@ def tv_from_crank(rows: list[dict[str, Any]], crank: CrankGeometry, params: dict
                 derived = 1.0 / c
                 method = (f"{'nose' if end == 'nose' else 'flange'} shaft and half main"
                           f" journal (G Jp / L) in series with half of throw {t.number}"
-                          f" ({stiff.method})")
+                          f" ({_methods(stiff)})")
         typed = r.get("stiffness")
         if typed is None and derived is not None:
             r["stiffness"] = derived

@@ -770,7 +770,7 @@ def _crank_rows(data: WorkbookData, crank: CrankGeometry | None, cylinders: list
         gamma.setdefault(c.pin, c.throw_angle)
     crank_mass = list(out["CrankMass"]) + cd.crank_mass_rows(crank, gamma, typed_throws)
     tv = [dict(r) for r in out["TVModel"]]
-    stiff = cd.throw_stiffness(crank)
+    stiff = cd.throw_stiffness(crank, gamma)
     model += cd.tv_from_crank(
         tv, crank, data.params["Engine"], pin_of, data.where, pr.blank_required, stiff,
         pr.warn, data.params.get("Damper", {}).get("damper_type") == "viscous")

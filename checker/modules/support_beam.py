@@ -11,7 +11,11 @@ Axial layout: main ``k`` at ``z_k = k L`` with ``L`` the Engine sheet's main jou
 summed); a throw's webs at ``Lj/2 + tw/2`` from its mains; the con-rods at mid-bay (as the
 determinate scheme). Loads: the con-rod forces on the pins and the centrifugal forces of the
 crank masses (sheet CrankMass, typed or derived from the geometry) at their mass centres,
-carried to the nearest web or pin node of their throw with the moment of their offset.
+carried to the nearest web or pin node of their throw with the moment of their offset; the
+torque of the con-rods balanced where it goes (issue 43): its cycle mean leaves at the
+flywheel flange, the rest accelerates the rotating inertias (the torsional model's stations:
+d'Alembert's torques, :func:`checker.calc.crank_beam.balancing_torques`), so the frame's
+rotation hold reacts nothing.
 """
 
 from __future__ import annotations
@@ -46,6 +50,14 @@ class Beam:
     pin_z: np.ndarray  # (n_pins,) [m]
     offsets: np.ndarray  # (n_main,) [m] block-frame y offset of each main
     stiffness: np.ndarray  # (n_main,) [N/m], inf = rigid
+    #: Rotating inertias that balance the rods' torque: inertia [kg m^2], load-node index of
+    #: each (the front end at throw 1's front web, a cylinder station at its pin, the
+    #: flywheel end at the last web), and which one is the output (the flywheel).
+    inertia: np.ndarray
+    inertia_node: np.ndarray
+    output: int
+    inertia_note: str
+    radius: float  # [m] crank radius
 
     @property
     def pin_load_index(self) -> np.ndarray:
@@ -80,7 +92,8 @@ def build_beam(engine: Engine, gamma: np.ndarray, scheme: str | None = None) -> 
         k = np.full(n_pins + 1, np.inf)
     offsets = np.array([b.support_offset or 0.0 for b in mains] if mains
                        else [0.0] * (n_pins + 1))
-    frame = cb.crank_frame(
+    single = _single_throw_stiffness(engine)
+    kwargs = dict(
         main_z=main_z, web_z=web_z, pin_load_z=[[z] for z in pin_z], throw_angle=gamma,
         crank_radius=crank.crank_radius,
         journal_diameter=[t.journal_diameter for t in throws],
@@ -90,8 +103,65 @@ def build_beam(engine: Engine, gamma: np.ndarray, scheme: str | None = None) -> 
         web_width=[(t.web_width_journal + t.web_width_pin) / 2.0 for t in throws],
         youngs_modulus=crank.youngs_modulus, poisson_ratio=crank.poisson_ratio,
         support_stiffness=k)
+    try:
+        frame = cb.crank_frame(**kwargs, throw_torsional_stiffness=single)
+    except ValueError:  # a throw the calibration cannot reach: the frame's own torsion
+        frame = cb.crank_frame(**kwargs)
+    inertia, node, output, note = _rotating_inertias(engine, n_pins)
     return Beam(frame, cb.solve_frame(frame.frame, frame.load_nodes), main_z, web_z, pin_z,
-                offsets, k)
+                offsets, k, inertia, node, output, note, crank.crank_radius)
+
+
+def _single_throw_stiffness(engine: Engine) -> np.ndarray | None:
+    """Each throw's torsional stiffness alone (:mod:`checker.calc.throw_stiffness`), to
+    calibrate the frame's torsion; None where it is not available."""
+    from ..description.crank_derive import throw_stiffness
+
+    k = throw_stiffness(engine.crank).stiffness
+    return k if np.all(np.isfinite(k)) else None
+
+
+def _rotating_inertias(engine: Engine, n_pins: int) -> tuple[np.ndarray, np.ndarray, int, str]:
+    """The inertias that balance the rods' torque and the load node of each: the torsional
+    model's stations (sheet TVModel), those ahead of the first cylinder station on throw 1's
+    front web, a cylinder station on its pin, those behind the last on the last web (a pure
+    torque passes the straight journal, nose or flange to the web unchanged); the output is
+    the flywheel station (else the last). Without a usable model: one inertia, the flywheel
+    end, carrying the whole torque."""
+    pin_of = {c.number: c.pin for c in engine.cylinders}
+    stations = list(engine.tv_model)
+    cyl = [i for i, s in enumerate(stations) if s.cylinders]
+    rear = 2 * n_pins - 1
+    if not cyl or any(not (s.inertia and s.inertia > 0) for s in stations) or any(
+            not 1 <= pin_of.get(s.cylinders[0], 0) <= n_pins for s in stations if s.cylinders):
+        return (np.ones(1), np.array([rear]), 0, "the whole torque of the rods at the flywheel"
+                " flange (no complete torsional model to share its fluctuation)")
+    node = []
+    for i, s in enumerate(stations):
+        if s.cylinders:
+            node.append(2 * n_pins + pin_of[s.cylinders[0]] - 1)
+        else:
+            node.append(0 if i < cyl[0] else rear)
+    fly = [i for i, s in enumerate(stations) if s.role == "flywheel" and i > cyl[-1]]
+    output = fly[0] if fly else len(stations) - 1
+    if node[output] != rear:
+        return (np.ones(1), np.array([rear]), 0, "the whole torque of the rods at the flywheel"
+                " flange (no station behind the last cylinder)")
+    return (np.array([s.inertia for s in stations], dtype=float), np.array(node, dtype=int),
+            output, "the mean torque of the rods at the flywheel flange, its fluctuation on"
+            " the rotating inertias of the torsional model (d'Alembert)")
+
+
+def _balancing_moments(beam: Beam, f_pin: cf.Vector2, gamma: np.ndarray, r: float
+                       ) -> np.ndarray:
+    """Torques about the crank axis at the load nodes (C, S, n_load, N) [N m] that balance
+    the rods' torque at every angle (:func:`checker.calc.crank_beam.balancing_torques`)."""
+    g = np.asarray(gamma, dtype=float)[:, None]
+    torque = (r * (np.sin(g) * f_pin.y - np.cos(g) * f_pin.x)).sum(axis=-2)  # (C, S, N)
+    per = cb.balancing_torques(torque, beam.inertia, beam.output)  # (C, S, K, N)
+    out = np.zeros(torque.shape[:-1] + (beam.solution.load_nodes.size, torque.shape[-1]))
+    np.add.at(out, (Ellipsis, beam.inertia_node, slice(None)), per)
+    return out
 
 
 def _offset_loads(beam: Beam, theta: np.ndarray) -> np.ndarray | None:
@@ -156,6 +226,10 @@ def continuous_main_loads(beam: Beam, engine: Engine, theta: np.ndarray, speeds:
           + np.einsum("mp,cspn->csmn", pin_map[:, 0, :, 1], f_pin.y))
     by = (np.einsum("mp,cspn->csmn", pin_map[:, 1, :, 0], f_pin.x)
           + np.einsum("mp,cspn->csmn", pin_map[:, 1, :, 1], f_pin.y))
+    mz = _balancing_moments(beam, f_pin, gamma, r)  # (C, S, L, N)
+    mz_map = sol.moment_map[:, :, :, 2]  # (M, 2, L)
+    bx = bx + np.einsum("ml,csln->csmn", mz_map[:, 0], mz)
+    by = by + np.einsum("ml,csln->csmn", mz_map[:, 1], mz)
     force_w2, moment_w2, _ = _mass_loads(beam, engine, gamma, r)
     per_w2 = (np.einsum("mcla,la->mc", fm, force_w2)
               + np.einsum("mcla,la->mc", sol.moment_map, moment_w2))  # (M, 2) crank frame
@@ -168,13 +242,14 @@ def continuous_main_loads(beam: Beam, engine: Engine, theta: np.ndarray, speeds:
         by = by + off[:, 1]
     block = cf.crank_to_block(cf.Vector2(bx, by), theta)
     detail = _record(beam, engine, theta, speeds, f_pin, force_w2, moment_w2,
-                     cf.Vector2(bx, by), case_names)
+                     cf.Vector2(bx, by), case_names, mz)
     return block, detail
 
 
 def _record(beam: Beam, engine: Engine, theta: np.ndarray, speeds: np.ndarray,
             f_pin: cf.Vector2, force_w2: np.ndarray, moment_w2: np.ndarray,
-            crank_loads: cf.Vector2, case_names: list[str]) -> CrankBeamDetail:
+            crank_loads: cf.Vector2, case_names: list[str], mz: np.ndarray
+            ) -> CrankBeamDetail:
     """The beam as the outputs show it, with its loads and reactions at one operating point
     (the load case and speed of the largest main-bearing load), every 10 deg."""
     fr = beam.crank.frame
@@ -190,6 +265,7 @@ def _record(beam: Beam, engine: Engine, theta: np.ndarray, speeds: np.ndarray,
     pin_idx = beam.pin_load_index
     loads[:, pin_idx, 0] += f_pin.x[ci, si][:, idx].T
     loads[:, pin_idx, 1] += f_pin.y[ci, si][:, idx].T
+    loads[:, :, 5] += mz[ci, si][:, idx].T
     reactions = np.stack([crank_loads.x[ci, si][:, idx].T, crank_loads.y[ci, si][:, idx].T],
                          axis=-1)  # (n_angle, M, 2)
     return CrankBeamDetail(
@@ -209,7 +285,7 @@ def _record(beam: Beam, engine: Engine, theta: np.ndarray, speeds: np.ndarray,
             " thickness and mean width, counterweights adding mass but no stiffness), pinned on"
             " every main (Piraner, Pflueger and Bouthier, Cummins crankshaft and bearing"
             " analysis process, 2002; Agostini, Powertrain Components Design, 2019, 'Static"
-            " Analysis'); the torque of the rods reacted at the last main.",))
+            f" Analysis'); {beam.inertia_note}.",))
 
 
 def throw_sections(beam: Beam, f_r: np.ndarray, f_t: np.ndarray, gamma: np.ndarray,
@@ -249,6 +325,10 @@ def throw_sections(beam: Beam, f_r: np.ndarray, f_t: np.ndarray, gamma: np.ndarr
     b_det = np.zeros_like(b_cont)
     b_det[:, :-1] += share_front[None, :, None, None] * unit
     b_det[:, 1:] += (1.0 - share_front)[None, :, None, None] * unit
+    # the rods' torque balanced at the flywheel flange and the rotating inertias: their
+    # torques' bearing loads, (C, S, M, N, 2), enter the continuous beam as extra main loads
+    mz = _balancing_moments(beam, cf.Vector2(fx, fy), gamma, beam.radius)
+    torque_b = np.einsum("mil,csln->csmni", sol.moment_map[:, :, :, 2], mz)
     forces = np.stack([fx, fy], axis=-2)  # (C, S, T, 2, N)
     lead = forces.shape[:-3]
     f2 = forces.reshape(lead + (2 * n_t, forces.shape[-1]))  # (C, S, 2T, N)
@@ -259,9 +339,10 @@ def throw_sections(beam: Beam, f_r: np.ndarray, f_t: np.ndarray, gamma: np.ndarr
                                       throw_angle=gamma, cut_z=cuts)  # 3 x (2T, T, K, 1)
         m_r, m_t, v_r = ((a[..., 0].reshape(2 * n_t, -1).T @ f2).reshape(
             lead + (n_t, cuts.shape[1], f2.shape[-1])) for a in infl)
-        if off is not None and bearing is b_cont:
-            zero = np.zeros((n_t, theta.size, 2))
-            extra = cb.throw_section_loads(zero, np.moveaxis(off, 1, 2), pin_z=beam.pin_z,
+        if bearing is b_cont:
+            extra_b = torque_b if off is None else torque_b + np.moveaxis(off, 1, 2)
+            zero = np.zeros(extra_b.shape[:-3] + (n_t,) + extra_b.shape[-2:])
+            extra = cb.throw_section_loads(zero, extra_b, pin_z=beam.pin_z,
                                            main_z=beam.main_z, throw_angle=gamma, cut_z=cuts)
             m_r, m_t, v_r = (x + e for x, e in zip((m_r, m_t, v_r), extra, strict=True))
         out.append(cs.SectionLoads(
