@@ -52,6 +52,7 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
 _spec = importlib.util.spec_from_file_location("throw_fe", ROOT / "scripts" / "throw_fe.py")
 throw_fe = importlib.util.module_from_spec(_spec)
 sys.modules.setdefault("throw_fe", throw_fe)
@@ -333,6 +334,79 @@ def table(size: float | None = None, out: Path = TABLE_FILE) -> dict:
     return data
 
 
+def _fast_stiffness(th: Throw) -> float:
+    """The fast throw model of the checker (:mod:`checker.calc.throw_stiffness`)."""
+    from checker.calc.throw_stiffness import throw_torsional_stiffness
+
+    return float(throw_torsional_stiffness(
+        journal_diameter=th.Dj, journal_bore=th.dj, journal_length=th.Lj, pin_diameter=th.Dp,
+        pin_bore=th.dp, pin_length=th.Lp, web_thickness=th.tw, web_width_journal=th.Bj,
+        web_width_pin=th.Bp, crank_radius=th.R, youngs_modulus=th.E, poisson_ratio=th.nu,
+        cw_inner_radius=th.cw_ri, cw_outer_radius=th.cw_ro, cw_angle=th.cw_angle,
+        cw_thickness=th.cw_t).stiffness[0])
+
+
+def model_of(engine: str, n: int, single) -> tuple[np.ndarray, np.ndarray]:
+    """The checker's model of a piece: each throw's stiffness in the assembled crank
+    (:func:`checker.calc.crank_beam.assembled_torsional_stiffness`, the frame calibrated to
+    ``single``, one value or one per throw) and the bearing forces per unit torque (n + 1, 2)."""
+    from checker.calc import crank_beam as cb
+
+    ths, gam = _piece_throws(engine, n)
+    th = ths[0]
+    mz = np.arange(n + 1) * th.length
+    wz = np.column_stack([mz[:-1] + th.Lj / 2 + th.tw / 2, mz[1:] - th.Lj / 2 - th.tw / 2])
+    frame = cb.crank_frame(
+        main_z=mz, web_z=wz, pin_load_z=[[z] for z in (mz[:-1] + mz[1:]) / 2],
+        throw_angle=gam, crank_radius=th.R, journal_diameter=th.Dj, journal_bore=th.dj,
+        pin_diameter=th.Dp, pin_bore=th.dp, web_thickness=th.tw,
+        web_width=(th.Bj + th.Bp) / 2, youngs_modulus=th.E, poisson_ratio=th.nu,
+        support_stiffness=np.inf, throw_torsional_stiffness=single)
+    k = cb.assembled_torsional_stiffness(frame)
+    fr = frame.frame
+    kg = cb._assemble(fr)
+    mains = np.asarray(frame.main_nodes)
+    phi = cb._torsion_solve(kg, np.full(mains.size, np.inf), mains)
+    u = np.zeros(kg.shape[0])
+    held = set([mains[0] * 6 + 5, mains[0] * 6 + 2] + [m * 6 + c for m in mains for c in (0, 1)])
+    free = np.array(sorted(set(range(kg.shape[0])) - held))
+    f = np.zeros(kg.shape[0])
+    f[mains[-1] * 6 + 5] = 1.0
+    u[free] = np.linalg.solve(kg[np.ix_(free, free)], f[free])
+    reaction = kg @ u - f
+    force = np.array([[reaction[m * 6], reaction[m * 6 + 1]] for m in mains])
+    assert np.allclose(u[mains * 6 + 5], phi)
+    return k, force
+
+
+def compare(path: Path = TABLE_FILE) -> str:
+    """The verification table of docs/crank-geometry.md from the stored FE (Markdown): per
+    piece the FE, the throws in series, the model calibrated to the FE's throw alone (same
+    mesh) and the model on the checker's fast throw model, and the largest inner bearing
+    force per unit torque."""
+    data = json.loads(path.read_text(encoding="utf-8"))
+    lines = ["| engine | throws | angles, deg | mesh | FE, kN m/rad | throws in series |"
+             " model (throw FE) | model (fast throw model) | bearing force FE / model,"
+             " N/(N m) |", "|" + " --- |" * 9]
+    for p in data["pieces"]:
+        e, n = p["engine"], p["throws"]
+        k_fe, series = p["k_fe"], p["k_single_fe"] / n
+        k_a, force = model_of(e, n, p["k_single_fe"])
+        ths, _ = _piece_throws(e, n)
+        k_b, _ = model_of(e, n, np.array([_fast_stiffness(t) for t in ths]))
+        end_a, end_b = 1 / np.sum(1 / k_a), 1 / np.sum(1 / k_b)
+        f_fe = np.hypot(*np.array(p["bearing_force"])[1:-1].T)
+        f_m = np.hypot(*force[1:-1].T)
+        i = int(np.argmax(f_fe))
+        lines.append(
+            f"| {e.upper()} | {n} | {', '.join(f'{a:g}' for a in p['angles_deg'])} |"
+            f" {p['size']} | {k_fe / 1e3:.1f} | {series / 1e3:.1f} ({series / k_fe - 1:+.1%}) |"
+            f" {end_a / 1e3:.1f} ({end_a / k_fe - 1:+.1%}) |"
+            f" {end_b / 1e3:.1f} ({end_b / k_fe - 1:+.1%}) |"
+            f" {f_fe[i]:.2f} / {f_m[i]:.2f} |")
+    return "\n".join(lines).replace("%", " %")
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--engine", default="i4", choices=sorted(PIECES))
@@ -342,7 +416,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--free-inner", action="store_true", help="no bearings inside the piece")
     ap.add_argument("--table", action="store_true", help="solve the verification pieces and"
                     " write checker/calc/data/crank_piece_fe.json")
+    ap.add_argument("--compare", action="store_true", help="print the verification table of"
+                    " the stored FE against the checker's model (needs only the checker)")
     args = ap.parse_args(argv)
+    if args.compare:
+        print(compare())
+        return 0
     if args.table:
         table(args.size)
         return 0
