@@ -28,10 +28,17 @@ Model (stated idealisation)
   frame). Optional support offsets (misalignment) are prescribed support displacements (rigid)
   or spring foot positions (elastic).
 * **Rigid-body motions** left by the supports are removed by holding the axial displacement of
-  the first support node and the rotation about ``z`` of one stated node (the flywheel end):
-  the torque of the con-rod forces is reacted there. Neither carries a force in a load case
-  without axial force and with balanced torque, and neither changes the radial reactions of a
-  frame whose elements lie along or across the axis.
+  the first support node and the rotation about ``z`` of one stated node. Neither carries a
+  force in a load case without axial force and with balanced torque. A torque left to the
+  rotation hold is not neutral: through the offset pins it bends the crank, and where the
+  hold is changes the radial reactions (issue 43). The caller balances the torque
+  (:func:`balancing_torques`: the load at the flywheel flange, d'Alembert's torques on the
+  rotating inertias), so the hold reacts nothing.
+* **Torsion** (issue 43): with ``throw_torsional_stiffness`` each throw's web in-plane bending
+  is calibrated so that the throw alone has its torsional stiffness from the 3D FE
+  (:func:`web_inplane_factor`). The same frame gives the assembled crank's torsional
+  stiffness on its bearings (:func:`assembled_torsional_stiffness`), verified against a 3D FE
+  of multi-throw pieces within 1 %.
 
 Because the stiffness matrix does not depend on the crank angle, the support reactions are a
 linear map of the nodal loads, computed once per configuration by one factorisation

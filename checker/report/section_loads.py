@@ -579,7 +579,8 @@ def _beam_sheets(beam) -> list[dict]:
     return [
         {"sheet": "crank beam nodes", "title": f"Crank beam ({beam.scheme}): nodes, crank"
          " frame (z = crank axis); supports at the mains (radial stiffness, block-frame y"
-         f" offset); rotation about z held at node {beam.torsion_node}",
+         f" offset); rotation about z held at node {beam.torsion_node} (it reacts nothing:"
+         " the Mz loads balance the rods' torque)",
          "columns": ["node", "x [m]", "y [m]", "z [m]", "support", "stiffness [N/m]",
                      "offset [m]"], "rows": nodes},
         {"sheet": "crank beam elements", "title": "Crank beam: Euler-Bernoulli elements (EI"
