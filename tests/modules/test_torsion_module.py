@@ -310,11 +310,12 @@ def test_v8_paired_stations_equal_split_stations_with_a_stiff_link(v8_models):
     # per order too, where the amplitude matters (above 1e-9 of the largest); 2e-5 here: the
     # stiff link conditions the per-order solve at the lowest orders and speeds (k_link /
     # (w^2 J) ~ 1e10, so ~1e-6 of round-off, up to 1.1e-5 with the V8's station inertias
-    # derived from its crank geometry), which the synthesis averages out
+    # derived from its crank geometry, 3e-5 with its stiffnesses of the assembled crank,
+    # issue 43, on amplitudes 1e-5 of the largest), which the synthesis averages out
     o_p = paired["tv.nose_order_amplitude"].values
     o_s = split["tv.nose_order_amplitude"].values
     big = o_p > 1e-9 * o_p.max()
-    np.testing.assert_allclose(o_s[big], o_p[big], rtol=2e-5)
+    np.testing.assert_allclose(o_s[big], o_p[big], rtol=6e-5)
 
 
 def test_v8_station_takes_both_cylinders_phased_by_their_own_firing_angles(v8_models):
