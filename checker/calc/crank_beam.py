@@ -667,8 +667,9 @@ def crank_frame(
             n_pins)
         cache: dict[tuple, float] = {}
         for j in range(n_pins):
-            key = (zm[j + 1] - zm[j], zw[j, 0] - zm[j], zw[j, 1] - zm[j], dj[j], bj[j], dp[j],
-                   bp[j], tw[j], bw[j], float(target[j]))
+            key = tuple(float(f"{v:.12g}") for v in (  # equal throws: one calibration
+                zm[j + 1] - zm[j], zw[j, 0] - zm[j], zw[j, 1] - zm[j], dj[j], bj[j], dp[j],
+                bp[j], tw[j], bw[j], target[j]))
             if key not in cache:
                 cache[key] = web_inplane_factor(
                     bay_length=key[0], web_z=key[1:3], crank_radius=r, journal_diameter=dj[j],

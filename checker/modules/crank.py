@@ -4,7 +4,10 @@ Always the values derived from the geometry, also where typed TVModel or CrankMa
 in the analyses (issue 33): ``crank.throw_mass`` and ``crank.throw_inertia`` (the crank alone
 between its journal mid-planes, :func:`checker.calc.crank_geometry.throw_mass_properties`)
 and ``crank.throw_stiffness`` (between the journal mid-planes, one face held, the other turned
-about the crank axis, axial motion free: :mod:`checker.calc.throw_stiffness`). The detail
+about the crank axis, axial motion free: :mod:`checker.calc.throw_stiffness`), and
+``crank.assembled_stiffness``: each throw's stiffness in the assembled crank on its main
+bearings, the torsional model's (issue 43,
+:func:`checker.calc.crank_beam.assembled_torsional_stiffness`). The detail
 lists every value of the crank model the analyses use with its origin (typed or derived) and
 method (:class:`checker.description.crank_derive.ModelValue`). Runs only for a workbook with sheet
 Crank.
@@ -32,7 +35,14 @@ THROW_STIFFNESS = quantity(QuantitySpec(
     "Torsional stiffness of each crank throw between its journal mid-planes (axial motion of"
     " the faces free), from its geometry", "N*m/rad", detail=CrankDetail))
 
-PROVIDES = ("crank.throw_mass", "crank.throw_inertia", "crank.throw_stiffness")
+ASSEMBLED_STIFFNESS = quantity(QuantitySpec(
+    "crank.assembled_stiffness", "N*m/rad", ("item",),
+    "Torsional stiffness of each crank throw in the assembled crank on its main bearings"
+    " (the torsional model's: stiffer than the throw alone where neighbouring throws are not"
+    " mirror images), from its geometry", "N*m/rad", detail=CrankDetail))
+
+PROVIDES = ("crank.throw_mass", "crank.throw_inertia", "crank.throw_stiffness",
+            "crank.assembled_stiffness")
 
 
 @calculation("crank_geometry", "crank", provides=PROVIDES, reads=("crank", "crank_model"))
@@ -44,7 +54,10 @@ def crank_geometry(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     if crank is None:
         raise MissingInputs(["Crank: the crank's geometry (sheet Crank)"])
     mp = crank.mass_properties
-    st = throw_stiffness(crank)
+    angle: dict[int, float] = {}
+    for c in sorted(engine.cylinders, key=lambda c: c.number):
+        angle.setdefault(c.pin, c.throw_angle)
+    st = throw_stiffness(crank, angle)
     items = [f"throw {t.number}" for t in crank.throws]
     detail = CrankDetail(
         parts=PARTS, part_mass=mp.mass, part_y=mp.y, part_z=mp.z, part_inertia=mp.inertia_main,
@@ -74,4 +87,6 @@ def crank_geometry(engine: Engine, inputs: dict) -> dict[str, Quantity]:
         "crank.throw_stiffness": Quantity(THROW_STIFFNESS, st.stiffness, coords,
                                           missing=stiff_missing, findings=findings,
                                           detail=detail),
+        "crank.assembled_stiffness": Quantity(ASSEMBLED_STIFFNESS, st.for_model, coords,
+                                              missing=stiff_missing, detail=detail),
     }
