@@ -53,11 +53,13 @@ Torsional model
 Derived from the crank's geometry (sheet Crank, issue 33; docs/crank-geometry.md): each throw
 station's inertia is the throw about the main axis plus both rods' rotating share and
 reciprocating mean ``m_b r^2 + m_rec r^2 (1/2 + lambda^2/8)``; the stiffnesses between throws
-are the halves of neighbouring throws in series (:mod:`checker.calc.throw_stiffness`), the
-crank nose and the flywheel flange plain shafts (sheet CrankEnds, assumed) in series with half
-a throw. The rubber stiffness is Den Hartog tuned to the first mode of that chain without the
-ring (334.5 Hz): mu = 0.0065 kg m^2 / modal inertia at the nose = 0.120, f_ring = 334.5/(1 +
-mu) = 298.7 Hz, k = J_ring (2 pi f_ring)^2 = 22.9 kN m/rad.
+are the halves of neighbouring throws in series, each throw's stiffness that of the assembled
+crank on its main bearings (:func:`checker.calc.crank_beam.assembled_torsional_stiffness`,
+issue 43), the crank nose and the flywheel flange plain shafts (sheet CrankEnds, assumed) in
+series with half a throw. The rubber stiffness is Den Hartog tuned to the first mode of that
+chain without the ring (365.0 Hz; 334.5 Hz with the throws alone in series before issue 43):
+mu = 0.0065 kg m^2 / modal inertia at the nose = 0.117, f_ring = 365.0/(1 + mu) = 326.7 Hz,
+k = J_ring (2 pi f_ring)^2 = 27.4 kN m/rad.
 """
 
 from __future__ import annotations
