@@ -4,8 +4,10 @@
   earlier algorithm (one at a time over every rule, then 2^k corners per group, one variant per
   corner), stored from it in ``test_remedies_corners_expected.json``, with fewer evaluations.
   (The V8's entry was stored again when its torsional model became the one derived from its
-  crank geometry, issue 33: from this algorithm, every worst corner checked against all 16
-  corners of its 4 tolerances evaluated directly, equal to the 6 stored digits.)
+  crank geometry, issue 33, and again when that model took the assembled crank's stiffness
+  and its damper ring was tuned to it, issue 43: from this algorithm, every worst corner
+  checked against all 16 corners of its 4 tolerances evaluated directly, equal to the 6
+  stored digits.)
 * The structure never misses an influence: on the I4 each tolerance at each end of its range,
   checked directly, leaves every result it is said not to move bitwise unchanged.
 * Item classes: a bearing's clearance leaves the results of the bearings of the other type
