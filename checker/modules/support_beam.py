@@ -103,11 +103,17 @@ def build_beam(engine: Engine, gamma: np.ndarray, scheme: str | None = None) -> 
         web_width=[(t.web_width_journal + t.web_width_pin) / 2.0 for t in throws],
         youngs_modulus=crank.youngs_modulus, poisson_ratio=crank.poisson_ratio,
         support_stiffness=k)
+    calibration = ""
     try:
         frame = cb.crank_frame(**kwargs, throw_torsional_stiffness=single)
-    except ValueError:  # a throw the calibration cannot reach: the frame's own torsion
+    except ValueError as exc:  # a throw the calibration cannot reach: the frame's own torsion
         frame = cb.crank_frame(**kwargs)
+        calibration = f"; the frame's torsion is not calibrated to the throws' ({exc})"
+    if single is None:
+        calibration = ("; the frame's torsion is not calibrated to the throws' (the throw"
+                       " stiffness model is not available)")
     inertia, node, output, note = _rotating_inertias(engine, n_pins)
+    note += calibration
     return Beam(frame, cb.solve_frame(frame.frame, frame.load_nodes), main_z, web_z, pin_z,
                 offsets, k, inertia, node, output, note, crank.crank_radius)
 
