@@ -29,6 +29,7 @@ Conventions (docs/crank-geometry.md):
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -352,36 +353,46 @@ def assembled_stiffness(crank: CrankGeometry, throw_angle: dict[int, float],
     (:func:`checker.calc.crank_beam.assembled_torsional_stiffness`). Where the frame cannot
     be calibrated (a throw far outside the stiffness model's range) the throws in series
     (``single``) with the reason in the method."""
-    from ..calc import crank_beam as cb
-
     throws = crank.throws
     if not np.all(np.isfinite(single)):
         return single, ""
-    lengths = np.array([t.length for t in throws])
-    main_z = np.concatenate([[0.0], np.cumsum(lengths)])
-    lj = np.array([t.journal_length for t in throws])
-    tw = np.array([t.web_thickness for t in throws])
-    web_z = np.column_stack([main_z[:-1] + lj / 2 + tw / 2, main_z[1:] - lj / 2 - tw / 2])
+    key = (tuple((t.length, t.journal_length, t.web_thickness, t.journal_diameter,
+                  t.journal_bore, t.pin_diameter, t.pin_bore, t.web_width_journal,
+                  t.web_width_pin, float(throw_angle.get(t.number, 0.0))) for t in throws),
+           crank.crank_radius, crank.youngs_modulus, crank.poisson_ratio,
+           tuple(float(k) for k in single))
+    k, how = _assembled(key)
+    return np.array(k), how
+
+
+@functools.lru_cache(maxsize=16)
+def _assembled(key: tuple) -> tuple[tuple[float, ...], str]:
+    """:func:`assembled_stiffness` of one crank (its values as a key: the engine's build and
+    the crank module ask for the same crank)."""
+    from ..calc import crank_beam as cb
+
+    throws, radius, youngs, poisson, single = key
+    t = np.array(throws)  # columns as in the key
     try:
+        lengths, lj, tw = t[:, 0], t[:, 1], t[:, 2]
+        main_z = np.concatenate([[0.0], np.cumsum(lengths)])
+        web_z = np.column_stack([main_z[:-1] + lj / 2 + tw / 2, main_z[1:] - lj / 2 - tw / 2])
         frame = cb.crank_frame(
-            main_z=main_z, web_z=web_z, pin_load_z=[[z] for z in (main_z[:-1] + main_z[1:]) / 2],
-            throw_angle=[throw_angle.get(t.number, 0.0) for t in throws],
-            crank_radius=crank.crank_radius,
-            journal_diameter=[t.journal_diameter for t in throws],
-            journal_bore=[t.journal_bore for t in throws],
-            pin_diameter=[t.pin_diameter for t in throws],
-            pin_bore=[t.pin_bore for t in throws], web_thickness=tw,
-            web_width=[(t.web_width_journal + t.web_width_pin) / 2.0 for t in throws],
-            youngs_modulus=crank.youngs_modulus, poisson_ratio=crank.poisson_ratio,
-            support_stiffness=np.inf, throw_torsional_stiffness=single)
+            main_z=main_z, web_z=web_z,
+            pin_load_z=[[z] for z in (main_z[:-1] + main_z[1:]) / 2], throw_angle=t[:, 9],
+            crank_radius=radius, journal_diameter=t[:, 3], journal_bore=t[:, 4],
+            pin_diameter=t[:, 5], pin_bore=t[:, 6], web_thickness=tw,
+            web_width=(t[:, 7] + t[:, 8]) / 2.0, youngs_modulus=youngs,
+            poisson_ratio=poisson, support_stiffness=np.inf,
+            throw_torsional_stiffness=np.array(single))
         k = cb.assembled_torsional_stiffness(frame)
     except ValueError as exc:
         return single, (f"throws in series (the assembled crank's frame could not be"
                         f" calibrated: {exc})")
-    return k, ("assembled crank on its main bearings: 3D frame of the crank with each throw's"
-               " torsion calibrated to its stiffness alone, a torque passed through it"
-               " (verified against a 3D FE of 2- to 4-throw pieces of the I4 and I6 within"
-               " 1 %)")
+    return tuple(float(v) for v in k), (
+        "assembled crank on its main bearings: 3D frame of the crank with each throw's"
+        " torsion calibrated to its stiffness alone, a torque passed through it (verified"
+        " against a 3D FE of 2- to 4-throw pieces of the I4 and I6 within 1 %)")
 
 
 def _methods(stiff: ThrowStiffnessInfo) -> str:
