@@ -562,9 +562,10 @@ def crank_frame(
         crank axis) scaled so that the throw alone in the frame, under that definition, has
         this stiffness (:func:`web_inplane_factor`): the plain web, a beam of length ``R``
         and depth ``B``, is a deep beam whose parts inside the journal and pin circles hardly
-        bend (the I4 throw of Bell 2013 alone in the plain frame: 426 against the FE's
+        bend (the I4 throw of Bell 2013 alone in the frame: 426 against the FE's
         519 kN m/rad; its webs' in-plane ``EI`` times 4.2). The coupling of torsion and
-        bending is the frame's own (docs/crank-geometry.md, "The assembled crank").
+        bending is the frame's own (docs/crank-geometry.md, "The assembled crank on its main
+        bearings").
 
     Returns
     -------
@@ -885,9 +886,10 @@ def assembled_torsional_stiffness(crank: CrankFrame) -> np.ndarray:
     a twisted throw tilts its journals (the offset pin bends under the torque's tangential
     force), and where the neighbour is not its mirror image (180 deg in an I4, 120 deg in an
     I6, 90 deg in a cross-plane V8) the tilts disagree at the shared journal, which the
-    bearing holds in place: the bearing reacts a force and the crank is stiffer (I4 pieces of
-    2 to 4 throws: +17 %; docs/crank-geometry.md, "The assembled crank", verified against a
-    3D FE of multi-throw pieces, ``scripts/crank_piece_fe.py``, within 1 %).
+    bearing holds in place: the bearing reacts a force and the crank is stiffer (the whole I4
+    crank: +17 % per throw; pieces of the I4, I6 and V8: +7 to +24 %; docs/crank-geometry.md,
+    "The assembled crank on its main bearings", verified against a 3D FE of 2- to 4-throw
+    pieces, ``scripts/crank_piece_fe.py``, within 0.6 %).
 
     Parameters
     ----------
