@@ -7,7 +7,8 @@
   crank geometry, issue 33, and again when that model took the assembled crank's stiffness
   and its damper ring was tuned to it, issue 43: from this algorithm, every worst corner
   checked against all 16 corners of its 4 tolerances evaluated directly, equal to the 6
-  stored digits.)
+  stored digits. The I6's entry gained the crank-stress results of TV-009, issue 46, stored
+  from this algorithm the same way, its other results unchanged.)
 * The structure never misses an influence: on the I4 each tolerance at each end of its range,
   checked directly, leaves every result it is said not to move bitwise unchanged.
 * Item classes: a bearing's clearance leaves the results of the bearings of the other type
