@@ -222,40 +222,59 @@ def _margin_of(res, rule, item) -> float | None:
 
 
 def _discrete_candidates(job: _Job) -> list[Any]:
+    """The choices a discrete lever tries beyond today's value, nearest first, by the kind of
+    its choices: a table of several columns (a bolt size), numbers (a bolt count), texts
+    ranked by the lever (oil grades by viscosity), or texts in the order given."""
     lv = job.lever
-    cur = job.binding.nominal
+    today = job.binding.nominal
     choices = list(lv.choices)
     if isinstance(choices[0], dict):
-        keys = [f.label for f in job.binding.fields]
-        now = tuple(cur)
-        def rank(c):
-            return tuple(float(c[k]) for k in keys)
-        ordered = sorted(choices, key=rank)
-        pos = [i for i, c in enumerate(ordered) if rank(c) == now]
-        if pos:
-            i = pos[0]
-        else:
-            i = sum(1 for c in ordered if rank(c) < now) - (0 if job.sign > 0 else 1)
-            i = i - 1 if job.sign > 0 else i + 1
-        return ordered[i + 1:] if job.sign > 0 else ordered[:max(i, 0)][::-1]
+        return _table_candidates(choices, [f.label for f in job.binding.fields], tuple(today),
+                                 job.sign)
     if all(isinstance(c, (int, float)) for c in choices):
-        now = float(cur[0]) if cur[0] is not None else None
-        if now is None:
-            return []
-        vals = sorted(float(c) for c in choices)
-        return [v for v in vals if v > now] if job.sign > 0 else [v for v in vals
-                                                                 if v < now][::-1]
+        return _number_candidates(choices, today[0], job.sign)
     names = [str(c) for c in choices]
     order = choice_order(lv)
     if order is not None:
-        return _ranked_candidates(names, cur[0], order, job.sign)
-    # texts in the order given (e.g. property classes, weaker to stronger)
-    now = str(cur[0] or "").strip().upper()
+        return _ranked_candidates(names, today[0], order, job.sign)
+    return _listed_candidates(names, today[0], job.sign)
+
+
+def _table_candidates(choices: list[dict], keys: list[str], now: tuple, sign: int
+                      ) -> list[dict]:
+    """Choices that are rows of several columns (e.g. an ISO metric bolt's diameter and
+    pitch), ranked by their columns ``keys`` in order: those beyond today's row ``now``."""
+    def rank(c):
+        return tuple(float(c[k]) for k in keys)
+    ordered = sorted(choices, key=rank)
+    pos = [i for i, c in enumerate(ordered) if rank(c) == now]
+    if pos:
+        i = pos[0]
+    else:
+        i = sum(1 for c in ordered if rank(c) < now) - (0 if sign > 0 else 1)
+        i = i - 1 if sign > 0 else i + 1
+    return ordered[i + 1:] if sign > 0 else ordered[:max(i, 0)][::-1]
+
+
+def _number_candidates(choices: list[Any], today: Any, sign: int) -> list[float]:
+    """Numeric choices (e.g. the number of bolts) beyond today's value; none for a blank."""
+    now = float(today) if today is not None else None
+    if now is None:
+        return []
+    vals = sorted(float(c) for c in choices)
+    return [v for v in vals if v > now] if sign > 0 else [v for v in vals if v < now][::-1]
+
+
+def _listed_candidates(names: list[str], today: Any, sign: int) -> list[str]:
+    """Text choices in the order given (e.g. property classes, weaker to stronger): those
+    after today's (case-insensitive) in the lever's direction; none when today's is not
+    listed."""
+    now = str(today or "").strip().upper()
     up = [n.upper() for n in names]
     if now not in up:
         return []
     i = up.index(now)
-    return names[i + 1:] if job.sign > 0 else names[:i][::-1]
+    return names[i + 1:] if sign > 0 else names[:i][::-1]
 
 
 def _ranked_candidates(names: list[str], today: Any, order, sign: int) -> list[str]:
@@ -341,9 +360,8 @@ def _in_window(job: _Job, m: float | None) -> bool:
 
 def _advance(job: _Job, evaluated: list[tuple[Any, float | None]]) -> None:
     """Take the margins of the job's trial values (and points shared by other jobs of the
-    same lever) and queue the next one: a secant step towards the aimed margin from the two
-    points nearest to it until a value passes (doubling the step when the margin does not
-    improve), then inverse quadratic interpolation / Illinois regula falsi in the bracket."""
+    same lever) and queue the next one (:func:`_advance_discrete` for a lever of choices,
+    :func:`_advance_continuous` for one of numbers)."""
     own = [p for p in evaluated if len(p) == 2]
     # points of other jobs; those checked at the screening speeds only for screened jobs
     shared = [(p[0], p[1]) for p in evaluated if len(p) == 3 and (job.screen
@@ -351,22 +369,10 @@ def _advance(job: _Job, evaluated: list[tuple[Any, float | None]]) -> None:
     if job.done:
         return
     if job.confirm is not None:
-        # its check at every speed (its own, or an equal job's: the four big ends)
-        c = repr(job.confirm)
-        at = [p for p in own + shared if repr(p[0]) == c] if c in job.full_x else []
-        if not at:
+        restart = _confirmed(job, own, shared)
+        if restart is None:
             return
-        x, m = at[0]
-        job.confirm = None
-        job.remedy.evaluations += len(own)
-        if (job.ok(m) if job.lever.discrete else _in_window(job, m)):
-            _accept(job, x, m)
-            return
-        # it does not pass at every speed (the result is worst at a speed outside the
-        # screening speeds there): the search goes on at every speed from this point
-        job.screen = False
-        job.pts, job.bracket, job.side = [], None, 0
-        own, shared = [], [(x, m)]
+        own, shared = restart
     if not job.lever.discrete and job.x0 is not None:
         # shared points count only on this job's side of today's value, within its bound
         shared = [(x, m) for x, m in shared if (x - job.x0) * job.sign > 0
@@ -379,77 +385,135 @@ def _advance(job: _Job, evaluated: list[tuple[Any, float | None]]) -> None:
     job.pts += evaluated
     job.remedy.evaluations += len(own)
     if job.lever.discrete:
-        for x, m in evaluated:  # candidates in order, one per round
-            if job.ok(m):
-                _accept(job, x, m)
-                return
-        if job.cands:
-            job.queue = [job.cands.pop(0)]
+        _advance_discrete(job, evaluated)
+    else:
+        _advance_continuous(job, evaluated)
+
+
+def _confirmed(job: _Job, own: list, shared: list) -> tuple[list, list] | None:
+    """A value that passed at the screening speeds, checked at every speed (its own check,
+    or an equal job's: the four big ends): accepted, or still waiting (None); when it does
+    not pass at every speed (the result is worst at a speed outside the screening speeds
+    there), the search goes on at every speed from this point: the points to go on with."""
+    c = repr(job.confirm)
+    at = [p for p in own + shared if repr(p[0]) == c] if c in job.full_x else []
+    if not at:
+        return None
+    x, m = at[0]
+    job.confirm = None
+    job.remedy.evaluations += len(own)
+    if (job.ok(m) if job.lever.discrete else _in_window(job, m)):
+        _accept(job, x, m)
+        return None
+    job.screen = False
+    job.pts, job.bracket, job.side = [], None, 0
+    return [], [(x, m)]
+
+
+def _advance_discrete(job: _Job, evaluated: list[tuple[Any, float | None]]) -> None:
+    """A lever of choices: the first evaluated choice that passes is the answer, else the
+    next choice (one per round), else no standard choice passes."""
+    for x, m in evaluated:  # candidates in order, one per round
+        if job.ok(m):
+            _accept(job, x, m)
             return
-        best = [m for _, m in job.pts if m is not None]
-        job.remedy.best_margin = max(best) if best else None
-        job.remedy.reason = ("no standard choice within the table passes" if job.want_pass
-                             else "no choice reaches the limit")
-        job.done = True
+    if job.cands:
+        job.queue = [job.cands.pop(0)]
         return
+    best = [m for _, m in job.pts if m is not None]
+    job.remedy.best_margin = max(best) if best else None
+    job.remedy.reason = ("no standard choice within the table passes" if job.want_pass
+                         else "no choice reaches the limit")
+    job.done = True
+
+
+def _advance_continuous(job: _Job, evaluated: list[tuple[Any, float | None]]) -> None:
+    """A lever of numbers: a secant step towards the aimed margin from the two points nearest
+    to it until a value passes (doubling the step when the margin does not improve), then
+    inverse quadratic interpolation / Illinois regula falsi in the bracket."""
     aim = _aim(job)
     if job.bracket is None:
-        # points ordered by distance from today: the first one that passes brackets the root
-        prev = (job.x0, job.res.margin)
-        walked: list[tuple[float, float]] = []
-        for x, m in sorted(job.pts, key=lambda p: abs(p[0] - job.x0)):
-            if m is None:  # invalid input there: treat as the end of the range
-                break
-            if job.ok(m):
-                if _in_window(job, m):
-                    _accept(job, x, m)
-                    return
-                job.bracket = ((prev[0], prev[1]), (x, m))
-                break
-            prev = (x, m)
-            walked.append((x, m))
-        if job.bracket is None:
-            invalid = any(m is None for _, m in job.pts)
-            at_bound = any(abs(x - job.xb) <= 1e-12 * max(abs(job.xb), 1.0)
-                           for x, _ in walked)
-            if invalid or at_bound:
-                ms = [m for _, m in job.pts if m is not None]
-                job.remedy.best_margin = max(ms) if ms and job.want_pass else (
-                    min(ms) if ms else None)
-                job.remedy.reason = "no value within the bounds" + (
-                    f" ({with_unit(job.xb, job.lever.unit)})" if job.xb is not None else "")
-                job.done = True
-                return
-            if job.remedy.evaluations >= MAX_STEPS:
-                job.done, job.remedy.reason = True, "root finding did not converge"
-                return
-            if not walked:
-                job.queue = [float(f"{job.x0 + (job.xb - job.x0) * FRACTIONS[0]:.10g}")]
-                return
-            job.queue = [_reach(job, [(job.x0, job.res.margin)] + walked, aim)]
+        if not _bracketed(job, aim):
             return
-    else:
-        (xa, ma), (xg, mg) = job.bracket
-        for x, m in sorted(evaluated, key=lambda p: abs(p[0] - xg)):
-            if not (min(xa, xg) < x < max(xa, xg)):
-                continue  # a shared point outside the bracket
-            if m is None:
-                job.done, job.remedy.reason = True, "the input becomes invalid"
-                return
-            if job.ok(m):
-                if _in_window(job, m):
-                    _accept(job, x, m)
-                    return
-                xg, mg = x, m
-                if job.side == 1:
-                    ma = aim + (ma - aim) / 2.0
-                job.side = 1
-            else:
-                xa, ma = x, m
-                if job.side == -1:
-                    mg = aim + (mg - aim) / 2.0
-                job.side = -1
-        job.bracket = ((xa, ma), (xg, mg))
+    elif not _narrowed(job, evaluated, aim):
+        return
+    _step_in_bracket(job, aim)
+
+
+def _bracketed(job: _Job, aim: float) -> bool:
+    """Walk the points out from today: the first one that passes brackets the root (True);
+    one in the accepted window is the answer, and without a passing point the walk goes on
+    (:func:`_walk_on`) (False)."""
+    prev = (job.x0, job.res.margin)
+    walked: list[tuple[float, float]] = []
+    for x, m in sorted(job.pts, key=lambda p: abs(p[0] - job.x0)):
+        if m is None:  # invalid input there: treat as the end of the range
+            break
+        if job.ok(m):
+            if _in_window(job, m):
+                _accept(job, x, m)
+                return False
+            job.bracket = ((prev[0], prev[1]), (x, m))
+            return True
+        prev = (x, m)
+        walked.append((x, m))
+    _walk_on(job, walked, aim)
+    return False
+
+
+def _walk_on(job: _Job, walked: list[tuple[float, float]], aim: float) -> None:
+    """No value passes yet: none within the bounds when the walk reached the bound or an
+    invalid input, else the next step out (:func:`_reach`)."""
+    invalid = any(m is None for _, m in job.pts)
+    at_bound = any(abs(x - job.xb) <= 1e-12 * max(abs(job.xb), 1.0) for x, _ in walked)
+    if invalid or at_bound:
+        ms = [m for _, m in job.pts if m is not None]
+        job.remedy.best_margin = max(ms) if ms and job.want_pass else (
+            min(ms) if ms else None)
+        job.remedy.reason = "no value within the bounds" + (
+            f" ({with_unit(job.xb, job.lever.unit)})" if job.xb is not None else "")
+        job.done = True
+        return
+    if job.remedy.evaluations >= MAX_STEPS:
+        job.done, job.remedy.reason = True, "root finding did not converge"
+        return
+    if not walked:
+        job.queue = [float(f"{job.x0 + (job.xb - job.x0) * FRACTIONS[0]:.10g}")]
+        return
+    job.queue = [_reach(job, [(job.x0, job.res.margin)] + walked, aim)]
+
+
+def _narrowed(job: _Job, evaluated: list[tuple[Any, float | None]], aim: float) -> bool:
+    """The bracket narrowed by the points inside it (Illinois: the end kept twice in a row
+    has its margin halved towards the aim); False when a point is the answer or the input
+    becomes invalid inside the bracket."""
+    (xa, ma), (xg, mg) = job.bracket
+    for x, m in sorted(evaluated, key=lambda p: abs(p[0] - xg)):
+        if not (min(xa, xg) < x < max(xa, xg)):
+            continue  # a shared point outside the bracket
+        if m is None:
+            job.done, job.remedy.reason = True, "the input becomes invalid"
+            return False
+        if job.ok(m):
+            if _in_window(job, m):
+                _accept(job, x, m)
+                return False
+            xg, mg = x, m
+            if job.side == 1:
+                ma = aim + (ma - aim) / 2.0
+            job.side = 1
+        else:
+            xa, ma = x, m
+            if job.side == -1:
+                mg = aim + (mg - aim) / 2.0
+            job.side = -1
+    job.bracket = ((xa, ma), (xg, mg))
+    return True
+
+
+def _step_in_bracket(job: _Job, aim: float) -> None:
+    """The next trial value inside the bracket: inverse quadratic interpolation, else regula
+    falsi, else bisection; the passing end is the answer when the bracket has closed."""
     if job.remedy.evaluations >= MAX_STEPS:
         job.done, job.remedy.reason = True, "root finding did not converge"
         return
@@ -608,105 +672,164 @@ def _run(jobs: list[_Job], ev: Evaluator, pack: bool = True, nominal: Any = None
                 j.queue = []
         if not requests:
             return
-        # a request whose value alone is not a valid workbook (e.g. a width beyond the
-        # journal) is not packed with others: it would make their variant invalid too, and
-        # each of them would have to be checked again alone
-        invalid: list[tuple[_Job, Any]] = []
-        if pack:
-            per_lever: dict[str, int] = {}
-            for j, _ in requests:
-                per_lever[j.lever.id] = per_lever.get(j.lever.id, 0) + 1
-            for j, x in requests:
-                if j.lever.separable and per_lever[j.lever.id] > 1:
-                    if ev.input_errors(j.binding.changes(x)) is not None:
-                        invalid.append((j, x))
-            bad_ids = {(id(j), repr(x)) for j, x in invalid}
-            requests = [(j, x) for j, x in requests if (id(j), repr(x)) not in bad_ids]
-        variants = _pack(requests, pack)
-        changes, uniq, index = [], {}, []
-        for v in variants:
-            ch: dict = {}
-            for j, x in v:
-                ch.update(j.binding.changes(x))
-            key = (_mode(v[0][0]) == "confirm",) + tuple(sorted(ch.items(), key=repr))
-            if key not in uniq:
-                uniq[key] = len(changes)
-                changes.append(ch)
-            index.append(uniq[key])
-        active = [j for j in jobs if not j.done]
-        # each variant is checked on its own jobs' rules (and those of the other jobs of the
-        # same lever, which learn from it): a bearing variant does not run the torsion
-        sels: list[frozenset] = [frozenset()] * len(changes)
-        screened = [True] * len(changes)
-        for v, k in zip(variants, index):
-            if _mode(v[0][0]) == "confirm":
-                # at every speed, on every rule whose status can change: its side effects
-                sels[k] = frozenset(_judgeable_rules(nominal, [changes[k]]) if nominal
-                                    is not None else {j.rule for j, _ in v})
-                screened[k] = False
-                continue
-            sel = {j.rule for j, _ in v}
-            if len(v) == 1:
-                cells = v[0][0].binding.cells
-                sel |= {j.rule for j in active if j.binding.cells == cells}
-            sels[k] = sels[k] | sel
-            screened[k] = screened[k] and all(_mode(j) == "screen" for j, _ in v)
-        for k in range(len(changes)):
-            screened[k] = bool(speeds) and screened[k] and sels[k] <= screen_rules
-        # each variant on its own jobs' rules (one group per selection; the groups shared
-        # among the helper processes): checked on the union of the round's rules, a damper
-        # variant would also run the fatigue, the flywheel and the joint torques that the
-        # torsion feeds (the I4: 6 s more in one process)
-        results: list[Any] = [None] * len(changes)
-        how = [(sels[k], screened[k]) for k in range(len(changes))]
-        groups = [[k for k in range(len(changes)) if how[k] == h] for h in dict.fromkeys(how)]
-        for ks, got in zip(groups, ev.evaluate_groups([
-                ([changes[k] for k in ks], sorted(sels[ks[0]]),
-                 speeds if screened[ks[0]] else None) for ks in groups])):
-            for k, r in zip(ks, got):
-                results[k] = r
-        # a packed variant that is not a valid workbook (one job's trial value outside a
-        # field's range): its requests checked alone, so the others' values still count
-        alone: dict[tuple[int, str], Any] = {}
-        bad = [(j, x) for v, k in zip(variants, index) if len(v) > 1
-               and not hasattr(results[k], "results") for j, x in v]
-        if bad:
-            for (j, x), r in zip(bad, ev.evaluate_variants(
-                    [j.binding.changes(x) for j, x in bad], select=[j.rule for j, _ in bad])):
-                alone[(id(j), repr(x))] = r
-        got: dict[int, list] = {}
-        seen: set[tuple[int, Any]] = set()
-        for j, x in invalid:  # not a valid workbook: no margin (as when checked alone)
-            if (id(j), repr(x)) not in seen:
-                seen.add((id(j), repr(x)))
-                got.setdefault(id(j), []).append((x, None))
-        for v, k in zip(variants, index):
-            for j, x in v:
-                res = alone.get((id(j), repr(x)), results[k])
-                if not screened[k]:
-                    j.full_x.add(repr(x))
-                    if _mode(j) == "confirm" and (id(j), repr(x)) not in alone:
-                        j.full_res[repr(x)] = ({i.item for i, _ in v}, len(v) > 1, res)
-                if (id(j), repr(x)) not in seen:
-                    seen.add((id(j), repr(x)))
-                    got.setdefault(id(j), []).append((x, _margin_of(res, j.rule, j.item)))
-            if pack and len(v) == 1 and not v[0][0].lever.discrete:
-                j0, x0 = v[0]
-                for j in active:  # the same lever's other jobs learn from this point
-                    if j is j0 or j.lever.discrete or j.binding.cells != j0.binding.cells:
-                        continue
-                    if (id(j), repr(x0)) in seen or j.rule not in sels[k]:
-                        continue
-                    seen.add((id(j), repr(x0)))
-                    if not screened[k]:
-                        j.full_x.add(repr(x0))
-                        if _mode(j0) == "confirm" and _mode(j) == "confirm":
-                            j.full_res[repr(x0)] = ({j0.item}, False, res)
-                    got.setdefault(id(j), []).append((x0, _margin_of(res, j.rule, j.item),
-                                                      "screen" if screened[k] else "full"))
-        for j in jobs:
-            if id(j) in got:
-                _advance(j, got[id(j)])
+        _round(jobs, requests, ev, pack, nominal, speeds, screen_rules)
+
+
+def _round(jobs: list[_Job], requests: list[tuple[_Job, Any]], ev: Evaluator, pack: bool,
+           nominal: Any, speeds: tuple[float, ...] | None, screen_rules: frozenset) -> None:
+    """One round: the requests packed into variants, each checked on its rules (at the
+    screening speeds where it can be), every job given the margins it learnt."""
+    requests, invalid = _set_aside_invalid(requests, ev, pack)
+    variants = _pack(requests, pack)
+    changes, index = _variant_changes(variants)
+    active = [j for j in jobs if not j.done]
+    sels, screened = _selections(variants, index, changes, active, nominal, speeds,
+                                 screen_rules)
+    results = _check_by_selection(ev, changes, sels, screened, speeds)
+    alone = _checked_alone(ev, variants, index, results)
+    got: dict[int, list] = {}
+    seen: set[tuple[int, Any]] = set()
+    for j, x in invalid:  # not a valid workbook: no margin (as when checked alone)
+        if (id(j), repr(x)) not in seen:
+            seen.add((id(j), repr(x)))
+            got.setdefault(id(j), []).append((x, None))
+    for v, k in zip(variants, index):
+        _own_margins(v, results[k], alone, not screened[k], got, seen)
+        if pack and len(v) == 1 and not v[0][0].lever.discrete:
+            _shared_margins(v[0], alone.get((id(v[0][0]), repr(v[0][1])), results[k]),
+                            active, sels[k], screened[k], got, seen)
+    for j in jobs:
+        if id(j) in got:
+            _advance(j, got[id(j)])
+
+
+def _set_aside_invalid(requests: list[tuple[_Job, Any]], ev: Evaluator, pack: bool
+                       ) -> tuple[list[tuple[_Job, Any]], list[tuple[_Job, Any]]]:
+    """A request whose value alone is not a valid workbook (e.g. a width beyond the journal)
+    is not packed with others: it would make their variant invalid too, and each of them
+    would have to be checked again alone. Returns (the requests to check, the invalid)."""
+    invalid: list[tuple[_Job, Any]] = []
+    if not pack:
+        return requests, invalid
+    per_lever: dict[str, int] = {}
+    for j, _ in requests:
+        per_lever[j.lever.id] = per_lever.get(j.lever.id, 0) + 1
+    for j, x in requests:
+        if j.lever.separable and per_lever[j.lever.id] > 1:
+            if ev.input_errors(j.binding.changes(x)) is not None:
+                invalid.append((j, x))
+    bad_ids = {(id(j), repr(x)) for j, x in invalid}
+    return [(j, x) for j, x in requests if (id(j), repr(x)) not in bad_ids], invalid
+
+
+def _variant_changes(variants: list[list[tuple[_Job, Any]]]) -> tuple[list[dict], list[int]]:
+    """The cell changes of the distinct variants and, per variant, the index of its changes
+    (identical variants checked the same way are evaluated once)."""
+    changes: list[dict] = []
+    uniq: dict[tuple, int] = {}
+    index: list[int] = []
+    for v in variants:
+        ch: dict = {}
+        for j, x in v:
+            ch.update(j.binding.changes(x))
+        key = (_mode(v[0][0]) == "confirm",) + tuple(sorted(ch.items(), key=repr))
+        if key not in uniq:
+            uniq[key] = len(changes)
+            changes.append(ch)
+        index.append(uniq[key])
+    return changes, index
+
+
+def _selections(variants: list[list[tuple[_Job, Any]]], index: list[int], changes: list[dict],
+                active: list[_Job], nominal: Any, speeds: tuple[float, ...] | None,
+                screen_rules: frozenset) -> tuple[list[frozenset], list[bool]]:
+    """Per distinct variant the rules it is checked on and whether at the screening speeds
+    only: its own jobs' rules (and those of the other jobs of the same lever, which learn
+    from it: a bearing variant does not run the torsion), at the screening speeds when every
+    job is screened and every rule screenable; a value being confirmed at every speed on
+    every rule whose status can change (its side effects)."""
+    sels: list[frozenset] = [frozenset()] * len(changes)
+    screened = [True] * len(changes)
+    for v, k in zip(variants, index):
+        if _mode(v[0][0]) == "confirm":
+            sels[k] = frozenset(_judgeable_rules(nominal, [changes[k]]) if nominal
+                                is not None else {j.rule for j, _ in v})
+            screened[k] = False
+            continue
+        sel = {j.rule for j, _ in v}
+        if len(v) == 1:
+            cells = v[0][0].binding.cells
+            sel |= {j.rule for j in active if j.binding.cells == cells}
+        sels[k] = sels[k] | sel
+        screened[k] = screened[k] and all(_mode(j) == "screen" for j, _ in v)
+    for k in range(len(changes)):
+        screened[k] = bool(speeds) and screened[k] and sels[k] <= screen_rules
+    return sels, screened
+
+
+def _check_by_selection(ev: Evaluator, changes: list[dict], sels: list[frozenset],
+                        screened: list[bool], speeds: tuple[float, ...] | None) -> list[Any]:
+    """Each variant checked on its own jobs' rules (one group per selection; the groups
+    shared among the helper processes): checked on the union of the round's rules, a damper
+    variant would also run the fatigue, the flywheel and the joint torques that the torsion
+    feeds (the I4: 6 s more in one process)."""
+    results: list[Any] = [None] * len(changes)
+    how = [(sels[k], screened[k]) for k in range(len(changes))]
+    groups = [[k for k in range(len(changes)) if how[k] == h] for h in dict.fromkeys(how)]
+    for ks, got in zip(groups, ev.evaluate_groups([
+            ([changes[k] for k in ks], sorted(sels[ks[0]]),
+             speeds if screened[ks[0]] else None) for ks in groups])):
+        for k, r in zip(ks, got):
+            results[k] = r
+    return results
+
+
+def _checked_alone(ev: Evaluator, variants: list[list[tuple[_Job, Any]]], index: list[int],
+                   results: list[Any]) -> dict[tuple[int, str], Any]:
+    """A packed variant that is not a valid workbook (one job's trial value outside a field's
+    range): its requests checked alone, so the others' values still count."""
+    alone: dict[tuple[int, str], Any] = {}
+    bad = [(j, x) for v, k in zip(variants, index) if len(v) > 1
+           and not hasattr(results[k], "results") for j, x in v]
+    if bad:
+        for (j, x), r in zip(bad, ev.evaluate_variants(
+                [j.binding.changes(x) for j, x in bad], select=[j.rule for j, _ in bad])):
+            alone[(id(j), repr(x))] = r
+    return alone
+
+
+def _own_margins(v: list[tuple[_Job, Any]], res: Any, alone: dict, full: bool,
+                 got: dict[int, list], seen: set) -> None:
+    """The margins of a variant's own jobs at their trial values (``full``: checked at
+    every speed; a value being confirmed keeps its check for its side effects)."""
+    for j, x in v:
+        r = alone.get((id(j), repr(x)), res)
+        if full:
+            j.full_x.add(repr(x))
+            if _mode(j) == "confirm" and (id(j), repr(x)) not in alone:
+                j.full_res[repr(x)] = ({i.item for i, _ in v}, len(v) > 1, r)
+        if (id(j), repr(x)) not in seen:
+            seen.add((id(j), repr(x)))
+            got.setdefault(id(j), []).append((x, _margin_of(r, j.rule, j.item)))
+
+
+def _shared_margins(request: tuple[_Job, Any], res: Any, active: list[_Job], sel: frozenset,
+                    screened: bool, got: dict[int, list], seen: set) -> None:
+    """A variant that moves one continuous lever alone: the same lever's other jobs learn
+    their margins at its value (those whose rule it was checked on)."""
+    j0, x0 = request
+    for j in active:
+        if j is j0 or j.lever.discrete or j.binding.cells != j0.binding.cells:
+            continue
+        if (id(j), repr(x0)) in seen or j.rule not in sel:
+            continue
+        seen.add((id(j), repr(x0)))
+        if not screened:
+            j.full_x.add(repr(x0))
+            if _mode(j0) == "confirm" and _mode(j) == "confirm":
+                j.full_res[repr(x0)] = ({j0.item}, False, res)
+        got.setdefault(id(j), []).append((x0, _margin_of(res, j.rule, j.item),
+                                          "screen" if screened else "full"))
 
 
 def _side_effects(jobs: list[_Job], ev: Evaluator, nominal, pack: bool = True) -> None:
@@ -866,79 +989,112 @@ def find_remedies(nominal, ev: Evaluator, levers: list[Lever], near: float = NEA
         for lv in levers:
             if not lv.applies(r.rule, r.item):
                 continue
-            rows = (r.item,) if lv.row == ITEM else ((lv.row,) if lv.row else None)
-            key = (lv.id, rows)
-            if key not in bindings:
-                row = _row_values(ev.base, lv, rows, row_needs(lv))
-                if row is not None and not lv.holds_for(row):
-                    bindings[key] = "not for this row (when)"
-                else:
-                    bindings[key] = bind(ev.base, lv.sheet, lv.columns, lv.unit, rows,
-                                         lv.where, row_default(lv, row or {}))
-            b = bindings[key]
+            b = _binding(ev, lv, r.item, bindings)
             if isinstance(b, str):
                 continue  # the lever's input is not in this workbook (e.g. another row),
                 # or the lever does not apply to the row (e.g. torque on a yield-controlled
                 # joint)
-            signs = {"increase": [1], "decrease": [-1], "either": [1, -1]}[lv.direction]
-            if r.status == "pass":
-                signs = [1, -1]
-                if lv.discrete:
-                    continue
-            twin = None
-            for s in signs:
-                rm = Remedy(lv, ", ".join(b.labels), b.nominal[0] if len(b.nominal) == 1
-                            else dict(zip([f.label for f in b.fields], b.nominal)),
-                            direction=s)
-                if lv.discrete and len(b.fields) > 1:
-                    rm.nominal = {f.label: v for f, v in zip(b.fields, b.nominal)}
-                job = _Job(rr, r.rule, r.item, lv, b, rm, s, r.status != "pass")
-                if lv.discrete:
-                    cands = _discrete_candidates(job)
-                    if not cands:
-                        rm.reason = "no further choice in that direction"
-                        job.done = True
-                    # the first choice beyond today's, then the next while none passes
-                    job.queue, job.cands = cands[:1], cands[1:]
-                else:
-                    _start(job, r.value, r.limit_values, r.check)
-                if twin is not None:
-                    job.twin, twin.twin = twin, job
-                twin = job
-                jobs.append(job)
-                rr.remedies.append(rm)
+            jobs += _lever_jobs(rr, r, lv, b)
         out.append(rr)
-    # failing results of bearing rules: trial values at the screening speeds
     rules = {r.id: r for r in getattr(nominal, "rules", ())}
     screen_rules = frozenset(i for i, r in rules.items() if screenable(r, nominal))
-    cand = [j for j in jobs if j.want_pass and not j.done and j.rule in screen_rules]
-    speeds = screening_speeds(nominal, sorted({(j.rule, j.item) for j in cand})) if cand \
-        else None
-    if speeds:
-        for j in cand:
-            j.screen = True
+    speeds = _screen(jobs, nominal, screen_rules)
     if info is not None:
         info["screening_speeds"] = speeds
     _run(jobs, ev, pack, nominal, speeds, screen_rules)
-    # both directions of an 'either' lever: keep the found one nearest to today
     for rr in out:
-        keep: list[Remedy] = []
-        by_lever: dict[str, list[Remedy]] = {}
-        for rm in rr.remedies:
-            by_lever.setdefault(rm.lever.id, []).append(rm)
-        for lst in by_lever.values():
-            found = [x for x in lst if x.found]
-            if found:
-                keep.append(min(found, key=lambda x: abs(x.change or 0.0)
-                                if x.change is not None else 0.0))
-            else:
-                keep.append(lst[0])
-        rr.remedies = keep
+        rr.remedies = _nearest_direction(rr.remedies)
     kept = {id(rm) for rr in out for rm in rr.remedies}
     _side_effects([j for j in jobs if id(j.remedy) in kept], ev, nominal, pack)
     _conflicts(out)
     return out
 
 
+def _binding(ev: Evaluator, lv: Lever, item: str, bindings: dict[tuple, Any]) -> Any:
+    """The cells lever ``lv`` moves for result item ``item`` (a :class:`Binding`), or why it
+    has none here (a text); kept in ``bindings`` per lever and row."""
+    rows = (item,) if lv.row == ITEM else ((lv.row,) if lv.row else None)
+    key = (lv.id, rows)
+    if key not in bindings:
+        row = _row_values(ev.base, lv, rows, row_needs(lv))
+        if row is not None and not lv.holds_for(row):
+            bindings[key] = "not for this row (when)"
+        else:
+            bindings[key] = bind(ev.base, lv.sheet, lv.columns, lv.unit, rows, lv.where,
+                                 row_default(lv, row or {}))
+    return bindings[key]
+
+
+def _lever_jobs(rr: ResultRemedies, r: Any, lv: Lever, b: Binding) -> list[_Job]:
+    """The jobs of one lever on result ``r``: one per direction it may move (both for a
+    passing result, whose margin reaches zero either way; none of a discrete lever there),
+    each with its first trial value (:func:`_start_discrete`, :func:`_start`); their remedies
+    are added to ``rr``."""
+    signs = {"increase": [1], "decrease": [-1], "either": [1, -1]}[lv.direction]
+    if r.status == "pass":
+        signs = [1, -1]
+        if lv.discrete:
+            return []
+    jobs: list[_Job] = []
+    twin = None
+    for s in signs:
+        rm = Remedy(lv, ", ".join(b.labels), b.nominal[0] if len(b.nominal) == 1
+                    else dict(zip([f.label for f in b.fields], b.nominal)), direction=s)
+        if lv.discrete and len(b.fields) > 1:
+            rm.nominal = {f.label: v for f, v in zip(b.fields, b.nominal)}
+        job = _Job(rr, r.rule, r.item, lv, b, rm, s, r.status != "pass")
+        if lv.discrete:
+            _start_discrete(job)
+        else:
+            _start(job, r.value, r.limit_values, r.check)
+        if twin is not None:
+            job.twin, twin.twin = twin, job
+        twin = job
+        jobs.append(job)
+        rr.remedies.append(rm)
+    return jobs
+
+
+def _start_discrete(job: _Job) -> None:
+    """The first trial of a lever of choices: the first choice beyond today's, the next ones
+    kept for while none passes."""
+    cands = _discrete_candidates(job)
+    if not cands:
+        job.remedy.reason = "no further choice in that direction"
+        job.done = True
+    job.queue, job.cands = cands[:1], cands[1:]
+
+
+def _screen(jobs: list[_Job], nominal: Any, screen_rules: frozenset
+            ) -> tuple[float, ...] | None:
+    """Failing results of bearing rules: their jobs' trial values checked at the screening
+    speeds (:mod:`checker.remedies.screening`); the speeds, or None."""
+    cand = [j for j in jobs if j.want_pass and not j.done and j.rule in screen_rules]
+    speeds = screening_speeds(nominal, sorted({(j.rule, j.item) for j in cand})) if cand \
+        else None
+    if speeds:
+        for j in cand:
+            j.screen = True
+    return speeds
+
+
+def _nearest_direction(remedies: list[Remedy]) -> list[Remedy]:
+    """Both directions of an 'either' lever: the found one nearest to today is kept (the
+    first listed when neither is found)."""
+    keep: list[Remedy] = []
+    by_lever: dict[str, list[Remedy]] = {}
+    for rm in remedies:
+        by_lever.setdefault(rm.lever.id, []).append(rm)
+    for lst in by_lever.values():
+        found = [x for x in lst if x.found]
+        if found:
+            keep.append(min(found, key=lambda x: abs(x.change or 0.0)
+                            if x.change is not None else 0.0))
+        else:
+            keep.append(lst[0])
+    return keep
+
+
 def is_finite(x) -> bool:
     return x is not None and math.isfinite(x)
+

@@ -495,26 +495,89 @@ def _joint_design(location: str, torque: float, face_od: float, face_id: float) 
     return best
 
 
+BRIEF_NOTE = "brief (checker new)"
+
+
+def _from_brief(b: Brief, key: str) -> str:
+    """The note of a brief value: the brief's, or the default of checker new it took."""
+    return (f"{TAG}: default of checker new ({b.defaults[key]})" if key in b.defaults
+            else BRIEF_NOTE)
+
+
+@dataclass(frozen=True)
+class Rating:
+    """The rated operating point that the Engine, BrakeTorque and PeakPressure sheets share."""
+
+    torque: float  # N m, rated power / rated speed
+    bmep: float  # Pa, at the rated torque
+    cr: float  # compression ratio (by fuel)
+    bmep_na: float  # Pa, a naturally aspirated engine's BMEP (by fuel)
+    p_int: float  # bar, intake manifold pressure at full load
+
+
+def rating(b: Brief) -> Rating:
+    """Rated torque and BMEP from the brief; compression ratio and intake pressure by fuel."""
+    rated_torque = b.rated_power / b.rated_speed
+    vd = math.pi / 4 * b.bore**2 * b.stroke
+    bmep = rated_torque * 4 * math.pi / (vd * b.cylinders)
+    cr = 10.5 if b.fuel == "gasoline" else 17.0
+    bmep_na = 12e5 if b.fuel == "gasoline" else 9e5
+    return Rating(rated_torque, bmep, cr, bmep_na, max(1.0, round(bmep / bmep_na, 2)))
+
+
+def _rod_rotating_mass(L: Layout) -> float:
+    """The con-rod's rotating share [kg]: its mass times the centre of mass's distance from
+    the small end over the rod length."""
+    return L.rod.mass * (L.rod_len - L.rod.centre_from_big_end) / L.rod_len
+
+
 def content(L: Layout, tune: Tuning) -> dict[str, Any]:
     """The workbook's sheets (format of :func:`checker.workbook.example.write_workbook`)."""
     b = L.brief
     mat = MATERIALS[b.crank_material]
-    R = b.stroke / 2.0
-    rated_torque = b.rated_power / b.rated_speed
-    vd = math.pi / 4 * b.bore**2 * b.stroke
-    bmep = rated_torque * 4 * math.pi / (vd * b.cylinders)
-    brief_note = "brief (checker new)"
+    rt = rating(b)
+    bt_rows = _brake_torque_rows(b, rt)
+    return {
+        "Engine": _engine_sheet(L, rt, tune),
+        "Cylinders": _cylinders_sheet(L),
+        "PeakPressure": ([("load case", "-"), ("speed", "rpm"), ("peak pressure", "bar"),
+                          ("note", "")], _peak_pressure_rows(b, rt, bt_rows)),
+        "BrakeTorque": ([("speed", "rpm"), ("brake torque", "N m"), ("note", "")], bt_rows),
+        "Bearings": _bearings_sheet(L),
+        "Crank": _crank_sheet(L, mat),
+        "CrankEnds": _crank_ends(L),
+        "CrankMass": ([("location", "-"), ("throw", "-"), ("kind", "-"), ("mass", "kg"),
+                       ("X", "mm"), ("Y", "mm"), ("Z", "mm"), ("axial position", "mm"),
+                       ("relative to", "-"), ("note", "")], []),
+        "Oil": _oil_sheet(L.brief),
+        "TVModel": ([("station", "-"), ("role", "-"), ("cylinder", "-"),
+                     ("inertia", "kg m^2"), ("absolute damping", "N m s/rad"),
+                     ("stiffness to next", "N m/rad"), ("damping to next", "N m s/rad"),
+                     ("note", "")], _tv_rows(L, mat, tune)),
+        "Damper": _damper_sheet(tune),
+        "Fatigue": _fatigue_sheet(L, mat),
+        "Joints": _joints_sheet(tune),
+        "JointTorques": ([("joint", "-"), ("operating point", "-"), ("speed", "rpm"),
+                          ("applied torque", "N m"), ("note", "")], []),
+        "RuleOverrides": ([("rule", "-"), ("limit", "-"), ("unit", "-"), ("reason", "-")],
+                          project_limits.override_rows(b.engine_class)),
+        "Tolerances": ([("sheet", "-"), ("row", "-"), ("column", "-"), ("min", "-"),
+                        ("max", "-"), ("unit", "-"), ("source", "")], []),
+        "Notes": _notes(L, rt),
+    }
+
+
+def _engine_sheet(L: Layout, rt: Rating, tune: Tuning) -> list[tuple]:
+    """Sheet Engine: the brief's values, the rod and piston by their rules, the speeds."""
+    b = L.brief
+    brief_note = BRIEF_NOTE
 
     def dflt(key: str) -> str:
-        return (f"{TAG}: default of checker new ({b.defaults[key]})" if key in b.defaults
-                else brief_note)
+        return _from_brief(b, key)
 
     cls = L.engine_class
-    cr = 10.5 if b.fuel == "gasoline" else 17.0
-    bmep_na = 12e5 if b.fuel == "gasoline" else 9e5
-    p_int = max(1.0, round(bmep / bmep_na, 2))
+    cr, p_int, bmep, bmep_na = rt.cr, rt.p_int, rt.bmep, rt.bmep_na
     step = max(25, int(round((b.max_speed - b.min_speed) * RPM / 60 / 25.0)) * 25)
-    m_rot = L.rod.mass * (L.rod_len - L.rod.centre_from_big_end) / L.rod_len
     engine = [
         ("Engine name", b.name, "-", brief_note),
         ("Number of cylinders", b.cylinders, "-", brief_note),
@@ -558,12 +621,24 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
         ("Project", "checker new: first layout", "-", brief_note),
         ("Revision", "0", "-", brief_note),
     ]
+    return engine
+
+
+def _cylinders_sheet(L: Layout) -> tuple[list, list]:
+    """Sheet Cylinders: each cylinder's throw, firing and bank angle and its crank pin."""
+    b = L.brief
     cyl_cols = [("cylinder", "-"), ("throw angle", "deg"), ("firing angle", "deg"),
                 ("bank angle", "deg"), ("crank pin", "-"), ("note", "")]
     cyl_rows = [[c + 1, round(L.throw_angle[L.cyl_throw[c] - 1], 6), round(L.cyl_firing[c], 6),
                  round(L.cyl_bank[c], 6), L.cyl_throw[c], est(None, L.firing_note)]
                 for c in range(b.cylinders)]
-    # peak pressure and brake torque: the brief's peak at every speed; torque from rated power
+    return cyl_cols, cyl_rows
+
+
+def _brake_torque_rows(b: Brief, rt: Rating) -> list[list]:
+    """Sheet BrakeTorque: the torque from the rated power, the peak torque 1.2 x the rated
+    between the minimum and the rated speed, less at the ends."""
+    rated_torque = rt.torque
     t_max = rated_torque * 1.2
     bt_rows = [[round(b.min_speed * RPM), round(0.8 * t_max, 1),
                 est(None, "80 % of the peak torque at the minimum speed [shape not"
@@ -576,8 +651,14 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
         bt_rows.append([round(b.max_speed * RPM), round(0.8 * rated_torque, 1),
                         est(None, "80 % of the rated torque at the maximum speed [not"
                             " confirmed]")])
-    # full-load peak pressure: the brief's peak where the torque peaks, the firing part of it
-    # scaled with the torque elsewhere (IMEP ~ torque)
+    return bt_rows
+
+
+def _peak_pressure_rows(b: Brief, rt: Rating, bt_rows: list[list]) -> list[list]:
+    """Sheet PeakPressure: at full load the brief's peak where the torque peaks, the firing
+    part of it scaled with the torque elsewhere (IMEP ~ torque); a motored peak at no load."""
+    cr, p_int = rt.cr, rt.p_int
+    t_max = rt.torque * 1.2
     p_mot = p_int * cr**1.3  # bar: polytropic compression, n = 1.3
     pk = b.peak_pressure / 1e5
     src = ("the brief's peak pressure" if "peak_pressure" not in b.defaults
@@ -591,6 +672,17 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
     pp_rows.append(["no", round(b.max_speed * RPM), round(1.5 * cr ** 1.3, 1),
                     est(None, "motored peak ~ 1 bar x CR^1.3 x 1.5 (polytropic compression,"
                         " n = 1.3, with throttled/no-load combustion) [not confirmed]")])
+    return pp_rows
+
+
+def _bearings_sheet(L: Layout) -> tuple[list, list]:
+    """Sheet Bearings: the mains (partial groove) and one big end per rod, their widths and
+    clearances by rule, the diameters from sheet Crank."""
+    b = L.brief
+
+    def dflt(key: str) -> str:
+        return _from_brief(b, key)
+
     lining = b.bearing_lining
     bcols = [("name", "-"), ("type", "-"), ("journal diameter", "mm"), ("journal length", "mm"),
              ("effective length", "mm"), ("radial clearance", "mm"), ("groove", "-"),
@@ -616,27 +708,38 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
         brows.append([f"BE{c + 1}", "big end", None, None, _mm(L.rod_land),
                       round(L.clearance_pin * 1e3, 4), "none", None, None, None, "crank", 1,
                       "leading", None, 45, lining, p_note])
-    oil = [("Oil grade", "5W30" if b.fuel == "gasoline" else "10W40", "-",
-            est(None, "a usual grade for the fuel")),
-           ("Oil supply pressure", 4.0, "bar(g)", est(None, "usual gallery pressure at speed")),
-           ("Oil supply temperature", 120 if b.fuel == "gasoline" else 110, "°C",
-            est(None, "usual gallery temperature at full load")),
-           ("Film temperature rise", 10, "K", est(None, "moderate film heating")),
-           ("Mobility model", "finite length", "-",
-            est(None, "the finite-length Reynolds film (the short bearing is optimistic at"
-                " engine L/D)"))]
-    tv_cols = [("station", "-"), ("role", "-"), ("cylinder", "-"), ("inertia", "kg m^2"),
-               ("absolute damping", "N m s/rad"), ("stiffness to next", "N m/rad"),
-               ("damping to next", "N m s/rad"), ("note", "")]
-    tv_rows = _tv_rows(L, mat, tune)
-    damper = [("Rubber loss factor", round(tune.loss_factor, 3), "-",
-               est(None, "Den Hartog's optimum loss factor for the ring/crank inertia ratio"
-                   " (damper-tuning module)")),
-              ("Tuning ratio, minimum", round(0.9 * tune.tuning, 3), "-",
-               est(None, "Den Hartog's optimum tuning ratio for this ring/crank inertia ratio"
-                   " (damper-tuning module) -10 % [band not confirmed]")),
-              ("Tuning ratio, maximum", round(1.1 * tune.tuning, 3), "-",
-               est(None, "Den Hartog's optimum tuning ratio +10 % [band not confirmed]"))]
+    return bcols, brows
+
+
+def _oil_sheet(b: Brief) -> list[tuple]:
+    """Sheet Oil: a usual grade and gallery conditions for the fuel."""
+    return [("Oil grade", "5W30" if b.fuel == "gasoline" else "10W40", "-",
+             est(None, "a usual grade for the fuel")),
+            ("Oil supply pressure", 4.0, "bar(g)", est(None, "usual gallery pressure at speed")),
+            ("Oil supply temperature", 120 if b.fuel == "gasoline" else 110, "°C",
+             est(None, "usual gallery temperature at full load")),
+            ("Film temperature rise", 10, "K", est(None, "moderate film heating")),
+            ("Mobility model", "finite length", "-",
+             est(None, "the finite-length Reynolds film (the short bearing is optimistic at"
+                 " engine L/D)"))]
+
+
+def _damper_sheet(tune: Tuning) -> list[tuple]:
+    """Sheet Damper: Den Hartog's optimum loss factor and tuning band of the second pass."""
+    return [("Rubber loss factor", round(tune.loss_factor, 3), "-",
+             est(None, "Den Hartog's optimum loss factor for the ring/crank inertia ratio"
+                 " (damper-tuning module)")),
+            ("Tuning ratio, minimum", round(0.9 * tune.tuning, 3), "-",
+             est(None, "Den Hartog's optimum tuning ratio for this ring/crank inertia ratio"
+                 " (damper-tuning module) -10 % [band not confirmed]")),
+            ("Tuning ratio, maximum", round(1.1 * tune.tuning, 3), "-",
+             est(None, "Den Hartog's optimum tuning ratio +10 % [band not confirmed]"))]
+
+
+def _fatigue_sheet(L: Layout, mat: dict) -> list[tuple]:
+    """Sheet Fatigue: oil-hole heights and the material's strengths (the web, fillet,
+    oil-hole and bore dimensions come from sheet Crank)."""
+    b = L.brief
     src = f"{TAG}: {mat['source']}"
     fatigue = [  # the web, fillet, oil-hole and bore dimensions come from sheet Crank
         ("Web offset", 0, "mm", est(None, "symmetric web")),
@@ -659,6 +762,11 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
         *project_limits.nose_rows(L.dj, NOSE[0] * L.dj, L.fillet_j, mat["fatigue"],
                                   b.crank_material),
     ]
+    return fatigue
+
+
+def _joints_sheet(tune: Tuning) -> tuple[list, list]:
+    """Sheet Joints: the bolt sets of the second pass, yield-controlled class 10.9."""
     jcols = [("name", "-"), ("location", "-"), ("bolts", "-"), ("nominal diameter", "mm"),
              ("thread pitch", "mm"), ("property class", "-"), ("tightening", "-"),
              ("head bearing outer diameter", "mm"), ("head bearing inner diameter", "mm"),
@@ -676,40 +784,25 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
                           " diameter for 90 % of the 500 N/mm^2 contact limit on steel (Bell,"
                           " Ricardo 2013) from a 1.1 d clearance hole; face diameters [ratios"
                           " not confirmed]")])
-    return {
-        "Engine": engine,
-        "Cylinders": (cyl_cols, cyl_rows),
-        "PeakPressure": ([("load case", "-"), ("speed", "rpm"), ("peak pressure", "bar"),
-                          ("note", "")], pp_rows),
-        "BrakeTorque": ([("speed", "rpm"), ("brake torque", "N m"), ("note", "")], bt_rows),
-        "Bearings": (bcols, brows),
-        "Crank": _crank_sheet(L, mat),
-        "CrankEnds": _crank_ends(L),
-        "CrankMass": ([("location", "-"), ("throw", "-"), ("kind", "-"), ("mass", "kg"),
-                       ("X", "mm"), ("Y", "mm"), ("Z", "mm"), ("axial position", "mm"),
-                       ("relative to", "-"), ("note", "")], []),
-        "Oil": oil,
-        "TVModel": (tv_cols, tv_rows),
-        "Damper": damper,
-        "Fatigue": fatigue,
-        "Joints": (jcols, jrows),
-        "JointTorques": ([("joint", "-"), ("operating point", "-"), ("speed", "rpm"),
-                          ("applied torque", "N m"), ("note", "")], []),
-        "RuleOverrides": ([("rule", "-"), ("limit", "-"), ("unit", "-"), ("reason", "-")],
-                          project_limits.override_rows(b.engine_class)),
-        "Tolerances": ([("sheet", "-"), ("row", "-"), ("column", "-"), ("min", "-"),
-                        ("max", "-"), ("unit", "-"), ("source", "")], []),
-        "Notes": [f"First layout written by checker new from a brief: {b.name}.",
-                  "Values marked ESTIMATE are sized by a stated design rule (see each note and"
-                  " docs/new-engine.md), not data of this engine.",
-                  "Replace each estimate with the design's value as it becomes known.",
-                  f"Peak gas force {L.gas / 1e3:.1f} kN; worst pin force over the speed range"
-                  f" {L.f_pin / 1e3:.1f} kN, worst main force {L.f_main / 1e3:.1f} kN;"
-                  f" rated torque {rated_torque:.0f} N m,"
-                  f" rated BMEP {bmep / 1e5:.1f} bar; rotating share of the rod"
-                  f" {m_rot:.3f} kg, crank radius {R * 1e3:g} mm.",
-                  "See docs/workbook.md for every sheet, parameter and column."],
-    }
+    return jcols, jrows
+
+
+def _notes(L: Layout, rt: Rating) -> list[str]:
+    """Sheet Notes: what the workbook is and the layout's sizing loads."""
+    b = L.brief
+    m_rot = _rod_rotating_mass(L)
+    R = b.stroke / 2.0
+    rated_torque, bmep = rt.torque, rt.bmep
+    return [f"First layout written by checker new from a brief: {b.name}.",
+            "Values marked ESTIMATE are sized by a stated design rule (see each note and"
+            " docs/new-engine.md), not data of this engine.",
+            "Replace each estimate with the design's value as it becomes known.",
+            f"Peak gas force {L.gas / 1e3:.1f} kN; worst pin force over the speed range"
+            f" {L.f_pin / 1e3:.1f} kN, worst main force {L.f_main / 1e3:.1f} kN;"
+            f" rated torque {rated_torque:.0f} N m,"
+            f" rated BMEP {bmep / 1e5:.1f} bar; rotating share of the rod"
+            f" {m_rot:.3f} kg, crank radius {R * 1e3:g} mm.",
+            "See docs/workbook.md for every sheet, parameter and column."]
 
 
 def _evaluate(cont: dict[str, Any], select: list[str]):
