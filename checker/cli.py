@@ -349,12 +349,17 @@ def template(path: str, force: bool, which: str) -> None:
                    ' "270 deg", "360 deg".')
 @click.option("--firing-order", "firing_order", default=None, help='e.g. "1-3-4-2".')
 @click.option("--name", default=None, help="Engine name.")
-def new(path, brief_file, force, **options) -> None:
+@click.option("--no-iterate", "no_iterate", is_flag=True,
+              help="Write the open-loop layout (every dimension by its rule) without checking"
+              " it and moving its sizing levers until every rule passes.")
+def new(path, brief_file, force, no_iterate, **options) -> None:
     """Write a first crank-train layout to PATH (.xlsx) from a concept brief: every derived
-    value sized by a stated design rule with its source, marked ESTIMATE."""
+    value sized by a stated design rule with its source, marked ESTIMATE; then checked and
+    its sizing levers moved until every rule passes (or the brief value that prevents it
+    named), the history in its Notes."""
     from .errors import InputErrors
     from .sizing.brief import load_brief
-    from .sizing.new_engine import NoRule, size, warnings
+    from .sizing.new_engine import NoRule, sized, warnings
     from .workbook.example import write_workbook
 
     p = Path(path)
@@ -369,7 +374,8 @@ def new(path, brief_file, force, **options) -> None:
     _outputs_writable([p])
     try:
         b = load_brief(brief_file, options)
-        layout, content = size(b)
+        result = sized(b, iterate=not no_iterate)
+        content = result.content
     except InputErrors as exc:
         click.echo(f"error: {exc}", err=True)
         sys.exit(2)
@@ -383,8 +389,11 @@ def new(path, brief_file, force, **options) -> None:
         write_workbook(tmp, content)
         _refused_by_the_check(tmp)  # never write geometry the check would refuse
         _atomic_write(p, tmp.read_bytes())
-    for w in warnings(layout):
+    for w in warnings(result.layout):
         click.echo(f"warning: {w}", err=True)
+    if result.loop is not None:
+        for line in result.loop.summary():
+            click.echo(line, err=True)
     click.echo(f"wrote {p} (first layout; every value marked ESTIMATE names its rule and"
                " source)", err=True)
 

@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -203,6 +204,7 @@ class _Job:
     confirm: Any = None  # a value that passes there, being checked at every speed
     full_x: set[str] = field(default_factory=set)  # values checked at every speed (repr)
     full_res: dict[str, tuple] = field(default_factory=dict)  # value -> (items, packed, check)
+    tol: float = TOL  # the accepted margin window's width
 
     @property
     def key(self) -> str:
@@ -340,7 +342,7 @@ def _start(job: _Job, value: float | None, limits: list[float] | None, check: st
 def _aim(job: _Job) -> float:
     """The margin aimed at: the middle of the accepted window ([0, TOL] for a failing result,
     [-TOL, 0] for a passing one), so that one interpolation step usually lands in it."""
-    return 0.5 * TOL if job.want_pass else -0.5 * TOL
+    return 0.5 * job.tol if job.want_pass else -0.5 * job.tol
 
 
 def _accept(job: _Job, x: Any, m: float) -> None:
@@ -355,7 +357,7 @@ def _accept(job: _Job, x: Any, m: float) -> None:
 def _in_window(job: _Job, m: float | None) -> bool:
     if m is None or not job.ok(m):
         return False
-    return m <= TOL if job.want_pass else m >= -TOL
+    return m <= job.tol if job.want_pass else m >= -job.tol
 
 
 def _advance(job: _Job, evaluated: list[tuple[Any, float | None]]) -> None:
@@ -970,13 +972,20 @@ def _row_values(base, lv: Lever, rows, attrs: tuple[str, ...]) -> dict[str, Any]
 
 
 def find_remedies(nominal, ev: Evaluator, levers: list[Lever], near: float = NEAR,
-                  pack: bool = True, info: dict | None = None) -> list[ResultRemedies]:
+                  pack: bool = True, info: dict | None = None,
+                  bind_lever: Callable[[Lever, str], Any] | None = None,
+                  side_effects: bool = True, tol: float = TOL) -> list[ResultRemedies]:
     """Remedies for the failing results of ``nominal`` (a CheckResult) and for the passing
     ones within ``near`` of their limit, by every applicable lever.
 
     ``pack=False`` evaluates every trial value of every job on its own (the one-by-one path;
     the answers are the same, with more evaluations). ``info`` (a dict) receives
-    ``screening_speeds``: the screening speeds [rad/s] used, or None."""
+    ``screening_speeds``: the screening speeds [rad/s] used, or None. ``bind_lever(lever,
+    item)`` gives the cells a lever moves instead of the workbook's (an object with the
+    interface of :class:`Binding`: the sizing loop of ``checker new`` moves layout
+    dimensions, :mod:`checker.sizing.loop`); ``side_effects=False`` leaves out the check
+    at each answer for the results whose status it changes; ``tol``: the accepted window of
+    an answer's margin ([0, tol]; a sizing loop accepts a wider one than :data:`TOL`)."""
     out: list[ResultRemedies] = []
     jobs: list[_Job] = []
     bindings: dict[tuple, Any] = {}
@@ -989,12 +998,13 @@ def find_remedies(nominal, ev: Evaluator, levers: list[Lever], near: float = NEA
         for lv in levers:
             if not lv.applies(r.rule, r.item):
                 continue
-            b = _binding(ev, lv, r.item, bindings)
+            b = (_binding(ev, lv, r.item, bindings) if bind_lever is None
+                 else bind_lever(lv, r.item))
             if isinstance(b, str):
                 continue  # the lever's input is not in this workbook (e.g. another row),
                 # or the lever does not apply to the row (e.g. torque on a yield-controlled
                 # joint)
-            jobs += _lever_jobs(rr, r, lv, b)
+            jobs += _lever_jobs(rr, r, lv, b, tol)
         out.append(rr)
     rules = {r.id: r for r in getattr(nominal, "rules", ())}
     screen_rules = frozenset(i for i, r in rules.items() if screenable(r, nominal))
@@ -1005,7 +1015,8 @@ def find_remedies(nominal, ev: Evaluator, levers: list[Lever], near: float = NEA
     for rr in out:
         rr.remedies = _nearest_direction(rr.remedies)
     kept = {id(rm) for rr in out for rm in rr.remedies}
-    _side_effects([j for j in jobs if id(j.remedy) in kept], ev, nominal, pack)
+    if side_effects:
+        _side_effects([j for j in jobs if id(j.remedy) in kept], ev, nominal, pack)
     _conflicts(out)
     return out
 
@@ -1025,7 +1036,8 @@ def _binding(ev: Evaluator, lv: Lever, item: str, bindings: dict[tuple, Any]) ->
     return bindings[key]
 
 
-def _lever_jobs(rr: ResultRemedies, r: Any, lv: Lever, b: Binding) -> list[_Job]:
+def _lever_jobs(rr: ResultRemedies, r: Any, lv: Lever, b: Binding, tol: float = TOL
+                ) -> list[_Job]:
     """The jobs of one lever on result ``r``: one per direction it may move (both for a
     passing result, whose margin reaches zero either way; none of a discrete lever there),
     each with its first trial value (:func:`_start_discrete`, :func:`_start`); their remedies
@@ -1042,7 +1054,7 @@ def _lever_jobs(rr: ResultRemedies, r: Any, lv: Lever, b: Binding) -> list[_Job]
                     else dict(zip([f.label for f in b.fields], b.nominal)), direction=s)
         if lv.discrete and len(b.fields) > 1:
             rm.nominal = {f.label: v for f, v in zip(b.fields, b.nominal)}
-        job = _Job(rr, r.rule, r.item, lv, b, rm, s, r.status != "pass")
+        job = _Job(rr, r.rule, r.item, lv, b, rm, s, r.status != "pass", tol=tol)
         if lv.discrete:
             _start_discrete(job)
         else:

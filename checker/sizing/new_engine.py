@@ -22,9 +22,7 @@ stations' inertias and stiffnesses are left blank in TVModel and derived by the 
 from __future__ import annotations
 
 import math
-import tempfile
 from dataclasses import dataclass, replace
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -34,6 +32,7 @@ from ..calc.bolted_joint import PRELOAD_FRACTIONS, effective_friction_diameter, 
 from ..calc.crank_geometry import cylinder, throw_mass_properties
 from ..results.caveats import PLAUSIBILITY_MARK
 from . import crank_types, project_limits
+from .bench import Bench
 from .brief import Brief
 
 TAG = "ESTIMATE (checker new)"
@@ -332,6 +331,7 @@ class Tuning:
     tuning: float = 1.0  # Den Hartog's optimum ring / crank-mode frequency ratio
     sizing: bool = True  # a sizing pass (the irregularity target typed for the flywheel module)
     limits: dict | None = None  # project limits (sizing.project_limits.free_limits)
+    oil_grade: str | None = None  # chosen by the loop (None: the fuel's usual grade)
 
 
 def _mm(x: float) -> float:
@@ -549,7 +549,7 @@ def content(L: Layout, tune: Tuning) -> dict[str, Any]:
         "CrankMass": ([("location", "-"), ("throw", "-"), ("kind", "-"), ("mass", "kg"),
                        ("X", "mm"), ("Y", "mm"), ("Z", "mm"), ("axial position", "mm"),
                        ("relative to", "-"), ("note", "")], []),
-        "Oil": _oil_sheet(L.brief),
+        "Oil": _oil_sheet(L.brief, tune),
         "TVModel": ([("station", "-"), ("role", "-"), ("cylinder", "-"),
                      ("inertia", "kg m^2"), ("absolute damping", "N m s/rad"),
                      ("stiffness to next", "N m/rad"), ("damping to next", "N m s/rad"),
@@ -711,10 +711,18 @@ def _bearings_sheet(L: Layout) -> tuple[list, list]:
     return bcols, brows
 
 
-def _oil_sheet(b: Brief) -> list[tuple]:
-    """Sheet Oil: a usual grade and gallery conditions for the fuel."""
-    return [("Oil grade", "5W30" if b.fuel == "gasoline" else "10W40", "-",
-             est(None, "a usual grade for the fuel")),
+def oil_grade(b: Brief, tune: Tuning) -> str:
+    """The oil grade of the layout: the loop's choice, else a usual grade for the fuel."""
+    return tune.oil_grade or ("5W30" if b.fuel == "gasoline" else "10W40")
+
+
+def _oil_sheet(b: Brief, tune: Tuning) -> list[tuple]:
+    """Sheet Oil: a usual grade and gallery conditions for the fuel (the grade the loop chose
+    where it moved it)."""
+    grade_note = (est(None, "a usual grade for the fuel") if tune.oil_grade is None
+                  else est(None, "the grade the sizing loop chose for the bearing films"
+                           " (Notes)"))
+    return [("Oil grade", oil_grade(b, tune), "-", grade_note),
             ("Oil supply pressure", 4.0, "bar(g)", est(None, "usual gallery pressure at speed")),
             ("Oil supply temperature", 120 if b.fuel == "gasoline" else 110, "°C",
              est(None, "usual gallery temperature at full load")),
@@ -805,17 +813,6 @@ def _notes(L: Layout, rt: Rating) -> list[str]:
             "See docs/workbook.md for every sheet, parameter and column."]
 
 
-def _evaluate(cont: dict[str, Any], select: list[str]):
-    from .. import api
-    from ..workbook.example import write_workbook
-
-    with tempfile.TemporaryDirectory() as d:
-        path = Path(d) / "pass.xlsx"
-        write_workbook(path, cont)
-        res = api.check(str(path), select=select)
-    return res
-
-
 def _q(res, name: str) -> np.ndarray | None:
     q = res.outcome.quantities.get(name)
     return None if q is None else np.asarray(q.values, dtype=float)
@@ -834,50 +831,44 @@ def _rated(res, name: str, speed: float) -> np.ndarray | None:
     return v[ci, k:k + 1]
 
 
-def size(b: Brief) -> tuple[Layout, dict[str, Any]]:
-    """The layout and the workbook content, its flywheel, damper and joints made consistent
-    with the checker's own models (three evaluation passes)."""
-    L = layout(b)
-    mat = MATERIALS[b.crank_material]
-    crank_j = L.throws * float(_throw_props(L, mat).inertia_total[0])
+def _first_tuning(L: Layout, crank_j: float) -> Tuning:
+    """The tuning passes' start: flywheel 20 and ring 0.25 x the crank's inertia, the ring
+    tuned to 300 Hz, a single crank-nose bolt and eight flywheel bolts."""
     od = 1.6 * L.dj
     joints0 = [{"name": "crank nose", "bolts": 1, "d": 12, "p": 1.25, "torque": 0.0,
                 "od": 0.75 * L.dj, "id": 0.0, "head_od": 24.0, "head_id": 13.2},
                {"name": "flywheel", "bolts": 8, "d": 10, "p": 1.25, "torque": 0.0, "od": od,
                 "id": L.dj * 0.8, "head_od": 20.0, "head_id": 11.0}]
-    tune = Tuning(flywheel=20 * crank_j, ring=0.25 * crank_j,
+    return Tuning(flywheel=20 * crank_j, ring=0.25 * crank_j,
                   ring_stiffness=0.25 * crank_j * (2 * math.pi * 300.0)**2, loss_factor=0.2,
                   joints=joints0)
-    for _ in range(4):  # flywheel and damper tuning settle in 2-3 passes
-        res = _evaluate(content(L, tune), ["FLY", "DMP"])
-        j_min = _rated(res, "flywheel.minimum_inertia", b.min_speed)
-        modal = _q(res, "damper.modal_inertia")
-        k_opt = _q(res, "damper.optimum_stiffness")
-        eta = _q(res, "damper.optimum_loss_factor")
-        fw = tune.flywheel
-        if j_min is not None and np.isfinite(j_min).any():
-            fw = max(float(np.nanmax(j_min)) * 1.05, 2 * crank_j)
-        ring = tune.ring
-        if modal is not None and np.isfinite(modal).any():
-            ring = 0.25 * float(np.nanmax(modal))
-        k = tune.ring_stiffness * ring / tune.ring
-        if k_opt is not None and np.isfinite(k_opt).any():
-            k = float(np.nanmax(k_opt)) * ring / tune.ring
-        loss = float(np.nanmax(eta)) if eta is not None and np.isfinite(eta).any() else 0.2
-        opt = _q(res, "damper.optimum_tuning_ratio")
-        tr = float(np.nanmax(opt)) if opt is not None and np.isfinite(opt).any() else 1.0
-        new = Tuning(fw, ring, k, min(max(loss, 0.05), 1.0), joints0, tuning=tr)
-        done = (abs(new.flywheel / tune.flywheel - 1) < 0.01
-                and abs(new.ring / tune.ring - 1) < 0.01
-                and abs(new.ring_stiffness / tune.ring_stiffness - 1) < 0.01)
-        tune = new
-        if done:
-            break
-    res = _evaluate(content(L, tune), ["TV", "JNT", "BAL"])  # joint torques, free forces
-    L = replace(L, plausibility=L.plausibility + tuple(_mode_plausibility(L, res)))
-    m_rot = L.rod.mass * (L.rod_len - L.rod.centre_from_big_end) / L.rod_len
-    tune = replace(tune, limits=project_limits.free_limits(
-        res, L.piston + L.rod.mass - m_rot, b.stroke / 2.0, b.rated_speed, L.spacing))
+
+
+def _next_tuning(res: Any, tune: Tuning, crank_j: float, min_speed: float) -> Tuning:
+    """One pass: the smallest flywheel for the irregularity target at the lowest speed (+5 %,
+    at least twice the crank), the ring 0.25 x the first mode's modal inertia with Den
+    Hartog's optimum stiffness, loss factor and tuning ratio."""
+    j_min = _rated(res, "flywheel.minimum_inertia", min_speed)
+    modal = _q(res, "damper.modal_inertia")
+    k_opt = _q(res, "damper.optimum_stiffness")
+    eta = _q(res, "damper.optimum_loss_factor")
+    fw = tune.flywheel
+    if j_min is not None and np.isfinite(j_min).any():
+        fw = max(float(np.nanmax(j_min)) * 1.05, 2 * crank_j)
+    ring = tune.ring
+    if modal is not None and np.isfinite(modal).any():
+        ring = 0.25 * float(np.nanmax(modal))
+    k = tune.ring_stiffness * ring / tune.ring
+    if k_opt is not None and np.isfinite(k_opt).any():
+        k = float(np.nanmax(k_opt)) * ring / tune.ring
+    loss = float(np.nanmax(eta)) if eta is not None and np.isfinite(eta).any() else 0.2
+    opt = _q(res, "damper.optimum_tuning_ratio")
+    tr = float(np.nanmax(opt)) if opt is not None and np.isfinite(opt).any() else 1.0
+    return Tuning(fw, ring, k, min(max(loss, 0.05), 1.0), tune.joints, tuning=tr)
+
+
+def _sized_joints(res: Any, joints0: list[dict]) -> list[dict]:
+    """The bolt sets for the tuned torsional model's largest joint torques."""
     tq = _q(res, "tv.joint_torque")
     joints = []
     for i, j in enumerate(joints0):
@@ -885,6 +876,62 @@ def size(b: Brief) -> tuple[Layout, dict[str, Any]]:
         if not np.isfinite(t) or t <= 0:
             raise NoRule(f"{j['name']} joint: the torsional model gave no joint torque")
         joints.append({**j, **_joint_design(j["name"], t, j["od"], j["id"]), "torque": t})
-    tune = replace(tune, joints=joints)
-    return L, content(L, replace(tune, sizing=False))
+    return joints
 
+
+def tune_layout(L: Layout) -> tuple[Layout, Tuning, Bench]:
+    """The flywheel, damper and joints of layout ``L`` made consistent with the checker's own
+    models, the crank modes' plausibility and the free-force limits set (evaluation passes in
+    memory on the first layout's workbook, :class:`Bench`)."""
+    b = L.brief
+    mat = MATERIALS[b.crank_material]
+    crank_j = L.throws * float(_throw_props(L, mat).inertia_total[0])
+    tune = _first_tuning(L, crank_j)
+    bench = Bench(content(L, tune))
+    for _ in range(4):  # flywheel and damper tuning settle in 2-3 passes
+        res = bench.check(content(L, tune), ["FLY", "DMP"])
+        new = _next_tuning(res, tune, crank_j, b.min_speed)
+        done = (abs(new.flywheel / tune.flywheel - 1) < 0.01
+                and abs(new.ring / tune.ring - 1) < 0.01
+                and abs(new.ring_stiffness / tune.ring_stiffness - 1) < 0.01)
+        tune = new
+        if done:
+            break
+    res = bench.check(content(L, tune), ["TV", "JNT", "BAL"])  # joint torques, free forces
+    L = replace(L, plausibility=L.plausibility + tuple(_mode_plausibility(L, res)))
+    m_rot = L.rod.mass * (L.rod_len - L.rod.centre_from_big_end) / L.rod_len
+    tune = replace(tune, limits=project_limits.free_limits(
+        res, L.piston + L.rod.mass - m_rot, b.stroke / 2.0, b.rated_speed, L.spacing))
+    return L, replace(tune, joints=_sized_joints(res, tune.joints), sizing=False), bench
+
+
+@dataclass
+class Sized:
+    """A sized layout: its workbook content and, when the loop ran, its outcome."""
+
+    layout: Layout
+    content: dict[str, Any]
+    loop: Any = None  # checker.sizing.loop.LoopOutcome
+
+
+def sized(b: Brief, iterate: bool = True) -> Sized:
+    """The first layout by its rules, tuned (:func:`tune_layout`); with ``iterate`` checked
+    and moved by the sizing loop (:func:`checker.sizing.loop.close_loop`) until every rule
+    passes or a brief value prevents it, the history in its Notes."""
+    L, tune, bench = tune_layout(layout(b))
+    if not iterate:
+        return Sized(L, content(L, tune))
+    from .loop import Design, close_loop
+
+    out = close_loop(bench, Design(L, tune))
+    d = out.design
+    cont = content(d.layout, d.tune)
+    cont["Notes"] = cont["Notes"] + out.notes()
+    return Sized(d.layout, cont, out)
+
+
+def size(b: Brief) -> tuple[Layout, dict[str, Any]]:
+    """The open-loop layout and its workbook content (``checker new --no-iterate``): every
+    dimension by its rule, the flywheel, damper and joints tuned."""
+    s = sized(b, iterate=False)
+    return s.layout, s.content

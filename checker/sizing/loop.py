@@ -1,0 +1,443 @@
+"""Close the loop of ``checker new``: check the first layout and move its sizing levers until
+every rule passes, or say which brief value prevents it.
+
+The layout is evaluated in memory: the first layout's workbook is read once
+(:class:`Bench`), every later layout is the cell changes that turn it into the new one,
+checked by the evaluator of the remedies (:class:`checker.remedies.variants.Evaluator`, with
+its calculation cache: a flywheel move recomputes only what the flywheel feeds).
+
+The sizing levers (:data:`MOVES`) move layout dimensions, not cells: a move scales one or
+several dimensions together (a journal's diameter and its land width; the web's thickness and
+width) and the layout's dependent dimensions follow (the journal lengths, the cylinder pitch,
+the counterweight's bore), so every layout written is consistent. Each round takes the failing
+results; for each, the first move in the order of :data:`MOVES` (the order of design
+preference) that applies and has not yet failed for it; the remedies' root finding
+(:func:`checker.remedies.solve.find_remedies`) gives the smallest factor that passes it, and
+every move takes the largest factor its results need. A result that no move passes within its
+bounds stops the loop with the brief value that drives it (:data:`DRIVERS`), the rule and its
+margin.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import fnmatch
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numpy as np
+
+from ..calc import first_layout as fl
+from ..workbook.schema import SHEETS
+from .bench import Bench
+from .new_engine import Layout, Tuning, _joint_design, content
+
+MAX_ROUNDS = 8
+"""Rounds of the loop at most (each: one check, one root finding per move in use)."""
+SIZING_TOL = 0.05
+"""A sizing step's answer passes its result with a margin of 0 to 5 %: it need not reach the
+limit to a thousandth (the remedies' window, :data:`checker.remedies.solve.TOL`)."""
+
+
+# ------------------------------------------------------------------ the sizing levers
+@dataclass(frozen=True)
+class Design:
+    """A layout and what the tuning passes set (the state the loop moves)."""
+
+    layout: Layout
+    tune: Tuning
+
+
+@dataclass(frozen=True)
+class Move:
+    """One sizing lever of the loop: the layout dimensions it moves together by one factor
+    (or, for a discrete lever, its choices)."""
+
+    id: str
+    name: str
+    rules: tuple[str, ...]  # rule ids or family prefixes it answers
+    items: tuple[str, ...]  # glob patterns on the result's item ("" = every item)
+    moves: str  # what it changes, for the history
+    apply: Callable[[Design, Any], Design]
+    today: Callable[[Design], Any]
+    bounds: tuple[float, float] = (1.0, 1.5)  # factors on today's value
+    direction: str = "increase"
+    choices: tuple[Any, ...] = ()
+
+    def applies(self, rule: str, item: str) -> bool:
+        if not any(rule.startswith(r) for r in self.rules):
+            return False
+        return not self.items or any(fnmatch.fnmatchcase(item.lower(), p.lower())
+                                     for p in self.items)
+
+
+def relayout(L: Layout, **dims: float) -> Layout:
+    """The layout with ``dims`` changed and what follows from them: the rod's big eye and
+    mass (:func:`first_layout.con_rod`), the pin and main journal lengths (lands and fillets,
+    as :func:`checker.sizing.new_engine.layout`), the cylinder pitch at least the crank's
+    axial stack, the counterweight's bore on the main journal and the clearances in
+    proportion to the diameters they belong to."""
+    new = replace(L, **dims)
+    rods = new.brief.cylinders // new.throws
+    pin_len = rods * new.rod_land + 2 * (new.fillet_p + 1e-3) + (rods - 1) * 1e-3
+    main_len = new.main_land + 2 * (new.fillet_j + 1e-3)
+    stack = main_len + 2 * new.tw + pin_len
+    rod = new.rod
+    if new.dp != L.dp or new.rod_land != L.rod_land:
+        rod = fl.con_rod(force=new.gas, length=new.rod_len, pin_d=new.dp,
+                         pin_land=new.rod_land, wrist=new.wrist)
+    return replace(new, rod=rod, pin_len=pin_len, main_len=main_len,
+                   spacing=max(L.spacing - (L.main_len + 2 * L.tw + L.pin_len) + stack, stack),
+                   cw_ri=new.dj / 2.0,
+                   clearance_main=dims.get("clearance_main", L.clearance_main * new.dj / L.dj),
+                   clearance_pin=dims.get("clearance_pin", L.clearance_pin * new.dp / L.dp))
+
+
+def _scaled(*names: str) -> Callable[[Design, Any], Design]:
+    def apply(d: Design, x: Any) -> Design:
+        L0 = d.layout
+        return replace(d, layout=relayout(L0, **{n: getattr(L0, n) * float(x)
+                                                 for n in names}))
+    return apply
+
+
+def _tuned(name: str, also: tuple[str, ...] = ()) -> Callable[[Design, Any], Design]:
+    def apply(d: Design, x: Any) -> Design:
+        t = d.tune
+        return replace(d, tune=replace(t, **{n: getattr(t, n) * float(x)
+                                             for n in (name,) + also}))
+    return apply
+
+
+def _bolts(d: Design, x: Any) -> Design:
+    """Bolt sets sized for ``x`` times their joint's torque (bigger or more bolts)."""
+    joints = [{**j, **_joint_design(j["name"], j["torque"] * float(x), j["od"], j["id"])}
+              for j in d.tune.joints]
+    return replace(d, tune=replace(d.tune, joints=joints))
+
+
+def _grade(d: Design, x: Any) -> Design:
+    return replace(d, tune=replace(d.tune, oil_grade=str(x)))
+
+
+def _one(d: Design) -> float:
+    return 1.0
+
+
+GRADES = ("5W-30", "10W-30", "5W-40", "10W-40", "15W-40", "15W-50", "20W-50")
+"""Oil grades the loop may choose (SAE J300 engine grades of road engines, ranked by their
+J300 viscosity by the remedies' oil-grade ranking)."""
+
+MOVES: tuple[Move, ...] = (
+    # bearing films first through what keeps the crank like real ones
+    Move("oil-grade", "Oil grade (SAE J300)", ("BRG-003", "BRG-004"), (), "oil grade", _grade,
+         lambda d: d.tune.oil_grade or "", choices=GRADES),
+    Move("main-clearance", "Main bearing clearance", ("BRG-003", "BRG-004"), ("M*",),
+         "main bearing radial clearance", _scaled("clearance_main"), _one, (0.6, 1.6),
+         "either"),
+    Move("pin-clearance", "Big-end clearance", ("BRG-003", "BRG-004"), ("BE*",),
+         "big-end radial clearance", _scaled("clearance_pin"), _one, (0.6, 1.6), "either"),
+    Move("main-land", "Main bearing width", ("BRG-",), ("M*",), "main land width",
+         _scaled("main_land"), _one, (1.0, 1.4)),
+    Move("pin-land", "Big-end width", ("BRG-",), ("BE*",), "big-end land width",
+         _scaled("rod_land"), _one, (1.0, 1.4)),
+    # then the crank's dimensions, several together where one rule needs it
+    Move("fillets", "Fillet radii", ("FAT-",), (), "pin and main fillet radii",
+         _scaled("fillet_p", "fillet_j"), _one, (1.0, 2.0)),
+    Move("main-journal", "Main journal (diameter and land width)", ("BRG-", "FAT-"),
+         ("M*", "main*"), "main journal diameter and land width",
+         _scaled("dj", "main_land"), _one, (1.0, 1.4)),
+    Move("crank-pin", "Crank pin (diameter and land width)", ("BRG-", "FAT-"),
+         ("BE*", "pin*"), "pin diameter and big-end land width", _scaled("dp", "rod_land"),
+         _one, (1.0, 1.4)),
+    Move("web", "Web (thickness and width)", ("FAT-", "TV-"), (),
+         "web thickness and web width", _scaled("tw", "bw"), _one, (1.0, 1.6)),
+    Move("counterweight", "Counterweight outer radius", ("BAL-",), (),
+         "counterweight outer radius", _scaled("cw_ro"), _one, (0.8, 1.2), "either"),
+    Move("flywheel", "Flywheel inertia", ("FLY-",), (), "flywheel inertia",
+         _tuned("flywheel"), _one, (1.0, 4.0)),
+    Move("damper", "Damper size (ring inertia, rubber stiffness at the same tuning)",
+         ("TV-", "DMP-"), (), "damper ring inertia and rubber stiffness",
+         _tuned("ring", ("ring_stiffness",)), _one, (1.0, 4.0)),
+    Move("bolts", "Bolt size and number (yield-controlled preload)", ("JNT-",), (),
+         "bolt size and number", _bolts, _one, (1.0, 4.0)),
+)
+"""The sizing levers in the order of design preference: the oil and the bearing clearances
+and widths first (what keeps the crank like real ones), then fillets, journals and webs, then
+the counterweights, the flywheel, the damper and the bolts."""
+
+DRIVERS = {
+    "BRG": "the brief's peak pressure {peak} at bore {bore} and speed range {speeds}",
+    "FAT": "the brief's peak pressure {peak} at bore {bore}",
+    "TV": "the brief's cylinders ({cyl}) and speed range {speeds}",
+    "DMP": "the brief's cylinders ({cyl}) and speed range {speeds}",
+    "JNT": "the brief's rated power {power}",
+    "FLY": "the brief's minimum speed {min}",
+    "BAL": "the brief's layout ({cyl} cylinders)",
+}
+"""The brief values that drive each rule family (what the stop message names)."""
+
+
+# ------------------------------------------------------------------ history and verdict
+@dataclass
+class Step:
+    """One move of the loop: which rule drove which dimensions, before and after."""
+
+    round: int
+    move: str
+    moves: str
+    rules: list[str]  # "FAT-001 pin 1 fillet" ...
+    before: str
+    after: str
+
+    def text(self) -> str:
+        rules = ", ".join(self.rules[:4]) + (f" and {len(self.rules) - 4} more"
+                                             if len(self.rules) > 4 else "")
+        return (f"round {self.round}: {rules} drove the {self.moves}: {self.before} ->"
+                f" {self.after}")
+
+
+@dataclass
+class LoopOutcome:
+    design: Design
+    steps: list[Step]
+    failed_before: int
+    failed_after: int
+    evaluations: int
+    rounds: int
+    seconds: float
+    stop: list[str] = field(default_factory=list)  # why the loop stopped short of a pass
+
+    @property
+    def passed(self) -> bool:
+        return self.failed_after == 0
+
+    def summary(self) -> list[str]:
+        """The console lines of ``checker new``: results failed before and after the loop,
+        its rounds, evaluations and time, and why it stopped short of a pass."""
+        verdict = ("every rule passes" if self.passed
+                   else f"{self.failed_after} results still fail")
+        return ([f"sizing loop: {self.failed_before} failed results in the first layout,"
+                 f" {verdict} after {self.rounds} rounds ({self.evaluations} evaluations,"
+                 f" {self.seconds:.1f} s)"] + [f"  {s.text()}" for s in self.steps]
+                + [f"  stopped: {t}" for t in self.stop])
+
+    def notes(self) -> list[str]:
+        """The workbook's Notes lines: the sizing history."""
+        head = (f"How this layout was sized: the first layout failed {self.failed_before}"
+                f" results; checker new moved its sizing levers in {self.rounds} rounds"
+                f" ({self.evaluations} evaluations, {self.seconds:.1f} s): "
+                + (f"{self.failed_after} results still fail." if self.failed_after
+                   else "every rule passes."))
+        return ([head] + [f"Sizing {s.text()}." for s in self.steps]
+                + [f"Sizing stopped: {t}" for t in self.stop])
+
+
+def _failing(res: Any) -> list[Any]:
+    return [r for r in res.results if r.status == "fail" and r.severity == "error"]
+
+
+def _dims_text(d: Design, m: Move) -> str:
+    L, t = d.layout, d.tune
+    mm = {"dp": L.dp, "dj": L.dj, "rod_land": L.rod_land, "main_land": L.main_land,
+          "tw": L.tw, "bw": L.bw, "fillet_p": L.fillet_p, "fillet_j": L.fillet_j,
+          "cw_ro": L.cw_ro}
+    label = {"dp": "pin", "dj": "main", "rod_land": "big-end land", "main_land": "main land",
+             "tw": "web", "bw": "web width", "fillet_p": "pin fillet",
+             "fillet_j": "main fillet", "cw_ro": "counterweight radius"}
+    if m.id == "oil-grade":
+        return t.oil_grade or "the fuel's usual grade"
+    if m.id.endswith("clearance"):
+        c = L.clearance_main if m.id.startswith("main") else L.clearance_pin
+        return f"{c * 1e6:.1f} µm"
+    if m.id == "flywheel":
+        return f"{t.flywheel:.4g} kg m^2"
+    if m.id == "damper":
+        return f"ring {t.ring:.4g} kg m^2"
+    if m.id == "bolts":
+        return ", ".join(f"{j['name']} {j['bolts']} x M{j['d']}" for j in t.joints)
+    keys = {"fillets": ("fillet_p", "fillet_j"), "main-journal": ("dj", "main_land"),
+            "crank-pin": ("dp", "rod_land"), "web": ("tw", "bw"), "main-land": ("main_land",),
+            "pin-land": ("rod_land",), "counterweight": ("cw_ro",)}[m.id]
+    return ", ".join(f"{label[k]} {mm[k] * 1e3:.1f} mm" for k in keys)
+
+
+# ------------------------------------------------------------------ the solver's view of a move
+@dataclass
+class MoveBinding:
+    """A move as the remedies' solver sees a lever's cells (the interface of
+    :class:`checker.remedies.variants.Binding`): today's value (factor 1, or today's oil
+    grade) and the cell changes of the layout at a trial value."""
+
+    bench: Bench
+    design: Design
+    move: Move
+    fields: tuple = ()
+
+    @property
+    def nominal(self) -> list[Any]:
+        return [self.move.today(self.design)]
+
+    @property
+    def labels(self) -> tuple[str, ...]:
+        return (self.move.moves,)
+
+    @property
+    def cells(self) -> set[tuple[str, int, int]]:
+        return {(f"move:{self.move.id}", 0, 0)}  # one identity per move: its jobs share
+
+    def changes(self, value: Any) -> dict[tuple[str, int, int], Any]:
+        d = self.move.apply(self.design, value)
+        return self.bench.changes(content(d.layout, d.tune))
+
+
+def lever_of(m: Move) -> Any:
+    """The remedies' lever of a move (its rules, items, direction, bounds or choices)."""
+    from ..description.levers import Lever
+
+    sheet, label = ("Oil", "oil grade") if m.choices else ("Crank", "pin diameter")
+    col = next(f for f in SHEETS[sheet].fields if f.label.lower() == label)
+    return Lever(m.id, m.name, m.rules, sheet, (col,), items=m.items, unit="",
+                 direction=m.direction, bounds=None if m.choices else m.bounds,
+                 choices=m.choices, separable=False)
+
+
+# ------------------------------------------------------------------ the loop
+def close_loop(bench: Bench, design: Design, max_rounds: int = MAX_ROUNDS) -> LoopOutcome:
+    """Move the sizing levers of ``design`` until every error-severity rule passes (see the
+    module's docstring); the outcome holds the final design and its history."""
+    t0 = time.perf_counter()
+    n0 = bench.evaluations
+    res = bench.check(content(design.layout, design.tune))
+    first = len(_failing(res))
+    tried: dict[tuple[str, str], set[str]] = {}
+    steps: list[Step] = []
+    rounds = 0
+    stop: list[str] = []
+    while _failing(res) and rounds < max_rounds:
+        rounds += 1
+        plan = _plan(_failing(res), tried)
+        if not plan:
+            stop = _why_not(design, _failing(res), tried)
+            break
+        design, moved = _round(bench, design, res, plan, tried, rounds)
+        steps += moved
+        if not moved:
+            continue  # every planned move failed: the next ones in the order next round
+        if any(s.move in CRANK_MOVES for s in moved):
+            design = _retuned(bench, design)
+        res = bench.check(content(design.layout, design.tune))
+        if not hasattr(res, "results"):
+            raise RuntimeError(f"a sized layout is not a valid workbook: {res}")
+    if _failing(res) and not stop:
+        stop = _why_not(design, _failing(res), tried)
+    return LoopOutcome(design, steps, first, len(_failing(res)), bench.evaluations - n0,
+                       rounds, time.perf_counter() - t0, stop)
+
+
+CRANK_MOVES = frozenset({"main-land", "pin-land", "fillets", "main-journal", "crank-pin",
+                         "web", "counterweight"})
+"""Moves of the crank's geometry: its torsional modes move, and the damper is tuned again."""
+
+
+def _retuned(bench: Bench, d: Design) -> Design:
+    """The damper's rubber tuned again to the moved crank at the same ring (Den Hartog's
+    optimum stiffness, loss factor and tuning ratio, the damper-tuning module)."""
+    from .new_engine import _q
+
+    res = bench.check(content(d.layout, replace(d.tune, sizing=True)), ["DMP"])
+    if not hasattr(res, "results"):
+        return d
+    t = d.tune
+    got = {n: _q(res, f"damper.{n}") for n in ("optimum_stiffness", "optimum_loss_factor",
+                                               "optimum_tuning_ratio")}
+    ok = {n: float(np.nanmax(v)) for n, v in got.items()
+          if v is not None and np.isfinite(v).any()}
+    return replace(d, tune=replace(
+        t, ring_stiffness=ok.get("optimum_stiffness", t.ring_stiffness),
+        loss_factor=min(max(ok.get("optimum_loss_factor", t.loss_factor), 0.05), 1.0),
+        tuning=ok.get("optimum_tuning_ratio", t.tuning)))
+
+
+def _plan(failing: list[Any], tried: dict[tuple[str, str], set[str]]
+          ) -> dict[str, list[Any]]:
+    """Per move, the failing results it is tried on this round: for each result the first
+    move of :data:`MOVES` that applies and has not failed for it yet."""
+    plan: dict[str, list[Any]] = {}
+    for r in failing:
+        done = tried.setdefault((r.rule, r.item), set())
+        m = next((m for m in MOVES if m.applies(r.rule, r.item) and m.id not in done), None)
+        if m is not None:
+            plan.setdefault(m.id, []).append(r)
+    return plan
+
+
+def _round(bench: Bench, design: Design, res: Any, plan: dict[str, list[Any]],
+           tried: dict[tuple[str, str], set[str]], k: int) -> tuple[Design, list[Step]]:
+    """One round: per planned move the remedies' answer for each of its results; the move
+    takes the most demanding answer (a result it cannot pass within its bounds goes on to
+    the next move next round)."""
+    from ..remedies.solve import find_remedies
+
+    steps = []
+    for mid, results in plan.items():
+        m = next(x for x in MOVES if x.id == mid)
+        binding = MoveBinding(bench, design, m)
+        sub = dataclasses.replace(res, results=results)
+        out = find_remedies(sub, bench.ev, [lever_of(m)], near=0.0,
+                            bind_lever=lambda lv, item, b=binding: b, side_effects=False,
+                            tol=SIZING_TOL)
+        found = []
+        for rr in out:
+            rm = rr.remedies[0] if rr.remedies else None
+            if rm is not None and rm.found:
+                found.append((rr, rm.value))
+            else:
+                tried[(rr.rule, rr.item)].add(mid)
+        if not found:
+            continue
+        value = _most_demanding(m, found)
+        before = _dims_text(design, m)
+        design = m.apply(design, value)
+        steps.append(Step(k, m.id, m.moves, [f"{rr.rule} {rr.item}" for rr, _ in found],
+                          before, _dims_text(design, m)))
+    return design, steps
+
+
+def _most_demanding(m: Move, found: list[tuple[Any, Any]]) -> Any:
+    """The answer that passes every result of the move: the largest factor (the last
+    choice) of an increasing lever; of an 'either' lever that of the worst result."""
+    if m.choices:
+        order = [c for c in m.choices]
+        return max((v for _, v in found), key=lambda v: order.index(v) if v in order else -1)
+    if m.direction == "increase":
+        return max(float(v) for _, v in found)
+    return min(found, key=lambda p: p[0].margin)[1]
+
+
+def _why_not(design: Design, failing: list[Any], tried: dict) -> list[str]:
+    """For each rule still failing: its worst result and margin, the moves that could not
+    pass it within their bounds, and the brief values that drive it."""
+    b = design.layout.brief
+    rpm = 30.0 / math.pi
+    vals = {"peak": f"{b.peak_pressure / 1e5:.0f} bar", "bore": f"{b.bore * 1e3:g} mm",
+            "speeds": f"{b.min_speed * rpm:.0f}-{b.max_speed * rpm:.0f} rpm",
+            "cyl": b.cylinders, "power": f"{b.rated_power / 1e3:.0f} kW",
+            "min": f"{b.min_speed * rpm:.0f} rpm"}
+    worst: dict[str, Any] = {}
+    for r in failing:
+        if r.margin is not None and (r.rule not in worst or r.margin < worst[r.rule].margin):
+            worst[r.rule] = r
+    out = []
+    for rule, r in sorted(worst.items()):
+        moves = [m.name.lower() for m in MOVES if m.id in tried.get((r.rule, r.item), set())]
+        fam = rule.split("-")[0]
+        drive = DRIVERS.get(fam, "the brief").format(**vals)
+        out.append(f"{rule} {r.item}: {r.value_text} against {r.limit} (margin"
+                   f" {100 * r.margin:+.0f} %)"
+                   + (f" with {', '.join(moves)} at their bounds" if moves else "")
+                   + f"; {drive} prevents it.")
+    return out
