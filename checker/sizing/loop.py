@@ -66,6 +66,15 @@ class Move:
     bounds: tuple[float, float] = (1.0, 1.5)  # factors on today's value
     direction: str = "increase"
     choices: tuple[Any, ...] = ()
+    cap: Callable[[Design], float] | None = None
+    """The largest factor from the design that stays within the band of real engines
+    (:data:`BANDS`); a geometric move that cannot pass its results within a round's bounds
+    but improves them goes to its bound and on next round, until this cap."""
+
+    def bounds_for(self, d: Design) -> tuple[float, float]:
+        """This round's factor bounds: :attr:`bounds`, the upper one within the cap."""
+        lo, hi = self.bounds
+        return (lo, hi) if self.cap is None else (lo, max(min(hi, self.cap(d)), lo))
 
     def applies(self, rule: str, item: str) -> bool:
         if not any(rule.startswith(r) for r in self.rules):
@@ -78,8 +87,8 @@ def relayout(L: Layout, **dims: float) -> Layout:
     """The layout with ``dims`` changed and what follows from them: the rod's big eye and
     mass (:func:`first_layout.con_rod`), the pin and main journal lengths (lands and fillets,
     as :func:`checker.sizing.new_engine.layout`), the cylinder pitch at least the crank's
-    axial stack, the counterweight's bore on the main journal and the clearances in
-    proportion to the diameters they belong to."""
+    axial stack, the counterweight's bore and the clearances in proportion to the diameters
+    they belong to."""
     new = replace(L, **dims)
     rods = new.brief.cylinders // new.throws
     pin_len = rods * new.rod_land + 2 * (new.fillet_p + 1e-3) + (rods - 1) * 1e-3
@@ -91,7 +100,7 @@ def relayout(L: Layout, **dims: float) -> Layout:
                          pin_land=new.rod_land, wrist=new.wrist)
     return replace(new, rod=rod, pin_len=pin_len, main_len=main_len,
                    spacing=max(L.spacing - (L.main_len + 2 * L.tw + L.pin_len) + stack, stack),
-                   cw_ri=new.dj / 2.0,
+                   cw_ri=L.cw_ri * new.dj / L.dj,
                    clearance_main=dims.get("clearance_main", L.clearance_main * new.dj / L.dj),
                    clearance_pin=dims.get("clearance_pin", L.clearance_pin * new.dp / L.dp))
 
@@ -127,6 +136,42 @@ def _one(d: Design) -> float:
     return 1.0
 
 
+BANDS = {"pin_per_bore": 0.75, "main_per_bore": 0.85, "land_per_diameter": 0.6,
+         "fillet_per_diameter": 0.08, "web_per_bore": 0.40}
+"""Upper ends of the sizing loop's geometric moves, beyond the band of real engines' cranks
+(pins about 0.5-0.7 x bore, mains 0.6-0.8 x bore, bearing L/D 0.3-0.5, fillets 0.05-0.07 x the
+journal, webs 0.22-0.32 x bore: Khurmi & Gupta, A Textbook of Machine Design, §32; the bands of
+docs/new-engine.md) with a margin [the margin not confirmed in a public source]."""
+
+
+def _cap_main_land(d: Design) -> float:
+    return BANDS["land_per_diameter"] * d.layout.dj / d.layout.main_land
+
+
+def _cap_pin_land(d: Design) -> float:
+    return BANDS["land_per_diameter"] * d.layout.dp / d.layout.rod_land
+
+
+def _cap_fillets(d: Design) -> float:
+    L = d.layout
+    return BANDS["fillet_per_diameter"] * min(L.dp / L.fillet_p, L.dj / L.fillet_j)
+
+
+def _cap_main(d: Design) -> float:
+    L = d.layout
+    return BANDS["main_per_bore"] * L.brief.bore / L.dj
+
+
+def _cap_pin(d: Design) -> float:
+    L = d.layout
+    return BANDS["pin_per_bore"] * L.brief.bore / L.dp
+
+
+def _cap_web(d: Design) -> float:
+    L = d.layout
+    return BANDS["web_per_bore"] * L.brief.bore / L.tw
+
+
 GRADES = ("5W-30", "10W-30", "5W-40", "10W-40", "15W-40", "15W-50", "20W-50")
 """Oil grades the loop may choose (SAE J300 engine grades of road engines, ranked by their
 J300 viscosity by the remedies' oil-grade ranking)."""
@@ -141,20 +186,20 @@ MOVES: tuple[Move, ...] = (
     Move("pin-clearance", "Big-end clearance", ("BRG-003", "BRG-004"), ("BE*",),
          "big-end radial clearance", _scaled("clearance_pin"), _one, (0.6, 1.6), "either"),
     Move("main-land", "Main bearing width", ("BRG-",), ("M*",), "main land width",
-         _scaled("main_land"), _one, (1.0, 1.4)),
+         _scaled("main_land"), _one, (1.0, 1.4), cap=_cap_main_land),
     Move("pin-land", "Big-end width", ("BRG-",), ("BE*",), "big-end land width",
-         _scaled("rod_land"), _one, (1.0, 1.4)),
+         _scaled("rod_land"), _one, (1.0, 1.4), cap=_cap_pin_land),
     # then the crank's dimensions, several together where one rule needs it
     Move("fillets", "Fillet radii", ("FAT-",), (), "pin and main fillet radii",
-         _scaled("fillet_p", "fillet_j"), _one, (1.0, 2.0)),
+         _scaled("fillet_p", "fillet_j"), _one, (1.0, 2.0), cap=_cap_fillets),
     Move("main-journal", "Main journal (diameter and land width)", ("BRG-", "FAT-"),
          ("M*", "main*"), "main journal diameter and land width",
-         _scaled("dj", "main_land"), _one, (1.0, 1.4)),
+         _scaled("dj", "main_land"), _one, (1.0, 1.4), cap=_cap_main),
     Move("crank-pin", "Crank pin (diameter and land width)", ("BRG-", "FAT-"),
          ("BE*", "pin*"), "pin diameter and big-end land width", _scaled("dp", "rod_land"),
-         _one, (1.0, 1.4)),
+         _one, (1.0, 1.4), cap=_cap_pin),
     Move("web", "Web (thickness and width)", ("FAT-", "TV-"), (),
-         "web thickness and web width", _scaled("tw", "bw"), _one, (1.0, 1.6)),
+         "web thickness and web width", _scaled("tw", "bw"), _one, (1.0, 1.6), cap=_cap_web),
     Move("counterweight", "Counterweight outer radius", ("BAL-",), (),
          "counterweight outer radius", _scaled("cw_ro"), _one, (0.8, 1.2), "either"),
     Move("flywheel", "Flywheel inertia", ("FLY-",), (), "flywheel inertia",
@@ -294,14 +339,15 @@ class MoveBinding:
         return self.bench.changes(content(d.layout, d.tune))
 
 
-def lever_of(m: Move) -> Any:
-    """The remedies' lever of a move (its rules, items, direction, bounds or choices)."""
+def lever_of(m: Move, d: Design) -> Any:
+    """The remedies' lever of a move on design ``d`` (its rules, items, direction, this
+    round's bounds or its choices)."""
     from ..description.levers import Lever
 
     sheet, label = ("Oil", "oil grade") if m.choices else ("Crank", "pin diameter")
     col = next(f for f in SHEETS[sheet].fields if f.label.lower() == label)
     return Lever(m.id, m.name, m.rules, sheet, (col,), items=m.items, unit="",
-                 direction=m.direction, bounds=None if m.choices else m.bounds,
+                 direction=m.direction, bounds=None if m.choices else m.bounds_for(d),
                  choices=m.choices, separable=False)
 
 
@@ -378,8 +424,10 @@ def _plan(failing: list[Any], tried: dict[tuple[str, str], set[str]]
 def _round(bench: Bench, design: Design, res: Any, plan: dict[str, list[Any]],
            tried: dict[tuple[str, str], set[str]], k: int) -> tuple[Design, list[Step]]:
     """One round: per planned move the remedies' answer for each of its results; the move
-    takes the most demanding answer (a result it cannot pass within its bounds goes on to
-    the next move next round)."""
+    takes the most demanding answer. A result it cannot pass within the round's bounds goes
+    on to the next move next round, unless the move is geometric and improves it: then the
+    move goes to its bound and is tried again next round, until its cap (the band of real
+    engines, :data:`BANDS`)."""
     from ..remedies.solve import find_remedies
 
     steps = []
@@ -387,22 +435,33 @@ def _round(bench: Bench, design: Design, res: Any, plan: dict[str, list[Any]],
         m = next(x for x in MOVES if x.id == mid)
         binding = MoveBinding(bench, design, m)
         sub = dataclasses.replace(res, results=results)
-        out = find_remedies(sub, bench.ev, [lever_of(m)], near=0.0,
+        lo, hi = m.bounds_for(design)
+        if not m.choices and m.direction == "increase" and hi <= 1.0 + 1e-6:
+            for r in results:  # at the band's end already
+                tried[(r.rule, r.item)].add(mid)
+            continue
+        out = find_remedies(sub, bench.ev, [lever_of(m, design)], near=0.0,
                             bind_lever=lambda lv, item, b=binding: b, side_effects=False,
                             tol=SIZING_TOL)
-        found = []
+        found, better = [], []
         for rr in out:
             rm = rr.remedies[0] if rr.remedies else None
             if rm is not None and rm.found:
                 found.append((rr, rm.value))
+            elif (m.cap is not None and rm is not None and rm.best_margin is not None
+                  and rr.margin is not None and rm.best_margin > rr.margin + 0.01):
+                better.append(rr)  # improves, does not pass: to the bound, on next round
             else:
                 tried[(rr.rule, rr.item)].add(mid)
-        if not found:
+        if found:
+            value, drove, how = _most_demanding(m, found), [rr for rr, _ in found], ""
+        elif better:
+            value, drove, how = hi, better, " (to its bound this round: no value passes yet)"
+        else:
             continue
-        value = _most_demanding(m, found)
         before = _dims_text(design, m)
         design = m.apply(design, value)
-        steps.append(Step(k, m.id, m.moves, [f"{rr.rule} {rr.item}" for rr, _ in found],
+        steps.append(Step(k, m.id, m.moves + how, [f"{rr.rule} {rr.item}" for rr in drove],
                           before, _dims_text(design, m)))
     return design, steps
 

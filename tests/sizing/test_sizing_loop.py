@@ -73,7 +73,7 @@ def test_several_dimensions_move_together_and_the_layout_stays_consistent():
     assert N.dj == pytest.approx(1.2 * L.dj) and N.main_land == pytest.approx(1.2 * L.main_land)
     assert N.main_len == pytest.approx(N.main_land + 2 * (N.fillet_j + 1e-3))
     assert N.spacing >= N.main_len + 2 * N.tw + N.pin_len - 1e-12
-    assert N.cw_ri == pytest.approx(N.dj / 2)
+    assert N.cw_ri / N.dj == pytest.approx(L.cw_ri / L.dj)
     assert N.clearance_main / N.dj == pytest.approx(L.clearance_main / L.dj)
     w = relayout(L, tw=1.3 * L.tw)
     assert w.spacing == pytest.approx(L.spacing + 0.6 * L.tw)  # two webs per throw
@@ -149,3 +149,18 @@ def test_brief_passes_its_own_rules(tmp_path, name):
     assert res.verdict == "pass" and res.complete, [
         (x.rule, x.item, x.status) for x in res.results if x.status in ("fail",
                                                                          "not_evaluated")]
+
+
+def test_a_rule_the_levers_cannot_pass_names_the_brief_value_with_its_margin():
+    from types import SimpleNamespace
+
+    from checker.sizing.loop import Design, _why_not
+
+    L = layout(parse_brief(I4))
+    r = SimpleNamespace(rule="BRG-003", item="BE1", margin=-0.47, value_text="0.6357 µm",
+                        limit="≥ 1.2 µm")
+    tried = {("BRG-003", "BE1"): {"oil-grade", "pin-clearance", "pin-land", "crank-pin"}}
+    (text,) = _why_not(Design(L, None), [r], tried)  # type: ignore[arg-type]
+    assert text.startswith("BRG-003 BE1: 0.6357 µm against ≥ 1.2 µm (margin -47 %)")
+    assert "oil grade (sae j300), big-end clearance, big-end width, crank pin" in text
+    assert "peak pressure 85 bar at bore 86 mm" in text and text.endswith("prevents it.")
