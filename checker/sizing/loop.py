@@ -434,7 +434,7 @@ def _round(bench: Bench, design: Design, res: Any, plan: dict[str, list[Any]],
     for mid, results in plan.items():
         m = next(x for x in MOVES if x.id == mid)
         binding = MoveBinding(bench, design, m)
-        sub = dataclasses.replace(res, results=results)
+        sub = dataclasses.replace(res, results=_worst_per_rule(results))
         lo, hi = m.bounds_for(design)
         if not m.choices and m.direction == "increase" and hi <= 1.0 + 1e-6:
             for r in results:  # at the band's end already
@@ -451,19 +451,37 @@ def _round(bench: Bench, design: Design, res: Any, plan: dict[str, list[Any]],
             elif (m.cap is not None and rm is not None and rm.best_margin is not None
                   and rr.margin is not None and rm.best_margin > rr.margin + 0.01):
                 better.append(rr)  # improves, does not pass: to the bound, on next round
-            else:
-                tried[(rr.rule, rr.item)].add(mid)
+            else:  # the worst of its rule: the rule's other results go on with it
+                for r in results:
+                    if r.rule == rr.rule:
+                        tried[(r.rule, r.item)].add(mid)
         if found:
             value, drove, how = _most_demanding(m, found), [rr for rr, _ in found], ""
-        elif better:
+        elif better and bench.ev.input_errors(binding.changes(hi)) is None:
             value, drove, how = hi, better, " (to its bound this round: no value passes yet)"
         else:
+            for r in results:  # its bound is not a valid layout: the next move next round
+                if any(r.rule == rr.rule for rr in better):
+                    tried[(r.rule, r.item)].add(mid)
             continue
         before = _dims_text(design, m)
         design = m.apply(design, value)
         steps.append(Step(k, m.id, m.moves + how, [f"{rr.rule} {rr.item}" for rr in drove],
                           before, _dims_text(design, m)))
     return design, steps
+
+
+def _worst_per_rule(results: list[Any]) -> list[Any]:
+    """Of a move's failing results, the worst of each rule (the most negative margin): its
+    answer is the one the others need too, as a rule's items differ by their loads, not by
+    how the move acts on them (the check after the round shows any that still fail)."""
+    worst: dict[str, Any] = {}
+    for r in results:
+        w = worst.get(r.rule)
+        if w is None or (r.margin if r.margin is not None else 0.0) < (
+                w.margin if w.margin is not None else 0.0):
+            worst[r.rule] = r
+    return list(worst.values())
 
 
 def _most_demanding(m: Move, found: list[tuple[Any, Any]]) -> Any:

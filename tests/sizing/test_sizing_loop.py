@@ -164,3 +164,15 @@ def test_a_rule_the_levers_cannot_pass_names_the_brief_value_with_its_margin():
     assert text.startswith("BRG-003 BE1: 0.6357 µm against ≥ 1.2 µm (margin -47 %)")
     assert "oil grade (sae j300), big-end clearance, big-end width, crank pin" in text
     assert "peak pressure 85 bar at bore 86 mm" in text and text.endswith("prevents it.")
+
+
+def test_a_move_is_solved_for_the_worst_result_of_each_rule():
+    from types import SimpleNamespace as R
+
+    from checker.sizing.loop import _worst_per_rule
+
+    rs = [R(rule="FAT-001", item="pin 1 fillet", margin=-0.2),
+          R(rule="FAT-001", item="pin 2 fillet", margin=-0.5),
+          R(rule="FAT-002", item="pin 2 fillet", margin=-0.1)]
+    assert [(r.rule, r.item) for r in _worst_per_rule(rs)] == [("FAT-001", "pin 2 fillet"),
+                                                              ("FAT-002", "pin 2 fillet")]
