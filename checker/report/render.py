@@ -417,6 +417,7 @@ def front_context(res: CheckResult, results_file: str | None = None) -> dict:
         "assumptions": res.assumptions,
         "input_warnings": [str(w) for w in res.engine.warnings],
         "estimates": estimate_caveat(res.engine, res.results),
+        "sizing_history": sizing_history(res.engine),
         "modules_run": res.outcome.modules_run,
         "modules_skipped": [LABELS.get(m, m.replace("_", " "))
                             for m in res.outcome.modules_skipped],
@@ -425,6 +426,28 @@ def front_context(res: CheckResult, results_file: str | None = None) -> dict:
         "results_file": results_file,
         "css": (templates_dir() / "report.css").read_text(encoding="utf-8"),
     }
+
+
+def sizing_history(engine) -> list[str]:
+    """The sizing loop's history of a layout written by ``checker new`` (the notes of the
+    values it moved, :data:`checker.sizing.loop.HISTORY_MARK`): one line per move, by round;
+    none for another workbook."""
+    import re
+
+    from ..sizing.loop import HISTORY_MARK
+
+    lines: list[str] = []
+    for e in getattr(engine, "estimates", ()) or ():
+        for part in str(e).split(f"[{HISTORY_MARK} ")[1:]:
+            text = part.split("]")[0].strip()
+            if text and text not in lines:
+                lines.append(text)
+
+    def rnd(t: str) -> int:
+        m = re.match(r"round (\d+)", t)
+        return int(m.group(1)) if m else 0
+
+    return sorted(lines, key=rnd)
 
 
 def render_html(res: CheckResult) -> str:

@@ -281,6 +281,42 @@ class LoopOutcome:
                 + [f"Sizing stopped: {t}" for t in self.stop])
 
 
+HISTORY_MARK = "sizing loop:"
+"""The words that open the sizing history in a moved value's note (the report's section
+"How this layout was sized" collects them)."""
+
+NOTE_ROWS = {  # move -> (sheet, how to find its rows)
+    "oil-grade": ("Oil", "Oil grade"), "main-clearance": ("Bearings", "main"),
+    "main-land": ("Bearings", "main"), "pin-clearance": ("Bearings", "big end"),
+    "pin-land": ("Bearings", "big end"), "fillets": ("Crank", "all"),
+    "main-journal": ("Crank", "all"), "crank-pin": ("Crank", "all"), "web": ("Crank", "all"),
+    "counterweight": ("Crank", "all"), "flywheel": ("TVModel", "flywheel"),
+    "damper": ("TVModel", "damper ring"), "bolts": ("Joints", None),
+}
+"""Where each move's history is noted: the note of the moved value's row."""
+
+
+def annotate(cont: dict[str, Any], steps: list[Step]) -> dict[str, Any]:
+    """``cont`` with each step's text added to the note of the rows it moved (after
+    :data:`HISTORY_MARK`), so that the check and the report read the history with the
+    estimates it changed."""
+    out = dict(cont)
+    for st in steps:
+        sheet, key = NOTE_ROWS[st.move]
+        add = f" [{HISTORY_MARK} {st.text()}]"
+        body = out[sheet]
+        if isinstance(body, list):  # a parameter sheet: (parameter, value, unit, note)
+            out[sheet] = [(r[0], r[1], r[2], r[3] + add) if r[0] == key else r for r in body]
+            continue
+        cols, rows = body
+        nj = [h for h, _u in cols].index("note")
+        kj = 1 if sheet in ("Bearings", "TVModel") else 0  # type / role; Crank's throw
+        out[sheet] = (cols, [row[:nj] + [(row[nj] or "") + add] + row[nj + 1:]
+                             if key is None or str(row[kj]).lower() == key else row
+                             for row in rows])
+    return out
+
+
 def _failing(res: Any) -> list[Any]:
     return [r for r in res.results if r.status == "fail" and r.severity == "error"]
 

@@ -921,11 +921,11 @@ def sized(b: Brief, iterate: bool = True) -> Sized:
     L, tune, bench = tune_layout(layout(b))
     if not iterate:
         return Sized(L, content(L, tune))
-    from .loop import Design, close_loop
+    from .loop import Design, annotate, close_loop
 
     out = close_loop(bench, Design(L, tune))
     d = out.design
-    cont = content(d.layout, d.tune)
+    cont = annotate(content(d.layout, d.tune), out.steps)
     cont["Notes"] = cont["Notes"] + out.notes()
     return Sized(d.layout, cont, out)
 

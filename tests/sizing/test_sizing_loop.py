@@ -176,3 +176,22 @@ def test_a_move_is_solved_for_the_worst_result_of_each_rule():
           R(rule="FAT-002", item="pin 2 fillet", margin=-0.1)]
     assert [(r.rule, r.item) for r in _worst_per_rule(rs)] == [("FAT-001", "pin 2 fillet"),
                                                               ("FAT-002", "pin 2 fillet")]
+
+
+def test_the_history_reaches_the_report_through_the_moved_values_notes(tmp_path):
+    from checker.report.render import sizing_history
+    from checker.sizing.loop import HISTORY_MARK, Step, annotate
+
+    L = layout(parse_brief(I4))
+    tune, _bench = tune_layout(L)
+    steps = [Step(2, "web", "web thickness and web width", ["FAT-001 pin 4 fillet"],
+                  "web 23.2 mm", "web 24.0 mm"),
+             Step(1, "oil-grade", "oil grade", ["BRG-003 BE1"], "5W30", "10W-40")]
+    cont = annotate(content(L, tune), steps)
+    oil = next(r for r in cont["Oil"] if r[0] == "Oil grade")
+    assert f"[{HISTORY_MARK} round 1: BRG-003 BE1 drove the oil grade: 5W30 -> 10W-40]" in oil[3]
+    path = tmp_path / "annotated.xlsx"
+    write_workbook(path, cont)
+    res = api.check(str(path), select=["FLY"])
+    assert sizing_history(res.engine) == [s.text() for s in reversed(steps)]  # by round
+    assert sizing_history(replace(res.engine, estimates=())) == []  # another workbook
