@@ -464,51 +464,22 @@ def _round(bench: Bench, design: Design, res: Any, plan: dict[str, list[Any]],
     on to the next move next round, unless the move is geometric and improves it: then the
     move goes to its bound and is tried again next round, until its cap (the band of real
     engines, :data:`BANDS`)."""
+    from ..remedies.solve import find_remedies
+
     steps = []
     for mid, results in plan.items():
         m = next(x for x in MOVES if x.id == mid)
         binding = MoveBinding(bench, design, m)
+        sub = dataclasses.replace(res, results=_worst_per_rule(results))
         lo, hi = m.bounds_for(design)
         if not m.choices and m.direction == "increase" and hi <= 1.0 + 1e-6:
             for r in results:  # at the band's end already
                 tried[(r.rule, r.item)].add(mid)
             continue
-        found, better = _answers(bench, design, m, res, results, tried)
-        if found:
-            value, drove, how = _most_demanding(m, found), [rr for rr, _ in found], ""
-        elif better and bench.ev.input_errors(binding.changes(hi)) is None:
-            value, drove, how = hi, better, " (to its bound this round: no value passes yet)"
-        else:
-            for rr in better:  # its bound is not a valid layout: the next move next round
-                tried[(rr.rule, rr.item)].add(mid)
-            continue
-        before = _dims_text(design, m)
-        design = m.apply(design, value)
-        steps.append(Step(k, m.id, m.moves + how, [f"{rr.rule} {rr.item}" for rr in drove],
-                          before, _dims_text(design, m)))
-    return design, steps
-
-
-def _answers(bench: Bench, design: Design, m: Move, res: Any, results: list[Any],
-             tried: dict[tuple[str, str], set[str]]) -> tuple[list, list]:
-    """The remedies' answers of move ``m`` for its results: first for the worst result of
-    each rule (its answer is usually the one the others need); for a rule whose worst result
-    it cannot pass, for each of the rule's other results. Returns (results passed with their
-    values, results improved without passing); a result neither passes nor improves is
-    marked tried with the move."""
-    from ..remedies.solve import find_remedies
-
-    binding = MoveBinding(bench, design, m)
-    found: list[tuple[Any, Any]] = []
-    better: list[Any] = []
-    worst = _worst_per_rule(results)
-    todo = worst
-    while todo:
-        out = find_remedies(dataclasses.replace(res, results=todo), bench.ev,
-                            [lever_of(m, design)], near=0.0,
+        out = find_remedies(sub, bench.ev, [lever_of(m, design)], near=0.0,
                             bind_lever=lambda lv, item, b=binding: b, side_effects=False,
                             tol=SIZING_TOL)
-        failed = set()
+        found, better = [], []
         for rr in out:
             rm = rr.remedies[0] if rr.remedies else None
             if rm is not None and rm.found:
@@ -516,12 +487,24 @@ def _answers(bench: Bench, design: Design, m: Move, res: Any, results: list[Any]
             elif (m.cap is not None and rm is not None and rm.best_margin is not None
                   and rr.margin is not None and rm.best_margin > rr.margin + 0.01):
                 better.append(rr)  # improves, does not pass: to the bound, on next round
-            else:
-                tried[(rr.rule, rr.item)].add(m.id)
-                failed.add(rr.rule)
-        todo = [r for r in results if r.rule in failed and all(r is not w for w in worst)
-                and todo is worst]
-    return found, better
+            else:  # the worst of its rule: the rule's other results go on with it
+                for r in results:
+                    if r.rule == rr.rule:
+                        tried[(r.rule, r.item)].add(mid)
+        if found:
+            value, drove, how = _most_demanding(m, found), [rr for rr, _ in found], ""
+        elif better and bench.ev.input_errors(binding.changes(hi)) is None:
+            value, drove, how = hi, better, " (to its bound this round: no value passes yet)"
+        else:
+            for r in results:  # its bound is not a valid layout: the next move next round
+                if any(r.rule == rr.rule for rr in better):
+                    tried[(r.rule, r.item)].add(mid)
+            continue
+        before = _dims_text(design, m)
+        design = m.apply(design, value)
+        steps.append(Step(k, m.id, m.moves + how, [f"{rr.rule} {rr.item}" for rr in drove],
+                          before, _dims_text(design, m)))
+    return design, steps
 
 
 def _worst_per_rule(results: list[Any]) -> list[Any]:
