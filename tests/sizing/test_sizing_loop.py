@@ -90,7 +90,7 @@ def test_a_layout_checked_in_memory_equals_its_written_workbook(tmp_path):
     """The loop's evaluator checks a layout as cell changes of the first one: the same
     results as checking the workbook file written for it."""
     L = layout(parse_brief(I4))
-    tune, bench = tune_layout(L)
+    L, tune, bench = tune_layout(L)
     moved = relayout(L, dp=1.1 * L.dp, rod_land=1.1 * L.rod_land)
     cont = content(moved, replace(tune, oil_grade="10W-40"))
     ch = bench.changes(cont)
@@ -183,7 +183,7 @@ def test_the_history_reaches_the_report_through_the_moved_values_notes(tmp_path)
     from checker.sizing.loop import HISTORY_MARK, Step, annotate
 
     L = layout(parse_brief(I4))
-    tune, _bench = tune_layout(L)
+    L, tune, _bench = tune_layout(L)
     steps = [Step(2, "web", "web thickness and web width", ["FAT-001 pin 4 fillet"],
                   "web 23.2 mm", "web 24.0 mm"),
              Step(1, "oil-grade", "oil grade", ["BRG-003 BE1"], "5W30", "10W-40")]
