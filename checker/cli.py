@@ -359,7 +359,8 @@ def new(path, brief_file, force, no_iterate, **options) -> None:
     named), the history in its Notes."""
     from .errors import InputErrors
     from .sizing.brief import load_brief
-    from .sizing.new_engine import NoRule, sized, warnings
+    from .sizing.loop import sized
+    from .sizing.new_engine import NoRule, warnings
     from .workbook.example import write_workbook
 
     p = Path(path)

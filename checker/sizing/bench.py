@@ -18,16 +18,17 @@ from ..workbook.schema import SHEETS
 
 
 def cells_of(cont: dict[str, Any]) -> dict[tuple[str, int, int], Any]:
-    """The value cells of a workbook's content as :func:`checker.workbook.example.write_workbook`
-    writes them (parameters: value in column B from row 2; tables: from row 3), the notes
-    left out (they do not enter the check)."""
+    """The cells of a workbook's content as :func:`checker.workbook.example.write_workbook`
+    writes them (parameters: name, value and unit in columns A-C from row 2; tables: from row
+    3), the notes left out (they do not enter the check)."""
     out: dict[tuple[str, int, int], Any] = {}
     for name, body in cont.items():
         if name == "Notes" or name not in SHEETS:
             continue
         if isinstance(body, list):
             for i, row in enumerate(body, start=2):
-                out[(name, i, 2)] = row[1]
+                for j in (1, 2, 3):
+                    out[(name, i, j)] = row[j - 1]
             continue
         cols, rows = body
         for i, row in enumerate(rows, start=3):
@@ -63,11 +64,12 @@ class Bench:
         self.cells = cells_of(self.first)
 
     def changes(self, cont: dict[str, Any]) -> dict[tuple[str, int, int], Any]:
-        """The cell changes that turn the first layout into ``cont`` (same rows)."""
+        """The cell changes that turn the first layout into ``cont`` (rows it adds, e.g. the
+        project limits the tuning sets, written; rows it lost emptied)."""
         now = cells_of(cont)
-        if set(now) != set(self.cells):
-            raise ValueError("a sized layout must keep the first layout's rows")
-        return {k: v for k, v in now.items() if self.cells[k] != v}
+        out = {k: v for k, v in now.items() if self.cells.get(k) != v}
+        out.update({k: None for k in self.cells if k not in now})  # rows the layout lost
+        return out
 
     def check(self, cont: dict[str, Any], select: list[str] | None = None) -> Any:
         """The check of the layout ``cont`` (a :class:`checker.api.CheckResult`), or the

@@ -33,7 +33,8 @@ import numpy as np
 from ..calc import first_layout as fl
 from ..workbook.schema import SHEETS
 from .bench import Bench
-from .new_engine import Layout, Tuning, _joint_design, content
+from .brief import Brief
+from .new_engine import Layout, Tuning, _joint_design, content, layout, tune_layout
 
 MAX_ROUNDS = 8
 """Rounds of the loop at most (each: one check, one root finding per move in use)."""
@@ -554,3 +555,26 @@ def _why_not(design: Design, failing: list[Any], tried: dict) -> list[str]:
                    + (f" with {', '.join(moves)} at their bounds" if moves else "")
                    + f"; {drive} prevents it.")
     return out
+
+
+@dataclass
+class Sized:
+    """A sized layout: its workbook content and, when the loop ran, its outcome."""
+
+    layout: Layout
+    content: dict[str, Any]
+    loop: Any = None  # checker.sizing.loop.LoopOutcome
+
+
+def sized(b: Brief, iterate: bool = True) -> Sized:
+    """The first layout by its rules, tuned (:func:`tune_layout`); with ``iterate`` checked
+    and moved by the sizing loop (:func:`checker.sizing.loop.close_loop`) until every rule
+    passes or a brief value prevents it, the history in its Notes."""
+    L, tune, bench = tune_layout(layout(b))
+    if not iterate:
+        return Sized(L, content(L, tune))
+    out = close_loop(bench, Design(L, tune))
+    d = out.design
+    cont = annotate(content(d.layout, d.tune), out.steps)
+    cont["Notes"] = cont["Notes"] + out.notes()
+    return Sized(d.layout, cont, out)

@@ -905,33 +905,8 @@ def tune_layout(L: Layout) -> tuple[Layout, Tuning, Bench]:
     return L, replace(tune, joints=_sized_joints(res, tune.joints), sizing=False), bench
 
 
-@dataclass
-class Sized:
-    """A sized layout: its workbook content and, when the loop ran, its outcome."""
-
-    layout: Layout
-    content: dict[str, Any]
-    loop: Any = None  # checker.sizing.loop.LoopOutcome
-
-
-def sized(b: Brief, iterate: bool = True) -> Sized:
-    """The first layout by its rules, tuned (:func:`tune_layout`); with ``iterate`` checked
-    and moved by the sizing loop (:func:`checker.sizing.loop.close_loop`) until every rule
-    passes or a brief value prevents it, the history in its Notes."""
-    L, tune, bench = tune_layout(layout(b))
-    if not iterate:
-        return Sized(L, content(L, tune))
-    from .loop import Design, annotate, close_loop
-
-    out = close_loop(bench, Design(L, tune))
-    d = out.design
-    cont = annotate(content(d.layout, d.tune), out.steps)
-    cont["Notes"] = cont["Notes"] + out.notes()
-    return Sized(d.layout, cont, out)
-
-
 def size(b: Brief) -> tuple[Layout, dict[str, Any]]:
     """The open-loop layout and its workbook content (``checker new --no-iterate``): every
     dimension by its rule, the flywheel, damper and joints tuned."""
-    s = sized(b, iterate=False)
-    return s.layout, s.content
+    L, tune, _bench = tune_layout(layout(b))
+    return L, content(L, tune)
