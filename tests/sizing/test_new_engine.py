@@ -234,7 +234,9 @@ def test_estimates_are_consistent_with_the_checkers_models(tmp_path):
     in its tuning band around Den Hartog's optimum, the bolt heads within the contact limit."""
     import numpy as np
 
-    assert _new(tmp_path, "i4", BRIEFS["i4"]).returncode == 0
+    # the open-loop layout (what the sizing targeted); the sizing loop moves the pin and
+    # does not size the counterweights again (docs/sizing-loop.md)
+    assert _new(tmp_path, "i4", BRIEFS["i4"], "--no-iterate").returncode == 0
     res = api.check(str(tmp_path / "i4.xlsx"))
     q = res.outcome.quantities
     assert np.asarray(q["balance.balance_ratio"].values) == pytest.approx(1.0, abs=1e-3)
