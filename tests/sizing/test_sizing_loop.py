@@ -139,11 +139,21 @@ def test_brief_sizes_with_the_loop_end_to_end(tmp_path, name):
     assert rep.returncode in (0, 1), rep.stderr
 
 
+STILL_FAILING = {
+    "i3": "big-end films (BRG-003/004) at 120 bar on a 71.9 mm bore",
+    "i6-diesel-123": "BRG-003 BE1 (-6 %) and the crank-nose joint (JNT-003)",
+    "v8": "pin oil-hole fatigue (FAT-001), crank-nose joint (JNT-003), nose amplitude (TV-003)",
+    "v12": "M4 specific load and film, pin oil holes, crank-nose joint, nose amplitude",
+}
+"""What the loop leaves failing on these briefs today (docs/sizing-loop.md): each named with
+the brief value that prevents it. Strict: a brief that starts passing fails here until its
+mark is removed."""
+
+
 @pytest.mark.ci
-@pytest.mark.xfail(strict=True, reason="issue 47 items 1 and 3 (the open-loop rules from public"
-                   " engine data and the class defaults of the project limits, branch"
-                   " newsizing) must land too: remove this mark when it passes")
-@pytest.mark.parametrize("name", sorted(BRIEFS))
+@pytest.mark.parametrize("name", [
+    pytest.param(n, marks=pytest.mark.xfail(strict=True, reason=STILL_FAILING[n]))
+    if n in STILL_FAILING else n for n in sorted(BRIEFS)])
 def test_brief_passes_its_own_rules(tmp_path, name):
     assert _new(tmp_path, name).returncode == 0
     res = api.check(str(tmp_path / f"{name}.xlsx"))
