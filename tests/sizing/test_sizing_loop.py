@@ -119,6 +119,7 @@ def test_no_iterate_writes_the_open_loop_layout(tmp_path):
 
 
 STILL_FAILING = {
+    "i4": "pin 4 oil-hole fatigue (FAT-001, -3 %) with the pin and fillets at their bounds",
     "i3": "big-end films (BRG-003/004) at 120 bar on a 71.9 mm bore",
     "i6-diesel-123": "BRG-003 BE1 (-6 %) and the crank-nose joint (JNT-003)",
     "v8": "pin oil-hole fatigue (FAT-001), crank-nose joint (JNT-003), nose amplitude (TV-003)",
