@@ -43,8 +43,6 @@ UNDO = {
                          "m.import_weasyprint = plain",
     "matplotlib_patches": "import contextlib; from checker.plumbing import matplotlib_patches"
                           " as m; m.property_lists_unwritten = contextlib.nullcontext",
-    "weasyprint_ua": "from checker.plumbing import weasyprint_ua as m; "
-                     "m.html_class = lambda wp, css: wp.HTML",
 }
 """Per trick: the code that undoes it before the command starts (the plain way)."""
 

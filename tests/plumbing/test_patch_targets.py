@@ -10,7 +10,7 @@ import importlib
 import pytest
 
 TRICKS = ("frame_stack", "gc_tuning", "pdf_compression", "pdf_engine_import",
-          "matplotlib_patches", "weasyprint_ua")
+          "matplotlib_patches")
 
 
 @pytest.mark.parametrize("name", TRICKS)
@@ -19,38 +19,12 @@ def test_the_trick_states_the_releases_it_was_measured_on(name):
     assert any(ch.isdigit() for ch in mod.MEASURED_ON), mod.MEASURED_ON
 
 
-@pytest.mark.parametrize("name", [n for n in TRICKS if n != "weasyprint_ua"])
+@pytest.mark.parametrize("name", TRICKS)
 def test_the_installed_releases_have_what_the_trick_patches(name):
     mod = importlib.import_module(f"checker.plumbing.{name}")
     assert mod.missing_targets() == [], (
         f"checker.plumbing.{name}: the installed release no longer has what the trick"
         f" patches: {mod.missing_targets()} (measured on {mod.MEASURED_ON}); update or drop it")
-
-
-def test_weasyprint_still_asks_the_html_for_its_user_agent_stylesheet():
-    from checker.plumbing import weasyprint_ua
-    from checker.plumbing.pdf_engine_import import import_weasyprint
-
-    wp = import_weasyprint()
-    assert weasyprint_ua.missing_targets(wp) == [], weasyprint_ua.missing_targets(wp)
-
-
-def test_the_user_agent_stylesheet_is_the_one_given():
-    """The subclass's stylesheet is what the cascade uses: a rule only it has shows."""
-    from checker.plumbing import weasyprint_ua
-    from checker.plumbing.pdf_engine_import import import_weasyprint
-
-    wp = import_weasyprint()
-    html = weasyprint_ua.html_class(wp, "html, body, p { display: block } p { margin-top: 40pt }")
-    doc = html(string="<p>x</p>").render()
-
-    def boxes(b):
-        yield b
-        for c in getattr(b, "children", ()):
-            yield from boxes(c)
-
-    p = [b for b in boxes(doc.pages[0]._page_box) if getattr(b, "element_tag", "") == "p"]
-    assert p and p[0].margin_top == pytest.approx(40 * 4 / 3)
 
 
 def test_a_missing_target_is_named(monkeypatch):
