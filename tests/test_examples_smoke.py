@@ -167,7 +167,7 @@ STUDIES = sorted((Path(__file__).resolve().parents[1] / "examples").glob("*.toml
 def _study_run(study: Path, root: Path) -> dict:
     d = root / study.stem
     d.mkdir()
-    engine = study.name[:2]
+    engine = study.name.split("-")[0]  # i4, i6, v8, genset, marine
     out = {"dir": d, "template": _run(["template", "--engine", engine, "engine.xlsx"], d)}
     if out["template"].returncode:
         return out

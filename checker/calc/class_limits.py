@@ -11,6 +11,14 @@ Rev. 4, 2019, 2.2(A)(e), as carried in KR Part 5 Annex 5-3).
 
 All stresses in Pa (the rules' N/mm^2 times 1e6), speeds in rad/s, the speed ratio
 ``lambda = n / n_MCR`` dimensionless (``n_MCR``: maximum continuous, rated, speed).
+
+References
+----------
+.. [1] Korean Register of Shipping, "Rules for the Classification of Steel Ships", Part 5
+   "Machinery Installations", Chapter 4 "Torsional Vibration of Shaftings", 2025 (RA-05-E),
+   Section 2: 201, 203, 204, 206.
+.. [2] IACS, "Calculation of Crankshafts for I.C. Engines", Unified Requirement M53, Rev. 4,
+   2019, 2.2(A)(e).
 """
 
 from __future__ import annotations

@@ -14,6 +14,13 @@ the damping it gives, and its inertia in water.
   ``J_w = J_dry (1 + f)``; ``f`` is typically 0.2..0.3 (MacPherson, Puleo, Packard,
   "Estimation of entrained water added mass properties for vibration analysis", SNAME New
   England Section, 2007, survey of the methods).
+
+References
+----------
+.. [1] MAN Energy Solutions, "Basic principles of ship propulsion", section "Slip ratio and
+   propeller law".
+.. [2] MacPherson, D. M., Puleo, V. R., Packard, M. B., "Estimation of entrained water added
+   mass properties for vibration analysis", SNAME New England Section, 2007.
 """
 
 from __future__ import annotations

@@ -45,7 +45,8 @@ PROVIDES = ("crank.throw_mass", "crank.throw_inertia", "crank.throw_stiffness",
             "crank.assembled_stiffness")
 
 
-@calculation("crank_geometry", "crank", provides=PROVIDES, reads=("crank", "crank_model"))
+@calculation("crank_geometry", "crank", provides=PROVIDES,
+             reads=("crank", "crank_model", "cylinders"))
 def crank_geometry(engine: Engine, inputs: dict) -> dict[str, Quantity]:
     """Mass, inertia and stiffness of each throw from sheet Crank."""
     from ..description.crank_derive import throw_stiffness

@@ -76,6 +76,21 @@ MECHANISMS: dict[str, str] = {
                " cover factors are optimistic (Bell, Ricardo 2013, (23)-(24)).",
     "TV-001": "Torsional vibration above the target: higher crank stresses, noise and"
               " accessory-drive loads (Bell, Ricardo 2013, 'Crankshaft analysis (15)').",
+    "TV-004": "Crank vibratory torsional stress above the class society's permissible stress:"
+              " torsional fatigue of the crank (Korean Register 2025, Pt 5 Ch 4, 201).",
+    "TV-007": "A barred speed range where the engine must run: it would dwell at a critical"
+              " above the continuous limit (Korean Register 2025, Pt 5 Ch 4, 206).",
+    "TV-008": "A major critical near the rated speed: every cylinder in phase excites the crank"
+              " mode where the engine runs most (Korean Register 2025, Pt 5 Ch 4, 204).",
+    "CPL-001": "Vibratory torque above the coupling's permissible T_KW: its elastic elements"
+               " fatigue and tear (DIN 740-2:1986).",
+    "CPL-002": "Damping heat above the coupling's permissible P_KV: its rubber overheats,"
+               " hardens and fails (DIN 740-2:1986).",
+    "CPL-003": "Mean torque above the coupling's nominal T_KN: its elements creep and fail"
+               " (DIN 740-2:1986).",
+    "MIS-001": "A misfiring cylinder excites the half and lower orders: damper, coupling and"
+               " crank carry vibratory loads beyond normal firing (Korean Register 2025, Pt 5"
+               " Ch 4, 102.1).",
 }
 """The mechanism behind a failure, by rule id; a rule not listed here takes the entry of the
 nearest lower id of its family (BRG-002 -> BRG-001, JNT-005 -> JNT-003)."""

@@ -437,11 +437,13 @@ def test_example_studies_are_valid_for_their_templates(study, tmp_path):
     from checker.study.design import count_variants
     from checker.study.run import plan_study
     from checker.workbook.example import example_content, write_workbook
+    from checker.workbook.example_classes import genset_content, marine_content
     from checker.workbook.example_i6 import i6_content
     from checker.workbook.example_v8 import v8_content
 
     content = {"i4": example_content, "i6": lambda: i6_content(damper_ring=True),
-               "v8": v8_content}[study.name[:2]]()
+               "v8": v8_content, "genset": genset_content,
+               "marine": marine_content}[study.name.split("-")[0]]()
     wb = tmp_path / "engine.xlsx"
     write_workbook(wb, content)
     st = load_study(study)
