@@ -47,7 +47,12 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .torsional import TorsionalModel, dynamic_stiffness_matrix, element_impedance
+from .torsional import (
+    TorsionalModel,
+    dynamic_stiffness_matrix,
+    element_impedance,
+    speeds_and_orders,
+)
 
 __all__ = [
     "FIT_WINDOW",
@@ -237,12 +242,7 @@ def misfire_response(model: TorsionalModel, speeds: ArrayLike, orders: ArrayLike
     model, exact). An undamped resonance (singular ``D``) raises ``numpy.linalg.LinAlgError``;
     the caller flags those points with :func:`checker.calc.torsional.forced_response`.
     """
-    w = np.asarray(speeds, dtype=float).ravel()
-    n_ord = np.asarray(orders, dtype=float).ravel()
-    if w.size == 0 or np.any(~np.isfinite(w)) or np.any(w <= 0):
-        raise ValueError("speeds must be finite and > 0 rad/s")
-    if n_ord.size == 0 or np.any(~np.isfinite(n_ord)) or np.any(n_ord <= 0):
-        raise ValueError("orders must be finite and > 0")
+    w, n_ord = speeds_and_orders(speeds, orders)
     st = np.asarray(stations, dtype=int).ravel()
     n_cyl, n = st.size, model.n_stations
     f = np.asarray(cylinder_force, dtype=complex)

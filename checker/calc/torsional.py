@@ -491,6 +491,18 @@ class ForcedResponse:
         return self.resonance.any(axis=-1)
 
 
+def speeds_and_orders(speeds: ArrayLike, orders: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    """Mean speeds [rad/s] and orders [-] of a forced response as flat float arrays; raises
+    ValueError unless both are non-empty, finite and > 0."""
+    w = np.asarray(speeds, dtype=float).ravel()
+    n_ord = np.asarray(orders, dtype=float).ravel()
+    if w.size == 0 or np.any(~np.isfinite(w)) or np.any(w <= 0):
+        raise ValueError("speeds must be finite and > 0 rad/s")
+    if n_ord.size == 0 or np.any(~np.isfinite(n_ord)) or np.any(n_ord <= 0):
+        raise ValueError("orders must be finite and > 0")
+    return w, n_ord
+
+
 def forced_response(
     model: TorsionalModel,
     speeds: ArrayLike,
@@ -537,12 +549,7 @@ def forced_response(
     ``ForcedResponse.resonance`` (criterion: :data:`RESONANCE_TOLERANCE`) instead of returning
     inf/NaN.
     """
-    w = np.asarray(speeds, dtype=float).ravel()
-    n_ord = np.asarray(orders, dtype=float).ravel()
-    if w.size == 0 or np.any(~np.isfinite(w)) or np.any(w <= 0):
-        raise ValueError("speeds must be finite and > 0 rad/s")
-    if n_ord.size == 0 or np.any(~np.isfinite(n_ord)) or np.any(n_ord <= 0):
-        raise ValueError("orders must be finite and > 0")
+    w, n_ord = speeds_and_orders(speeds, orders)
     n = model.n_stations
     f = np.asarray(excitation, dtype=complex)
     try:
