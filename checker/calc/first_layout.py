@@ -172,11 +172,13 @@ CLASSES: dict[str, dict[str, Any]] = {
                       "main_ld_band": (0.30, 0.45),
                       "pin_ld_band": (0.30, 0.60), "lambda": 0.30, "pitch_wall": 0.06,
                       "pitch_band": (1.05, 1.35), "web_band": (0.18, 0.34),
+                      "pin_bore_band": (0.50, 0.62), "main_bore_band": (0.55, 0.80),
                       "mode_band": (250.0, 1500.0), "irregularity": 0.20},
     "commercial vehicle": {"pin_ld": 0.50, "shared_ld": 0.45, "main_ld": 0.40,
                            "main_ld_band": (0.30, 0.55),
                            "pin_ld_band": (0.35, 0.70), "lambda": 0.31, "pitch_wall": 0.11,
                            "pitch_band": (1.10, 1.45), "web_band": (0.18, 0.36),
+                           "pin_bore_band": (0.58, 0.75), "main_bore_band": (0.70, 0.85),
                            "mode_band": (120.0, 900.0), "irregularity": 0.20},
 }
 CLASSES["industrial"] = CLASSES["commercial vehicle"]
@@ -193,6 +195,10 @@ CLASSES["marine"] = CLASSES["commercial vehicle"]
   of the bore (pitch >= bore (1 + 2 wall)) [not confirmed in a public source];
 * ``pitch_band``, ``web_band``: cylinder pitch and web thickness per bore of real engines
   (plausibility; web: Khurmi & Gupta's 0.22-0.32 widened by the service data);
+* ``pin_bore_band``, ``main_bore_band``: crank-pin and main journal diameters per bore of
+  real engines (service data, docs/new-engine.md: gasoline pins 0.54-0.61 and mains
+  0.57-0.78 x bore, diesel pins 0.61-0.73 and mains 0.76-0.81 x bore, widened by about
+  0.02 at each end); the sizing loop keeps its journals inside them;
 * ``mode_band``: first crank torsional mode [Hz] plausible for the class [not confirmed];
 * ``irregularity``: the cyclic irregularity the flywheel is sized for at the lowest speed,
   full load (a four-cylinder at 800 rpm idle turns between about 710 and 860 rpm, 19 %: J.
@@ -209,6 +215,49 @@ SIZING_LOAD = {"gasoline": 44.5e6, "diesel": 66.5e6}
 """The specific load the journal diameters are sized for [Pa]: the capacity of the usual lining
 of the fuel (aluminium bimetal for gasoline, tri-metal for diesel engines, LINING_CAPACITY);
 a stronger lining chosen in the brief is margin, not a smaller journal."""
+
+GASOLINE_FULL_LOAD = (
+    # speed / rated speed, brake torque / peak torque, peak pressure / its maximum
+    (1000 / 6000, 175 / 265, 53.4 / 84.4), (1500 / 6000, 200 / 265, 59.0 / 84.4),
+    (2000 / 6000, 245 / 265, 68.1 / 84.4), (2500 / 6000, 255 / 265, 73.6 / 84.4),
+    (3000 / 6000, 265 / 265, 77.1 / 84.4), (4000 / 6000, 265 / 265, 80.0 / 84.4),
+    (5000 / 6000, 265 / 265, 84.4 / 84.4), (6000 / 6000, 220 / 265, 79.8 / 84.4),
+    (6500 / 6000, 190 / 265, 73.3 / 84.4))
+"""Full-load curves of a gasoline engine made dimensionless: brake torque and peak cylinder
+pressure against speed of the production gasoline I4 of Bell, D., "Cranktrain Analysis Using
+ENGDYN and VALDYN", Ricardo workshop, 2013 (rated at 6000 rpm; peak pressure 84.4 bar at
+5000 rpm, 53.4 bar at 1000 rpm: knock-limited at low speed, the peak pressure falls faster
+than the torque). ``checker new`` scales them to a gasoline brief's rated point and peak
+pressure; outside their speed range the end values hold (stated in the sheet's notes)."""
+
+
+def full_load_shape(speed_ratio: float) -> tuple[float, float]:
+    """Brake torque / peak torque and peak pressure / its maximum at ``speed_ratio`` = speed /
+    rated speed (:data:`GASOLINE_FULL_LOAD`, linear between its points, its end values
+    outside them).
+
+    >>> [round(x, 3) for x in full_load_shape(1000 / 6000)]
+    [0.66, 0.633]
+    """
+    x = [r[0] for r in GASOLINE_FULL_LOAD]
+    t = [r[1] for r in GASOLINE_FULL_LOAD]
+    p = [r[2] for r in GASOLINE_FULL_LOAD]
+
+    def interp(ys: list[float]) -> float:
+        if speed_ratio <= x[0]:
+            return ys[0]
+        if speed_ratio >= x[-1]:
+            return ys[-1]
+        k = next(i for i in range(1, len(x)) if x[i] >= speed_ratio)
+        w = (speed_ratio - x[k - 1]) / (x[k] - x[k - 1])
+        return ys[k - 1] + w * (ys[k] - ys[k - 1])
+
+    return interp(t), interp(p)
+
+
+MAIN_PIN_MIN = 1.05
+"""Smallest main journal / crank-pin diameter ratio the sizing loop keeps: the low end of
+the service data tabled in docs/new-engine.md (1.06, the Ford 4.0 V6)."""
 
 MAIN_PIN_RATIO = 1.20
 """Main journal / crank-pin diameter: median of the service data tabled in docs/new-engine.md

@@ -67,6 +67,9 @@ class Move:
     bounds: tuple[float, float] = (1.0, 1.5)  # factors on today's value
     direction: str = "increase"
     choices: tuple[Any, ...] = ()
+    to_end: bool = False
+    """A discrete move whose choices improve its results in their order: when none passes
+    but the last improves, the last is taken and its results go on to the next move."""
     cap: Callable[[Design], float] | None = None
     """The largest factor from the design that stays within the band of real engines
     (:data:`BANDS`); a geometric move that cannot pass its results within a round's bounds
@@ -124,9 +127,45 @@ def _tuned(name: str, also: tuple[str, ...] = ()) -> Callable[[Design, Any], Des
 
 def _bolts(d: Design, x: Any) -> Design:
     """Bolt sets sized for ``x`` times their joint's torque (bigger or more bolts)."""
-    joints = [{**j, **_joint_design(j["name"], j["torque"] * float(x), j["od"], j["id"])}
+    joints = [{**j, **_joint_design(j["name"], j["torque"] * float(x), j["od"], j["id"],
+                                    j.get("friction", 0.2))}
               for j in d.tune.joints]
     return replace(d, tune=replace(d.tune, joints=joints))
+
+
+def _washer(name: str) -> Callable[[Design, Any], Design]:
+    """The joint ``name`` with a clamped-face friction coefficient ``x`` (0.3: a
+    friction-enhancing diamond washer, Bell 2013), its bolt set kept."""
+    def apply(d: Design, x: Any) -> Design:
+        joints = []
+        for j in d.tune.joints:
+            if j["name"] == name:
+                f = float(x)
+                j = {**j, "friction": f, "capacity": j["capacity"] * f / j.get("friction", 0.2)}
+            joints.append(j)
+        return replace(d, tune=replace(d.tune, joints=joints))
+    return apply
+
+
+def _friction(name: str) -> Callable[[Design], float]:
+    def today(d: Design) -> float:
+        return next(float(j.get("friction", 0.2)) for j in d.tune.joints if j["name"] == name)
+    return today
+
+
+def _hole_angle(d: Design, x: Any) -> Design:
+    return replace(d, layout=replace(d.layout, oil_hole_angle=float(x)))
+
+
+def _pin_and_main(d: Design, x: Any) -> Design:
+    """The crank pin and its big-end land scaled by ``x``; the main journal (and its land)
+    grown with it where needed to stay :data:`first_layout.MAIN_PIN_MIN` x the pin, as in
+    real cranks."""
+    L0 = d.layout
+    dp = L0.dp * float(x)
+    grow = max(fl.MAIN_PIN_MIN * dp / L0.dj, 1.0)
+    return replace(d, layout=relayout(L0, dp=dp, rod_land=L0.rod_land * float(x),
+                                      dj=L0.dj * grow, main_land=L0.main_land * grow))
 
 
 def _grade(d: Design, x: Any) -> Design:
@@ -137,12 +176,13 @@ def _one(d: Design) -> float:
     return 1.0
 
 
-BANDS = {"pin_per_bore": 0.75, "main_per_bore": 0.85, "land_per_diameter": 0.6,
-         "fillet_per_diameter": 0.08, "web_per_bore": 0.40}
-"""Upper ends of the sizing loop's geometric moves, beyond the band of real engines' cranks
-(pins about 0.5-0.7 x bore, mains 0.6-0.8 x bore, bearing L/D 0.3-0.5, fillets 0.05-0.07 x the
-journal, webs 0.22-0.32 x bore: Khurmi & Gupta, A Textbook of Machine Design, §32; the bands of
-docs/new-engine.md) with a margin [the margin not confirmed in a public source]."""
+BANDS = {"land_per_diameter": 0.6, "fillet_per_diameter": 0.08}
+"""Upper ends of the sizing loop's bearing-land and fillet moves (bearing L/D 0.3-0.5,
+fillets 0.05-0.07 x the journal) with a margin [the margin not confirmed in a public source].
+The journal diameters and the web stay inside the class's bands of real engines
+(:data:`checker.calc.first_layout.CLASSES`: ``pin_bore_band``, ``main_bore_band``,
+``web_band``; the service data of docs/new-engine.md and Khurmi & Gupta, A Textbook of
+Machine Design, §32.19)."""
 
 
 def _cap_main_land(d: Design) -> float:
@@ -158,24 +198,39 @@ def _cap_fillets(d: Design) -> float:
     return BANDS["fillet_per_diameter"] * min(L.dp / L.fillet_p, L.dj / L.fillet_j)
 
 
+def _band_top(d: Design, key: str) -> float:
+    return fl.CLASSES[d.layout.engine_class][key][1] * d.layout.brief.bore
+
+
 def _cap_main(d: Design) -> float:
-    L = d.layout
-    return BANDS["main_per_bore"] * L.brief.bore / L.dj
+    return _band_top(d, "main_bore_band") / d.layout.dj
 
 
 def _cap_pin(d: Design) -> float:
+    """The pin's cap: its band, and the main's band over the smallest main/pin ratio (the
+    main grows with the pin, :func:`_pin_and_main`)."""
     L = d.layout
-    return BANDS["pin_per_bore"] * L.brief.bore / L.dp
+    return min(_band_top(d, "pin_bore_band"),
+               _band_top(d, "main_bore_band") / fl.MAIN_PIN_MIN) / L.dp
 
 
 def _cap_web(d: Design) -> float:
-    L = d.layout
-    return BANDS["web_per_bore"] * L.brief.bore / L.tw
+    return _band_top(d, "web_band") / d.layout.tw
 
 
 GRADES = ("5W-30", "10W-30", "5W-40", "10W-40", "15W-40", "15W-50", "20W-50")
 """Oil grades the loop may choose (SAE J300 engine grades of road engines, ranked by their
 J300 viscosity by the remedies' oil-grade ranking)."""
+
+HOLE_ANGLES = (45.0, 60.0, 75.0, 90.0)
+"""Crank-pin oil hole angles the loop may choose [deg from the throw axis, leading]: from the
+45 deg of the workbook's example engine (Bell, Ricardo 2013) towards 90 deg, where the gas
+load's bending of the pin (IACS UR M53 §2.1.2.2: M_BRO cos(phi) + M_BTO sin(phi)) leaves only
+its tangential part."""
+
+WASHER = (0.2, 0.3)
+"""Friction coefficients of a bolted joint's clamped face the loop may choose: 0.2 typical,
+0.3 with a friction-enhancing diamond washer (Bell, Ricardo 2013)."""
 
 MOVES: tuple[Move, ...] = (
     # bearing films first through what keeps the crank like real ones
@@ -191,14 +246,17 @@ MOVES: tuple[Move, ...] = (
     Move("pin-land", "Big-end width", ("BRG-",), ("BE*",), "big-end land width",
          _scaled("rod_land"), _one, (1.0, 1.4), cap=_cap_pin_land),
     # then the crank's dimensions, several together where one rule needs it
+    Move("oil-hole", "Crank-pin oil hole angle", ("FAT-",), ("pin*oil hole",),
+         "crank-pin oil hole angle (towards the neutral axis of the gas load's bending)",
+         _hole_angle, lambda d: d.layout.oil_hole_angle, choices=HOLE_ANGLES, to_end=True),
     Move("fillets", "Fillet radii", ("FAT-",), (), "pin and main fillet radii",
          _scaled("fillet_p", "fillet_j"), _one, (1.0, 2.0), cap=_cap_fillets),
     Move("main-journal", "Main journal (diameter and land width)", ("BRG-", "FAT-"),
          ("M*", "main*"), "main journal diameter and land width",
          _scaled("dj", "main_land"), _one, (1.0, 1.4), cap=_cap_main),
     Move("crank-pin", "Crank pin (diameter and land width)", ("BRG-", "FAT-"),
-         ("BE*", "pin*"), "pin diameter and big-end land width", _scaled("dp", "rod_land"),
-         _one, (1.0, 1.4), cap=_cap_pin),
+         ("BE*", "pin*"), "pin diameter and big-end land width (the main journal at least"
+         f" {fl.MAIN_PIN_MIN:g} x the pin)", _pin_and_main, _one, (1.0, 1.4), cap=_cap_pin),
     Move("web", "Web (thickness and width)", ("FAT-", "TV-"), (),
          "web thickness and web width", _scaled("tw", "bw"), _one, (1.0, 1.6), cap=_cap_web),
     Move("counterweight", "Counterweight outer radius", ("BAL-",), (),
@@ -210,6 +268,12 @@ MOVES: tuple[Move, ...] = (
          _tuned("ring", ("ring_stiffness",)), _one, (1.0, 4.0)),
     Move("bolts", "Bolt size and number (yield-controlled preload)", ("JNT-",), (),
          "bolt size and number", _bolts, _one, (1.0, 4.0)),
+    Move("nose-washer", "Diamond washer at the crank nose", ("JNT-",), ("crank nose",),
+         "crank-nose joint's friction coefficient (a friction-enhancing diamond washer)",
+         _washer("crank nose"), _friction("crank nose"), choices=WASHER, to_end=True),
+    Move("flywheel-washer", "Diamond washer at the flywheel", ("JNT-",), ("flywheel",),
+         "flywheel joint's friction coefficient (a friction-enhancing diamond washer)",
+         _washer("flywheel"), _friction("flywheel"), choices=WASHER, to_end=True),
 )
 """The sizing levers in the order of design preference: the oil and the bearing clearances
 and widths first (what keeps the crank like real ones), then fillets, journals and webs, then
@@ -293,6 +357,8 @@ NOTE_ROWS = {  # move -> (sheet, how to find its rows)
     "main-journal": ("Crank", "all"), "crank-pin": ("Crank", "all"), "web": ("Crank", "all"),
     "counterweight": ("Crank", "all"), "flywheel": ("TVModel", "flywheel"),
     "damper": ("TVModel", "damper ring"), "bolts": ("Joints", None),
+    "nose-washer": ("Joints", None), "flywheel-washer": ("Joints", None),
+    "oil-hole": ("Bearings", "big end"),
 }
 """Where each move's history is noted: the note of the moved value's row."""
 
@@ -341,8 +407,13 @@ def _dims_text(d: Design, m: Move) -> str:
         return f"ring {t.ring:.4g} kg m^2"
     if m.id == "bolts":
         return ", ".join(f"{j['name']} {j['bolts']} x M{j['d']}" for j in t.joints)
+    if m.id.endswith("washer"):
+        return "friction " + ", ".join(f"{j.get('friction', 0.2):g}" for j in t.joints
+                                       if m.id.startswith(j["name"].split()[-1]))
+    if m.id == "oil-hole":
+        return f"{L.oil_hole_angle:g} deg leading"
     keys = {"fillets": ("fillet_p", "fillet_j"), "main-journal": ("dj", "main_land"),
-            "crank-pin": ("dp", "rod_land"), "web": ("tw", "bw"), "main-land": ("main_land",),
+            "crank-pin": ("dp", "rod_land", "dj"), "web": ("tw", "bw"), "main-land": ("main_land",),
             "pin-land": ("rod_land",), "counterweight": ("cw_ro",)}[m.id]
     return ", ".join(f"{label[k]} {mm[k] * 1e3:.1f} mm" for k in keys)
 
@@ -480,11 +551,17 @@ def _round(bench: Bench, design: Design, res: Any, plan: dict[str, list[Any]],
         out = find_remedies(sub, bench.ev, [lever_of(m, design)], near=0.0,
                             bind_lever=lambda lv, item, b=binding: b, side_effects=False,
                             tol=SIZING_TOL)
-        found, better = [], []
+        found, better, last = [], [], []
         for rr in out:
             rm = rr.remedies[0] if rr.remedies else None
             if rm is not None and rm.found:
                 found.append((rr, rm.value))
+            elif (m.to_end and rm is not None and rm.best_margin is not None
+                  and rr.margin is not None and rm.best_margin > rr.margin + 0.01):
+                last.append(rr)  # improves at its last choice: taken, on to the next move
+                for r in results:
+                    if r.rule == rr.rule:
+                        tried[(r.rule, r.item)].add(mid)
             elif (m.cap is not None and rm is not None and rm.best_margin is not None
                   and rr.margin is not None and rm.best_margin > rr.margin + 0.01):
                 better.append(rr)  # improves, does not pass: to the bound, on next round
@@ -494,6 +571,10 @@ def _round(bench: Bench, design: Design, res: Any, plan: dict[str, list[Any]],
                         tried[(r.rule, r.item)].add(mid)
         if found:
             value, drove, how = _most_demanding(m, found), [rr for rr, _ in found], ""
+            if last:
+                value, drove = m.choices[-1], drove + last
+        elif last:
+            value, drove, how = m.choices[-1], last, " (its last choice: none passes yet)"
         elif better and bench.ev.input_errors(binding.changes(hi)) is None:
             value, drove, how = hi, better, " (to its bound this round: no value passes yet)"
         else:

@@ -126,6 +126,7 @@ class Layout:
     cw_achieved: float = 1.0  # counterweight unbalance / target
     balance_rec: float = 0.0  # the target's reciprocating part (kg m; 90-degree V, in-throw)
     plausibility: tuple[str, ...] = ()  # sized dimensions outside the band of real engines
+    oil_hole_angle: float = 45.0  # deg, crank-pin oil hole from the throw axis, + leading
 
 
 def _throws_and_firing(b: Brief) -> crank_types.Arrangement:
@@ -462,10 +463,12 @@ def _limit_rows(L: Layout, tune: Tuning) -> list[tuple]:
         L.balance_target - L.balance_rec, 1e-12))
 
 
-def _joint_design(location: str, torque: float, face_od: float, face_id: float) -> dict:
+def _joint_design(location: str, torque: float, face_od: float, face_id: float,
+                  friction: float = 0.2) -> dict:
     """Smallest bolt set (ISO metric, class 10.9, yield-controlled tightening at the
     recommended 75 % of R_p0.2, Bell 2013) whose slip capacity covers ``torque`` with a cover
-    factor of 1.8 x 1.1 (friction 0.2, Bell 2013); the bolt no larger than the face allows
+    factor of 1.8 x 1.1 (friction 0.2, or 0.3 with a diamond washer, Bell 2013); the bolt
+    no larger than the face allows
     (crank nose: 0.45 x face diameter; flywheel: 0.6 x the face's radial width, at most 16
     bolts). None fits: the largest that does, its cover factor below 1.8 a design finding."""
     frac = PRELOAD_FRACTIONS["yield controlled"][0]
@@ -483,13 +486,13 @@ def _joint_design(location: str, torque: float, face_od: float, face_id: float) 
             a = float(tensile_stress_area(d_mm * 1e-3, p_mm * 1e-3))
             fid = max(face_id, 1.1 * d_mm * 1e-3) if location == "crank nose" else face_id
             r_eff = float(effective_friction_diameter(face_od, fid)) / 2.0
-            cap = 0.2 * n * frac * rp02 * a * r_eff
+            cap = friction * n * frac * rp02 * a * r_eff
             f = frac * rp02 * a
             head_id = round(1.1 * d_mm, 1)
             head_od = math.ceil(2 * 1e3 * math.sqrt(4 * f / (math.pi * 450e6)
                                                     + (head_id * 1e-3)**2)) / 2
             best = {"bolts": n, "d": d_mm, "p": p_mm, "capacity": cap, "head_od": head_od,
-                    "head_id": head_id, "id": fid}
+                    "head_id": head_id, "id": fid, "friction": friction}
             if cap >= 1.8 * 1.1 * torque:
                 return best
     return best
@@ -635,10 +638,33 @@ def _cylinders_sheet(L: Layout) -> tuple[list, list]:
     return cyl_cols, cyl_rows
 
 
+BELL_CURVE = ("the full-load curve of the production gasoline I4 of Bell, Ricardo 2013 made"
+              " dimensionless (speed / rated speed) and scaled to")
+
+
+def _gasoline_speeds(b: Brief) -> list[float]:
+    """Speeds [rad/s] of a gasoline engine's full-load rows: the minimum, the points of
+    :data:`first_layout.GASOLINE_FULL_LOAD` inside the speed range, the rated and maximum."""
+    pts = [b.min_speed, b.rated_speed, b.max_speed]
+    pts += [r[0] * b.rated_speed for r in fl.GASOLINE_FULL_LOAD
+            if b.min_speed * 1.02 < r[0] * b.rated_speed < b.max_speed / 1.02
+            and abs(r[0] * b.rated_speed / b.rated_speed - 1) > 0.02]
+    return sorted({round(s * RPM) / RPM for s in pts})
+
+
 def _brake_torque_rows(b: Brief, rt: Rating) -> list[list]:
-    """Sheet BrakeTorque: the torque from the rated power, the peak torque 1.2 x the rated
-    between the minimum and the rated speed, less at the ends."""
+    """Sheet BrakeTorque: the torque from the rated power; a gasoline engine's curve has the
+    shape of :data:`first_layout.GASOLINE_FULL_LOAD` (its peak torque 1.2 x the rated);
+    other fuels: the peak torque 1.2 x the rated between the minimum and the rated speed,
+    less at the ends."""
     rated_torque = rt.torque
+    if b.fuel == "gasoline":
+        t_peak = rated_torque / fl.full_load_shape(1.0)[0]
+        return [[round(s * RPM), round(t_peak * fl.full_load_shape(s / b.rated_speed)[0], 1),
+                 "as above" if k else est(None, f"{BELL_CURVE} the brief's rated torque"
+                                          " (rated power / rated speed; outside the curve's"
+                                          " speed range its end values)")]
+                for k, s in enumerate(_gasoline_speeds(b))]
     t_max = rated_torque * 1.2
     bt_rows = [[round(b.min_speed * RPM), round(0.8 * t_max, 1),
                 est(None, "80 % of the peak torque at the minimum speed [shape not"
@@ -667,8 +693,15 @@ def _peak_pressure_rows(b: Brief, rt: Rating, bt_rows: list[list]) -> list[list]
     pp_note = est(None, f"{src} at the peak-torque speed; elsewhere the motored peak"
                   f" ({p_mot:.0f} bar = intake pressure x CR^1.3) plus the firing part scaled"
                   " with the brake torque (IMEP ~ torque) [not confirmed]")
-    pp_rows = [["full", s_, round(p_mot + (pk - p_mot) * t / t_max, 1), pp_note]
-               for s_, t, _n in bt_rows]
+    if b.fuel == "gasoline":
+        pp_rows = [["full", s_, round(pk * fl.full_load_shape(s_ / RPM / b.rated_speed)[1], 1),
+                    "as above" if k else est(None, f"{BELL_CURVE} {src} as its maximum"
+                                             " (knock-limited at low speed: the peak pressure"
+                                             " falls faster than the torque)")]
+                   for k, (s_, _t, _n) in enumerate(bt_rows)]
+    else:
+        pp_rows = [["full", s_, round(p_mot + (pk - p_mot) * t / t_max, 1), pp_note]
+                   for s_, t, _n in bt_rows]
     pp_rows.append(["no", round(b.max_speed * RPM), round(1.5 * cr ** 1.3, 1),
                     est(None, "motored peak ~ 1 bar x CR^1.3 x 1.5 (polytropic compression,"
                         " n = 1.3, with throttled/no-load combustion) [not confirmed]")])
@@ -703,11 +736,13 @@ def _bearings_sheet(L: Layout) -> tuple[list, list]:
                       0, None, None, None, lining, m_note])
     p_note = est("journal_length", "per rod" + padm_text(b) + "; journal diameter, length and"
                  " oil hole diameter from sheet Crank; " + clr
-                 + "; oil hole 45 deg leading [not confirmed]")
+                 + f"; oil hole {L.oil_hole_angle:g} deg leading"
+                 + (" [not confirmed]" if L.oil_hole_angle == 45.0 else
+                    " (moved by the sizing loop)"))
     for c in range(b.cylinders):
         brows.append([f"BE{c + 1}", "big end", None, None, _mm(L.rod_land),
                       round(L.clearance_pin * 1e3, 4), "none", None, None, None, "crank", 1,
-                      "leading", None, 45, lining, p_note])
+                      "leading", None, L.oil_hole_angle, lining, p_note])
     return bcols, brows
 
 
@@ -751,8 +786,9 @@ def _fatigue_sheet(L: Layout, mat: dict) -> list[tuple]:
     src = f"{TAG}: {mat['source']}"
     fatigue = [  # the web, fillet, oil-hole and bore dimensions come from sheet Crank
         ("Web offset", 0, "mm", est(None, "symmetric web")),
-        ("Pin journal oil hole height", _mm(L.dp / 2 * math.sin(math.radians(45))), "mm",
-         est(None, "pin radius x sin 45 deg (hole 45 deg leading)")),
+        ("Pin journal oil hole height", _mm(L.dp / 2 * math.sin(math.radians(
+            L.oil_hole_angle))), "mm", est(None, f"pin radius x sin {L.oil_hole_angle:g} deg"
+                                          f" (hole {L.oil_hole_angle:g} deg leading)")),
         ("Main journal oil hole height", _mm(L.dj / 2 * math.sin(math.radians(20))), "mm",
          est(None, "journal radius x sin 20 deg [not confirmed]")),
         ("Base material UTS", mat["uts"], "N/mm^2", src),
@@ -784,11 +820,14 @@ def _joints_sheet(tune: Tuning) -> tuple[list, list]:
     for j in tune.joints:
         jrows.append([j["name"], j["name"], j["bolts"], j["d"], j["p"], "10.9",
                       "yield controlled", j["head_od"], j["head_id"],
-                      "steel", _mm(j["od"]), _mm(j["id"]), 0.2,
+                      "steel", _mm(j["od"]), _mm(j["id"]), j.get("friction", 0.2),
                       est(None, f"smallest bolt set whose slip capacity covers the torsional"
                           f" model's largest joint torque {j['torque']:.0f} N m with a cover"
                           " factor of 1.8 (+10 %), yield-controlled tightening at 75 % of"
-                          " R_p0.2 and friction 0.2 (Bell, Ricardo 2013); head bearing"
+                          " R_p0.2 and friction "
+                          + ("0.3 with a friction-enhancing (diamond) washer"
+                             if j.get("friction", 0.2) > 0.2 else "0.2")
+                          + " (Bell, Ricardo 2013); head bearing"
                           " diameter for 90 % of the 500 N/mm^2 contact limit on steel (Bell,"
                           " Ricardo 2013) from a 1.1 d clearance hole; face diameters [ratios"
                           " not confirmed]")])
