@@ -492,6 +492,9 @@ def close_loop(bench: Bench, design: Design, max_rounds: int = MAX_ROUNDS) -> Lo
                        rounds, time.perf_counter() - t0, stop)
 
 
+BAND_MOVES = frozenset({"main-journal", "crank-pin", "web"})
+"""Moves capped by the class's band of real engines (the stop message says so)."""
+
 CRANK_MOVES = frozenset({"main-land", "pin-land", "fillets", "main-journal", "crank-pin",
                          "web", "counterweight"})
 """Moves of the crank's geometry: its torsional modes move, and the damper is tuned again."""
@@ -628,12 +631,17 @@ def _why_not(design: Design, failing: list[Any], tried: dict) -> list[str]:
             worst[r.rule] = r
     out = []
     for rule, r in sorted(worst.items()):
-        moves = [m.name.lower() for m in MOVES if m.id in tried.get((r.rule, r.item), set())]
+        used = [m for m in MOVES if m.id in tried.get((r.rule, r.item), set())]
+        moves = [m.name.lower() for m in used]
+        capped = [m.name.lower() for m in used
+                  if m.cap is not None and m.id in BAND_MOVES and m.cap(design) <= 1.0 + 1e-6]
         fam = rule.split("-")[0]
         drive = DRIVERS.get(fam, "the brief").format(**vals)
         out.append(f"{rule} {r.item}: {r.value_text} against {r.limit} (margin"
                    f" {100 * r.margin:+.0f} %)"
                    + (f" with {', '.join(moves)} at their bounds" if moves else "")
+                   + (f" ({', '.join(capped)} at the top of the band of real"
+                      f" {design.layout.engine_class} engines)" if capped else "")
                    + f"; {drive} prevents it.")
     return out
 

@@ -79,18 +79,25 @@ ENGINES: tuple[PublicEngine, ...] = (
 )
 
 
-def scatter() -> tuple[list[dict], dict[str, dict[str, float]]]:
-    """Size each public engine (open loop) and compare; rows and per-quantity statistics
-    (median and largest |error| in %)."""
+def scatter(iterate: bool = False) -> tuple[list[dict], dict[str, dict[str, float]]]:
+    """Size each public engine (open loop; with ``iterate`` as ``checker new`` does, its
+    sizing loop included) and compare; rows and per-quantity statistics (median and largest
+    |error| in %). With the loop each row also holds the results failed after it."""
     from .brief import parse_brief
+    from .loop import sized
     from .new_engine import layout
 
     rows = []
     errs: dict[str, list[float]] = {"main": [], "pin": [], "rod": []}
     for e in ENGINES:
-        lay = layout(parse_brief(dict(e.brief), e.name))
+        b = parse_brief(dict(e.brief), e.name)
+        s = sized(b) if iterate else None
+        lay = s.layout if s is not None else layout(b)
         got = {"main": lay.dj * 1e3, "pin": lay.dp * 1e3, "rod": lay.rod_len * 1e3}
         row = {"engine": e.name, "source": e.source}
+        if s is not None:
+            row["failed"] = (s.loop.failed_before, s.loop.failed_after,
+                             sorted({t.split()[0] for t in s.loop.stop}))
         for k, real in (("main", e.main), ("pin", e.pin), ("rod", e.rod)):
             row[k] = (real, got[k], None if real is None else 100.0 * (got[k] / real - 1.0))
             if real is not None:
@@ -101,19 +108,27 @@ def scatter() -> tuple[list[dict], dict[str, dict[str, float]]]:
     return rows, stats
 
 
-def markdown() -> str:
-    """The scatter table of docs/new-engine.md."""
-    rows, stats = scatter()
-    out = ["| engine | main journal real / sized (error) | crank pin | rod length | source |",
-           "|---|---|---|---|---|"]
+def markdown(iterate: bool = False) -> str:
+    """The scatter tables of docs/new-engine.md (open loop; with ``iterate`` the layouts of
+    ``checker new`` with its loop, and what each leaves failing)."""
+    rows, stats = scatter(iterate)
+    if iterate:
+        out = ["| engine | main journal real / sized (error) | crank pin | rod length |"
+               " failed results, first layout -> after the loop | rules still failing |",
+               "|---|---|---|---|---|---|"]
+    else:
+        out = ["| engine | main journal real / sized (error) | crank pin | rod length |"
+               " source |", "|---|---|---|---|---|"]
 
     def cell(v: tuple) -> str:
         real, got, err = v
         return "n/a" if real is None else f"{real:g} / {got:.1f} mm ({err:+.1f} %)"
 
     for r in rows:
+        tail = (f"{r['failed'][0]} -> {r['failed'][1]} | {', '.join(r['failed'][2]) or '-'}"
+                if iterate else r["source"])
         out.append(f"| {r['engine']} | {cell(r['main'])} | {cell(r['pin'])} | {cell(r['rod'])}"
-                   f" | {r['source']} |")
+                   f" | {tail} |")
     out.append("")
     out.append("| quantity | engines | median abs. error | largest abs. error |")
     out.append("|---|---|---|---|")
@@ -125,4 +140,6 @@ def markdown() -> str:
 
 
 if __name__ == "__main__":
-    print(markdown())
+    import sys
+
+    print(markdown(iterate="--loop" in sys.argv[1:]))
