@@ -36,7 +36,7 @@ from .bench import Bench
 from .brief import Brief
 from .new_engine import Layout, Tuning, _joint_design, content, layout, tune_layout
 
-MAX_ROUNDS = 8
+MAX_ROUNDS = 12
 """Rounds of the loop at most (each: one check, one root finding per move in use)."""
 SIZING_TOL = 0.05
 """A sizing step's answer passes its result with a margin of 0 to 5 %: it need not reach the
@@ -131,6 +131,24 @@ def _bolts(d: Design, x: Any) -> Design:
                                     j.get("friction", 0.2))}
               for j in d.tune.joints]
     return replace(d, tune=replace(d.tune, joints=joints))
+
+
+def _damper(d: Design, x: Any) -> Design:
+    """The damper ring ``x`` times heavier, its rubber at Den Hartog's optimum for the new
+    inertia ratio (J. P. Den Hartog, Mechanical Vibrations, 1956, sec. 3.3: ``f_opt = 1/(1 +
+    mu)``, ``zeta_opt = sqrt(3 mu / (8 (1 + mu)^3))``, the damper-tuning module): the ratio
+    ``mu`` of today's ring follows from today's optimum tuning, the crank mode's frequency from
+    today's stiffness; a heavier ring at today's tuning would be detuned."""
+    t = d.tune
+    x = float(x)
+    mu0 = max(1.0 / t.tuning - 1.0, 1e-6)
+    w_n = math.sqrt(t.ring_stiffness / t.ring) / t.tuning
+    mu = x * mu0
+    f = 1.0 / (1.0 + mu)
+    zeta = math.sqrt(3.0 * mu / (8.0 * (1.0 + mu) ** 3))
+    ring = x * t.ring
+    return replace(d, tune=replace(t, ring=ring, ring_stiffness=ring * (f * w_n) ** 2,
+                                   loss_factor=min(max(2.0 * zeta / f, 0.05), 1.0), tuning=f))
 
 
 def _washer(name: str) -> Callable[[Design, Any], Design]:
@@ -263,9 +281,9 @@ MOVES: tuple[Move, ...] = (
          "counterweight outer radius", _scaled("cw_ro"), _one, (0.8, 1.2), "either"),
     Move("flywheel", "Flywheel inertia", ("FLY-",), (), "flywheel inertia",
          _tuned("flywheel"), _one, (1.0, 4.0)),
-    Move("damper", "Damper size (ring inertia, rubber stiffness at the same tuning)",
-         ("TV-", "DMP-"), (), "damper ring inertia and rubber stiffness",
-         _tuned("ring", ("ring_stiffness",)), _one, (1.0, 4.0)),
+    Move("damper", "Damper size (ring inertia, rubber at Den Hartog's optimum)",
+         ("TV-", "DMP-"), (), "damper ring inertia (rubber stiffness and loss factor at"
+         " Den Hartog's optimum)", _damper, _one, (1.0, 4.0)),
     Move("bolts", "Bolt size and number (yield-controlled preload)", ("JNT-",), (),
          "bolt size and number", _bolts, _one, (1.0, 4.0)),
     Move("nose-washer", "Diamond washer at the crank nose", ("JNT-",), ("crank nose",),
@@ -471,29 +489,45 @@ def close_loop(bench: Bench, design: Design, max_rounds: int = MAX_ROUNDS) -> Lo
     steps: list[Step] = []
     rounds = 0
     stop: list[str] = []
+    moved_since = False  # a move since the levers were last all tried
+    ever: dict[tuple[str, str], set[str]] = {}  # every lever tried, over the passes
     while _failing(res) and rounds < max_rounds:
         rounds += 1
         plan = _plan(_failing(res), tried)
+        if not plan and moved_since:  # the layout moved: each lever again, in the order
+            ever = _union(ever, tried)
+            tried.clear()
+            moved_since = False
+            plan = _plan(_failing(res), tried)
         if not plan:
-            stop = _why_not(design, _failing(res), tried)
+            stop = _why_not(design, _failing(res), _union(ever, tried))
             break
         design, moved = _round(bench, design, res, plan, tried, rounds)
         steps += moved
+        moved_since = moved_since or bool(moved)
         if not moved:
             continue  # every planned move failed: the next ones in the order next round
-        if any(s.move in CRANK_MOVES for s in moved):
+        if any(s.move in CRANK_MOVES or s.move == "damper" for s in moved):
             design = _retuned(bench, design)
         res = bench.check(content(design.layout, design.tune))
         if not hasattr(res, "results"):
             raise RuntimeError(f"a sized layout is not a valid workbook: {res}")
     if _failing(res) and not stop:
-        stop = _why_not(design, _failing(res), tried)
+        stop = _why_not(design, _failing(res), _union(ever, tried))
     return LoopOutcome(design, steps, first, len(_failing(res)), bench.evaluations - n0,
                        rounds, time.perf_counter() - t0, stop)
 
 
 BAND_MOVES = frozenset({"main-journal", "crank-pin", "web"})
 """Moves capped by the class's band of real engines (the stop message says so)."""
+
+def _union(*tried: dict[tuple[str, str], set[str]]) -> dict[tuple[str, str], set[str]]:
+    out: dict[tuple[str, str], set[str]] = {}
+    for t in tried:
+        for k, v in t.items():
+            out.setdefault(k, set()).update(v)
+    return out
+
 
 CRANK_MOVES = frozenset({"main-land", "pin-land", "fillets", "main-journal", "crank-pin",
                          "web", "counterweight"})

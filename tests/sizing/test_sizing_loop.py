@@ -276,3 +276,28 @@ def test_a_gasoline_brief_takes_the_shape_of_a_published_full_load_curve():
     assert max(pp.values()) == pytest.approx(85.0, abs=0.05)
     assert pp[1000] == pytest.approx(85.0 * 53.4 / 84.4, abs=0.05)
     assert fl.full_load_shape(0.01) == fl.full_load_shape(1000 / 6000)  # its end values
+
+
+def test_a_heavier_damper_ring_gets_den_hartogs_optimum_rubber():
+    """The damper move keeps the rubber at Den Hartog's optimum for the new inertia ratio
+    (Mechanical Vibrations, 1956, sec. 3.3): f_opt = 1/(1 + mu), zeta_opt = sqrt(3 mu / (8
+    (1 + mu)^3)), the crank mode's frequency unchanged; a ring at today's tuning would be
+    detuned (the loop's V6 briefs failed TV-003 after such a move)."""
+    import math
+
+    from checker.sizing.loop import Design
+    from checker.sizing.new_engine import Tuning
+
+    mu0, w_n = 0.25, 2 * math.pi * 300.0
+    f0 = 1 / (1 + mu0)
+    t = Tuning(flywheel=0.2, ring=0.01, ring_stiffness=0.01 * (f0 * w_n) ** 2,
+               loss_factor=0.5, joints=[], tuning=f0)
+    damper = next(m for m in MOVES if m.id == "damper")
+    n = damper.apply(Design(None, t), 2.0).tune  # type: ignore[arg-type]
+    mu = 2 * mu0
+    f = 1 / (1 + mu)
+    assert n.ring == pytest.approx(0.02) and n.tuning == pytest.approx(f)
+    assert n.ring_stiffness == pytest.approx(0.02 * (f * w_n) ** 2)
+    assert n.loss_factor == pytest.approx(2 * math.sqrt(3 * mu / (8 * (1 + mu) ** 3)) / f)
+    same = damper.apply(Design(None, t), 1.0).tune  # type: ignore[arg-type]
+    assert same.ring_stiffness == pytest.approx(t.ring_stiffness)
