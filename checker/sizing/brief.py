@@ -37,7 +37,8 @@ KEYS: dict[str, tuple[str, str, bool, str | None]] = {
                          " fuel's usual lining: 44.5 MPa (aluminium bimetal, gasoline) or 66.5"
                          " MPa (tri-metal, diesel)"),
     "fuel": ("choice", '"gasoline" or "diesel"', False, "gasoline"),
-    "crank_material": ("choice", '"forged steel", "nodular iron"', False, "forged steel"),
+    "crank_material": ("choice", '"forged steel", "nodular iron", "42CrMo4"', False,
+                       "forged steel"),
     "bearing_lining": ("choice", '"aluminium bimetal", "tri-metal"...', False,
                        "aluminium bimetal (gasoline), tri-metal (diesel)"),
     "engine_class": ("choice", '"passenger car", "commercial vehicle", "industrial" or'
@@ -71,7 +72,8 @@ CHOICES = {
                    "360°": "360 deg"},
     "crank_material": {"forged steel": "forged steel", "steel": "forged steel",
                        "nodular iron": "nodular iron", "nodular cast iron": "nodular iron",
-                       "ductile iron": "nodular iron", "cast iron": "nodular iron"},
+                       "ductile iron": "nodular iron", "cast iron": "nodular iron",
+                       "42crmo4": "42CrMo4", "alloy steel": "42CrMo4"},
     "bearing_lining": {"aluminium bimetal": "aluminium bimetal", "aluminum bimetal":
                        "aluminium bimetal", "tri-metal": "tri-metal", "trimetal": "tri-metal",
                        "as15": "AS15", "as16": "AS16", "sputter": "sputter",

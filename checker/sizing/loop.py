@@ -171,6 +171,10 @@ def _friction(name: str) -> Callable[[Design], float]:
     return today
 
 
+def _material(d: Design, x: Any) -> Design:
+    return replace(d, layout=replace(d.layout, material=str(x)))
+
+
 def _hole_angle(d: Design, x: Any) -> Design:
     return replace(d, layout=replace(d.layout, oil_hole_angle=float(x)))
 
@@ -246,6 +250,12 @@ HOLE_ANGLES = (45.0, 60.0, 75.0, 90.0)
 load's bending of the pin (IACS UR M53 §2.1.2.2: M_BRO cos(phi) + M_BTO sin(phi)) leaves only
 its tangential part."""
 
+STEELS = ("nodular iron", "forged steel", "42CrMo4")
+"""Crank materials the loop may choose, weakest first (their strengths: the sizing's
+MATERIALS, Bell 2013's C38+N2BY and EN 10083-3's 42CrMo4 +QT): a stronger steel before larger
+journals, as Bell 2013 names alternative materials and fatigue-strength improvements first
+among the parametric studies of the classical stress analysis."""
+
 WASHER = (0.2, 0.3)
 """Friction coefficients of a bolted joint's clamped face the loop may choose: 0.2 typical,
 0.3 with a friction-enhancing diamond washer (Bell, Ricardo 2013)."""
@@ -269,6 +279,9 @@ MOVES: tuple[Move, ...] = (
          _hole_angle, lambda d: d.layout.oil_hole_angle, choices=HOLE_ANGLES, to_end=True),
     Move("fillets", "Fillet radii", ("FAT-",), (), "pin and main fillet radii",
          _scaled("fillet_p", "fillet_j"), _one, (1.0, 2.0), cap=_cap_fillets),
+    Move("material", "Crank material", ("FAT-",), (), "crank material (a stronger forged"
+         " steel: the fatigue strengths of its fillets and oil holes)", _material,
+         lambda d: d.layout.material, choices=STEELS, to_end=True),
     Move("main-journal", "Main journal (diameter and land width)", ("BRG-", "FAT-"),
          ("M*", "main*"), "main journal diameter and land width",
          _scaled("dj", "main_land"), _one, (1.0, 1.4), cap=_cap_main),
@@ -376,7 +389,7 @@ NOTE_ROWS = {  # move -> (sheet, how to find its rows)
     "counterweight": ("Crank", "all"), "flywheel": ("TVModel", "flywheel"),
     "damper": ("TVModel", "damper ring"), "bolts": ("Joints", None),
     "nose-washer": ("Joints", None), "flywheel-washer": ("Joints", None),
-    "oil-hole": ("Bearings", "big end"),
+    "oil-hole": ("Bearings", "big end"), "material": ("Crank", "all"),
 }
 """Where each move's history is noted: the note of the moved value's row."""
 
@@ -430,6 +443,8 @@ def _dims_text(d: Design, m: Move) -> str:
                                        if m.id.startswith(j["name"].split()[-1]))
     if m.id == "oil-hole":
         return f"{L.oil_hole_angle:g} deg leading"
+    if m.id == "material":
+        return L.material
     keys = {"fillets": ("fillet_p", "fillet_j"), "main-journal": ("dj", "main_land"),
             "crank-pin": ("dp", "rod_land", "dj"), "web": ("tw", "bw"), "main-land": ("main_land",),
             "pin-land": ("rod_land",), "counterweight": ("cw_ro",)}[m.id]
@@ -470,7 +485,9 @@ def lever_of(m: Move, d: Design) -> Any:
     round's bounds or its choices)."""
     from ..description.levers import Lever
 
-    sheet, label = ("Oil", "oil grade") if m.choices else ("Crank", "pin diameter")
+    # the oil grade's choices ranked by SAE J300 viscosity (the Oil sheet's lever); others
+    # in the order given
+    sheet, label = ("Oil", "oil grade") if m.id == "oil-grade" else ("Crank", "pin diameter")
     col = next(f for f in SHEETS[sheet].fields if f.label.lower() == label)
     return Lever(m.id, m.name, m.rules, sheet, (col,), items=m.items, unit="",
                  direction=m.direction, bounds=None if m.choices else m.bounds_for(d),

@@ -56,6 +56,16 @@ MATERIALS = {  # density, E, nu, strengths [MPa] (Bell 2013 data for the steel)
         "source": "C38+N2BY forged steel, rolled fillets, induction-hardened oil holes: the"
                   " strengths of Bell, Ricardo 2013; steel density 7850 kg/m^3, E 210 GPa,"
                   " nu 0.3"},
+    "42CrMo4": {
+        "density": 7850.0, "E": 210e9, "nu": 0.3, "uts": 900, "fillet_uts": 1104, "yield": 650,
+        "fatigue": 450, "hydro": 652.5, "torsion": 261, "fillet_yield": 1083,
+        "pin_fillet": 742, "pin_hole": 391, "main_fillet": 734, "main_hole": 386,
+        "source": "42CrMo4 +QT forged alloy steel (EN 10083-3:2006, 40-100 mm: R_m 900-1100,"
+                  " R_e >= 650 MPa; the minima), rolled fillets, induction-hardened oil holes:"
+                  " strengths derived as Bell, Ricardo 2013 derives C38+N2BY's (fatigue 0.5 x"
+                  " UTS, torsion 0.58 x, hydrostatic 2.5 x torsion, the same size and treatment"
+                  " factors; fillet UTS and yield scaled by Bell's ratios [not confirmed]);"
+                  " steel density 7850 kg/m^3, E 210 GPa, nu 0.3"},
     "nodular iron": {
         "density": 7100.0, "E": 174e9, "nu": 0.275, "uts": 800, "fillet_uts": 800, "yield": 480,
         "fatigue": 300, "hydro": 435, "torsion": 174, "fillet_yield": 600,
@@ -127,6 +137,7 @@ class Layout:
     balance_rec: float = 0.0  # the target's reciprocating part (kg m; 90-degree V, in-throw)
     plausibility: tuple[str, ...] = ()  # sized dimensions outside the band of real engines
     oil_hole_angle: float = 45.0  # deg, crank-pin oil hole from the throw axis, + leading
+    material: str = "forged steel"  # the crank's material (MATERIALS; the brief's, or moved)
 
 
 def _throws_and_firing(b: Brief) -> crank_types.Arrangement:
@@ -276,7 +287,7 @@ def layout(b: Brief) -> Layout:
                target, 5e-4 * dj, 5e-4 * dp, engine_class=b.engine_class,
                crank_type=arr.crank_type, even_firing=arr.even,
                intervals=tuple(arr.intervals), f_pin=f_pin, f_main=f_main, cw_achieved=got,
-               balance_rec=rec)
+               balance_rec=rec, material=b.crank_material)
     return replace(L, plausibility=tuple(plausibility(L)))
 
 
@@ -537,7 +548,7 @@ def _rod_rotating_mass(L: Layout) -> float:
 def content(L: Layout, tune: Tuning) -> dict[str, Any]:
     """The workbook's sheets (format of :func:`checker.workbook.example.write_workbook`)."""
     b = L.brief
-    mat = MATERIALS[b.crank_material]
+    mat = MATERIALS[L.material]
     rt = rating(b)
     bt_rows = _brake_torque_rows(b, rt)
     return {
@@ -782,7 +793,6 @@ def _damper_sheet(tune: Tuning) -> list[tuple]:
 def _fatigue_sheet(L: Layout, mat: dict) -> list[tuple]:
     """Sheet Fatigue: oil-hole heights and the material's strengths (the web, fillet,
     oil-hole and bore dimensions come from sheet Crank)."""
-    b = L.brief
     src = f"{TAG}: {mat['source']}"
     fatigue = [  # the web, fillet, oil-hole and bore dimensions come from sheet Crank
         ("Web offset", 0, "mm", est(None, "symmetric web")),
@@ -804,7 +814,7 @@ def _fatigue_sheet(L: Layout, mat: dict) -> list[tuple]:
         ("Main fillet fatigue strength", mat["main_fillet"], "N/mm^2", src),
         ("Main oil hole fatigue strength", mat["main_hole"], "N/mm^2", src),
         *project_limits.nose_rows(L.dj, NOSE[0] * L.dj, L.fillet_j, mat["fatigue"],
-                                  b.crank_material),
+                                  L.material),
     ]
     return fatigue
 
@@ -923,7 +933,7 @@ def tune_layout(L: Layout) -> tuple[Layout, Tuning, Bench]:
     models, the crank modes' plausibility and the free-force limits set (evaluation passes in
     memory on the first layout's workbook, :class:`Bench`)."""
     b = L.brief
-    mat = MATERIALS[b.crank_material]
+    mat = MATERIALS[L.material]
     crank_j = L.throws * float(_throw_props(L, mat).inertia_total[0])
     tune = _first_tuning(L, crank_j)
     bench = Bench(content(L, tune))
