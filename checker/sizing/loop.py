@@ -171,6 +171,10 @@ def _friction(name: str) -> Callable[[Design], float]:
     return today
 
 
+def _cooler(d: Design, x: Any) -> Design:
+    return replace(d, tune=replace(d.tune, oil_cooling=float(x)))
+
+
 def _material(d: Design, x: Any) -> Design:
     return replace(d, layout=replace(d.layout, material=str(x)))
 
@@ -256,6 +260,11 @@ MATERIALS, Bell 2013's C38+N2BY and EN 10083-3's 42CrMo4 +QT): a stronger steel 
 journals, as Bell 2013 names alternative materials and fatigue-strength improvements first
 among the parametric studies of the classical stress analysis."""
 
+COOLING = (0.0, 10.0, 20.0)
+"""How far an oil cooler may hold the gallery below the usual full-load temperature (120 °C
+gasoline, 110 °C diesel) [K]: to 100 / 90 °C, the cooler oil more viscous (the remedies' oil
+supply temperature lever) [the temperatures not confirmed in a public source]."""
+
 WASHER = (0.2, 0.3)
 """Friction coefficients of a bolted joint's clamped face the loop may choose: 0.2 typical,
 0.3 with a friction-enhancing diamond washer (Bell, Ricardo 2013)."""
@@ -263,7 +272,7 @@ WASHER = (0.2, 0.3)
 MOVES: tuple[Move, ...] = (
     # bearing films first through what keeps the crank like real ones
     Move("oil-grade", "Oil grade (SAE J300)", ("BRG-003", "BRG-004"), (), "oil grade", _grade,
-         lambda d: d.tune.oil_grade or "", choices=GRADES),
+         lambda d: d.tune.oil_grade or "", choices=GRADES, to_end=True),
     Move("main-clearance", "Main bearing clearance", ("BRG-003", "BRG-004"), ("M*",),
          "main bearing radial clearance", _scaled("clearance_main"), _one, (0.6, 1.6),
          "either"),
@@ -274,6 +283,9 @@ MOVES: tuple[Move, ...] = (
     Move("pin-land", "Big-end width", ("BRG-",), ("BE*",), "big-end land width",
          _scaled("rod_land"), _one, (1.0, 1.4), cap=_cap_pin_land),
     # then the crank's dimensions, several together where one rule needs it
+    Move("oil-cooler", "Oil cooler (gallery temperature)", ("BRG-003", "BRG-004"), (),
+         "oil supply temperature (an oil cooler: K below the usual gallery temperature)",
+         _cooler, lambda d: d.tune.oil_cooling, choices=COOLING, to_end=True),
     Move("oil-hole", "Crank-pin oil hole angle", ("FAT-",), ("pin*oil hole",),
          "crank-pin oil hole angle (towards the neutral axis of the gas load's bending)",
          _hole_angle, lambda d: d.layout.oil_hole_angle, choices=HOLE_ANGLES, to_end=True),
@@ -390,6 +402,7 @@ NOTE_ROWS = {  # move -> (sheet, how to find its rows)
     "damper": ("TVModel", "damper ring"), "bolts": ("Joints", None),
     "nose-washer": ("Joints", None), "flywheel-washer": ("Joints", None),
     "oil-hole": ("Bearings", "big end"), "material": ("Crank", "all"),
+    "oil-cooler": ("Oil", "Oil supply temperature"),
 }
 """Where each move's history is noted: the note of the moved value's row."""
 
@@ -445,6 +458,8 @@ def _dims_text(d: Design, m: Move) -> str:
         return f"{L.oil_hole_angle:g} deg leading"
     if m.id == "material":
         return L.material
+    if m.id == "oil-cooler":
+        return f"{t.oil_cooling:g} K below the usual gallery temperature"
     keys = {"fillets": ("fillet_p", "fillet_j"), "main-journal": ("dj", "main_land"),
             "crank-pin": ("dp", "rod_land", "dj"), "web": ("tw", "bw"), "main-land": ("main_land",),
             "pin-land": ("rod_land",), "counterweight": ("cw_ro",)}[m.id]

@@ -344,6 +344,7 @@ class Tuning:
     sizing: bool = True  # a sizing pass (the irregularity target typed for the flywheel module)
     limits: dict | None = None  # project limits (sizing.project_limits.free_limits)
     oil_grade: str | None = None  # chosen by the loop (None: the fuel's usual grade)
+    oil_cooling: float = 0.0  # K below the usual gallery temperature (an oil cooler, the loop)
 
 
 def _mm(x: float) -> float:
@@ -770,8 +771,12 @@ def _oil_sheet(b: Brief, tune: Tuning) -> list[tuple]:
                            " (Notes)"))
     return [("Oil grade", oil_grade(b, tune), "-", grade_note),
             ("Oil supply pressure", 4.0, "bar(g)", est(None, "usual gallery pressure at speed")),
-            ("Oil supply temperature", 120 if b.fuel == "gasoline" else 110, "°C",
-             est(None, "usual gallery temperature at full load")),
+            ("Oil supply temperature", (120 if b.fuel == "gasoline" else 110)
+             - tune.oil_cooling, "°C",
+             est(None, "usual gallery temperature at full load") if not tune.oil_cooling
+             else est(None, f"an oil cooler holding the gallery {tune.oil_cooling:g} K below"
+                      " the usual temperature at full load (the sizing loop, for the bearing"
+                      " films; Notes)")),
             ("Film temperature rise", 10, "K", est(None, "moderate film heating")),
             ("Mobility model", "finite length", "-",
              est(None, "the finite-length Reynolds film (the short bearing is optimistic at"

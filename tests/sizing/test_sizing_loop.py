@@ -301,3 +301,19 @@ def test_a_heavier_damper_ring_gets_den_hartogs_optimum_rubber():
     assert n.loss_factor == pytest.approx(2 * math.sqrt(3 * mu / (8 * (1 + mu) ** 3)) / f)
     same = damper.apply(Design(None, t), 1.0).tune  # type: ignore[arg-type]
     assert same.ring_stiffness == pytest.approx(t.ring_stiffness)
+
+
+def test_the_material_move_writes_the_stronger_steels_strengths():
+    """42CrMo4 +QT (EN 10083-3, R_m 900 MPa at 40-100 mm) with Bell 2013's derivation: base
+    fatigue 0.5 x UTS = 450 MPa, pin oil hole 450 x 0.868 = 391 MPa; brief synonyms too."""
+    from checker.sizing.loop import STEELS, Design
+
+    L, tune, _bench = tune_layout(layout(parse_brief(I4)))
+    mat = next(m for m in MOVES if m.id == "material")
+    assert mat.today(Design(L, tune)) == "forged steel" and STEELS[-1] == "42CrMo4"
+    d = mat.apply(Design(L, tune), "42CrMo4")
+    fat = {r[0]: r[1] for r in content(d.layout, d.tune)["Fatigue"]}
+    assert fat["Base material UTS"] == 900 and fat["Base infinite life fatigue strength"] == 450
+    assert fat["Pin oil hole fatigue strength"] == round(450 * 0.868)
+    assert fat["Pin fillet fatigue strength"] == round(450 * 0.868 * 1.9)
+    assert parse_brief({**I4, "crank_material": "alloy steel"}).crank_material == "42CrMo4"
