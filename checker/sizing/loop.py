@@ -165,6 +165,31 @@ def _washer(name: str) -> Callable[[Design, Any], Design]:
     return apply
 
 
+NOSE_MAX = 0.9
+"""Largest crank nose diameter the loop gives, per main journal diameter (the nose steps down
+from the front main journal through the seal) [not confirmed in a public source]."""
+
+
+def _nose(d: Design, x: Any) -> Design:
+    """The crank nose (and its joint's clamped face) ``x`` times larger in diameter, the
+    joint's bolt the largest the wider face allows (or the smallest that covers four times
+    its torque: the bolts move, before it, reaches that bound)."""
+    x = float(x)
+    L = replace(d.layout, nose_ratio=d.layout.nose_ratio * x)
+    joints = []
+    for j in d.tune.joints:
+        if j["name"] == "crank nose":
+            od = j["od"] * x
+            j = {**j, **_joint_design("crank nose", j["torque"] * 4.0, od, 0.0,
+                                      j.get("friction", 0.2)), "od": od}
+        joints.append(j)
+    return replace(d, layout=L, tune=replace(d.tune, joints=joints))
+
+
+def _cap_nose(d: Design) -> float:
+    return NOSE_MAX / d.layout.nose_ratio
+
+
 def _friction(name: str) -> Callable[[Design], float]:
     def today(d: Design) -> float:
         return next(float(j.get("friction", 0.2)) for j in d.tune.joints if j["name"] == name)
@@ -314,6 +339,9 @@ MOVES: tuple[Move, ...] = (
     Move("nose-washer", "Diamond washer at the crank nose", ("JNT-",), ("crank nose",),
          "crank-nose joint's friction coefficient (a friction-enhancing diamond washer)",
          _washer("crank nose"), _friction("crank nose"), choices=WASHER, to_end=True),
+    Move("nose", "Crank nose diameter (its joint's face and bolt)", ("JNT-",), ("crank nose",),
+         "crank nose diameter (the damper joint's clamped face and the bolt it allows)", _nose,
+         _one, (1.0, 1.2), cap=_cap_nose),
     Move("flywheel-washer", "Diamond washer at the flywheel", ("JNT-",), ("flywheel",),
          "flywheel joint's friction coefficient (a friction-enhancing diamond washer)",
          _washer("flywheel"), _friction("flywheel"), choices=WASHER, to_end=True),
@@ -402,7 +430,7 @@ NOTE_ROWS = {  # move -> (sheet, how to find its rows)
     "damper": ("TVModel", "damper ring"), "bolts": ("Joints", None),
     "nose-washer": ("Joints", None), "flywheel-washer": ("Joints", None),
     "oil-hole": ("Bearings", "big end"), "material": ("Crank", "all"),
-    "oil-cooler": ("Oil", "Oil supply temperature"),
+    "oil-cooler": ("Oil", "Oil supply temperature"), "nose": ("Joints", "crank nose"),
 }
 """Where each move's history is noted: the note of the moved value's row."""
 
@@ -458,6 +486,9 @@ def _dims_text(d: Design, m: Move) -> str:
         return f"{L.oil_hole_angle:g} deg leading"
     if m.id == "material":
         return L.material
+    if m.id == "nose":
+        nose = next(j for j in t.joints if j["name"] == "crank nose")
+        return (f"nose {L.nose_ratio * L.dj * 1e3:.1f} mm, 1 x M{nose['d']}")
     if m.id == "oil-cooler":
         return f"{t.oil_cooling:g} K below the usual gallery temperature"
     keys = {"fillets": ("fillet_p", "fillet_j"), "main-journal": ("dj", "main_land"),
@@ -561,7 +592,7 @@ def _union(*tried: dict[tuple[str, str], set[str]]) -> dict[tuple[str, str], set
     return out
 
 
-CRANK_MOVES = frozenset({"main-land", "pin-land", "fillets", "main-journal", "crank-pin",
+CRANK_MOVES = frozenset({"main-land", "pin-land", "fillets", "main-journal", "crank-pin", "nose",
                          "web", "counterweight"})
 """Moves of the crank's geometry: its torsional modes move, and the damper is tuned again."""
 

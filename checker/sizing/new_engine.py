@@ -138,6 +138,7 @@ class Layout:
     plausibility: tuple[str, ...] = ()  # sized dimensions outside the band of real engines
     oil_hole_angle: float = 45.0  # deg, crank-pin oil hole from the throw axis, + leading
     material: str = "forged steel"  # the crank's material (MATERIALS; the brief's, or moved)
+    nose_ratio: float = 0.75  # crank nose diameter / main journal diameter (NOSE; or moved)
 
 
 def _throws_and_firing(b: Brief) -> crank_types.Arrangement:
@@ -410,9 +411,11 @@ def _crank_sheet(L: Layout, mat: dict) -> tuple[list, list]:
 
 
 def _crank_ends(L: Layout) -> list:
-    note = est(None, "crank nose 0.75 x and 0.6 x the main journal diameter, flywheel flange 1.0"
-               " x and 0.5 x [ratios not confirmed in a public source]")
-    return [("Crank nose diameter", _mm(NOSE[0] * L.dj), "mm", note),
+    note = est(None, f"crank nose {L.nose_ratio:.3g} x and 0.6 x the main journal diameter,"
+               " flywheel flange 1.0 x and 0.5 x [ratios not confirmed in a public source]"
+               + ("" if L.nose_ratio == NOSE[0] else "; the nose's diameter moved by the"
+                  " sizing loop for its joint (Notes)"))
+    return [("Crank nose diameter", _mm(L.nose_ratio * L.dj), "mm", note),
             ("Crank nose length", _mm(NOSE[1] * L.dj + L.main_len / 2), "mm", note),
             ("Flywheel flange diameter", _mm(FLANGE[0] * L.dj), "mm", note),
             ("Flywheel flange length", _mm(FLANGE[1] * L.dj + L.main_len / 2), "mm", note)]
@@ -423,7 +426,7 @@ def _tv_rows(L: Layout, mat: dict, tune: Tuning) -> list:
     inertias and every stiffness along the crank are left blank: the crank module derives them
     from sheets Crank and CrankEnds."""
     b = L.brief
-    nose_d, nose_l = NOSE[0] * L.dj, NOSE[1] * L.dj
+    nose_d, nose_l = L.nose_ratio * L.dj, NOSE[1] * L.dj
     _m, jn, _ = cylinder(diameter=nose_d, bore=0.0, length=nose_l, density=mat["density"])
     hub = 4.0 * float(jn)  # pulley hub, timing sprocket and damper hub on the nose
     derived = "derived from sheets Crank and CrankEnds (crank module)"
@@ -818,7 +821,7 @@ def _fatigue_sheet(L: Layout, mat: dict) -> list[tuple]:
         ("Pin oil hole fatigue strength", mat["pin_hole"], "N/mm^2", src),
         ("Main fillet fatigue strength", mat["main_fillet"], "N/mm^2", src),
         ("Main oil hole fatigue strength", mat["main_hole"], "N/mm^2", src),
-        *project_limits.nose_rows(L.dj, NOSE[0] * L.dj, L.fillet_j, mat["fatigue"],
+        *project_limits.nose_rows(L.dj, L.nose_ratio * L.dj, L.fillet_j, mat["fatigue"],
                                   L.material),
     ]
     return fatigue
@@ -890,7 +893,7 @@ def _first_tuning(L: Layout, crank_j: float) -> Tuning:
     tuned to 300 Hz, a single crank-nose bolt and eight flywheel bolts."""
     od = 1.6 * L.dj
     joints0 = [{"name": "crank nose", "bolts": 1, "d": 12, "p": 1.25, "torque": 0.0,
-                "od": 0.75 * L.dj, "id": 0.0, "head_od": 24.0, "head_id": 13.2},
+                "od": L.nose_ratio * L.dj, "id": 0.0, "head_od": 24.0, "head_id": 13.2},
                {"name": "flywheel", "bolts": 8, "d": 10, "p": 1.25, "torque": 0.0, "od": od,
                 "id": L.dj * 0.8, "head_od": 20.0, "head_id": 11.0}]
     return Tuning(flywheel=20 * crank_j, ring=0.25 * crank_j,

@@ -335,3 +335,28 @@ def test_the_oil_cooler_move_lowers_the_gallery_temperature_and_says_so():
     first = {r[0]: r for r in content(L, tune)["Oil"]}
     assert first["Oil supply temperature"][1] == 120 and "cooler" not in first[
         "Oil supply temperature"][3]
+
+
+def test_the_nose_move_widens_the_nose_its_joint_face_and_bolt_together():
+    """The crank nose grows with its joint's clamped face (one source: the nose diameter of
+    sheet CrankEnds and the joint's face both follow Layout.nose_ratio), up to 0.9 x the main
+    journal; the bolt is the largest the wider face allows."""
+    from checker.sizing.loop import NOSE_MAX, Design, _cap_nose
+
+    L, tune, _bench = tune_layout(layout(parse_brief(I4)))
+    d = Design(L, tune)
+    nose = next(m for m in MOVES if m.id == "nose")
+    assert nose.bounds_for(d)[1] == pytest.approx(min(1.2, NOSE_MAX / 0.75))
+    w = nose.apply(d, 1.2)
+    assert w.layout.nose_ratio == pytest.approx(0.9) and _cap_nose(w) == pytest.approx(1.0)
+    cont = content(w.layout, w.tune)
+    ends = {r[0]: r[1] for r in cont["CrankEnds"]}
+    assert ends["Crank nose diameter"] == pytest.approx(0.9 * L.dj * 1e3, abs=0.006)
+    cols, rows = cont["Joints"]
+    k = [h for h, _u in cols].index("face outer diameter")
+    row = next(r for r in rows if r[0] == "crank nose")
+    assert row[k] == pytest.approx(0.9 * L.dj * 1e3, abs=0.006)
+    j0, j1 = (next(j for j in t.joints if j["name"] == "crank nose") for t in (tune, w.tune))
+    assert j1["d"] >= j0["d"] and j1["capacity"] > j0["capacity"]
+    assert "moved by the sizing loop" in next(r[3] for r in cont["CrankEnds"]
+                                              if r[0] == "Crank nose diameter")
