@@ -309,7 +309,7 @@ MOVES: tuple[Move, ...] = (
          _scaled("rod_land"), _one, (1.0, 1.4), cap=_cap_pin_land),
     # then the crank's dimensions, several together where one rule needs it
     Move("oil-cooler", "Oil cooler (gallery temperature)", ("BRG-003", "BRG-004"), (),
-         "oil supply temperature (an oil cooler: K below the usual gallery temperature)",
+         "oil supply temperature (an oil cooler)",
          _cooler, lambda d: d.tune.oil_cooling, choices=COOLING, to_end=True),
     Move("oil-hole", "Crank-pin oil hole angle", ("FAT-",), ("pin*oil hole",),
          "crank-pin oil hole angle (towards the neutral axis of the gas load's bending)",
@@ -683,7 +683,12 @@ def _round(bench: Bench, design: Design, res: Any, plan: dict[str, list[Any]],
                     tried[(r.rule, r.item)].add(mid)
             continue
         before = _dims_text(design, m)
-        design = m.apply(design, value)
+        moved = m.apply(design, value)
+        if _dims_text(moved, m) == before:  # at its cap within the written precision
+            for r in results:
+                tried[(r.rule, r.item)].add(mid)
+            continue
+        design = moved
         steps.append(Step(k, m.id, m.moves + how, [f"{rr.rule} {rr.item}" for rr in drove],
                           before, _dims_text(design, m)))
     return design, steps
