@@ -196,6 +196,18 @@ def _friction(name: str) -> Callable[[Design], float]:
     return today
 
 
+def _lining(attr: str) -> Callable[[Design, Any], Design]:
+    def apply(d: Design, x: Any) -> Design:
+        return replace(d, layout=replace(d.layout, **{attr: str(x)}))
+    return apply
+
+
+def _lining_today(attr: str) -> Callable[[Design], str]:
+    def today(d: Design) -> str:
+        return getattr(d.layout, attr) or d.layout.brief.bearing_lining
+    return today
+
+
 def _cooler(d: Design, x: Any) -> Design:
     return replace(d, tune=replace(d.tune, oil_cooling=float(x)))
 
@@ -285,6 +297,12 @@ MATERIALS, Bell 2013's C38+N2BY and EN 10083-3's 42CrMo4 +QT): a stronger steel 
 journals, as Bell 2013 names alternative materials and fatigue-strength improvements first
 among the parametric studies of the classical stress analysis."""
 
+LININGS = ("AS15", "AS16", "aluminium bimetal", "tri-metal", "polymer", "sputter")
+"""Bearing linings the loop may choose for a specific load, weakest first (their load
+capacities: checker.calc.first_layout.LINING_CAPACITY and the BRG-001 limits, Clevite 2000,
+MTU/Detroit Diesel, MAHLE 2012); after the bearing widths, before larger journals (Bell 2013:
+'with sputtered con-rod' bearings)."""
+
 COOLING = (0.0, 10.0, 20.0)
 """How far an oil cooler may hold the gallery below the usual full-load temperature (120 °C
 gasoline, 110 °C diesel) [K]: to 100 / 90 °C, the cooler oil more viscous (the remedies' oil
@@ -308,6 +326,12 @@ MOVES: tuple[Move, ...] = (
     Move("pin-land", "Big-end width", ("BRG-",), ("BE*",), "big-end land width",
          _scaled("rod_land"), _one, (1.0, 1.4), cap=_cap_pin_land),
     # then the crank's dimensions, several together where one rule needs it
+    Move("pin-lining", "Big-end lining", ("BRG-001", "BRG-002"), ("BE*",),
+         "big-end lining (a stronger one for the specific load)", _lining("lining_pin"),
+         _lining_today("lining_pin"), choices=LININGS),
+    Move("main-lining", "Main bearing lining", ("BRG-001", "BRG-002"), ("M*",),
+         "main bearing lining (a stronger one for the specific load)", _lining("lining_main"),
+         _lining_today("lining_main"), choices=LININGS),
     Move("oil-cooler", "Oil cooler (gallery temperature)", ("BRG-003", "BRG-004"), (),
          "oil supply temperature (an oil cooler)",
          _cooler, lambda d: d.tune.oil_cooling, choices=COOLING, to_end=True),
@@ -431,6 +455,7 @@ NOTE_ROWS = {  # move -> (sheet, how to find its rows)
     "nose-washer": ("Joints", None), "flywheel-washer": ("Joints", None),
     "oil-hole": ("Bearings", "big end"), "material": ("Crank", "all"),
     "oil-cooler": ("Oil", "Oil supply temperature"), "nose": ("Joints", "crank nose"),
+    "pin-lining": ("Bearings", "big end"), "main-lining": ("Bearings", "main"),
 }
 """Where each move's history is noted: the note of the moved value's row."""
 
@@ -486,6 +511,8 @@ def _dims_text(d: Design, m: Move) -> str:
         return f"{L.oil_hole_angle:g} deg leading"
     if m.id == "material":
         return L.material
+    if m.id.endswith("lining"):
+        return m.today(d)
     if m.id == "nose":
         nose = next(j for j in t.joints if j["name"] == "crank nose")
         return (f"nose {L.nose_ratio * L.dj * 1e3:.1f} mm, 1 x M{nose['d']}")

@@ -139,6 +139,8 @@ class Layout:
     oil_hole_angle: float = 45.0  # deg, crank-pin oil hole from the throw axis, + leading
     material: str = "forged steel"  # the crank's material (MATERIALS; the brief's, or moved)
     nose_ratio: float = 0.75  # crank nose diameter / main journal diameter (NOSE; or moved)
+    lining_main: str = ""  # the mains' lining ("": the brief's; or moved by the loop)
+    lining_pin: str = ""  # the big ends' lining ("": the brief's; or moved by the loop)
 
 
 def _throws_and_firing(b: Brief) -> crank_types.Arrangement:
@@ -731,7 +733,8 @@ def _bearings_sheet(L: Layout) -> tuple[list, list]:
     def dflt(key: str) -> str:
         return _from_brief(b, key)
 
-    lining = b.bearing_lining
+    lining_m = L.lining_main or b.bearing_lining
+    lining_p = L.lining_pin or b.bearing_lining
     bcols = [("name", "-"), ("type", "-"), ("journal diameter", "mm"), ("journal length", "mm"),
              ("effective length", "mm"), ("radial clearance", "mm"), ("groove", "-"),
              ("groove width", "mm"), ("groove start", "deg"), ("groove end", "deg"),
@@ -742,22 +745,27 @@ def _bearings_sheet(L: Layout) -> tuple[list, list]:
               " usual rule of thumb) [not confirmed in a public source]")
     m_note = est("journal_length", "journal diameter and length from sheet Crank"
                  + padm_text(b) + "; groove 0.15 x land [not confirmed]; " + clr
-                 + f"; lining from the brief ({dflt('bearing_lining')})")
+                 + (f"; lining from the brief ({dflt('bearing_lining')})" if not L.lining_main
+                    else f"; lining {lining_m}, chosen by the sizing loop for the specific"
+                    " load (Notes)"))
     brows = []
     groove_w = round(0.15 * L.main_land * 1e3, 1)
     for k in range(L.throws + 1):
         brows.append([f"M{k + 1}", "main", None, None, _mm(L.main_land - groove_w * 1e-3),
                       round(L.clearance_main * 1e3, 4), "partial", groove_w, 270, 90, "bearing",
-                      0, None, None, None, lining, m_note])
+                      0, None, None, None, lining_m, m_note])
     p_note = est("journal_length", "per rod" + padm_text(b) + "; journal diameter, length and"
                  " oil hole diameter from sheet Crank; " + clr
                  + f"; oil hole {L.oil_hole_angle:g} deg leading"
                  + (" [not confirmed]" if L.oil_hole_angle == 45.0 else
-                    " (moved by the sizing loop)"))
+                    " (moved by the sizing loop)")
+                 + (f"; lining from the brief ({dflt('bearing_lining')})" if not L.lining_pin
+                    else f"; lining {lining_p}, chosen by the sizing loop for the specific"
+                    " load (Notes)"))
     for c in range(b.cylinders):
         brows.append([f"BE{c + 1}", "big end", None, None, _mm(L.rod_land),
                       round(L.clearance_pin * 1e3, 4), "none", None, None, None, "crank", 1,
-                      "leading", None, L.oil_hole_angle, lining, p_note])
+                      "leading", None, L.oil_hole_angle, lining_p, p_note])
     return bcols, brows
 
 

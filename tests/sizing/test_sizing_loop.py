@@ -360,3 +360,17 @@ def test_the_nose_move_widens_the_nose_its_joint_face_and_bolt_together():
     assert j1["d"] >= j0["d"] and j1["capacity"] > j0["capacity"]
     assert "moved by the sizing loop" in next(r[3] for r in cont["CrankEnds"]
                                               if r[0] == "Crank nose diameter")
+
+
+def test_the_lining_moves_write_a_stronger_lining_on_their_bearings_only():
+    from checker.sizing.loop import LININGS, Design
+
+    L, tune, _bench = tune_layout(layout(parse_brief(I4)))
+    pin = next(m for m in MOVES if m.id == "pin-lining")
+    assert pin.today(Design(L, tune)) == "aluminium bimetal" and LININGS[-1] == "sputter"
+    assert pin.applies("BRG-001", "BE3") and not pin.applies("BRG-001", "M2")
+    d = pin.apply(Design(L, tune), "sputter")
+    cols, rows = content(d.layout, d.tune)["Bearings"]
+    k = [h for h, _u in cols].index("lining")
+    assert {r[1]: r[k] for r in rows} == {"main": "aluminium bimetal", "big end": "sputter"}
+    assert all("chosen by the sizing loop" in r[-1] for r in rows if r[1] == "big end")
