@@ -31,10 +31,14 @@ def test_a_missing_target_is_named(monkeypatch):
     import zlib
 
     import matplotlib.artist
+    import matplotlib.backends.backend_agg  # noqa: F401  # its artists built before kwdoc goes
     import pydyf
 
     from checker.plumbing import matplotlib_patches, pdf_compression
 
+    # missing_targets imports the Agg backend: imported first in this process without kwdoc,
+    # its artist classes (Line2D...) would fail half-built and break matplotlib for every
+    # later test in the same worker
     monkeypatch.delattr(matplotlib.artist, "kwdoc")
     assert matplotlib_patches.missing_targets() == ["matplotlib.artist.kwdoc"]
     monkeypatch.setattr(pydyf, "zlib", None)
