@@ -196,9 +196,11 @@ def _friction(name: str) -> Callable[[Design], float]:
     return today
 
 
-def _lining(attr: str) -> Callable[[Design, Any], Design]:
+def _chosen(part: str, attr: str, kind: type = str) -> Callable[[Design, Any], Design]:
+    """A discrete move's choice ``x`` written to one field of the design's ``part``
+    (``"layout"`` or ``"tune"``) as ``kind(x)``."""
     def apply(d: Design, x: Any) -> Design:
-        return replace(d, layout=replace(d.layout, **{attr: str(x)}))
+        return replace(d, **{part: replace(getattr(d, part), **{attr: kind(x)})})
     return apply
 
 
@@ -206,18 +208,6 @@ def _lining_today(attr: str) -> Callable[[Design], str]:
     def today(d: Design) -> str:
         return getattr(d.layout, attr) or d.layout.brief.bearing_lining
     return today
-
-
-def _cooler(d: Design, x: Any) -> Design:
-    return replace(d, tune=replace(d.tune, oil_cooling=float(x)))
-
-
-def _material(d: Design, x: Any) -> Design:
-    return replace(d, layout=replace(d.layout, material=str(x)))
-
-
-def _hole_angle(d: Design, x: Any) -> Design:
-    return replace(d, layout=replace(d.layout, oil_hole_angle=float(x)))
 
 
 def _pin_and_main(d: Design, x: Any) -> Design:
@@ -229,10 +219,6 @@ def _pin_and_main(d: Design, x: Any) -> Design:
     grow = max(fl.MAIN_PIN_MIN * dp / L0.dj, 1.0)
     return replace(d, layout=relayout(L0, dp=dp, rod_land=L0.rod_land * float(x),
                                       dj=L0.dj * grow, main_land=L0.main_land * grow))
-
-
-def _grade(d: Design, x: Any) -> Design:
-    return replace(d, tune=replace(d.tune, oil_grade=str(x)))
 
 
 def _one(d: Design) -> float:
@@ -314,8 +300,9 @@ WASHER = (0.2, 0.3)
 
 MOVES: tuple[Move, ...] = (
     # bearing films first through what keeps the crank like real ones
-    Move("oil-grade", "Oil grade (SAE J300)", ("BRG-003", "BRG-004"), (), "oil grade", _grade,
-         lambda d: d.tune.oil_grade or "", choices=GRADES, to_end=True),
+    Move("oil-grade", "Oil grade (SAE J300)", ("BRG-003", "BRG-004"), (), "oil grade",
+         _chosen("tune", "oil_grade"), lambda d: d.tune.oil_grade or "", choices=GRADES,
+         to_end=True),
     Move("main-clearance", "Main bearing clearance", ("BRG-003", "BRG-004"), ("M*",),
          "main bearing radial clearance", _scaled("clearance_main"), _one, (0.6, 1.6),
          "either"),
@@ -327,21 +314,25 @@ MOVES: tuple[Move, ...] = (
          _scaled("rod_land"), _one, (1.0, 1.4), cap=_cap_pin_land),
     # then the crank's dimensions, several together where one rule needs it
     Move("pin-lining", "Big-end lining", ("BRG-001", "BRG-002"), ("BE*",),
-         "big-end lining (a stronger one for the specific load)", _lining("lining_pin"),
+         "big-end lining (a stronger one for the specific load)", _chosen("layout", "lining_pin"),
          _lining_today("lining_pin"), choices=LININGS),
     Move("main-lining", "Main bearing lining", ("BRG-001", "BRG-002"), ("M*",),
-         "main bearing lining (a stronger one for the specific load)", _lining("lining_main"),
+         "main bearing lining (a stronger one for the specific load)",
+         _chosen("layout", "lining_main"),
          _lining_today("lining_main"), choices=LININGS),
     Move("oil-cooler", "Oil cooler (gallery temperature)", ("BRG-003", "BRG-004"), (),
          "oil supply temperature (an oil cooler)",
-         _cooler, lambda d: d.tune.oil_cooling, choices=COOLING, to_end=True),
+         _chosen("tune", "oil_cooling", float), lambda d: d.tune.oil_cooling,
+         choices=COOLING, to_end=True),
     Move("oil-hole", "Crank-pin oil hole angle", ("FAT-",), ("pin*oil hole",),
          "crank-pin oil hole angle (towards the neutral axis of the gas load's bending)",
-         _hole_angle, lambda d: d.layout.oil_hole_angle, choices=HOLE_ANGLES, to_end=True),
+         _chosen("layout", "oil_hole_angle", float), lambda d: d.layout.oil_hole_angle,
+         choices=HOLE_ANGLES, to_end=True),
     Move("fillets", "Fillet radii", ("FAT-",), (), "pin and main fillet radii",
          _scaled("fillet_p", "fillet_j"), _one, (1.0, 2.0), cap=_cap_fillets),
     Move("material", "Crank material", ("FAT-",), (), "crank material (a stronger forged"
-         " steel: the fatigue strengths of its fillets and oil holes)", _material,
+         " steel: the fatigue strengths of its fillets and oil holes)",
+         _chosen("layout", "material"),
          lambda d: d.layout.material, choices=STEELS, to_end=True),
     Move("main-journal", "Main journal (diameter and land width)", ("BRG-", "FAT-"),
          ("M*", "main*"), "main journal diameter and land width",

@@ -665,7 +665,7 @@ def _gasoline_speeds(b: Brief) -> list[float]:
     pts = [b.min_speed, b.rated_speed, b.max_speed]
     pts += [r[0] * b.rated_speed for r in fl.GASOLINE_FULL_LOAD
             if b.min_speed * 1.02 < r[0] * b.rated_speed < b.max_speed / 1.02
-            and abs(r[0] * b.rated_speed / b.rated_speed - 1) > 0.02]
+            and abs(r[0] - 1.0) > 0.02]
     return sorted({round(s * RPM) / RPM for s in pts})
 
 
