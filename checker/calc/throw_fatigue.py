@@ -6,6 +6,7 @@ NumPy functions on SI arrays (no loop over crank angle or speed):
 
 * :func:`element_torque_cycle`: the torsional element torques over the cycle from their mean
   and complex order amplitudes, with a zero "free end" element appended;
+* :func:`pin_torque`: the crank pin's torque from its two journal elements (determinate);
 * :func:`main_journal_elements`: which torsional elements a main journal may carry;
 * :func:`throw_goodman`: nominal stresses of the throws (M53 §2), local stresses with the
   stress concentration factors (M53 §3), Goodman safety factors of the pin fillets, journal
@@ -120,6 +121,48 @@ class ThrowGoodman(NamedTuple):
     nominal: cs.ThrowNominalStresses  #: the nominal stresses (M53 §2)
 
 
+def pin_torque(side_torque: ArrayLike, main_spacing: float,
+               pin_position: float | None = None) -> np.ndarray:
+    r"""Torque carried by the crank pin of each throw, from its two journal elements.
+
+    The throw is simply supported at its main journals (M53 §2.1, the determinate scheme): the
+    tangential rod force ``F_T`` on the pin, at ``L_2`` from the front main of a bay ``L_3``, is
+    carried ``(L_3 - L_2)/L_3`` by the front main and ``L_2/L_3`` by the rear one. The pin's axis
+    lies ``R`` off the crank axis, so the front main's reaction adds ``R F_T (L_3 - L_2)/L_3``
+    to the front journal's torque about the pin axis; ``F_T`` itself passes through the pin
+    axis and adds nothing. With ``T_r = T_f + R F_T``:
+
+    ``T_pin = T_f + (L_3 - L_2)/L_3 (T_r - T_f)``, the same along the pin (the mean of the two
+    journal torques for a centred pin). Statics of the free body (Timoshenko, Strength of
+    Materials, Part I, 1955, ch. 1 and 9).
+
+    Parameters
+    ----------
+    side_torque : array_like, shape (..., T, 2, N) [N m]
+        Torque of the element in front of (index 0) and behind (1) each throw.
+    main_spacing : float [m]
+        Main bearing spacing ``L_3``.
+    pin_position : float [m], optional
+        Pin centre from the front main centre ``L_2`` (default ``L_3/2``).
+
+    Returns
+    -------
+    ndarray, shape (..., T, N) [N m]
+
+    Examples
+    --------
+    >>> t = np.array([[[100.0], [300.0]]])  # one throw, front 100 N m, rear 300 N m
+    >>> float(pin_torque(t, 0.09)[0, 0]), float(pin_torque(t, 0.09, 0.03)[0, 0])
+    (200.0, 233.33333333333331)
+    """
+    t = np.asarray(side_torque, dtype=float)
+    l3 = float(main_spacing)
+    l2 = l3 / 2.0 if pin_position is None else float(pin_position)
+    if not (l3 > 0.0 and 0.0 < l2 < l3):
+        raise ValueError(f"pin_position must lie inside the bay (0, {l3}), got {l2}")
+    return t[..., 0, :] + (l3 - l2) / l3 * (t[..., 1, :] - t[..., 0, :])
+
+
 def throw_goodman(force_radial: ArrayLike, force_tangential: ArrayLike, side_torque: ArrayLike,
                   geometry: dict[str, float], oil_hole_angle: float, scf: dict[str, float],
                   strengths: dict[str, tuple[float, float]], pin_oil_hole: bool = True,
@@ -133,12 +176,11 @@ def throw_goodman(force_radial: ArrayLike, force_tangential: ArrayLike, side_tor
        torsion of each throw, simply supported at its main journals
        (:func:`checker.calc.crank_stress.throw_nominal_stresses`);
     2. local stresses with the stress concentration factors
-       (:func:`checker.calc.crank_stress.local_stresses`); each pin fillet with the torque of
-       the element on its side of the throw, ``tau_H = alpha_T T_side / W_P``;
+       (:func:`checker.calc.crank_stress.local_stresses`); the pin fillets and the pin oil
+       hole with the pin's own torque (:func:`pin_torque`), ``tau_H = alpha_T T_pin / W_P``;
     3. amplitude and mean over the cycle, von Mises equivalents, ``SF = 1 / (sigma_eq,a / S_e
        + sigma_eq,m / S_u)`` (:func:`checker.calc.fatigue.fillet_goodman`); pin oil holes
-       with M53's maximum-principal combination (:func:`checker.calc.fatigue.oil_hole_goodman`)
-       under each side's torque.
+       with M53's maximum-principal combination (:func:`checker.calc.fatigue.oil_hole_goodman`).
 
     Parameters
     ----------
@@ -167,7 +209,8 @@ def throw_goodman(force_radial: ArrayLike, force_tangential: ArrayLike, side_tor
     Returns
     -------
     ThrowGoodman
-        Fillet results per web (..., T, 2), oil holes per torque side (..., T, 2).
+        Fillet results per web (..., T, 2), oil holes (..., T, 2) (both entries the pin's
+        torque: the axis is kept for the candidate selection).
 
     Raises
     ------
@@ -176,14 +219,17 @@ def throw_goodman(force_radial: ArrayLike, force_tangential: ArrayLike, side_tor
         overlap allows), from :func:`checker.calc.crank_stress.throw_nominal_stresses`.
     """
     t_side = np.asarray(side_torque, dtype=float)
-    nom = cs.throw_nominal_stresses(force_radial, force_tangential, t_side[..., 0, :], t_side,
+    t_pin = pin_torque(t_side, geometry["main_spacing"], geometry.get("pin_position"))
+    nom = cs.throw_nominal_stresses(force_radial, force_tangential, t_pin, t_side,
                                     **geometry, oil_hole_angle=oil_hole_angle,
                                     section_loads=section_loads)
     loc = cs.local_stresses(nom, **{n: scf[n] for n in ("alpha_b", "alpha_t", "beta_b",
                                                         "beta_q", "beta_t", "gamma_b",
                                                         "gamma_t")})
-    tau_pin_side = cs.torsional_stress(t_side, geometry["pin_diameter"],
-                                       geometry.get("pin_bore", 0.0))  # (..., T, 2, N)
+    # the pin's torque at both webs (the arrays keep their per-web / per-side axis)
+    tau_pin_side = np.broadcast_to(
+        cs.torsional_stress(t_pin, geometry["pin_diameter"],
+                            geometry.get("pin_bore", 0.0))[..., None, :], t_side.shape)
     se, su = strengths["pin fillet"]
     pin = fat.fillet_goodman(loc.sigma_pin_fillet, scf["alpha_t"] * tau_pin_side,
                              endurance_limit=se, ultimate_strength=su,

@@ -30,11 +30,11 @@ Method (Bell, Ricardo 2013, 'Crankshaft analysis (25)-(28)': "classical stress a
     element between them; main 1 carries the element ending at the first cylinder station
     (crank nose -> cylinder 1), the last main the element from the last cylinder station
     (cylinder n -> flywheel);
-  - a **crank pin** carries the torque of the element on its front side in its front half and
-    that of the element on its rear side in its rear half (the rod's torque enters at the pin
-    centre): the front pin fillet (front web) uses the front element torque, the rear pin
-    fillet the rear one; the **pin oil hole** at the pin centre is evaluated with both and the
-    lower safety factor is kept (conservative);
+  - a **crank pin** carries one torque along its length, ``T_f + (L_3 - L_2)/L_3 (T_r -
+    T_f)`` of its front and rear elements (the mean for a centred pin;
+    :func:`checker.calc.throw_fatigue.pin_torque`): the rod's tangential force passes through
+    the pin axis, and the main bearings' reactions to it, acting on the crank axis a crank
+    radius away, twist the pin. Both pin fillets and the **pin oil hole** use it;
   - a throw whose cylinder station is the first/last station of the chain has zero torque on
     that side (free end).
 * **Stress concentration**: factors from sheet Fatigue where given (``scf_*``), otherwise the
@@ -416,7 +416,7 @@ def _items(n_pins: int, n_mains: int, has: dict[str, bool], results: dict[str, o
     """(item, location type, result, its two candidates) of every location.
 
     Candidates index the last two axes of the result: (throw, web) of a fillet, (throw,
-    torque side) of a pin oil hole, (main, element candidate) of a main oil hole."""
+    torque side: both the pin's torque) of a pin oil hole, (main, element candidate) of a main oil hole."""
     sel = []
     for j in range(n_pins):
         sel.append((f"pin {j + 1} fillet", "pin fillet", results["pin fillet"],
@@ -583,8 +583,10 @@ def _assumptions(engine: Engine, has: dict[str, bool], notes: list[str]) -> list
         " webs, counterweights) are not included (M53 loading; they shift only the mean).",
         "Crankshaft torsion from the TV model, synthesised over the cycle (mean + all orders,"
         " same crank angle as the bending): a main journal carries the element torque between"
-        " the cylinder stations on either side; each pin fillet the element torque on its side"
-        " of the throw; the pin oil hole the worse of the two. Mean torque = sum of the mean"
+        " the cylinder stations on either side; the crank pin (its fillets and oil hole) the"
+        " torque of a throw simply supported at its mains, between its two elements' torques"
+        " in the ratio of the main bearings' shares of the rod force (their mean for a"
+        " centred pin). Mean torque = sum of the mean"
         " cylinder (indicated) torques from the front minus the FEAD torque (friction not"
         " subtracted, conservative).",
         "Goodman safety factor: von Mises of the amplitudes (half range over the cycle), signed"
@@ -616,7 +618,7 @@ def _candidate_names(sel: list, main_el: np.ndarray, element_names: list[str]
     """The two candidates of each item in words (web, torque side or TV element)."""
     n_el = len(element_names)
     side_text = {"pin fillet": ("front web", "rear web"),
-                 "pin oil hole": ("front torque", "rear torque")}
+                 "pin oil hole": ("pin torque", "pin torque")}
     out = []
     for _, lname, _, adj in sel:
         if lname == "main fillet":

@@ -229,7 +229,7 @@ def layout(b: Brief) -> Layout:
     cls = fl.CLASSES[b.engine_class]
     gas = fl.peak_gas_force(b.bore, b.peak_pressure)
     rod_len = fl.rod_length(b.stroke, b.engine_class)
-    wp = fl.wrist_pin(b.bore)
+    wp = fl.wrist_pin(b.bore, b.fuel)
     piston = fl.piston_mass(b.bore, b.fuel) + wp.mass
     p_s = b.bearing_pressure
     ld = cls["pin_ld"]

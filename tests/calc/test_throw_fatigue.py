@@ -7,7 +7,9 @@ Independent numbers:
   only, L1 = L_G/2 + (L3 - L_G - L_H)/4, section modulus B W^2/6) and for a torque with a mean
   (torsion only, W_P = pi D^3/16), Goodman 1/SF = sigma_a/S_e + sigma_m/S_u (Shigley eq.
   6-46), rtol 1e-9;
-* main oil hole and M53 Q: closed forms of M53 §5(4) and §5-7 (rtol 1e-12).
+* main oil hole and M53 Q: closed forms of M53 §5(4) and §5-7 (rtol 1e-12);
+* the pin's torque: statics of a throw simply supported at its mains, checked by summing the
+  moments about the pin axis of the front free body (rtol 1e-12).
 """
 
 from __future__ import annotations
@@ -23,6 +25,7 @@ from checker.calc.throw_fatigue import (
     m53_q,
     main_journal_elements,
     main_oil_hole_goodman,
+    pin_torque,
     throw_goodman,
 )
 
@@ -94,6 +97,40 @@ def test_throw_goodman_torsion_only_by_hand():
     se, su = STRENGTHS["pin oil hole"]
     sa, sm = 2.2 * ta / wp_pin, 2.2 * t0 / wp_pin
     np.testing.assert_allclose(out.pin_oil.safety_factor[0], 1 / (sa / se + sm / su), rtol=1e-9)
+
+
+def test_pin_torque_is_the_moment_of_the_front_free_body_about_the_pin_axis():
+    # front journal torque T_f, tangential rod force F_T at the pin (radius R, L2 from the front
+    # main of a bay L3): T_r = T_f + R F_T; the front main's reaction -F_T (L3 - L2)/L3 acts
+    # on the crank axis, -R e_r from the pin axis: its moment about the pin axis is
+    # + R F_T (L3 - L2)/L3 (r x F with r = -R e_r, F = -F_T (L3 - L2)/L3 e_t)
+    tf, ft, r, l3 = 150.0, 4000.0, 0.043, 0.096
+    for l2 in (0.048, 0.03, 0.07):
+        reaction = -ft * (l3 - l2) / l3
+        moment = -r * reaction  # (-R e_r) x (reaction e_t) = -R reaction e_x
+        side = np.array([[[tf], [tf + r * ft]]])  # (T = 1, 2, N = 1)
+        np.testing.assert_allclose(pin_torque(side, l3, l2)[0, 0], tf + moment, rtol=1e-12)
+    with pytest.raises(ValueError, match="inside the bay"):
+        pin_torque(side, l3, l3)
+
+
+def test_pin_oil_hole_and_fillets_carry_the_pins_torque_not_the_larger_side():
+    # a throw whose rear element carries 3x the front's alternating torque: the pin (centred)
+    # carries their mean at both fillets and the oil hole
+    side = np.zeros((1, 2, N))
+    side[0, 0] = 100.0 * np.cos(THETA)
+    side[0, 1] = 300.0 * np.cos(THETA)
+    zero = np.zeros((1, N))
+    out = throw_goodman(zero, zero, side, GEOM, 0.3, SCF, STRENGTHS, pin_oil_hole=True)
+    wp_pin = np.pi * 0.048**3 / 16
+    se = STRENGTHS["pin oil hole"][0]
+    np.testing.assert_allclose(out.pin_oil.safety_factor[0], se / (2.2 * 200.0 / wp_pin),
+                               rtol=1e-9)
+    se = STRENGTHS["pin fillet"][0]
+    np.testing.assert_allclose(out.pin.safety_factor[0],
+                               se / (np.sqrt(3) * 1.8 * 200.0 / wp_pin), rtol=1e-9)
+    np.testing.assert_allclose(out.nominal.tau_pin[0], 200.0 * np.cos(THETA) / wp_pin,
+                               rtol=1e-9, atol=1e-3)
 
 
 def test_throw_goodman_rejects_a_web_thicker_than_the_bay():
