@@ -416,7 +416,8 @@ def _items(n_pins: int, n_mains: int, has: dict[str, bool], results: dict[str, o
     """(item, location type, result, its two candidates) of every location.
 
     Candidates index the last two axes of the result: (throw, web) of a fillet, (throw,
-    torque side: both the pin's torque) of a pin oil hole, (main, element candidate) of a main oil hole."""
+    torque side: both the pin's torque) of a pin oil hole, (main, element candidate) of a
+    main oil hole."""
     sel = []
     for j in range(n_pins):
         sel.append((f"pin {j + 1} fillet", "pin fillet", results["pin fillet"],
