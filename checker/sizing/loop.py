@@ -347,7 +347,7 @@ MOVES: tuple[Move, ...] = (
     Move("flywheel", "Flywheel inertia", ("FLY-",), (), "flywheel inertia",
          _tuned("flywheel"), _one, (1.0, 4.0)),
     Move("damper", "Damper size (ring inertia, rubber at Den Hartog's optimum)",
-         ("TV-", "DMP-"), (), "damper ring inertia (rubber stiffness and loss factor at"
+         ("TV-", "DMP-", "FAT-"), (), "damper ring inertia (rubber stiffness and loss factor at"
          " Den Hartog's optimum)", _damper, _one, (1.0, 4.0)),
     Move("bolts", "Bolt size and number (yield-controlled preload)", ("JNT-",), (),
          "bolt size and number", _bolts, _one, (1.0, 4.0)),
