@@ -8,7 +8,10 @@
   and its damper ring was tuned to it, issue 43: from this algorithm, every worst corner
   checked against all 16 corners of its 4 tolerances evaluated directly, equal to the 6
   stored digits. The I6's entry gained the crank-stress results of TV-009, issue 46, stored
-  from this algorithm the same way, its other results unchanged.)
+  from this algorithm the same way, its other results unchanged. The FAT-001/002 pin results
+  of all three were stored again when the crank pin took its statically determinate torque,
+  issue 47: each changed worst corner equal to the worst of all 2^k corners of the template's
+  k tolerances evaluated directly, 128 for the I4, 16 for the I6 and the V8.)
 * The structure never misses an influence: on the I4 each tolerance at each end of its range,
   checked directly, leaves every result it is said not to move bitwise unchanged.
 * Item classes: a bearing's clearance leaves the results of the bearings of the other type
