@@ -108,11 +108,12 @@ RULES: dict[str, dict] = {
         "rule": "wrist pin outer diameter 0.243 x bore (gasoline) or 0.356 x bore (diesel),"
                 " length 0.685 x bore (gasoline) or = bore (diesel), bore 0.5 x its outer"
                 " diameter (wall half the bore); steel",
-        "source": "outer diameter and gasoline length: medians of makers' service data (18"
-                  " gasoline and 7 diesel engines, 5 published pin lengths; table in"
-                  " docs/new-engine.md); diesel length and the wall: Agostini 2019, wrist pin"
-                  " 'First attempt design' (length = bore, thickness 50 % of the inner"
-                  " diameter)",
+        "source": "outer diameter and gasoline length: medians of makers' service data as"
+                  " reproduced by repair-manual sites (18 gasoline engines: Ford, Chrysler,"
+                  " Nissan, GM, Cadillac, Mazda, Suzuki; 7 diesels: Cummins, GM Duramax,"
+                  " Isuzu, Caterpillar, Detroit Diesel; 5 published gasoline pin lengths);"
+                  " diesel length and the wall: Agostini 2019, wrist pin 'First attempt"
+                  " design' (length = bore, thickness 50 % of the inner diameter)",
         "scatter": "outer/bore 0.229-0.264 (gasoline), 0.333-0.438 (diesel); length/bore"
                    " 0.648-0.785 (gasoline); no published inner diameter or diesel length",
         "confirmed": True},
