@@ -17,8 +17,9 @@ marked ESTIMATE, or the rule is declared not applicable with its reason (sheet R
   concentration of Peterson's charts (:mod:`checker.calc.shoulder_scf`) at the journal's fillet
   radius, the material's base fatigue strength (no rolling or hardening of the nose fillet);
 * the shell supplier's limits (BRG-007..009) and the damper supplier's rubber limits
-  (DMP-001..003): no public default by lining or rubber was found, so a first layout declares
-  them not applicable until a supplier is chosen (the reason is printed with each result);
+  (DMP-001..003, and MIS-001: the rubber's heat with a cylinder misfiring): no public default
+  by lining or rubber was found, so a first layout declares them not applicable until a
+  supplier is chosen (the reason is printed with each result);
 * the crank-nose amplitude targets (TV-001..003) of a commercial-vehicle engine: Bell (2013)
   gives them for refined passenger-car engines only and no public source gives a truck's, so a
   first layout declares them not applicable; its crank's vibratory stress is judged by TV-009
@@ -43,6 +44,7 @@ SUPPLIER_RULES = {
     "DMP-001": "the damper supplier's rubber shear stress limit and rubber geometry",
     "DMP-002": "the damper supplier's rubber heat limit and rubber geometry",
     "DMP-003": "the damper supplier's rubber heat limit and rubber geometry",
+    "MIS-001": "the damper supplier's rubber heat limit and rubber geometry",
 }
 
 BALANCE_SOURCE = ("Taylor, C. F., The Internal-Combustion Engine in Theory and Practice, Vol. 2,"
