@@ -226,12 +226,11 @@ def throw_goodman(force_radial: ArrayLike, force_tangential: ArrayLike, side_tor
     loc = cs.local_stresses(nom, **{n: scf[n] for n in ("alpha_b", "alpha_t", "beta_b",
                                                         "beta_q", "beta_t", "gamma_b",
                                                         "gamma_t")})
-    # the pin's torque at both webs (the arrays keep their per-web / per-side axis)
-    tau_pin_side = np.broadcast_to(
-        cs.torsional_stress(t_pin, geometry["pin_diameter"],
-                            geometry.get("pin_bore", 0.0))[..., None, :], t_side.shape)
+    # the pin's torque, the same at both webs (..., T, 1, N)
+    tau_pin = cs.torsional_stress(t_pin, geometry["pin_diameter"],
+                                  geometry.get("pin_bore", 0.0))[..., None, :]
     se, su = strengths["pin fillet"]
-    pin = fat.fillet_goodman(loc.sigma_pin_fillet, scf["alpha_t"] * tau_pin_side,
+    pin = fat.fillet_goodman(loc.sigma_pin_fillet, scf["alpha_t"] * tau_pin,
                              endurance_limit=se, ultimate_strength=su,
                              mean_criterion=mean_criterion)
     se, su = strengths["main fillet"]
@@ -241,9 +240,10 @@ def throw_goodman(force_radial: ArrayLike, force_tangential: ArrayLike, side_tor
     oil = None
     if pin_oil_hole:
         se, su = strengths["pin oil hole"]
-        oil = fat.oil_hole_goodman(loc.sigma_oil_bending[..., None, :],
-                                   scf["gamma_t"] * tau_pin_side, endurance_limit=se,
-                                   ultimate_strength=su)
+        one = fat.oil_hole_goodman(loc.sigma_oil_bending[..., None, :],
+                                   scf["gamma_t"] * tau_pin, endurance_limit=se,
+                                   ultimate_strength=su)  # (..., T, 1): evaluated once
+        oil = fat.CycleFatigue(*(np.broadcast_to(x, x.shape[:-1] + (2,)) for x in one))
     return ThrowGoodman(pin, jnl, oil, nom)
 
 
