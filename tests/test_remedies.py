@@ -296,3 +296,24 @@ def test_unjudged_rules_of_the_template_name_their_blank_limit(i4):
     assert all(x.limit_missing and x.limit_missing[0].startswith("Bearings!")
                for x in unjudged)
     assert all(not x.limit_missing for x in res.results if x.status != "not_evaluated")
+
+
+def test_a_walk_out_of_steps_still_tells_the_best_margin_it_reached():
+    """A continuous lever that runs out of trial steps before its bound (a margin that does
+    not move monotonically) gives up with the best margin it reached: the sizing loop takes
+    a lever that improves a result to its bound on that answer (the Volvo and VW I5 briefs'
+    main journals for the 5th-order nose amplitude)."""
+    from types import SimpleNamespace
+
+    from checker.remedies.solve import MAX_STEPS, Remedy, _Job, _walk_on
+
+    lv = SimpleNamespace(id="main", separable=True, discrete=False, unit="")
+    j = _Job(SimpleNamespace(margin=-0.47), "TV-001", "all", lv, SimpleNamespace(cells=set()),
+             Remedy(lv, "Crank!B2", 1.0, direction=1), 1, True)
+    j.x0, j.xb = 1.0, 1.16
+    j.pts = [(1.02, -0.50), (1.05, -0.38), (1.08, -0.33)]
+    j.remedy.evaluations = MAX_STEPS
+    _walk_on(j, j.pts, 0.0)
+    assert j.done and not j.remedy.found
+    assert j.remedy.reason == "root finding did not converge"
+    assert j.remedy.best_margin == pytest.approx(-0.33)

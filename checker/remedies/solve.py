@@ -477,6 +477,9 @@ def _walk_on(job: _Job, walked: list[tuple[float, float]], aim: float) -> None:
         job.done = True
         return
     if job.remedy.evaluations >= MAX_STEPS:
+        ms = [m for _, m in job.pts if m is not None]
+        job.remedy.best_margin = max(ms) if ms and job.want_pass else (
+            min(ms) if ms else None)
         job.done, job.remedy.reason = True, "root finding did not converge"
         return
     if not walked:

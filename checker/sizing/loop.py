@@ -31,12 +31,13 @@ from typing import Any
 import numpy as np
 
 from ..calc import first_layout as fl
+from ..calc import throw_stiffness as ts
 from ..workbook.schema import SHEETS
 from .bench import Bench
 from .brief import Brief
 from .new_engine import Layout, Tuning, _joint_design, content, layout, tune_layout
 
-MAX_ROUNDS = 12
+MAX_ROUNDS = 16
 """Rounds of the loop at most (each: one check, one root finding per move in use)."""
 SIZING_TOL = 0.05
 """A sizing step's answer passes its result with a margin of 0 to 5 %: it need not reach the
@@ -142,13 +143,30 @@ def _damper(d: Design, x: Any) -> Design:
     t = d.tune
     x = float(x)
     mu0 = max(1.0 / t.tuning - 1.0, 1e-6)
-    w_n = math.sqrt(t.ring_stiffness / t.ring) / t.tuning
+    w_n = math.sqrt(t.ring_stiffness / (t.detune * t.ring)) / t.tuning
     mu = x * mu0
     f = 1.0 / (1.0 + mu)
     zeta = math.sqrt(3.0 * mu / (8.0 * (1.0 + mu) ** 3))
     ring = x * t.ring
-    return replace(d, tune=replace(t, ring=ring, ring_stiffness=ring * (f * w_n) ** 2,
+    return replace(d, tune=replace(t, ring=ring,
+                                   ring_stiffness=t.detune * ring * (f * w_n) ** 2,
                                    loss_factor=min(max(2.0 * zeta / f, 0.05), 1.0), tuning=f))
+
+
+DETUNE = (0.85, 1.2)
+"""How far the loop may tune the damper's rubber stiffness from Den Hartog's optimum (a
+single-mode optimum; the crank's response to several orders and modes may want another): the
+ring's frequency within about -8/+10 % of the optimum, inside the Damper sheet's tuning band
+(DMP-004: +-10 %) [the band not confirmed in a public source]."""
+
+
+def _detuned(d: Design, x: Any) -> Design:
+    """The damper's rubber ``x`` times stiffer, its total ratio to Den Hartog's optimum held
+    within :data:`DETUNE` (the ring and loss factor kept)."""
+    t = d.tune
+    new = min(max(t.detune * float(x), DETUNE[0]), DETUNE[1])
+    return replace(d, tune=replace(t, detune=new,
+                                   ring_stiffness=t.ring_stiffness * new / t.detune))
 
 
 def _washer(name: str) -> Callable[[Design, Any], Design]:
@@ -219,6 +237,21 @@ def _pin_and_main(d: Design, x: Any) -> Design:
     grow = max(fl.MAIN_PIN_MIN * dp / L0.dj, 1.0)
     return replace(d, layout=relayout(L0, dp=dp, rod_land=L0.rod_land * float(x),
                                       dj=L0.dj * grow, main_land=L0.main_land * grow))
+
+
+WEB_WIDTH_MAX = min(ts.RANGE["Bp/Dp"][1], ts.RANGE["Bj/Dj"][1])
+"""Largest web width per journal diameter the web move reaches (the top of the throw-stiffness
+model's fitted range, 1.8: wider webs would leave the crank's derived stiffness extrapolated;
+Bell 2013's I4 has 1.49-1.67 x its pin)."""
+
+
+def _web(d: Design, x: Any) -> Design:
+    """The web ``x`` times thicker and as much wider, its width at most
+    :data:`WEB_WIDTH_MAX` x the smaller journal (never narrower than today)."""
+    L0 = d.layout
+    x = float(x)
+    bw = max(min(L0.bw * x, WEB_WIDTH_MAX * min(L0.dp, L0.dj)), L0.bw)
+    return replace(d, layout=relayout(L0, tw=L0.tw * x, bw=bw))
 
 
 def _one(d: Design) -> float:
@@ -340,8 +373,15 @@ MOVES: tuple[Move, ...] = (
     Move("crank-pin", "Crank pin (diameter and land width)", ("BRG-", "FAT-"),
          ("BE*", "pin*"), "pin diameter and big-end land width (the main journal at least"
          f" {fl.MAIN_PIN_MIN:g} x the pin)", _pin_and_main, _one, (1.0, 1.4), cap=_cap_pin),
+    Move("damper-tuning", "Damper tuning (rubber stiffness about Den Hartog's optimum)",
+         ("TV-", "DMP-", "FAT-"), (), "damper rubber stiffness (its tuning to the crank's"
+         " response, about Den Hartog's optimum)", _detuned, _one, DETUNE, "either"),
+    Move("main-stiffness", "Main journal (diameter and land width, for the crank's"
+         " torsional stiffness)", ("TV-",), (), "main journal diameter and land width (the"
+         " crank's torsional stiffness)", _scaled("dj", "main_land"), _one, (1.0, 1.4),
+         cap=_cap_main),
     Move("web", "Web (thickness and width)", ("FAT-", "TV-"), (),
-         "web thickness and web width", _scaled("tw", "bw"), _one, (1.0, 1.6), cap=_cap_web),
+         "web thickness and web width", _web, _one, (1.0, 1.6), cap=_cap_web),
     Move("counterweight", "Counterweight outer radius", ("BAL-",), (),
          "counterweight outer radius", _scaled("cw_ro"), _one, (0.8, 1.2), "either"),
     Move("flywheel", "Flywheel inertia", ("FLY-",), (), "flywheel inertia",
@@ -440,9 +480,11 @@ NOTE_ROWS = {  # move -> (sheet, how to find its rows)
     "oil-grade": ("Oil", "Oil grade"), "main-clearance": ("Bearings", "main"),
     "main-land": ("Bearings", "main"), "pin-clearance": ("Bearings", "big end"),
     "pin-land": ("Bearings", "big end"), "fillets": ("Crank", "all"),
-    "main-journal": ("Crank", "all"), "crank-pin": ("Crank", "all"), "web": ("Crank", "all"),
+    "main-journal": ("Crank", "all"), "main-stiffness": ("Crank", "all"),
+    "crank-pin": ("Crank", "all"), "web": ("Crank", "all"),
     "counterweight": ("Crank", "all"), "flywheel": ("TVModel", "flywheel"),
-    "damper": ("TVModel", "damper ring"), "bolts": ("Joints", None),
+    "damper": ("TVModel", "damper ring"), "damper-tuning": ("TVModel", "damper ring"),
+    "bolts": ("Joints", None),
     "nose-washer": ("Joints", None), "flywheel-washer": ("Joints", None),
     "oil-hole": ("Bearings", "big end"), "material": ("Crank", "all"),
     "oil-cooler": ("Oil", "Oil supply temperature"), "nose": ("Joints", "crank nose"),
@@ -493,6 +535,8 @@ def _dims_text(d: Design, m: Move) -> str:
         return f"{t.flywheel:.4g} kg m^2"
     if m.id == "damper":
         return f"ring {t.ring:.4g} kg m^2"
+    if m.id == "damper-tuning":
+        return f"rubber {t.ring_stiffness:.4g} N m/rad ({t.detune:.3g} x Den Hartog's optimum)"
     if m.id == "bolts":
         return ", ".join(f"{j['name']} {j['bolts']} x M{j['d']}" for j in t.joints)
     if m.id.endswith("washer"):
@@ -510,6 +554,7 @@ def _dims_text(d: Design, m: Move) -> str:
     if m.id == "oil-cooler":
         return f"{t.oil_cooling:g} K below the usual gallery temperature"
     keys = {"fillets": ("fillet_p", "fillet_j"), "main-journal": ("dj", "main_land"),
+            "main-stiffness": ("dj", "main_land"),
             "crank-pin": ("dp", "rod_land", "dj"), "web": ("tw", "bw"), "main-land": ("main_land",),
             "pin-land": ("rod_land",), "counterweight": ("cw_ro",)}[m.id]
     return ", ".join(f"{label[k]} {mm[k] * 1e3:.1f} mm" for k in keys)
@@ -526,6 +571,10 @@ class MoveBinding:
     design: Design
     move: Move
     fields: tuple = ()
+    retune: bool = False
+    """Tune the damper to each trial layout (:func:`_retuned`): a crank move judged by the
+    crank's vibration is judged with the damper a supplier would tune to the moved crank, not
+    with today's damper detuned by it."""
 
     @property
     def nominal(self) -> list[Any]:
@@ -541,6 +590,8 @@ class MoveBinding:
 
     def changes(self, value: Any) -> dict[tuple[str, int, int], Any]:
         d = self.move.apply(self.design, value)
+        if self.retune:
+            d = _retuned(self.bench, d)
         return self.bench.changes(content(d.layout, d.tune))
 
 
@@ -588,7 +639,7 @@ def close_loop(bench: Bench, design: Design, max_rounds: int = MAX_ROUNDS) -> Lo
         moved_since = moved_since or bool(moved)
         if not moved:
             continue  # every planned move failed: the next ones in the order next round
-        if any(s.move in CRANK_MOVES or s.move == "damper" for s in moved):
+        if any(s.move in CRANK_MOVES or s.move in DAMPER_MOVES for s in moved):
             design = _retuned(bench, design)
         res = bench.check(content(design.layout, design.tune))
         if not hasattr(res, "results"):
@@ -599,7 +650,7 @@ def close_loop(bench: Bench, design: Design, max_rounds: int = MAX_ROUNDS) -> Lo
                        rounds, time.perf_counter() - t0, stop)
 
 
-BAND_MOVES = frozenset({"main-journal", "crank-pin", "web"})
+BAND_MOVES = frozenset({"main-journal", "main-stiffness", "crank-pin", "web"})
 """Moves capped by the class's band of real engines (the stop message says so)."""
 
 def _union(*tried: dict[tuple[str, str], set[str]]) -> dict[tuple[str, str], set[str]]:
@@ -610,9 +661,17 @@ def _union(*tried: dict[tuple[str, str], set[str]]) -> dict[tuple[str, str], set
     return out
 
 
-CRANK_MOVES = frozenset({"main-land", "pin-land", "fillets", "main-journal", "crank-pin", "nose",
-                         "web", "counterweight"})
+CRANK_MOVES = frozenset({"main-land", "pin-land", "fillets", "main-journal", "main-stiffness",
+                         "crank-pin", "nose", "web", "counterweight"})
 """Moves of the crank's geometry: its torsional modes move, and the damper is tuned again."""
+
+
+DAMPER_MOVES = frozenset({"damper", "damper-tuning"})
+"""Moves of the damper: its rubber is tuned again to the crank after them."""
+
+TUNED_RULES = ("TV-", "DMP-")
+"""Rules of the crank's vibration: a crank move answering one is tried with the damper tuned
+to each trial layout (:class:`MoveBinding`)."""
 
 
 def _retuned(bench: Bench, d: Design) -> Design:
@@ -629,7 +688,8 @@ def _retuned(bench: Bench, d: Design) -> Design:
     ok = {n: float(np.nanmax(v)) for n, v in got.items()
           if v is not None and np.isfinite(v).any()}
     return replace(d, tune=replace(
-        t, ring_stiffness=ok.get("optimum_stiffness", t.ring_stiffness),
+        t, ring_stiffness=ok["optimum_stiffness"] * t.detune if "optimum_stiffness" in ok
+        else t.ring_stiffness,
         loss_factor=min(max(ok.get("optimum_loss_factor", t.loss_factor), 0.05), 1.0),
         tuning=ok.get("optimum_tuning_ratio", t.tuning)))
 
@@ -659,7 +719,8 @@ def _round(bench: Bench, design: Design, res: Any, plan: dict[str, list[Any]],
     steps = []
     for mid, results in plan.items():
         m = next(x for x in MOVES if x.id == mid)
-        binding = MoveBinding(bench, design, m)
+        binding = MoveBinding(bench, design, m, retune=m.id in CRANK_MOVES and any(
+            r.rule.startswith(TUNED_RULES) for r in results))
         sub = dataclasses.replace(res, results=_worst_per_rule(results))
         lo, hi = m.bounds_for(design)
         if not m.choices and m.direction == "increase" and hi <= 1.0 + 1e-6:

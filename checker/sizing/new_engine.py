@@ -348,6 +348,7 @@ class Tuning:
     limits: dict | None = None  # project limits (sizing.project_limits.free_limits)
     oil_grade: str | None = None  # chosen by the loop (None: the fuel's usual grade)
     oil_cooling: float = 0.0  # K below the usual gallery temperature (an oil cooler, the loop)
+    detune: float = 1.0  # rubber stiffness / Den Hartog's optimum (the loop's damper tuning)
 
 
 def _mm(x: float) -> float:
@@ -437,16 +438,21 @@ def _tv_rows(L: Layout, mat: dict, tune: Tuning) -> list:
              est(None, "Den Hartog tuned absorber: ring inertia 0.25 x the first crank mode's"
                  " modal inertia at the nose [ratio not confirmed in a public source];"
                  " rubber stiffness at the optimum tuning of the damper-tuning module (Den"
-                 " Hartog, Mechanical Vibrations, 1956)")],
+                 " Hartog, Mechanical Vibrations, 1956)"
+                 + ("" if tune.detune == 1.0 else f", x {tune.detune:.3g} (tuned by the"
+                    " sizing loop to the crank's response)"))],
             ["Crank nose", "crank nose", None, round(float(jn) + hub, 7), None, None, None,
              est(None, "inertia of the nose shaft (sheet CrankEnds) plus hubs 4 x its inertia"
                  f" [not confirmed]; stiffness {derived}")]]
     rods = b.cylinders // L.throws
+    c_cyl = fl.cylinder_damping(b.bore, L.engine_class)
     for t in range(L.throws):
         cyl = [c + 1 for c in range(b.cylinders) if L.cyl_throw[c] == t + 1]
         rows.append([f"Throw {t + 1}" if rods > 1 else f"Cylinder {cyl[0]}", "cylinder",
-                     ", ".join(map(str, cyl)) if rods > 1 else cyl[0], None, None, None, None,
-                     f"inertia and stiffness {derived}"])
+                     ", ".join(map(str, cyl)) if rods > 1 else cyl[0], None,
+                     round(c_cyl * len(cyl), 4), None, None,
+                     f"inertia and stiffness {derived}; absolute damping: "
+                     + est("cylinder_damping")])
     rows.append(["Flywheel", "flywheel", None, round(tune.flywheel, 5), None, None, None,
                  est(None, "smallest flywheel meeting the class's cyclic irregularity target"
                      f" ({fl.CLASSES[L.engine_class]['irregularity'] * 100:g} %) at the lowest"

@@ -15,7 +15,7 @@ import pytest
 from checker import api
 from checker.calc import first_layout as fl
 from checker.sizing.brief import parse_brief
-from checker.sizing.new_engine import layout
+from checker.sizing.new_engine import content, layout, tune_layout
 
 BRIEFS = {
     "i3": 'cylinders = 3\nbore = "71.9 mm"\nstroke = "82 mm"\nrated_power = "92 kW"\n'
@@ -253,3 +253,27 @@ def test_estimates_are_consistent_with_the_checkers_models(tmp_path):
     assert status[("JNT-002", "crank nose")] == "pass"
     assert status[("JNT-002", "flywheel")] == "pass"
     assert status[("BAL-006", "static")] == "pass"
+
+
+def test_each_cylinder_station_carries_the_published_damping_scaled_to_the_bore(tmp_path):
+    """TVModel absolute damping per cylinder: Bell 2013's 1.5 N m s/rad at 86 mm (passenger
+    car), Mendes et al. 2008's 2.0 N m s/rad at 105 mm (heavier classes), x (bore/that
+    bore)^4; a V engine's throw carries two cylinders'."""
+    assert fl.cylinder_damping(0.086, "passenger car") == pytest.approx(1.5)
+    assert fl.cylinder_damping(0.105, "commercial vehicle") == pytest.approx(2.0)
+    assert fl.cylinder_damping(0.210, "marine") == pytest.approx(32.0)
+    assert fl.cylinder_damping(0.172, "passenger car") == pytest.approx(24.0)
+    with pytest.raises(ValueError):
+        fl.cylinder_damping(0.0, "passenger car")
+    for brief, per_station in (
+            ({"cylinders": 4, "bore": "86 mm", "stroke": "94.6 mm", "rated_power": "110 kW",
+              "rated_speed": "6000 rpm"}, 1.5),
+            ({"cylinders": 8, "layout": "V", "bank_angle": "90 deg", "bore": "99 mm",
+              "stroke": "92 mm", "rated_power": "257 kW", "rated_speed": "5600 rpm"},
+             2 * 1.5 * (99 / 86) ** 4)):
+        rows = content(*tune_layout(layout(parse_brief(brief)))[:2])["TVModel"][1]
+        cyl = [r for r in rows if r[1] == "cylinder"]
+        assert cyl and all(r[4] == pytest.approx(per_station, rel=1e-3) for r in cyl)
+        assert all("Mendes" in r[7] and "Bell" in r[7] for r in cyl)
+        other = [r for r in rows if r[1] != "cylinder"]
+        assert all(r[4] is None for r in other)
