@@ -378,7 +378,7 @@ MOVES: tuple[Move, ...] = (
          " response, about Den Hartog's optimum)", _detuned, _one, DETUNE, "either"),
     Move("main-stiffness", "Main journal (diameter and land width, for the crank's"
          " torsional stiffness)", ("TV-",), (), "main journal diameter and land width (the"
-         " crank's torsional stiffness)", _scaled("dj", "main_land"), _one, (1.0, 1.4),
+         " crank's torsional stiffness)", _scaled("dj", "main_land"), _one, (1.0, 1.1),
          cap=_cap_main),
     Move("web", "Web (thickness and width)", ("FAT-", "TV-"), (),
          "web thickness and web width", _web, _one, (1.0, 1.6), cap=_cap_web),

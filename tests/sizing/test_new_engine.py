@@ -132,15 +132,17 @@ def test_v8_even_firing_cross_plane():
 
 def test_public_engines_scatter():
     """The open-loop rules against the public engines' service data (docs/new-engine.md):
-    median |error| of main, pin and rod length at most 8 %; the largest (the Ford 4.0 V6's
-    main, 1.06 x its pin where the rule takes 1.2) is stated in the docs."""
+    median |error| of main, pin and rod length at most 8 %, none beyond 20 % but the Ford 4.0
+    V6's main (1.06 x its pin where the rule takes the median 1.2 of 38 engines' service
+    data), stated in the docs."""
     from checker.sizing.public_engines import markdown, scatter
 
     _rows, stats = scatter()
     for k in ("main", "pin", "rod"):
         assert stats[k]["n"] >= 9 and stats[k]["median"] <= 8.0, (k, stats[k])
-    assert stats["pin"]["max"] <= 15.0 and stats["rod"]["max"] <= 15.0
+    assert stats["pin"]["max"] <= 20.0 and stats["rod"]["max"] <= 20.0
     assert stats["main"]["max"] <= 22.0
+    assert sorted(r["main"][2] for r in _rows if r["main"][2] is not None)[-2] <= 20.0
     doc = (Path(__file__).parents[2] / "docs" / "new-engine.md").read_text()
     assert markdown() in doc  # the table in the docs is the one the rules give today
 
