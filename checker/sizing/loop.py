@@ -836,6 +836,18 @@ class Sized:
     loop: Any = None  # checker.sizing.loop.LoopOutcome
 
 
+def _plausible(bench: Bench, d: Design) -> Layout:
+    """The looped layout's own plausibility (:func:`checker.sizing.new_engine.plausibility`,
+    the crank modes of its TV model): the loop moves dimensions past the open-loop layout's
+    (a main land wider than real ones, a crank mode moved), and what ``checker new`` and the
+    report's caveats say must be of the layout written."""
+    from .new_engine import _mode_plausibility, plausibility
+
+    res = bench.check(content(d.layout, d.tune), ["TV-001"])
+    modes = _mode_plausibility(d.layout, res) if hasattr(res, "results") else []
+    return replace(d.layout, plausibility=tuple(plausibility(d.layout)) + tuple(modes))
+
+
 def sized(b: Brief, iterate: bool = True) -> Sized:
     """The first layout by its rules, tuned (:func:`tune_layout`); with ``iterate`` checked
     and moved by the sizing loop (:func:`checker.sizing.loop.close_loop`) until every rule
@@ -844,7 +856,7 @@ def sized(b: Brief, iterate: bool = True) -> Sized:
     if not iterate:
         return Sized(L, content(L, tune))
     out = close_loop(bench, Design(L, tune))
-    d = out.design
+    d = replace(out.design, layout=_plausible(bench, out.design))
     cont = annotate(content(d.layout, d.tune), out.steps)
     cont["Notes"] = cont["Notes"] + out.notes()
     return Sized(d.layout, cont, out)
