@@ -448,3 +448,16 @@ def test_the_web_move_keeps_its_width_inside_the_fitted_range_of_the_throw_stiff
     assert n.bw == pytest.approx(WEB_WIDTH_MAX * min(L.dp, L.dj)) and n.bw < 1.5 * L.bw
     small = web.apply(Design(L, tune), 1.05).layout
     assert small.bw == pytest.approx(1.05 * L.bw)
+
+
+def test_the_looped_layouts_plausibility_is_its_own():
+    """The console's warnings and the report's caveats are of the crank written: a main land
+    the loop widened past the band of real engines is named, and one back inside is not."""
+    from checker.sizing.loop import Design, _plausible
+
+    L, tune, bench = tune_layout(layout(parse_brief(dict(I4))))
+    wide = relayout(L, main_land=0.55 * L.dj)
+    names = " ".join(_plausible(bench, Design(wide, tune)).plausibility)
+    assert "main land L/D 0.55" in names
+    back = " ".join(_plausible(bench, Design(L, tune)).plausibility)
+    assert "main land L/D" not in back
