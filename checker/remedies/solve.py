@@ -463,23 +463,26 @@ def _bracketed(job: _Job, aim: float) -> bool:
     return False
 
 
+def _best_margin(job: _Job) -> float | None:
+    """The best margin the walk reached (the largest for a failing result, the smallest for a
+    passing one walked towards its limit); None without a valid point."""
+    ms = [m for _, m in job.pts if m is not None]
+    return (max(ms) if job.want_pass else min(ms)) if ms else None
+
+
 def _walk_on(job: _Job, walked: list[tuple[float, float]], aim: float) -> None:
     """No value passes yet: none within the bounds when the walk reached the bound or an
     invalid input, else the next step out (:func:`_reach`)."""
     invalid = any(m is None for _, m in job.pts)
     at_bound = any(abs(x - job.xb) <= 1e-12 * max(abs(job.xb), 1.0) for x, _ in walked)
     if invalid or at_bound:
-        ms = [m for _, m in job.pts if m is not None]
-        job.remedy.best_margin = max(ms) if ms and job.want_pass else (
-            min(ms) if ms else None)
+        job.remedy.best_margin = _best_margin(job)
         job.remedy.reason = "no value within the bounds" + (
             f" ({with_unit(job.xb, job.lever.unit)})" if job.xb is not None else "")
         job.done = True
         return
     if job.remedy.evaluations >= MAX_STEPS:
-        ms = [m for _, m in job.pts if m is not None]
-        job.remedy.best_margin = max(ms) if ms and job.want_pass else (
-            min(ms) if ms else None)
+        job.remedy.best_margin = _best_margin(job)
         job.done, job.remedy.reason = True, "root finding did not converge"
         return
     if not walked:

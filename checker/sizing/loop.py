@@ -35,7 +35,16 @@ from ..calc import throw_stiffness as ts
 from ..workbook.schema import SHEETS
 from .bench import Bench
 from .brief import Brief
-from .new_engine import Layout, Tuning, _joint_design, content, layout, tune_layout
+from .new_engine import (
+    Layout,
+    Tuning,
+    _joint_design,
+    _mode_plausibility,
+    content,
+    layout,
+    plausibility,
+    tune_layout,
+)
 
 MAX_ROUNDS = 16
 """Rounds of the loop at most (each: one check, one root finding per move in use)."""
@@ -841,8 +850,6 @@ def _plausible(bench: Bench, d: Design) -> Layout:
     the crank modes of its TV model): the loop moves dimensions past the open-loop layout's
     (a main land wider than real ones, a crank mode moved), and what ``checker new`` and the
     report's caveats say must be of the layout written."""
-    from .new_engine import _mode_plausibility, plausibility
-
     res = bench.check(content(d.layout, d.tune), ["TV-001"])
     modes = _mode_plausibility(d.layout, res) if hasattr(res, "results") else []
     return replace(d.layout, plausibility=tuple(plausibility(d.layout)) + tuple(modes))
